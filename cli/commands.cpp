@@ -1,0 +1,50 @@
+#include "commands.h"
+
+#include <iostream>
+
+#include "common.h"
+#include "exit_codes.h"
+#include "texproc/error.h"
+
+namespace texproc::cli {
+
+void add_all_commands(CLI::App& app) { add_mip_command(app); }
+
+namespace {
+std::string command_name(CLI::App& app) {
+  for (CLI::App* sub : app.get_subcommands()) return sub->get_name();
+  return "";
+}
+}  // namespace
+
+int report_usage_error(CLI::App& app, const CLI::ParseError& e) {
+  const std::string cmd = command_name(app);
+  const std::string prefix = cmd.empty() ? "texproc" : "texproc " + cmd;
+  std::cerr << prefix << ": error: " << e.what() << "\nSee '" << prefix << " --help'.\n";
+  return int(ExitCode::bad_arguments);
+}
+
+int run_selected(CLI::App& app) {
+  const std::string cmd = command_name(app);
+  for (CLI::App* sub : app.get_subcommands()) {
+    CommandRunner* run = runner_of(*sub);
+    if (!run) break;
+    try {
+      return (*run)();
+    } catch (const texproc::Error& e) {
+      std::cerr << "texproc " << cmd << ": error: " << e.what() << "\n";
+      if (e.code() == ErrorCode::bad_arguments) std::cerr << "See 'texproc " << cmd << " --help'.\n";
+      return int(e.code());
+    } catch (const std::bad_alloc&) {
+      std::cerr << "texproc " << cmd << ": error: out of memory\n";
+      return int(ExitCode::runtime);
+    } catch (const std::exception& e) {
+      std::cerr << "texproc " << cmd << ": error: " << e.what() << "\n";
+      return int(ExitCode::runtime);
+    }
+  }
+  std::cerr << "texproc: error: no command given\nSee 'texproc --help'.\n";
+  return int(ExitCode::bad_arguments);
+}
+
+}  // namespace texproc::cli

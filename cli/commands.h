@@ -1,0 +1,15 @@
+// Registration of every command, and the one place that turns errors into
+// messages and exit codes: `texproc <command>: error: <message>`.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace texproc::cli {
+
+void add_mip_command(CLI::App& app);
+
+void add_all_commands(CLI::App& app);
+int report_usage_error(CLI::App& app, const CLI::ParseError& e);
+int run_selected(CLI::App& app);
+
+}  // namespace texproc::cli

@@ -1,0 +1,87 @@
+// texproc/image.h: pixel types, a non-owning image view and an owning image.
+#pragma once
+
+#include <cassert>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace texproc {
+
+// The element type of one channel in memory. Half-float files are widened to
+// f32 on read (and may be narrowed again on write, see image_io.h).
+enum class PixelType : std::uint8_t { u8, u16, f32 };
+
+// Bytes per channel of `t`.
+constexpr std::size_t bytes_per_channel(PixelType t) {
+  switch (t) {
+    case PixelType::u8: return 1;
+    case PixelType::u16: return 2;
+    case PixelType::f32: return 4;
+  }
+  return 0;
+}
+constexpr bool is_float(PixelType t) { return t == PixelType::f32; }
+
+// "u8", "u16", "f32".
+const char* to_string(PixelType t);
+
+// A view of interleaved pixels in caller memory. `row_stride` is in bytes and
+// may exceed width * channels * bytes_per_channel(type) (padding, sub-views).
+struct ImageView {
+  void* data = nullptr;
+  int width = 0;
+  int height = 0;
+  int channels = 0;  // 1..4: gray, gray+alpha, RGB, RGBA
+  PixelType type = PixelType::u8;
+  std::size_t row_stride = 0;
+
+  std::size_t pixel_bytes() const { return channels * bytes_per_channel(type); }
+  template <typename T>
+  T* row(int y) const {
+    assert(y >= 0 && y < height);
+    return reinterpret_cast<T*>(static_cast<std::uint8_t*>(data) + y * row_stride);
+  }
+};
+
+// An owning image with tightly packed rows.
+class Image {
+ public:
+  Image() = default;
+  // Allocates width*height*channels elements of `type`, zero-filled.
+  // Asserts 1 <= channels <= 4 and positive sizes.
+  Image(int width, int height, int channels, PixelType type);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int channels() const { return channels_; }
+  PixelType type() const { return type_; }
+  bool empty() const { return data_.empty(); }
+  std::size_t row_stride() const { return std::size_t(width_) * channels_ * bytes_per_channel(type_); }
+  std::size_t byte_size() const { return data_.size(); }
+
+  std::uint8_t* data() { return data_.data(); }
+  const std::uint8_t* data() const { return data_.data(); }
+  template <typename T>
+  T* row(int y) { return reinterpret_cast<T*>(data_.data() + y * row_stride()); }
+  template <typename T>
+  const T* row(int y) const { return reinterpret_cast<const T*>(data_.data() + y * row_stride()); }
+
+  ImageView view() { return {data_.data(), width_, height_, channels_, type_, row_stride()}; }
+  ImageView view() const {
+    return {const_cast<std::uint8_t*>(data_.data()), width_, height_, channels_, type_, row_stride()};
+  }
+
+  // Channel c of pixel (x, y) as a float: integers are scaled to [0, 1].
+  float get(int x, int y, int c) const;
+  // Sets channel c of pixel (x, y): integers are rounded and clamped.
+  void set(int x, int y, int c, float v);
+
+ private:
+  int width_ = 0, height_ = 0, channels_ = 0;
+  PixelType type_ = PixelType::u8;
+  std::vector<std::uint8_t> data_;
+};
+
+}  // namespace texproc

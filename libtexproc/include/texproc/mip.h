@@ -1,0 +1,65 @@
+// texproc/mip.h: gamma-correct mip chains.
+//
+// Each level is filtered from the previous one in linear, premultiplied float
+// (never from re-quantized bytes), with polyphase weights for odd sizes. See
+// docs/mip.md for why level-to-level and what each option does.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "texproc/color.h"
+#include "texproc/filters.h"
+#include "texproc/image.h"
+
+namespace texproc {
+
+struct MipOptions {
+  Filter filter;                       // default: Gaussian, sigma 0.5 destination texels
+  WrapMode wrap = WrapMode::clamp;     // taps past the edges
+  // Source color space; empty: sRGB for u8/u16 input, linear for f32 input.
+  // Normal maps are always decoded as linear data.
+  std::string color_space;
+  // Color space of the written levels; empty: the source one, except that
+  // f32 output from integer input is linear (scene-linear floats).
+  std::string output_color_space;
+  // Element type of the written levels; empty: the input's type.
+  std::optional<PixelType> output_type;
+  // Filter color premultiplied by alpha (channels 2 and 4). Off only for data
+  // whose fourth channel is not coverage.
+  bool premultiplied_alpha = true;
+  // If >= 0: scale each level's alpha so that the fraction of texels with
+  // alpha >= ref equals level 0's (NVTT's scaleAlphaForCoverage).
+  float alpha_coverage_ref = -1.0f;
+  // The input is a tangent-space normal map (RGB = XYZ * 0.5 + 0.5): filter
+  // the vectors and renormalize each level. Alpha, if any, is filtered as
+  // plain data.
+  bool normal_map = false;
+  int max_levels = 0;  // 0: all levels down to 1x1
+  int min_size = 1;    // stop before a level whose larger side is < min_size
+};
+
+// Number of levels MipOptions produce for a width x height image.
+int mip_level_count(int width, int height, int max_levels = 0, int min_size = 1);
+// Size of `level`: max(1, floor(size / 2^level)) per axis.
+int mip_level_dim(int size, int level);
+
+struct MipChain {
+  std::vector<Image> levels;         // level 0 first
+  std::string color_space;           // of the stored levels
+  std::vector<float> alpha_coverage; // per level, when alpha_coverage_ref >= 0
+  std::vector<float> alpha_scale;    // per level, the factor applied to alpha
+};
+
+// Builds the chain. Level 0 is the input converted to the output type and
+// color space (a byte copy when they match). Throws Error{bad_arguments} for
+// invalid options (normal maps need 3 or 4 channels, sigma out of range...).
+// Output bytes are identical for any thread count.
+MipChain generate_mips(const ImageView& image, const MipOptions& options);
+
+// The fraction of texels whose alpha (last channel) times `scale` is >= ref.
+// Integer alpha is compared as value / max.
+float alpha_coverage(const ImageView& image, float ref, float scale = 1.0f);
+
+}  // namespace texproc

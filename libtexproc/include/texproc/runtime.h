@@ -1,0 +1,41 @@
+// texproc/runtime.h: threads and SIMD switches for the whole library.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace texproc {
+
+// Limits libtexproc's worker threads to `threads` while the object lives
+// (0 means all hardware threads). Output never depends on the limit: work is
+// split into fixed blocks whatever the thread count.
+class ThreadLimit {
+ public:
+  explicit ThreadLimit(int threads);
+  ~ThreadLimit();
+  ThreadLimit(const ThreadLimit&) = delete;
+  ThreadLimit& operator=(const ThreadLimit&) = delete;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Hardware threads available to this process.
+int hardware_threads();
+
+// Calls fn(begin, end) for the blocks [0, b), [b, 2b), ... of [0, rows), in
+// parallel. Blocks are fixed by `block_rows`, never by the thread count, so
+// a kernel that writes only its own rows gives the same bytes on any number
+// of threads. Exceptions thrown by fn are rethrown (the first one).
+void for_each_row_block(int rows, int block_rows, const std::function<void(int, int)>& fn);
+
+// Forces the scalar reference kernels instead of the SIMD ones (also set by
+// the environment variable TEXPROC_FORCE_SCALAR=1). Both give identical bytes.
+void set_force_scalar(bool on);
+bool force_scalar();
+// The SIMD target the dispatched kernels use now ("scalar" when forced).
+std::string simd_target_name();
+
+}  // namespace texproc

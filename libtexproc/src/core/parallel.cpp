@@ -1,0 +1,46 @@
+// Threads over oneTBB: the only file besides the kernels that includes TBB.
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
+#include "texproc/runtime.h"
+
+namespace texproc {
+
+struct ThreadLimit::Impl {
+  std::unique_ptr<tbb::global_control> control;
+};
+
+ThreadLimit::ThreadLimit(int threads) : impl_(std::make_unique<Impl>()) {
+  if (threads > 0) {
+    impl_->control =
+        std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  }
+}
+ThreadLimit::~ThreadLimit() = default;
+
+int hardware_threads() { return tbb::info::default_concurrency(); }
+
+void for_each_row_block(int rows, int block_rows, const std::function<void(int, int)>& fn) {
+  if (rows <= 0) return;
+  if (block_rows < 1) block_rows = 1;
+  const int blocks = (rows + block_rows - 1) / block_rows;
+  if (blocks == 1) {
+    fn(0, rows);
+    return;
+  }
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, blocks, 1),
+      [&](const tbb::blocked_range<int>& r) {
+        for (int b = r.begin(); b < r.end(); ++b) {
+          const int begin = b * block_rows;
+          const int end = begin + block_rows < rows ? begin + block_rows : rows;
+          fn(begin, end);
+        }
+      },
+      tbb::simple_partitioner());
+}
+
+}  // namespace texproc

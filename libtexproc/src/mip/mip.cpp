@@ -1,0 +1,298 @@
+// The mip chain: decode at the row boundary, filter level to level in linear
+// premultiplied float, encode each level with correct rounding.
+#include "texproc/mip.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstring>
+
+#include "mip/resample.h"
+#include "texproc/error.h"
+#include "texproc/runtime.h"
+
+namespace texproc {
+
+int mip_level_dim(int size, int level) { return std::max(1, size >> level); }
+
+int mip_level_count(int width, int height, int max_levels, int min_size) {
+  int n = 1;
+  while (width > 1 || height > 1) {
+    width = std::max(1, width / 2);
+    height = std::max(1, height / 2);
+    if (std::max(width, height) < min_size) break;
+    ++n;
+  }
+  if (max_levels > 0) n = std::min(n, max_levels);
+  return n;
+}
+
+namespace {
+
+constexpr int kBlockRows = 16;  // output rows per task; fixed, so bytes never depend on threads
+
+bool has_alpha(int channels) { return channels == 2 || channels == 4; }
+
+struct ChainSetup {
+  int channels = 0;
+  bool alpha = false;
+  bool premultiply = false;
+  bool normal_map = false;
+  ColorSpace in_cs = ColorSpace::linear();
+  ColorSpace out_cs = ColorSpace::linear();
+  PixelType out_type = PixelType::u8;
+  WrapMode wrap = WrapMode::clamp;
+};
+
+void premultiply_row(float* px, int channels, int width) {
+  for (int x = 0; x < width; ++x) {
+    float* p = px + x * channels;
+    const float a = p[channels - 1];
+    for (int c = 0; c < channels - 1; ++c) p[c] *= a;
+  }
+}
+
+void unpremultiply_row(float* px, int channels, int width) {
+  for (int x = 0; x < width; ++x) {
+    float* p = px + x * channels;
+    const float a = p[channels - 1];
+    if (a > 0.0f) {
+      for (int c = 0; c < channels - 1; ++c) p[c] /= a;
+    } else {
+      for (int c = 0; c < channels - 1; ++c) p[c] = 0.0f;
+    }
+  }
+}
+
+// Tangent-space normals stored as xyz * 0.5 + 0.5: back to unit length.
+void renormalize_row(float* px, int channels, int width) {
+  for (int x = 0; x < width; ++x) {
+    float* p = px + x * channels;
+    const float vx = p[0] * 2.0f - 1.0f, vy = p[1] * 2.0f - 1.0f, vz = p[2] * 2.0f - 1.0f;
+    const float len = std::sqrt(vx * vx + vy * vy + vz * vz);
+    if (len > 1e-12f) {
+      p[0] = vx / len * 0.5f + 0.5f;
+      p[1] = vy / len * 0.5f + 0.5f;
+      p[2] = vz / len * 0.5f + 0.5f;
+    } else {
+      p[0] = 0.5f;
+      p[1] = 0.5f;
+      p[2] = 1.0f;
+    }
+  }
+}
+
+// A level as the filter sees it: rows of linear (premultiplied) floats.
+// Level 0 is decoded from the input on demand; later levels are stored.
+struct LevelRows {
+  const ImageView* input = nullptr;  // level 0
+  const float* stored = nullptr;     // levels >= 1
+  int width = 0, height = 0;
+};
+
+void decode_input_row(const ChainSetup& s, const ImageView& in, int y, float* dst) {
+  s.in_cs.decode_row(in.row<const void>(y), in.type, s.channels, in.width, dst);
+  if (s.premultiply) premultiply_row(dst, s.channels, in.width);
+}
+
+std::vector<float> downsample(const ChainSetup& s, const LevelRows& src, int dw, int dh, const Filter& filter) {
+  const int C = s.channels;
+  const int sw = src.width, sh = src.height;
+  const AxisWeights wx = compute_axis_weights(sw, dw, filter);
+  const AxisWeights wy = compute_axis_weights(sh, dh, filter);
+  std::vector<float> dst(std::size_t(dw) * dh * C);
+  const std::size_t src_row = std::size_t(sw) * C;
+
+  for_each_row_block(dh, kBlockRows, [&](int y0, int y1) {
+    int lo = INT_MAX, hi = INT_MIN;
+    for (int y = y0; y < y1; ++y) {
+      lo = std::min(lo, wy.first[y]);
+      hi = std::max(hi, wy.first[y] + wy.taps - 1);
+    }
+    std::vector<const float*> rows(hi - lo + 1);
+    std::vector<float> decoded;
+    if (src.input) {
+      decoded.resize(rows.size() * src_row);
+      for (int j = lo; j <= hi; ++j) {
+        float* d = decoded.data() + (j - lo) * src_row;
+        decode_input_row(s, *src.input, wrap_index(j, sh, s.wrap), d);
+        rows[j - lo] = d;
+      }
+    } else {
+      for (int j = lo; j <= hi; ++j) rows[j - lo] = src.stored + wrap_index(j, sh, s.wrap) * src_row;
+    }
+    std::vector<float> tmp(std::size_t(wx.pad_before + sw + wx.pad_after) * C);
+    float* mid = tmp.data() + std::size_t(wx.pad_before) * C;
+    std::vector<const float*> taps(wy.taps);
+    for (int y = y0; y < y1; ++y) {
+      for (int k = 0; k < wy.taps; ++k) taps[k] = rows[wy.first[y] + k - lo];
+      vertical_pass(taps.data(), wy.weights.data() + std::size_t(y) * wy.taps, wy.taps, int(src_row), mid);
+      for (int p = 1; p <= wx.pad_before; ++p) {
+        std::memcpy(mid - p * C, mid + wrap_index(-p, sw, s.wrap) * C, C * sizeof(float));
+      }
+      for (int p = 0; p < wx.pad_after; ++p) {
+        std::memcpy(mid + (sw + p) * C, mid + wrap_index(sw + p, sw, s.wrap) * C, C * sizeof(float));
+      }
+      float* out = dst.data() + std::size_t(y) * dw * C;
+      horizontal_pass(mid, C, wx.first.data(), wx.weights.data(), wx.taps, dw, out);
+      if (s.normal_map) renormalize_row(out, C, dw);
+    }
+  });
+  return dst;
+}
+
+// Fraction of alpha values (stride `channels`, offset channels-1) with a * scale >= ref.
+float coverage_of(const float* px, std::size_t count, int channels, float ref, float scale) {
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < count; ++i) n += px[i * channels + channels - 1] * scale >= ref;
+  return count ? float(double(n) / double(count)) : 0.0f;
+}
+
+// The factor k such that the fraction of a * k >= ref is `target` (as close as
+// the texels allow): k = ref / (the ceil(target * n)-th largest alpha).
+float coverage_scale(const float* px, std::size_t count, int channels, float ref, float target) {
+  std::vector<float> a(count);
+  for (std::size_t i = 0; i < count; ++i) a[i] = px[i * channels + channels - 1];
+  const std::size_t want = std::size_t(std::llround(double(target) * count));
+  constexpr float kMaxScale = 1.0e4f;
+  if (want == 0) {
+    const float mx = *std::max_element(a.begin(), a.end());
+    return mx >= ref && mx > 0.0f ? std::nextafter(ref / mx, 0.0f) : 1.0f;
+  }
+  std::nth_element(a.begin(), a.begin() + (want - 1), a.end(), std::greater<float>());
+  const float t = a[want - 1];
+  if (t <= 0.0f) return kMaxScale;
+  return std::min(kMaxScale, ref / t);
+}
+
+void encode_level(const ChainSetup& s, const float* src, int w, int h, float alpha_scale, Image& out) {
+  const int C = s.channels;
+  for_each_row_block(h, kBlockRows, [&](int y0, int y1) {
+    std::vector<float> row(std::size_t(w) * C);
+    for (int y = y0; y < y1; ++y) {
+      std::memcpy(row.data(), src + std::size_t(y) * w * C, row.size() * sizeof(float));
+      if (s.premultiply) unpremultiply_row(row.data(), C, w);
+      if (s.alpha && alpha_scale != 1.0f) {
+        for (int x = 0; x < w; ++x) row[x * C + C - 1] = std::min(1.0f, row[x * C + C - 1] * alpha_scale);
+      }
+      s.out_cs.encode_row(row.data(), C, w, out.row<void>(y), out.type());
+    }
+  });
+}
+
+Image convert_level0(const ChainSetup& s, const ImageView& in) {
+  Image out(in.width, in.height, s.channels, s.out_type);
+  if (in.type == s.out_type && s.in_cs.name() == s.out_cs.name()) {
+    for (int y = 0; y < in.height; ++y) std::memcpy(out.row<void>(y), in.row<void>(y), out.row_stride());
+    return out;
+  }
+  for_each_row_block(in.height, kBlockRows, [&](int y0, int y1) {
+    std::vector<float> row(std::size_t(in.width) * s.channels);
+    for (int y = y0; y < y1; ++y) {
+      s.in_cs.decode_row(in.row<const void>(y), in.type, s.channels, in.width, row.data());
+      s.out_cs.encode_row(row.data(), s.channels, in.width, out.row<void>(y), out.type());
+    }
+  });
+  return out;
+}
+
+}  // namespace
+
+float alpha_coverage(const ImageView& image, float ref, float scale) {
+  if (!has_alpha(image.channels)) return 1.0f;
+  std::size_t n = 0;
+  const int C = image.channels;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      float a = 0.0f;
+      switch (image.type) {
+        case PixelType::u8: a = image.row<std::uint8_t>(y)[x * C + C - 1] / 255.0f; break;
+        case PixelType::u16: a = image.row<std::uint16_t>(y)[x * C + C - 1] / 65535.0f; break;
+        case PixelType::f32: a = image.row<float>(y)[x * C + C - 1]; break;
+      }
+      n += a * scale >= ref;
+    }
+  }
+  return float(double(n) / (double(image.width) * image.height));
+}
+
+MipChain generate_mips(const ImageView& image, const MipOptions& o) {
+  assert(image.data && image.width > 0 && image.height > 0);
+  if (image.channels < 1 || image.channels > 4) {
+    throw Error(ErrorCode::unsupported, "images with " + std::to_string(image.channels) +
+                                            " channels are not supported (valid: 1 to 4)");
+  }
+  if (o.filter.kind == FilterKind::gaussian && !(o.filter.sigma > 0.0f && o.filter.sigma <= 4.0f)) {
+    throw Error(ErrorCode::bad_arguments,
+                "--sigma " + std::to_string(o.filter.sigma) + " is out of range (valid: 0 < sigma <= 4)");
+  }
+  if (o.normal_map && image.channels < 3) {
+    throw Error(ErrorCode::bad_arguments,
+                "--normal-map needs an RGB or RGBA image, this one has " + std::to_string(image.channels) +
+                    " channel(s)");
+  }
+  if (o.alpha_coverage_ref >= 0.0f && !(o.alpha_coverage_ref > 0.0f && o.alpha_coverage_ref <= 1.0f)) {
+    throw Error(ErrorCode::bad_arguments, "--alpha-coverage " + std::to_string(o.alpha_coverage_ref) +
+                                              " is out of range (valid: 0 < ref <= 1)");
+  }
+  if (o.min_size < 1) throw Error(ErrorCode::bad_arguments, "--min-size must be at least 1");
+
+  ChainSetup s;
+  s.channels = image.channels;
+  s.alpha = has_alpha(image.channels);
+  s.normal_map = o.normal_map;
+  s.premultiply = s.alpha && o.premultiplied_alpha && !o.normal_map;
+  s.wrap = o.wrap;
+  s.out_type = o.output_type.value_or(image.type);
+  if (o.normal_map) {
+    s.in_cs = s.out_cs = ColorSpace::linear();
+  } else {
+    s.in_cs = !o.color_space.empty()     ? ColorSpace::from_name(o.color_space)
+              : is_float(image.type)     ? ColorSpace::linear()
+                                         : ColorSpace::srgb();
+    if (!o.output_color_space.empty()) {
+      s.out_cs = ColorSpace::from_name(o.output_color_space);
+    } else if (is_float(s.out_type) && !is_float(image.type)) {
+      s.out_cs = ColorSpace::linear();
+    } else {
+      s.out_cs = s.in_cs;
+    }
+  }
+
+  MipChain chain;
+  chain.color_space = s.out_cs.name();
+  const int levels = mip_level_count(image.width, image.height, o.max_levels, o.min_size);
+  chain.levels.reserve(levels);
+  chain.levels.push_back(convert_level0(s, image));
+
+  const bool coverage = s.alpha && o.alpha_coverage_ref >= 0.0f && !o.normal_map;
+  float target = 0.0f;
+  if (coverage) {
+    target = alpha_coverage(image, o.alpha_coverage_ref);
+    chain.alpha_coverage.push_back(target);
+    chain.alpha_scale.push_back(1.0f);
+  }
+
+  std::vector<float> prev;
+  LevelRows src{&image, nullptr, image.width, image.height};
+  for (int level = 1; level < levels; ++level) {
+    const int dw = mip_level_dim(image.width, level), dh = mip_level_dim(image.height, level);
+    std::vector<float> cur = downsample(s, src, dw, dh, o.filter);
+    float scale = 1.0f;
+    if (coverage) {
+      // Coverage is judged on straight alpha, which premultiplication leaves alone.
+      scale = coverage_scale(cur.data(), std::size_t(dw) * dh, s.channels, o.alpha_coverage_ref, target);
+      chain.alpha_coverage.push_back(
+          coverage_of(cur.data(), std::size_t(dw) * dh, s.channels, o.alpha_coverage_ref, scale));
+      chain.alpha_scale.push_back(scale);
+    }
+    Image out(dw, dh, s.channels, s.out_type);
+    encode_level(s, cur.data(), dw, dh, scale, out);
+    chain.levels.push_back(std::move(out));
+    prev = std::move(cur);
+    src = LevelRows{nullptr, prev.data(), dw, dh};
+  }
+  return chain;
+}
+
+}  // namespace texproc

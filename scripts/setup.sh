@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs what texproc needs to build, test and benchmark on Debian 12, as
+# root. Idempotent: installs only the packages that are missing.
+set -euo pipefail
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
+  libcli11-dev googletest libgtest-dev libbenchmark-dev libtbb-dev libhwy-dev
+  # independent checks and peers used by tests and benchmarks
+  libnvtt-bin libsquish-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+echo "setup: all dependencies present"

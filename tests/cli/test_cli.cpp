@@ -1,0 +1,106 @@
+// The CLI through its real output: exit codes, messages, files.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "support/images.h"
+#include "support/run.h"
+#include "texproc/image_io.h"
+#include "texproc/mip.h"
+
+using namespace texproc;
+using namespace texproc::test;
+namespace fs = std::filesystem;
+
+TEST(Cli, VersionAndHelp) {
+  RunResult r = run_texproc("--version");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("texproc 0."), std::string::npos);
+  r = run_texproc("--help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("mip"), std::string::npos);
+  EXPECT_NE(r.out.find("Exit codes"), std::string::npos);
+  r = run_texproc("mip --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* opt : {"--filter", "--sigma", "--wrap", "--colorspace", "--linear", "--levels", "--min-size",
+                          "--alpha-coverage", "--normal-map", "--threads", "--force", "--type"}) {
+    EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
+  }
+}
+
+TEST(Cli, UsageErrorsExitOneWithHint) {
+  RunResult r = run_texproc("mip");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("texproc mip: error:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("See 'texproc mip --help'."), std::string::npos) << r.err;
+  r = run_texproc("frobnicate");
+  EXPECT_EQ(r.exit_code, 1);
+}
+
+TEST(Cli, MipErrorsNameTheFileAndProblem) {
+  const std::string dir = temp_dir("cli_err");
+  const Image img = checkerboard(8, 8, 3);
+  write_image(dir + "/in.png", img.view());
+
+  RunResult r = run_texproc("mip " + dir + "/missing.png -o " + dir + "/o.tif");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("missing.png: no such file"), std::string::npos) << r.err;
+
+  r = run_texproc("mip " + dir + "/in.png -o " + dir + "/o.tif --filter bicubic");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("unknown filter 'bicubic' (valid: box, triangle, gaussian"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/o.tif"));
+
+  write_image(dir + "/in.tif", img.view());
+  r = run_texproc("mip " + dir + "/in.tif -o " + dir + "/./in.tif --force");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("would overwrite the input"), std::string::npos) << r.err;
+
+  {
+    std::ofstream(dir + "/garbage.png") << "not an image";
+  }
+  r = run_texproc("mip " + dir + "/garbage.png -o " + dir + "/g.tif");
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("garbage.png"), std::string::npos) << r.err;
+
+  r = run_texproc("mip " + dir + "/in.png -o " + dir + "/o.tif -q");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = run_texproc("mip " + dir + "/in.png -o " + dir + "/o.tif");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("output exists (use --force"), std::string::npos) << r.err;
+  r = run_texproc("mip " + dir + "/in.png -o " + dir + "/o.tif --force -q");
+  EXPECT_EQ(r.exit_code, 0);
+
+  r = run_texproc("mip " + dir + "/in.png -o " + dir + "/o.xyz");
+  EXPECT_EQ(r.exit_code, 5);
+  fs::remove_all(dir);
+}
+
+// The checkerboard through the real command: one PNG per level, 187-188 below level 0.
+TEST(Cli, MipCheckerboardPerLevelPngs) {
+  const std::string dir = temp_dir("cli_mip");
+  write_image(dir + "/cb.png", checkerboard(16, 16, 3).view());
+  RunResult r = run_texproc("mip " + dir + "/cb.png -o " + dir + "/out/cb.png --wrap repeat -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (int l = 0; l < 5; ++l) {
+    const std::string p = dir + "/out/cb_mip" + std::to_string(l) + ".png";
+    ASSERT_TRUE(fs::exists(p)) << p;
+    const Image lv = read_image(p);
+    EXPECT_EQ(lv.width(), 16 >> l);
+    if (l == 0) continue;
+    for (int y = 0; y < lv.height(); ++y)
+      for (int x = 0; x < lv.width() * 3; ++x) {
+        const int v = lv.row<std::uint8_t>(y)[x];
+        EXPECT_TRUE(v == 187 || v == 188) << v;
+      }
+  }
+  EXPECT_FALSE(fs::exists(dir + "/out/cb_mip5.png"));
+  // The same bytes with 1 and 2 threads, as a TIFF MIP file.
+  r = run_texproc("mip " + dir + "/cb.png -o " + dir + "/t1.tif -j 1 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_texproc("mip " + dir + "/cb.png -o " + dir + "/t2.tif -j 2 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(slurp(dir + "/t1.tif") == slurp(dir + "/t2.tif")) << "TIFF bytes depend on the thread count";
+  EXPECT_EQ(probe_image(dir + "/t1.tif").mip_levels, 5);
+  fs::remove_all(dir);
+}
