@@ -57,6 +57,9 @@ struct MipChain {
 // invalid options (normal maps need 3 or 4 channels, sigma out of range...).
 // Output bytes are identical for any thread count.
 MipChain generate_mips(const ImageView& image, const MipOptions& options);
+// The same, taking ownership of `image`: when level 0 needs no conversion it
+// becomes levels[0] without a copy.
+MipChain generate_mips(Image&& image, const MipOptions& options);
 
 // The fraction of texels whose alpha (last channel) times `scale` is >= ref.
 // Integer alpha is compared as value / max.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstring>
 
@@ -34,23 +35,12 @@ struct Srgb8Tables {
   // threshold[k] (k = 1..255): the smallest linear value that encodes to k,
   // i.e. srgb_to_linear((k - 0.5) / 255) rounded up to a float.
   std::array<float, 257> threshold{};
-  // start[i]: the code of the linear value i / kBins; the true code is at most
-  // two steps above it (the curve's steepest slope, 12.92 * 255 codes per unit,
-  // is under one code per bin).
-  static constexpr int kBins = 4096;
-  std::array<std::uint8_t, kBins + 1> start{};
 
   Srgb8Tables() {
     for (int i = 0; i < 256; ++i) decode[i] = static_cast<float>(srgb_to_linear(i / 255.0));
     threshold[0] = -1.0f;
     for (int k = 1; k < 256; ++k) threshold[k] = float_at_or_above(srgb_to_linear((k - 0.5) / 255.0));
-    threshold[256] = 2.0f;  // never reached: x is clamped to [0, 1]
-    int code = 0;
-    for (int i = 0; i <= kBins; ++i) {
-      const float x = static_cast<float>(i) / kBins;
-      while (x >= threshold[code + 1]) ++code;
-      start[i] = static_cast<std::uint8_t>(code);
-    }
+    threshold[256] = 4.0f;  // never reached: x is clamped to [0, 1]
   }
 };
 
@@ -70,11 +60,57 @@ const std::array<float, 65536>& srgb16_decode() {
 
 inline float clamp01(float x) { return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; }  // NaN -> 0
 
-inline std::uint8_t encode_srgb8(const Srgb8Tables& t, float x) {
-  x = clamp01(x);
-  int code = t.start[static_cast<int>(x * Srgb8Tables::kBins)];
-  while (x >= t.threshold[code + 1]) ++code;
-  return static_cast<std::uint8_t>(code);
+// Encoding by the float's bits: x in [2^-13, 2) is split into bins by its
+// exponent and the top kMantissaBits of its mantissa. The sRGB curve rises by
+// at most 0.11 codes across a bin (112 codes per unit of ln x at x = 1, and a
+// bin spans 2^-10 of ln x), so a bin holds at most one rounding threshold:
+// code = lo + (x >= threshold), exact, with one lookup and no loop. Below
+// 2^-13 every value encodes to 0 (the first threshold is 1.5e-4).
+struct Srgb8Encoder {
+  static constexpr int kMantissaBits = 10;
+  static constexpr int kMinExponent = -13;
+  static constexpr int kExponents = 14;  // -13 .. 0 ([1, 2) encodes to 255)
+  struct Bin {
+    float threshold;
+    std::uint32_t lo;
+  };
+  std::array<Bin, kExponents << kMantissaBits> bins{};
+
+  explicit Srgb8Encoder(const Srgb8Tables& t) {
+    for (std::size_t i = 0; i < bins.size(); ++i) {
+      const std::uint32_t bits = std::uint32_t(127 + kMinExponent + int(i >> kMantissaBits)) << 23 |
+                                 std::uint32_t(i & ((1u << kMantissaBits) - 1)) << (23 - kMantissaBits);
+      float lo_x, hi_x;
+      std::memcpy(&lo_x, &bits, 4);
+      const std::uint32_t next = bits + (1u << (23 - kMantissaBits));
+      std::memcpy(&hi_x, &next, 4);
+      int code = 0;
+      while (code < 255 && lo_x >= t.threshold[code + 1]) ++code;
+      bins[i].lo = std::uint32_t(code);
+      bins[i].threshold = 4.0f;  // never reached
+      if (code < 255 && t.threshold[code + 1] < hi_x) {
+        bins[i].threshold = t.threshold[code + 1];
+        assert(code + 2 > 255 || t.threshold[code + 2] >= hi_x);  // one threshold per bin
+      }
+    }
+  }
+};
+
+const Srgb8Encoder& srgb8_encoder() {
+  static const Srgb8Encoder encoder(srgb8());
+  return encoder;
+}
+
+inline std::uint8_t encode_srgb8(const Srgb8Encoder& e, float x) {
+  x = x > 0.0f ? x : 0.0f;  // NaN -> 0
+  x = x < 1.0f ? x : 1.0f;
+  std::uint32_t bits;
+  std::memcpy(&bits, &x, 4);
+  const int exponent = int(bits >> 23) - 127 - Srgb8Encoder::kMinExponent;
+  if (exponent < 0) return 0;
+  const auto& bin = e.bins[std::uint32_t(exponent) << Srgb8Encoder::kMantissaBits |
+                           (bits >> (23 - Srgb8Encoder::kMantissaBits) & ((1u << Srgb8Encoder::kMantissaBits) - 1))];
+  return std::uint8_t(bin.lo + (x >= bin.threshold));
 }
 
 inline std::uint8_t encode_unorm8(float x) { return static_cast<std::uint8_t>(clamp01(x) * 255.0f + 0.5f); }
@@ -87,7 +123,7 @@ bool is_color_channel(int c, int channels) { return !((channels == 2 || channels
 }  // namespace
 
 float srgb8_to_linear(std::uint8_t v) { return srgb8().decode[v]; }
-std::uint8_t linear_to_srgb8(float x) { return encode_srgb8(srgb8(), x); }
+std::uint8_t linear_to_srgb8(float x) { return encode_srgb8(srgb8_encoder(), x); }
 float srgb16_to_linear(std::uint16_t v) { return srgb16_decode()[v]; }
 std::uint16_t linear_to_srgb16(float x) {
   const double e = linear_to_srgb(clamp01(x));
@@ -146,10 +182,17 @@ void ColorSpace::decode_row(const void* src, PixelType type, int channels, int w
         for (int i = 0; i < n; ++i) dst[i] = s[i] * (1.0f / 255.0f);
       } else if (channels == 1 || channels == 3) {
         for (int i = 0; i < n; ++i) dst[i] = table[s[i]];
+      } else if (channels == 4) {
+        for (int x = 0; x < width; ++x, s += 4, dst += 4) {
+          dst[0] = table[s[0]];
+          dst[1] = table[s[1]];
+          dst[2] = table[s[2]];
+          dst[3] = s[3] * (1.0f / 255.0f);
+        }
       } else {
         for (int x = 0; x < width; ++x) {
-          for (int c = 0; c < channels - 1; ++c) dst[x * channels + c] = table[s[x * channels + c]];
-          dst[x * channels + channels - 1] = s[x * channels + channels - 1] * (1.0f / 255.0f);
+          dst[2 * x] = table[s[2 * x]];
+          dst[2 * x + 1] = s[2 * x + 1] * (1.0f / 255.0f);
         }
       }
       break;
@@ -182,15 +225,23 @@ void ColorSpace::encode_row(float* src, int channels, int width, void* dst, Pixe
   switch (type) {
     case PixelType::u8: {
       auto* d = static_cast<std::uint8_t*>(dst);
-      const Srgb8Tables& t = srgb8();
+      const Srgb8Encoder& e = srgb8_encoder();
       if (!srgb) {
         for (int i = 0; i < n; ++i) d[i] = encode_unorm8(src[i]);
       } else if (channels == 1 || channels == 3) {
-        for (int i = 0; i < n; ++i) d[i] = encode_srgb8(t, src[i]);
+        for (int i = 0; i < n; ++i) d[i] = encode_srgb8(e, src[i]);
+      } else if (channels == 4) {
+        const float* p = src;
+        for (int x = 0; x < width; ++x, p += 4, d += 4) {
+          d[0] = encode_srgb8(e, p[0]);
+          d[1] = encode_srgb8(e, p[1]);
+          d[2] = encode_srgb8(e, p[2]);
+          d[3] = encode_unorm8(p[3]);
+        }
       } else {
         for (int x = 0; x < width; ++x) {
-          for (int c = 0; c < channels - 1; ++c) d[x * channels + c] = encode_srgb8(t, src[x * channels + c]);
-          d[x * channels + channels - 1] = encode_unorm8(src[x * channels + channels - 1]);
+          d[2 * x] = encode_srgb8(e, src[2 * x]);
+          d[2 * x + 1] = encode_unorm8(src[2 * x + 1]);
         }
       }
       break;

@@ -2,8 +2,39 @@
 
 #include <cmath>
 #include <cstring>
+#include <cstdlib>
+#include <new>
+
+#include <sys/mman.h>
 
 namespace texproc {
+
+namespace detail {
+namespace {
+constexpr std::size_t kHugePage = std::size_t(2) << 20;
+constexpr std::size_t kLargeBlock = std::size_t(4) << 20;
+}  // namespace
+
+void* allocate_pixels(std::size_t bytes) {
+  if (bytes < kLargeBlock) {
+    void* p = ::operator new(bytes);
+    return p;
+  }
+  const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+  void* p = std::aligned_alloc(kHugePage, rounded);
+  if (!p) throw std::bad_alloc();
+  ::madvise(p, rounded, MADV_HUGEPAGE);  // a hint: harmless where THP is off
+  return p;
+}
+
+void free_pixels(void* p, std::size_t bytes) noexcept {
+  if (bytes < kLargeBlock) {
+    ::operator delete(p);
+  } else {
+    std::free(p);
+  }
+}
+}  // namespace detail
 
 const char* to_string(PixelType t) {
   switch (t) {
@@ -18,6 +49,17 @@ Image::Image(int width, int height, int channels, PixelType type)
     : width_(width), height_(height), channels_(channels), type_(type) {
   assert(width > 0 && height > 0 && channels >= 1 && channels <= 4);
   data_.assign(std::size_t(width) * height * channels * bytes_per_channel(type), 0);
+}
+
+Image Image::uninitialized(int width, int height, int channels, PixelType type) {
+  assert(width > 0 && height > 0 && channels >= 1 && channels <= 4);
+  Image img;
+  img.width_ = width;
+  img.height_ = height;
+  img.channels_ = channels;
+  img.type_ = type;
+  img.data_.resize(std::size_t(width) * height * channels * bytes_per_channel(type));
+  return img;
 }
 
 float Image::get(int x, int y, int c) const {

@@ -31,6 +31,19 @@ namespace {
 
 constexpr int kBlockRows = 16;  // output rows per task; fixed, so bytes never depend on threads
 
+using FloatBuffer = std::vector<float, detail::DefaultInitAllocator<float>>;
+
+// Per-thread scratch, reused from block to block: a fresh multi-megabyte
+// allocation per block would cost a page fault per 4 KiB.
+struct Scratch {
+  FloatBuffer decoded, row;
+  std::vector<const float*> rows, taps;
+};
+Scratch& scratch() {
+  thread_local Scratch s;
+  return s;
+}
+
 bool has_alpha(int channels) { return channels == 2 || channels == 4; }
 
 struct ChainSetup {
@@ -45,6 +58,14 @@ struct ChainSetup {
 };
 
 void premultiply_row(float* px, int channels, int width) {
+  if (channels == 4) {
+    for (int x = 0; x < width; ++x, px += 4) {
+      px[0] *= px[3];
+      px[1] *= px[3];
+      px[2] *= px[3];
+    }
+    return;
+  }
   for (int x = 0; x < width; ++x) {
     float* p = px + x * channels;
     const float a = p[channels - 1];
@@ -53,6 +74,16 @@ void premultiply_row(float* px, int channels, int width) {
 }
 
 void unpremultiply_row(float* px, int channels, int width) {
+  if (channels == 4) {
+    for (int x = 0; x < width; ++x, px += 4) {
+      const float a = px[3];
+      const float inv = a > 0.0f ? 1.0f / a : 0.0f;
+      px[0] *= inv;
+      px[1] *= inv;
+      px[2] *= inv;
+    }
+    return;
+  }
   for (int x = 0; x < width; ++x) {
     float* p = px + x * channels;
     const float a = p[channels - 1];
@@ -95,12 +126,12 @@ void decode_input_row(const ChainSetup& s, const ImageView& in, int y, float* ds
   if (s.premultiply) premultiply_row(dst, s.channels, in.width);
 }
 
-std::vector<float> downsample(const ChainSetup& s, const LevelRows& src, int dw, int dh, const Filter& filter) {
+FloatBuffer downsample(const ChainSetup& s, const LevelRows& src, int dw, int dh, const Filter& filter) {
   const int C = s.channels;
   const int sw = src.width, sh = src.height;
   const AxisWeights wx = compute_axis_weights(sw, dw, filter);
   const AxisWeights wy = compute_axis_weights(sh, dh, filter);
-  std::vector<float> dst(std::size_t(dw) * dh * C);
+  FloatBuffer dst(std::size_t(dw) * dh * C);
   const std::size_t src_row = std::size_t(sw) * C;
 
   for_each_row_block(dh, kBlockRows, [&](int y0, int y1) {
@@ -109,8 +140,10 @@ std::vector<float> downsample(const ChainSetup& s, const LevelRows& src, int dw,
       lo = std::min(lo, wy.first[y]);
       hi = std::max(hi, wy.first[y] + wy.taps - 1);
     }
-    std::vector<const float*> rows(hi - lo + 1);
-    std::vector<float> decoded;
+    Scratch& sc = scratch();
+    std::vector<const float*>& rows = sc.rows;
+    rows.resize(hi - lo + 1);
+    FloatBuffer& decoded = sc.decoded;
     if (src.input) {
       decoded.resize(rows.size() * src_row);
       for (int j = lo; j <= hi; ++j) {
@@ -121,9 +154,11 @@ std::vector<float> downsample(const ChainSetup& s, const LevelRows& src, int dw,
     } else {
       for (int j = lo; j <= hi; ++j) rows[j - lo] = src.stored + wrap_index(j, sh, s.wrap) * src_row;
     }
-    std::vector<float> tmp(std::size_t(wx.pad_before + sw + wx.pad_after) * C);
+    FloatBuffer& tmp = sc.row;
+    tmp.resize(std::size_t(wx.pad_before + sw + wx.pad_after) * C);
     float* mid = tmp.data() + std::size_t(wx.pad_before) * C;
-    std::vector<const float*> taps(wy.taps);
+    std::vector<const float*>& taps = sc.taps;
+    taps.resize(wy.taps);
     for (int y = y0; y < y1; ++y) {
       for (int k = 0; k < wy.taps; ++k) taps[k] = rows[wy.first[y] + k - lo];
       vertical_pass(taps.data(), wy.weights.data() + std::size_t(y) * wy.taps, wy.taps, int(src_row), mid);
@@ -168,7 +203,8 @@ float coverage_scale(const float* px, std::size_t count, int channels, float ref
 void encode_level(const ChainSetup& s, const float* src, int w, int h, float alpha_scale, Image& out) {
   const int C = s.channels;
   for_each_row_block(h, kBlockRows, [&](int y0, int y1) {
-    std::vector<float> row(std::size_t(w) * C);
+    FloatBuffer& row = scratch().row;
+    row.resize(std::size_t(w) * C);
     for (int y = y0; y < y1; ++y) {
       std::memcpy(row.data(), src + std::size_t(y) * w * C, row.size() * sizeof(float));
       if (s.premultiply) unpremultiply_row(row.data(), C, w);
@@ -180,14 +216,21 @@ void encode_level(const ChainSetup& s, const float* src, int w, int h, float alp
   });
 }
 
+bool level0_is_input(const ChainSetup& s, const ImageView& in) {
+  return in.type == s.out_type && s.in_cs.name() == s.out_cs.name();
+}
+
 Image convert_level0(const ChainSetup& s, const ImageView& in) {
-  Image out(in.width, in.height, s.channels, s.out_type);
-  if (in.type == s.out_type && s.in_cs.name() == s.out_cs.name()) {
-    for (int y = 0; y < in.height; ++y) std::memcpy(out.row<void>(y), in.row<void>(y), out.row_stride());
+  Image out = Image::uninitialized(in.width, in.height, s.channels, s.out_type);
+  if (level0_is_input(s, in)) {
+    for_each_row_block(in.height, 64, [&](int y0, int y1) {
+      for (int y = y0; y < y1; ++y) std::memcpy(out.row<void>(y), in.row<void>(y), out.row_stride());
+    });
     return out;
   }
   for_each_row_block(in.height, kBlockRows, [&](int y0, int y1) {
-    std::vector<float> row(std::size_t(in.width) * s.channels);
+    FloatBuffer& row = scratch().row;
+    row.resize(std::size_t(in.width) * s.channels);
     for (int y = y0; y < y1; ++y) {
       s.in_cs.decode_row(in.row<const void>(y), in.type, s.channels, in.width, row.data());
       s.out_cs.encode_row(row.data(), s.channels, in.width, out.row<void>(y), out.type());
@@ -216,7 +259,19 @@ float alpha_coverage(const ImageView& image, float ref, float scale) {
   return float(double(n) / (double(image.width) * image.height));
 }
 
-MipChain generate_mips(const ImageView& image, const MipOptions& o) {
+namespace {
+MipChain generate(const ImageView& image, Image* owned, const MipOptions& o);
+}
+
+MipChain generate_mips(const ImageView& image, const MipOptions& o) { return generate(image, nullptr, o); }
+
+MipChain generate_mips(Image&& image, const MipOptions& o) {
+  const ImageView view = image.view();
+  return generate(view, &image, o);
+}
+
+namespace {
+MipChain generate(const ImageView& image, Image* owned, const MipOptions& o) {
   assert(image.data && image.width > 0 && image.height > 0);
   if (image.channels < 1 || image.channels > 4) {
     throw Error(ErrorCode::unsupported, "images with " + std::to_string(image.channels) +
@@ -263,7 +318,13 @@ MipChain generate_mips(const ImageView& image, const MipOptions& o) {
   chain.color_space = s.out_cs.name();
   const int levels = mip_level_count(image.width, image.height, o.max_levels, o.min_size);
   chain.levels.reserve(levels);
-  chain.levels.push_back(convert_level0(s, image));
+  // Level 0 is the input itself when nothing converts it; the filter reads
+  // the input view, which stays valid while `owned` moves into the chain.
+  if (owned && level0_is_input(s, image)) {
+    chain.levels.push_back(std::move(*owned));
+  } else {
+    chain.levels.push_back(convert_level0(s, image));
+  }
 
   const bool coverage = s.alpha && o.alpha_coverage_ref >= 0.0f && !o.normal_map;
   float target = 0.0f;
@@ -273,11 +334,11 @@ MipChain generate_mips(const ImageView& image, const MipOptions& o) {
     chain.alpha_scale.push_back(1.0f);
   }
 
-  std::vector<float> prev;
+  FloatBuffer prev;
   LevelRows src{&image, nullptr, image.width, image.height};
   for (int level = 1; level < levels; ++level) {
     const int dw = mip_level_dim(image.width, level), dh = mip_level_dim(image.height, level);
-    std::vector<float> cur = downsample(s, src, dw, dh, o.filter);
+    FloatBuffer cur = downsample(s, src, dw, dh, o.filter);
     float scale = 1.0f;
     if (coverage) {
       // Coverage is judged on straight alpha, which premultiplication leaves alone.
@@ -286,7 +347,7 @@ MipChain generate_mips(const ImageView& image, const MipOptions& o) {
           coverage_of(cur.data(), std::size_t(dw) * dh, s.channels, o.alpha_coverage_ref, scale));
       chain.alpha_scale.push_back(scale);
     }
-    Image out(dw, dh, s.channels, s.out_type);
+    Image out = Image::uninitialized(dw, dh, s.channels, s.out_type);
     encode_level(s, cur.data(), dw, dh, scale, out);
     chain.levels.push_back(std::move(out));
     prev = std::move(cur);
@@ -294,5 +355,6 @@ MipChain generate_mips(const ImageView& image, const MipOptions& o) {
   }
   return chain;
 }
+}  // namespace
 
 }  // namespace texproc
