@@ -1,4 +1,5 @@
 // texproc mip: gamma-correct mip chains.
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 
@@ -77,13 +78,23 @@ int run_mip(const MipArgs& a) {
   }
   for (const auto& out : outputs) check_output(out, {a.input}, a.common.force);
 
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
   Image image = read_image(a.input, &info);
-  MipChain chain = generate_mips(image.view(), o);
+  const auto t1 = Clock::now();
+  MipChain chain = generate_mips(std::move(image), o);
+  const auto t2 = Clock::now();
   w.color_space = chain.color_space == "srgb" ? "srgb" : chain.color_space == "linear" ? "linear" : "";
   if (single_file) {
     write_mip_file(a.output, chain.levels, w);
   } else {
     for (std::size_t l = 0; l < chain.levels.size(); ++l) write_image(outputs[l], chain.levels[l].view(), w);
+  }
+  const auto t3 = Clock::now();
+  auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
+  if (a.common.verbose) {
+    std::cerr << "texproc mip: read " << ms(t1 - t0) << " ms, mips " << ms(t2 - t1) << " ms, write " << ms(t3 - t2)
+              << " ms\n";
   }
   if (!a.common.quiet) {
     std::cout << a.input << " -> " << (single_file ? a.output : level_path(a.output, 0) + " ...") << ": "
@@ -133,7 +144,7 @@ void add_mip_command(CLI::App& app) {
   cmd->add_flag("--normal-map", args->normal_map, "Input is a tangent-space normal map: renormalize each level");
   cmd->add_flag("--no-premultiply", args->no_premultiply, "Filter color without weighting it by alpha");
   cmd->add_option("--compression", args->compression,
-                  "Output compression as OpenImageIO names it (zip, lzw, none, piz, dwaa...)");
+                  "Output compression: TIFF zip:N (deflate level 1-12, default zip:1), none, lzw; EXR zip, piz, dwaa... (OpenImageIO's names)");
   add_common_options(*cmd, args->common);
   set_runner(*cmd, [args] { return run_mip(*args); });
 }

@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
-  libcli11-dev googletest libgtest-dev libbenchmark-dev libtbb-dev libhwy-dev
+  libtiff-dev libdeflate-dev libcli11-dev googletest libgtest-dev libbenchmark-dev libtbb-dev libhwy-dev
   # independent checks and peers used by tests and benchmarks
   libnvtt-bin libsquish-dev
 )

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "image/tiff_mip_writer.h"
 #include "texproc/error.h"
 #include "texproc/file_io.h"
 
@@ -123,7 +124,8 @@ ImageSpec make_spec(const ImageView& v, const WriteOptions& o, const std::string
 
 // Writes `v` tile by tile from zero-padded tile buffers. OpenImageIO 2.4's
 // TIFF writer leaves the padding of partial edge tiles uninitialized when
-// given a whole image, so identical inputs would give different files.
+// given the exact image, so identical inputs would give different files.
+// (OpenEXR stores edge tiles cropped, so it writes the image as it is.)
 void write_padded_tiles(ImageOutput& out, const ImageView& v, int tile, const std::string& path) {
   const std::size_t px = v.pixel_bytes();
   std::vector<std::uint8_t> buf(std::size_t(tile) * tile * px);
@@ -159,7 +161,7 @@ Image read_image(const std::string& path, ImageFileInfo* info_out) {
   auto in = open_input(path);
   ImageFileInfo info = info_from(*in, path);
   const int channels = std::min(info.channels, 4);
-  Image img(info.width, info.height, channels, info.type);
+  Image img = Image::uninitialized(info.width, info.height, channels, info.type);
   const TypeDesc td = to_typedesc(info.type, false);
   if (!in->read_image(0, 0, 0, channels, td, img.data())) {
     std::string msg = in->geterror();
@@ -192,6 +194,12 @@ void write_mip_file(const std::string& path, const std::vector<Image>& levels, c
     throw Error(ErrorCode::unsupported, path + ": this format holds one level (valid for a MIP file: .tif, .tiff, .exr)");
   }
   const bool exr = lower_ext(path) == ".exr";
+  if (!exr && !options.half && tiff_mips_supported(options.compression)) {
+    AtomicFile file(path);
+    write_tiff_mips(file.temp_path(), path, levels, options.compression, options.color_space);
+    file.commit();
+    return;
+  }
   if (exr) {
     int full = 1;
     for (int w = levels[0].width(), h = levels[0].height(); w > 1 || h > 1; w = std::max(1, w / 2), h = std::max(1, h / 2)) ++full;
@@ -219,7 +227,13 @@ void write_mip_file(const std::string& path, const std::vector<Image>& levels, c
                       : native_mips ? ImageOutput::AppendMIPLevel
                                     : ImageOutput::AppendSubimage;
     if (!out->open(file.temp_path(), spec, mode)) write_failed(path, *out);
-    write_padded_tiles(*out, v, spec.tile_width, path);
+    if (exr) {
+      if (!out->write_image(to_typedesc(v.type, false), v.data, OIIO::AutoStride, OIIO::stride_t(v.row_stride))) {
+        write_failed(path, *out);
+      }
+    } else {
+      write_padded_tiles(*out, v, spec.tile_width, path);
+    }
   }
   if (!out->close()) write_failed(path, *out);
   file.commit();

@@ -1,0 +1,153 @@
+// OpenImageIO 2.4 writes TIFF tiles one after another on one thread, and a
+// 4096x4096 RGBA8 chain takes seconds to deflate that way. Here libtiff lays
+// out the file and libdeflate compresses the tiles of each level in parallel;
+// tiles are written in order, so the bytes do not depend on the thread count.
+#include "image/tiff_mip_writer.h"
+
+#include <libdeflate.h>
+#include <tiffio.h>
+
+#include <algorithm>
+#include <cstring>
+#include <memory>
+
+#include "texproc/error.h"
+#include "texproc/runtime.h"
+
+namespace texproc {
+namespace {
+
+constexpr int kTile = 64;
+
+struct TiffCloser {
+  void operator()(TIFF* t) const { TIFFClose(t); }
+};
+struct CompressorFree {
+  void operator()(libdeflate_compressor* c) const { libdeflate_free_compressor(c); }
+};
+
+// -1: not handled here; 0: no compression; 1..12: deflate level.
+int deflate_level(const std::string& c) {
+  if (c.empty()) return kDefaultZipLevel;
+  if (c == "none") return 0;
+  for (const char* name : {"zip", "deflate"}) {
+    const std::string n(name);
+    if (c == n) return kDefaultZipLevel;
+    if (c.rfind(n + ":", 0) == 0) {
+      try {
+        const int level = std::stoi(c.substr(n.size() + 1));
+        if (level >= 1 && level <= 12) return level;
+      } catch (...) {
+      }
+      throw Error(ErrorCode::bad_arguments, "--compression " + c + ": the deflate level must be 1 to 12");
+    }
+  }
+  return -1;
+}
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw Error(ErrorCode::io, path + ": cannot write: " + what);
+}
+
+void set_level_fields(TIFF* tif, const Image& im, int level, int compression_tag) {
+  TIFFSetField(tif, TIFFTAG_SUBFILETYPE, level == 0 ? 0 : FILETYPE_REDUCEDIMAGE);
+  TIFFSetField(tif, TIFFTAG_IMAGEWIDTH, std::uint32_t(im.width()));
+  TIFFSetField(tif, TIFFTAG_IMAGELENGTH, std::uint32_t(im.height()));
+  TIFFSetField(tif, TIFFTAG_TILEWIDTH, std::uint32_t(kTile));
+  TIFFSetField(tif, TIFFTAG_TILELENGTH, std::uint32_t(kTile));
+  TIFFSetField(tif, TIFFTAG_SAMPLESPERPIXEL, std::uint16_t(im.channels()));
+  TIFFSetField(tif, TIFFTAG_BITSPERSAMPLE, std::uint16_t(8 * bytes_per_channel(im.type())));
+  TIFFSetField(tif, TIFFTAG_SAMPLEFORMAT, is_float(im.type()) ? SAMPLEFORMAT_IEEEFP : SAMPLEFORMAT_UINT);
+  TIFFSetField(tif, TIFFTAG_PHOTOMETRIC, im.channels() >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK);
+  TIFFSetField(tif, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
+  TIFFSetField(tif, TIFFTAG_ORIENTATION, ORIENTATION_TOPLEFT);
+  TIFFSetField(tif, TIFFTAG_COMPRESSION, compression_tag);
+  if (im.channels() == 2 || im.channels() == 4) {
+    const std::uint16_t extra = EXTRASAMPLE_UNASSALPHA;
+    TIFFSetField(tif, TIFFTAG_EXTRASAMPLES, 1, &extra);
+  }
+  TIFFSetField(tif, TIFFTAG_SOFTWARE, "texproc");
+  // What maketx writes, and what tells OpenImageIO the subimages are MIP levels.
+  TIFFSetField(tif, TIFFTAG_PIXAR_TEXTUREFORMAT, "Plain Texture");
+  if (compression_tag != COMPRESSION_NONE && !is_float(im.type())) {
+    TIFFSetField(tif, TIFFTAG_PREDICTOR, PREDICTOR_HORIZONTAL);
+  }
+}
+
+// TIFF predictor 2: each sample minus the same channel of the pixel to its
+// left, within a tile row (mod 2^bits). Deflate then sees small numbers.
+template <typename T>
+void horizontal_difference(std::uint8_t* tile, int channels) {
+  for (int y = 0; y < kTile; ++y) {
+    T* row = reinterpret_cast<T*>(tile) + std::size_t(y) * kTile * channels;
+    for (int i = kTile * channels - 1; i >= channels; --i) row[i] = T(row[i] - row[i - channels]);
+  }
+}
+
+}  // namespace
+
+bool tiff_mips_supported(const std::string& compression) { return deflate_level(compression) >= 0; }
+
+void write_tiff_mips(const std::string& file, const std::string& error_path, const std::vector<Image>& levels,
+                     const std::string& compression, const std::string& color_space) {
+  const int level_of_deflate = deflate_level(compression);
+  std::unique_ptr<TIFF, TiffCloser> tif(TIFFOpen(file.c_str(), "w"));
+  if (!tif) fail(error_path, "cannot create the file");
+  const int tag = level_of_deflate == 0 ? COMPRESSION_NONE : COMPRESSION_ADOBE_DEFLATE;
+
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    const Image& im = levels[l];
+    set_level_fields(tif.get(), im, int(l), tag);
+    (void)color_space;  // OpenImageIO's TIFF reader takes no color space tag from libtiff fields
+    const int tiles_x = (im.width() + kTile - 1) / kTile, tiles_y = (im.height() + kTile - 1) / kTile;
+    const std::size_t px = std::size_t(im.channels()) * bytes_per_channel(im.type());
+    const std::size_t tile_bytes = std::size_t(kTile) * kTile * px;
+    std::vector<std::vector<std::uint8_t>> out(std::size_t(tiles_x) * tiles_y);
+
+    // One task per row of tiles; each writes only its own tiles' buffers.
+    for_each_row_block(tiles_y, 1, [&](int ty0, int ty1) {
+      thread_local std::vector<std::uint8_t> raw;
+      raw.resize(tile_bytes);
+      // A compressor holds large hash tables: one per thread and level.
+      thread_local std::unique_ptr<libdeflate_compressor, CompressorFree> comp;
+      thread_local int comp_level = -1;
+      if (level_of_deflate > 0 && comp_level != level_of_deflate) {
+        comp.reset(libdeflate_alloc_compressor(level_of_deflate));
+        comp_level = level_of_deflate;
+      }
+      for (int ty = ty0; ty < ty1; ++ty) {
+        for (int tx = 0; tx < tiles_x; ++tx) {
+          // Edge tiles are padded with zeros, never with stale memory.
+          std::fill(raw.begin(), raw.end(), std::uint8_t(0));
+          const int w = std::min(kTile, im.width() - tx * kTile), h = std::min(kTile, im.height() - ty * kTile);
+          for (int y = 0; y < h; ++y) {
+            std::memcpy(raw.data() + std::size_t(y) * kTile * px,
+                        im.row<std::uint8_t>(ty * kTile + y) + std::size_t(tx) * kTile * px, std::size_t(w) * px);
+          }
+          std::vector<std::uint8_t>& dst = out[std::size_t(ty) * tiles_x + tx];
+          if (level_of_deflate == 0) {
+            dst = raw;
+            continue;
+          }
+          if (im.type() == PixelType::u8) horizontal_difference<std::uint8_t>(raw.data(), im.channels());
+          if (im.type() == PixelType::u16) horizontal_difference<std::uint16_t>(raw.data(), im.channels());
+          dst.resize(libdeflate_zlib_compress_bound(comp.get(), tile_bytes));
+          const std::size_t n = libdeflate_zlib_compress(comp.get(), raw.data(), tile_bytes, dst.data(), dst.size());
+          dst.resize(n);
+        }
+      }
+    });
+    for (int ty = 0; ty < tiles_y; ++ty) {
+      for (int tx = 0; tx < tiles_x; ++tx) {
+        auto& t = out[std::size_t(ty) * tiles_x + tx];
+        const ttile_t index = TIFFComputeTile(tif.get(), std::uint32_t(tx * kTile), std::uint32_t(ty * kTile), 0, 0);
+        if (TIFFWriteRawTile(tif.get(), index, t.data(), tmsize_t(t.size())) < 0) fail(error_path, "tile write failed");
+      }
+    }
+    if (!TIFFWriteDirectory(tif.get())) fail(error_path, "directory write failed");
+  }
+  TIFF* raw = tif.release();
+  TIFFClose(raw);
+}
+
+}  // namespace texproc
