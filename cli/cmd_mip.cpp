@@ -18,36 +18,27 @@ namespace {
 struct MipArgs {
   CommonOptions common;
   std::string input, output;
-  std::string filter = "gaussian";
-  float sigma = 0.5f;
+  ChainArgs chain;
   std::string wrap = "clamp";
   std::string color_space, out_color_space;
   bool linear = false;
   std::string type;
-  int levels = 0;
-  int min_size = 1;
   float alpha_coverage = -1.0f;
   bool normal_map = false;
   bool no_premultiply = false;
   std::string compression;
 };
 
-// out/tex.png -> out/tex_mip3.png
-std::string level_path(const std::string& output, int level) {
-  const fs::path p(output);
-  return (p.parent_path() / (p.stem().string() + "_mip" + std::to_string(level) + p.extension().string())).string();
-}
-
 int run_mip(const MipArgs& a) {
   ThreadLimit threads(a.common.threads);
   MipOptions o;
-  o.filter.kind = parse_filter_kind(a.filter);
-  o.filter.sigma = a.sigma;
+  o.filter.kind = parse_filter_kind(a.chain.filter);
+  o.filter.sigma = a.chain.sigma;
   o.wrap = parse_wrap_mode(a.wrap);
   o.color_space = a.linear ? "linear" : a.color_space;
   o.output_color_space = a.out_color_space;
-  o.max_levels = a.levels;
-  o.min_size = a.min_size;
+  o.max_levels = a.chain.levels;
+  o.min_size = a.chain.min_size;
   o.alpha_coverage_ref = a.alpha_coverage;
   o.normal_map = a.normal_map;
   o.premultiplied_alpha = !a.no_premultiply;
@@ -56,26 +47,16 @@ int run_mip(const MipArgs& a) {
   const bool exr = fs::path(a.output).extension() == ".exr";
   WriteOptions w;
   w.compression = a.compression;
-  if (!a.type.empty()) {
-    if (a.type == "u8") o.output_type = PixelType::u8;
-    else if (a.type == "u16") o.output_type = PixelType::u16;
-    else if (a.type == "f32") o.output_type = PixelType::f32;
-    else if (a.type == "f16") { o.output_type = PixelType::f32; w.half = true; }
-    else throw Error(ErrorCode::bad_arguments, "unknown --type '" + a.type + "' (valid: u8, u16, f16, f32)");
-  } else if (exr) {
+  o.output_type = parse_output_type(a.type, w);
+  if (!o.output_type && exr) {
     o.output_type = PixelType::f32;  // OpenEXR holds floats: write half
     w.half = true;
   }
 
   // Check every output name before doing any work.
-  std::vector<std::string> outputs;
   ImageFileInfo info = probe_image(a.input);
   const int n = mip_level_count(info.width, info.height, o.max_levels, o.min_size);
-  if (single_file) {
-    outputs.push_back(a.output);
-  } else {
-    for (int l = 0; l < n; ++l) outputs.push_back(level_path(a.output, l));
-  }
+  const std::vector<std::string> outputs = level_outputs(a.output, n);
   for (const auto& out : outputs) check_output(out, {a.input}, a.common.force);
 
   using Clock = std::chrono::steady_clock;
@@ -85,11 +66,7 @@ int run_mip(const MipArgs& a) {
   MipChain chain = generate_mips(std::move(image), o);
   const auto t2 = Clock::now();
   w.color_space = chain.color_space == "srgb" ? "srgb" : chain.color_space == "linear" ? "linear" : "";
-  if (single_file) {
-    write_mip_file(a.output, chain.levels, w);
-  } else {
-    for (std::size_t l = 0; l < chain.levels.size(); ++l) write_image(outputs[l], chain.levels[l].view(), w);
-  }
+  write_levels(a.output, chain.levels, w);
   const auto t3 = Clock::now();
   auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
   if (a.common.verbose) {
@@ -97,9 +74,9 @@ int run_mip(const MipArgs& a) {
               << " ms\n";
   }
   if (!a.common.quiet) {
-    std::cout << a.input << " -> " << (single_file ? a.output : level_path(a.output, 0) + " ...") << ": "
+    std::cout << a.input << " -> " << (single_file ? a.output : outputs[0] + " ...") << ": "
               << chain.levels.size() << " levels, " << info.width << "x" << info.height << " "
-              << to_string(chain.levels[0].type()) << " " << chain.color_space << ", filter " << a.filter
+              << to_string(chain.levels[0].type()) << " " << chain.color_space << ", filter " << a.chain.filter
               << ", wrap " << a.wrap << "\n";
     if (a.common.verbose && !chain.alpha_coverage.empty()) {
       for (std::size_t l = 0; l < chain.alpha_coverage.size(); ++l) {
@@ -123,10 +100,7 @@ void add_mip_command(CLI::App& app) {
       "linear premultiplied float. See docs/mip.md.");
   cmd->add_option("input", args->input, "Input image (any format OpenImageIO reads)")->required();
   cmd->add_option("-o,--output", args->output, "Output file (see below for naming)")->required();
-  cmd->add_option("--filter", args->filter, "Filter: gaussian, box, triangle, kaiser, lanczos3, mitchell")
-      ->capture_default_str();
-  cmd->add_option("--sigma", args->sigma, "Gaussian standard deviation in destination texels (0 < sigma <= 4)")
-      ->capture_default_str();
+  add_chain_options(*cmd, args->chain, "Options");
   cmd->add_option("--wrap", args->wrap, "Texels past the edges: clamp, repeat, mirror")->capture_default_str();
   cmd->add_option("--colorspace", args->color_space,
                   "Source color space: srgb, linear, or an OpenColorIO name (default: srgb for 8/16-bit, "
@@ -135,10 +109,6 @@ void add_mip_command(CLI::App& app) {
   cmd->add_option("--out-colorspace", args->out_color_space,
                   "Color space of the written levels (default: the source's; linear for float output)");
   cmd->add_option("--type", args->type, "Output element type: u8, u16, f16, f32 (default: the input's; f16 for .exr)");
-  cmd->add_option("--levels", args->levels, "Number of levels, level 0 included (default 0: down to 1x1)")
-      ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--min-size", args->min_size, "Stop before a level whose larger side is below this")
-      ->check(CLI::PositiveNumber);
   cmd->add_option("--alpha-coverage", args->alpha_coverage,
                   "Keep the fraction of texels with alpha >= REF equal to level 0's (cutouts), 0 < REF <= 1");
   cmd->add_flag("--normal-map", args->normal_map, "Input is a tangent-space normal map: renormalize each level");

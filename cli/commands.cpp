@@ -8,7 +8,10 @@
 
 namespace texproc::cli {
 
-void add_all_commands(CLI::App& app) { add_mip_command(app); }
+void add_all_commands(CLI::App& app) {
+  add_mip_command(app);
+  add_normalmap_command(app);
+}
 
 namespace {
 std::string command_name(CLI::App& app) {

@@ -7,6 +7,7 @@
 namespace texproc::cli {
 
 void add_mip_command(CLI::App& app);
+void add_normalmap_command(CLI::App& app);
 
 void add_all_commands(CLI::App& app);
 int report_usage_error(CLI::App& app, const CLI::ParseError& e);

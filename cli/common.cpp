@@ -49,6 +49,52 @@ void check_output(const std::string& output, const std::vector<std::string>& inp
   }
 }
 
+void add_chain_options(CLI::App& cmd, ChainArgs& a, const char* group) {
+  cmd.add_option("--filter", a.filter, "Mip filter: gaussian, box, triangle, kaiser, lanczos3, mitchell")
+      ->capture_default_str()
+      ->group(group);
+  cmd.add_option("--sigma", a.sigma, "Gaussian standard deviation in destination texels (0 < sigma <= 4)")
+      ->capture_default_str()
+      ->group(group);
+  cmd.add_option("--levels", a.levels, "Number of levels, level 0 included (default 0: down to 1x1)")
+      ->check(CLI::NonNegativeNumber)
+      ->group(group);
+  cmd.add_option("--min-size", a.min_size, "Stop before a level whose larger side is below this")
+      ->check(CLI::PositiveNumber)
+      ->group(group);
+}
+
+std::optional<PixelType> parse_output_type(const std::string& type, WriteOptions& w) {
+  if (type.empty()) return std::nullopt;
+  if (type == "u8") return PixelType::u8;
+  if (type == "u16") return PixelType::u16;
+  if (type == "f32") return PixelType::f32;
+  if (type == "f16") {
+    w.half = true;
+    return PixelType::f32;
+  }
+  throw Error(ErrorCode::bad_arguments, "unknown --type '" + type + "' (valid: u8, u16, f16, f32)");
+}
+
+std::vector<std::string> level_outputs(const std::string& output, int levels) {
+  if (holds_mip_levels(output)) return {output};
+  const fs::path p(output);
+  std::vector<std::string> names;
+  for (int l = 0; l < levels; ++l) {
+    names.push_back((p.parent_path() / (p.stem().string() + "_mip" + std::to_string(l) + p.extension().string())).string());
+  }
+  return names;
+}
+
+void write_levels(const std::string& output, const std::vector<Image>& levels, const WriteOptions& options) {
+  if (holds_mip_levels(output)) {
+    write_mip_file(output, levels, options);
+    return;
+  }
+  const auto names = level_outputs(output, int(levels.size()));
+  for (std::size_t l = 0; l < levels.size(); ++l) write_image(names[l], levels[l].view(), options);
+}
+
 std::string join(const std::vector<std::string>& items, const char* sep) {
   std::string s;
   for (const auto& i : items) s += (s.empty() ? "" : sep) + i;

@@ -4,8 +4,12 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "texproc/image.h"
+#include "texproc/image_io.h"
 
 namespace texproc::cli {
 
@@ -28,6 +32,27 @@ CommandRunner* runner_of(CLI::App& cmd);
 // (compared as files, not strings) and must not exist unless --force.
 // Creates the parent folder. Throws Error{bad_arguments}.
 void check_output(const std::string& output, const std::vector<std::string>& inputs, bool force);
+
+// Options that shape a mip chain, shared by every command that writes one.
+struct ChainArgs {
+  std::string filter = "gaussian";
+  float sigma = 0.5f;
+  int levels = 0;
+  int min_size = 1;
+};
+void add_chain_options(CLI::App& cmd, ChainArgs& a, const char* group = "Mip chain");
+
+// --type u8|u16|f16|f32: the element type, and whether f32 is stored as half.
+// Empty: std::nullopt. Throws Error{bad_arguments}.
+std::optional<texproc::PixelType> parse_output_type(const std::string& type, texproc::WriteOptions& w);
+
+// Output names for a chain of `levels` levels: one name when `output` holds
+// MIP levels (.tif, .tiff, .exr), else {stem}_mip{L}{ext} per level.
+std::vector<std::string> level_outputs(const std::string& output, int levels);
+
+// Writes a chain to the names level_outputs gives.
+void write_levels(const std::string& output, const std::vector<texproc::Image>& levels,
+                  const texproc::WriteOptions& options);
 
 // "Strings like a, b, c" for messages.
 std::string join(const std::vector<std::string>& items, const char* sep = ", ");

@@ -1,0 +1,146 @@
+// texproc normalmap: tangent-space normal maps from heightmaps.
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "commands.h"
+#include "common.h"
+#include "texproc/error.h"
+#include "texproc/image_io.h"
+#include "texproc/mip.h"
+#include "texproc/normalmap.h"
+#include "texproc/runtime.h"
+
+namespace texproc::cli {
+namespace {
+
+struct NormalMapArgs {
+  CommonOptions common;
+  ChainArgs chain;
+  std::string input, output;
+  std::string kernel = "sobel3";
+  std::string height_channel = "auto";
+  bool invert = false;
+  float height_scale = 8.0f;
+  float strength = 1.0f;
+  std::string wrap = "clamp";
+  std::string y = "up";
+  std::string channels = "xyz";
+  std::vector<float> multiscale_weights = {0.5f, 0.3f, 0.2f};
+  std::string type;
+  bool mips = false;
+  std::string compression;
+};
+
+int run_normalmap(const NormalMapArgs& a) {
+  ThreadLimit threads(a.common.threads);
+  NormalMapOptions o;
+  o.kernel = parse_gradient_kernel(a.kernel);
+  o.height_channel = parse_height_channel(a.height_channel);
+  o.invert = a.invert;
+  o.height_scale = a.height_scale;
+  o.strength = a.strength;
+  o.wrap = parse_wrap_mode(a.wrap);
+  if (a.y != "up" && a.y != "down") {
+    throw Error(ErrorCode::bad_arguments, "unknown --y '" + a.y + "' (valid: up (OpenGL), down (DirectX))");
+  }
+  o.y_up = a.y == "up";
+  o.channels = parse_normal_channels(a.channels);
+  o.multiscale_weights = a.multiscale_weights;
+  WriteOptions w;
+  w.compression = a.compression;
+  w.color_space = "linear";
+
+  ImageFileInfo info = probe_image(a.input);
+  std::optional<PixelType> type = parse_output_type(a.type, w);
+  if (!type) type = info.type == PixelType::u8 ? PixelType::u8 : PixelType::u16;
+  if (a.type.empty() && std::filesystem::path(a.output).extension() == ".exr") {
+    type = PixelType::f32;
+    w.half = true;
+  }
+  const int levels = a.mips ? mip_level_count(info.width, info.height, a.chain.levels, a.chain.min_size) : 1;
+  const std::vector<std::string> outputs = a.mips ? level_outputs(a.output, levels) : std::vector{a.output};
+  for (const auto& out : outputs) check_output(out, {a.input}, a.common.force);
+
+  const Image heights = read_image(a.input, &info);
+  std::vector<Image> chain;
+  if (!a.mips) {
+    chain.push_back(normal_map(heights.view(), o, *type));
+  } else {
+    // Build the chain on unquantized vectors with the mip module's normal-map
+    // mode (renormalized each level), then quantize; xy is cut from xyz.
+    NormalMapOptions full = o;
+    if (o.channels == NormalChannels::xy) full.channels = NormalChannels::xyz;
+    Image level0 = normal_map(heights.view(), full, PixelType::f32);
+    MipOptions m;
+    m.normal_map = true;
+    m.filter.kind = parse_filter_kind(a.chain.filter);
+    m.filter.sigma = a.chain.sigma;
+    m.wrap = o.wrap;
+    m.max_levels = a.chain.levels;
+    m.min_size = a.chain.min_size;
+    m.output_type = *type;
+    MipChain c = generate_mips(std::move(level0), m);
+    for (Image& l : c.levels) {
+      if (o.channels != NormalChannels::xy) {
+        chain.push_back(std::move(l));
+        continue;
+      }
+      Image xy = Image::uninitialized(l.width(), l.height(), 2, l.type());
+      const std::size_t bpc = bytes_per_channel(l.type());
+      for (int y = 0; y < l.height(); ++y)
+        for (int x = 0; x < l.width(); ++x)
+          std::memcpy(xy.row<std::uint8_t>(y) + x * 2 * bpc, l.row<std::uint8_t>(y) + x * 3 * bpc, 2 * bpc);
+      chain.push_back(std::move(xy));
+    }
+  }
+  if (a.mips) {
+    write_levels(a.output, chain, w);
+  } else {
+    write_image(a.output, chain[0].view(), w);
+  }
+  if (!a.common.quiet) {
+    std::cout << a.input << " -> " << outputs[0] << (outputs.size() > 1 ? " ..." : "") << ": " << a.kernel << ", "
+              << a.channels << ", " << chain.size() << " level(s), " << info.width << "x" << info.height << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_normalmap_command(CLI::App& app) {
+  auto args = std::make_shared<NormalMapArgs>();
+  CLI::App* cmd = app.add_subcommand("normalmap", "Derive a tangent-space normal map from a heightmap.");
+  cmd->footer(
+      "Heights are data in [0, 1] (never gamma-decoded). A height of 1.0 spans --height-scale texels, so a\n"
+      "ramp rising 1/S per texel is a 45 degree slope for every kernel; --strength multiplies on top.\n"
+      "Output: xyz = RGB (n * 0.5 + 0.5), xy = RG for BC5/EAC RG11 (z = sqrt(1 - x^2 - y^2)), xyzh = RGBA\n"
+      "with the height in A. See docs/normalmap.md.");
+  cmd->add_option("input", args->input, "Heightmap (8, 16-bit or float, any format OpenImageIO reads)")->required();
+  cmd->add_option("-o,--output", args->output, "Output image (.png, .tif, .exr...; with --mips as for `mip`)")
+      ->required();
+  cmd->add_option("--kernel", args->kernel,
+                  "Gradient kernel: gather2x2, central, sobel3, sobel5, prewitt3, prewitt5, scharr3, multiscale")
+      ->capture_default_str();
+  cmd->add_option("--height-channel", args->height_channel, "Height from: auto (gray, or luma of RGB), r, g, b, a, luma")
+      ->capture_default_str();
+  cmd->add_flag("--invert", args->invert, "Depth map: use 1 - h");
+  cmd->add_option("--height-scale", args->height_scale, "Texels spanned by a height of 1.0 (> 0)")->capture_default_str();
+  cmd->add_option("--strength", args->strength, "Slope multiplier for artists (> 0)")->capture_default_str();
+  cmd->add_option("--wrap", args->wrap, "Texels past the edges: clamp, repeat (tiling), mirror")->capture_default_str();
+  cmd->add_option("--y", args->y, "Green channel: up (OpenGL, default) or down (DirectX)")->capture_default_str();
+  cmd->add_option("--channels", args->channels, "Output channels: xyz, xy, xyzh")->capture_default_str();
+  cmd->add_option("--multiscale-weights", args->multiscale_weights,
+                  "multiscale kernel: weights of scales 1, 2, 4, ... texels (normalized to sum 1)")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--type", args->type, "Output element type: u8, u16, f16, f32 (default: u8 for 8-bit input, else u16)");
+  cmd->add_flag("--mips", args->mips, "Write a mip chain, renormalized each level");
+  add_chain_options(*cmd, args->chain);
+  cmd->add_option("--compression", args->compression, "Output compression, as for `texproc mip`");
+  add_common_options(*cmd, args->common);
+  set_runner(*cmd, [args] { return run_normalmap(*args); });
+}
+
+}  // namespace texproc::cli
