@@ -34,4 +34,14 @@ for f in box gaussian lanczos3 mitchell; do
 done
 oiiotool "$W/f_box.png" "$W/f_gaussian.png" "$W/f_lanczos3.png" "$W/f_mitchell.png" --mosaic:pad=8 4x1 \
          -d uint8 -o $IMG/mip_filters.png >/dev/null
-echo "wrote $IMG/mip_*.png"
+# 4. Normal-map kernels side by side on the Stellarium wall heightmap (256x256).
+ks="gather2x2 central sobel3 sobel5 prewitt3 prewitt5 scharr3 multiscale"
+for k in $ks; do
+  $T normalmap samples/height_stein_256.png -o "$W/nm_$k.png" --kernel $k --height-channel r --height-scale 16 -q --force
+done
+oiiotool samples/height_stein_256.png --ch R,R,R -o "$W/nm_height.png" >/dev/null
+$T normalmap samples/height_stein_256.png -o "$W/nm_down.png" --y down --height-channel r --height-scale 16 -q --force
+oiiotool "$W/nm_height.png" "$W/nm_down.png" samples/normal_stein_256.png --mosaic:pad=8 3x1 -d uint8 \
+         -o $IMG/normalmap_vs_shipped.jpg >/dev/null
+oiiotool $(for k in $ks; do echo "$W/nm_$k.png"; done) --mosaic:pad=8 4x2 -d uint8 -o $IMG/normalmap_kernels.jpg >/dev/null
+echo "wrote $IMG/mip_*.png $IMG/normalmap_*.jpg"

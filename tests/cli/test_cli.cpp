@@ -104,3 +104,44 @@ TEST(Cli, MipCheckerboardPerLevelPngs) {
   EXPECT_EQ(probe_image(dir + "/t1.tif").mip_levels, 5);
   fs::remove_all(dir);
 }
+
+TEST(Cli, NormalmapOutputsAndErrors) {
+  const std::string dir = temp_dir("cli_nm");
+  Image h(32, 16, 1, PixelType::u16);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 32; ++x) h.set(x, y, 0, 0.01f * x);
+  write_image(dir + "/h.png", h.view());
+
+  RunResult r = run_texproc("normalmap --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* opt : {"--kernel", "--height-channel", "--invert", "--height-scale", "--strength", "--wrap", "--y",
+                          "--channels", "--multiscale-weights", "--mips", "--threads"}) {
+    EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
+  }
+  r = run_texproc("normalmap " + dir + "/h.png -o " + dir + "/n.png --kernel laplace");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("unknown kernel 'laplace' (valid: gather2x2, central, sobel3"), std::string::npos) << r.err;
+
+  // 16-bit input gives 16-bit output; xyzh has four channels with the height in A.
+  r = run_texproc("normalmap " + dir + "/h.png -o " + dir + "/n.png --channels xyzh -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ImageFileInfo info;
+  const Image n = read_image(dir + "/n.png", &info);
+  EXPECT_EQ(n.channels(), 4);
+  EXPECT_EQ(n.type(), PixelType::u16);
+  EXPECT_EQ(n.get(5, 5, 3), h.get(5, 5, 0));
+  // A ramp of 0.01 per texel at height scale 100 is 45 degrees: x = -sin 45.
+  r = run_texproc("normalmap " + dir + "/h.png -o " + dir + "/n45.exr --height-scale 100 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image n45 = read_image(dir + "/n45.exr");
+  EXPECT_NEAR(n45.get(10, 8, 0) * 2 - 1, -std::sqrt(0.5), 2e-3);  // stored as half
+  EXPECT_NEAR(n45.get(10, 8, 2) * 2 - 1, std::sqrt(0.5), 2e-3);
+
+  // --mips --channels xy: a chain of two-channel levels, renormalized.
+  r = run_texproc("normalmap " + dir + "/h.png -o " + dir + "/m.tif --mips --channels xy --type u8 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const ImageFileInfo mi = probe_image(dir + "/m.tif");
+  EXPECT_EQ(mi.mip_levels, 6);
+  EXPECT_EQ(mi.channels, 2);
+  fs::remove_all(dir);
+}

@@ -27,11 +27,30 @@ void normals_from_gradients(const float* gx, const float* gy, int n, float sx, f
                             float* nz) {
   for (int x = 0; x < n; ++x) {
     const float a = sx * gx[x], b = sy * gy[x];
-    const float len = std::sqrt(a * a + b * b + 1.0f);
-    nx[x] = a / len;
-    ny[x] = b / len;
-    nz[x] = 1.0f / len;
+    const float inv = 1.0f / std::sqrt(a * a + b * b + 1.0f);
+    nx[x] = a * inv;
+    ny[x] = b * inv;
+    nz[x] = inv;
   }
+}
+}  // namespace ref
+
+namespace {
+template <typename T>
+void write_row(T* dst, int channels, int width, const float* nx, const float* ny, const float* nz, const float* h);
+}
+
+namespace ref {
+void encode_normals_u8(const float* nx, const float* ny, const float* nz, const float* h, int n, int channels,
+                       std::uint8_t* out) {
+  write_row(out, channels, n, nx, ny, nz, h);
+}
+
+void gradients_to_u8(const float* gx, const float* gy, const float* h, int n, float sx, float sy, int channels,
+                     std::uint8_t* out) {
+  std::vector<float> nx(n), ny(n), nz(n);
+  normals_from_gradients(gx, gy, n, sx, sy, nx.data(), ny.data(), nz.data());
+  encode_normals_u8(nx.data(), ny.data(), nz.data(), h, n, channels, out);
 }
 }  // namespace ref
 
@@ -213,11 +232,14 @@ void compute_normal_map(const ImageView& in, const ImageView& out, const NormalM
       vertical_pass(rows, k.deriv.data(), taps, PW, sc.vd.data());
       convolve_row(sc.vs.data() + pad + first, k.deriv.data(), taps, W, sc.gx.data());
       convolve_row(sc.vd.data() + pad + first, k.smooth.data(), taps, W, sc.gy.data());
-      normals_from_gradients(sc.gx.data(), sc.gy.data(), W, sx, sy, sc.nx.data(), sc.ny.data(), sc.nz.data());
       const float* h = sc.rows[y - lo] + pad;
+      if (out.type == PixelType::u8) {
+        gradients_to_u8(sc.gx.data(), sc.gy.data(), h, W, sx, sy, out.channels, out.row<std::uint8_t>(y));
+        continue;
+      }
+      normals_from_gradients(sc.gx.data(), sc.gy.data(), W, sx, sy, sc.nx.data(), sc.ny.data(), sc.nz.data());
       switch (out.type) {
-        case PixelType::u8:
-          write_row(out.row<std::uint8_t>(y), out.channels, W, sc.nx.data(), sc.ny.data(), sc.nz.data(), h);
+        case PixelType::u8:  // handled above
           break;
         case PixelType::u16:
           write_row(out.row<std::uint16_t>(y), out.channels, W, sc.nx.data(), sc.ny.data(), sc.nz.data(), h);

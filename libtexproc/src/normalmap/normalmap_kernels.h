@@ -1,6 +1,8 @@
 // The per-row kernels of the normal-map generator, SIMD and scalar twins.
 #pragma once
 
+#include <cstdint>
+
 namespace texproc {
 
 // out[x] = sum_k w[k] * in[x + k], x in [0, n), summed in order of k.
@@ -11,7 +13,20 @@ void convolve_row(const float* in, const float* w, int taps, int n, float* out);
 void normals_from_gradients(const float* gx, const float* gy, int n, float sx, float sy, float* nx, float* ny,
                             float* nz);
 
+// Interleaves unit normals (and, with 4 channels, heights h in [0, 1]) into
+// 8-bit texels: round((v * 0.5 + 0.5) * 255), clamped; channels 2, 3 or 4.
+void encode_normals_u8(const float* nx, const float* ny, const float* nz, const float* h, int n, int channels,
+                       std::uint8_t* out);
+
+// normals_from_gradients followed by encode_normals_u8, in one pass.
+void gradients_to_u8(const float* gx, const float* gy, const float* h, int n, float sx, float sy, int channels,
+                     std::uint8_t* out);
+
 namespace ref {
+void gradients_to_u8(const float* gx, const float* gy, const float* h, int n, float sx, float sy, int channels,
+                     std::uint8_t* out);
+void encode_normals_u8(const float* nx, const float* ny, const float* nz, const float* h, int n, int channels,
+                       std::uint8_t* out);
 void convolve_row(const float* in, const float* w, int taps, int n, float* out);
 void normals_from_gradients(const float* gx, const float* gy, int n, float sx, float sy, float* nx, float* ny,
                             float* nz);

@@ -34,12 +34,83 @@ void NormalsFromGradients(const float* gx, const float* gy, int n, float sx, flo
   for (; x + lanes <= n; x += lanes) {
     const auto a = hn::Mul(vsx, hn::LoadU(d, gx + x));
     const auto b = hn::Mul(vsy, hn::LoadU(d, gy + x));
-    const auto len = hn::Sqrt(hn::Add(hn::Add(hn::Mul(a, a), hn::Mul(b, b)), one));
-    hn::StoreU(hn::Div(a, len), d, nx + x);
-    hn::StoreU(hn::Div(b, len), d, ny + x);
-    hn::StoreU(hn::Div(one, len), d, nz + x);
+    const auto inv = hn::Div(one, hn::Sqrt(hn::Add(hn::Add(hn::Mul(a, a), hn::Mul(b, b)), one)));
+    hn::StoreU(hn::Mul(a, inv), d, nx + x);
+    hn::StoreU(hn::Mul(b, inv), d, ny + x);
+    hn::StoreU(inv, d, nz + x);
   }
   if (x < n) ref::normals_from_gradients(gx + x, gy + x, n - x, sx, sy, nx + x, ny + x, nz + x);
+}
+
+template <class D, class V>
+HWY_INLINE auto QuantizeU8(D d, V v, V scale_half) {
+  // (v * 0.5 + 0.5) * 255 + 0.5, clamped, truncated: as the reference.
+  const auto half = hn::Set(d, 0.5f);
+  auto e = hn::Add(hn::Mul(hn::Add(hn::Mul(v, half), half), scale_half), half);
+  e = hn::Min(hn::Max(e, hn::Zero(d)), hn::Set(d, 255.0f));
+  const hn::RebindToSigned<D> di;
+  const hn::Rebind<uint8_t, D> du8;
+  return hn::DemoteTo(du8, hn::ConvertTo(di, e));
+}
+
+template <class D, class V>
+HWY_INLINE auto QuantizeHeightU8(D d, V h) {
+  auto e = hn::Add(hn::Mul(h, hn::Set(d, 255.0f)), hn::Set(d, 0.5f));
+  e = hn::Min(hn::Max(e, hn::Zero(d)), hn::Set(d, 255.0f));
+  const hn::RebindToSigned<D> di;
+  const hn::Rebind<uint8_t, D> du8;
+  return hn::DemoteTo(du8, hn::ConvertTo(di, e));
+}
+
+void EncodeNormalsU8(const float* nx, const float* ny, const float* nz, const float* h, int n, int channels,
+                     std::uint8_t* out) {
+  const hn::ScalableTag<float> d;
+  const hn::Rebind<uint8_t, decltype(d)> du8;
+  const int lanes = int(hn::Lanes(d));
+  const auto k255 = hn::Set(d, 255.0f);
+  int x = 0;
+  for (; x + lanes <= n; x += lanes) {
+    const auto r = QuantizeU8(d, hn::LoadU(d, nx + x), k255);
+    const auto g = QuantizeU8(d, hn::LoadU(d, ny + x), k255);
+    if (channels == 2) {
+      hn::StoreInterleaved2(r, g, du8, out + 2 * x);
+      continue;
+    }
+    const auto b = QuantizeU8(d, hn::LoadU(d, nz + x), k255);
+    if (channels == 3) {
+      hn::StoreInterleaved3(r, g, b, du8, out + 3 * x);
+    } else {
+      hn::StoreInterleaved4(r, g, b, QuantizeHeightU8(d, hn::LoadU(d, h + x)), du8, out + 4 * x);
+    }
+  }
+  if (x < n) ref::encode_normals_u8(nx + x, ny + x, nz + x, h + x, n - x, channels, out + channels * x);
+}
+
+void GradientsToU8(const float* gx, const float* gy, const float* h, int n, float sx, float sy, int channels,
+                   std::uint8_t* out) {
+  const hn::ScalableTag<float> d;
+  const hn::Rebind<uint8_t, decltype(d)> du8;
+  const int lanes = int(hn::Lanes(d));
+  const auto vsx = hn::Set(d, sx), vsy = hn::Set(d, sy), one = hn::Set(d, 1.0f), k255 = hn::Set(d, 255.0f);
+  int x = 0;
+  for (; x + lanes <= n; x += lanes) {
+    const auto a = hn::Mul(vsx, hn::LoadU(d, gx + x));
+    const auto b = hn::Mul(vsy, hn::LoadU(d, gy + x));
+    const auto inv = hn::Div(one, hn::Sqrt(hn::Add(hn::Add(hn::Mul(a, a), hn::Mul(b, b)), one)));
+    const auto r = QuantizeU8(d, hn::Mul(a, inv), k255);
+    const auto g = QuantizeU8(d, hn::Mul(b, inv), k255);
+    if (channels == 2) {
+      hn::StoreInterleaved2(r, g, du8, out + 2 * x);
+      continue;
+    }
+    const auto bl = QuantizeU8(d, inv, k255);
+    if (channels == 3) {
+      hn::StoreInterleaved3(r, g, bl, du8, out + 3 * x);
+    } else {
+      hn::StoreInterleaved4(r, g, bl, QuantizeHeightU8(d, hn::LoadU(d, h + x)), du8, out + 4 * x);
+    }
+  }
+  if (x < n) ref::gradients_to_u8(gx + x, gy + x, h + x, n - x, sx, sy, channels, out + channels * x);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -50,6 +121,20 @@ HWY_AFTER_NAMESPACE();
 namespace texproc {
 HWY_EXPORT(ConvolveRow);
 HWY_EXPORT(NormalsFromGradients);
+HWY_EXPORT(EncodeNormalsU8);
+HWY_EXPORT(GradientsToU8);
+
+void gradients_to_u8(const float* gx, const float* gy, const float* h, int n, float sx, float sy, int channels,
+                     std::uint8_t* out) {
+  if (force_scalar()) return ref::gradients_to_u8(gx, gy, h, n, sx, sy, channels, out);
+  HWY_DYNAMIC_DISPATCH(GradientsToU8)(gx, gy, h, n, sx, sy, channels, out);
+}
+
+void encode_normals_u8(const float* nx, const float* ny, const float* nz, const float* h, int n, int channels,
+                       std::uint8_t* out) {
+  if (force_scalar()) return ref::encode_normals_u8(nx, ny, nz, h, n, channels, out);
+  HWY_DYNAMIC_DISPATCH(EncodeNormalsU8)(nx, ny, nz, h, n, channels, out);
+}
 
 void convolve_row(const float* in, const float* w, int taps, int n, float* out) {
   if (force_scalar()) return ref::convolve_row(in, w, taps, n, out);
