@@ -4,6 +4,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <memory>
@@ -101,11 +102,15 @@ ImageSpec make_spec(const ImageView& v, const WriteOptions& o, const std::string
     spec.alpha_channel = v.channels - 1;
     spec.attribute("oiio:UnassociatedAlpha", 1);  // our color is straight, never premultiplied
   }
+  const std::string e = lower_ext(path);
   if (!o.compression.empty()) spec.attribute("compression", o.compression);
+  // OpenImageIO's PNG writer takes its deflate level from its own attribute.
+  if (e == ".png" && o.compression.rfind("zip:", 0) == 0) {
+    spec.attribute("png:compressionLevel", std::atoi(o.compression.c_str() + 4));
+  }
   if (o.color_space == "srgb") spec.attribute("oiio:ColorSpace", "sRGB");
   if (o.color_space == "linear") spec.attribute("oiio:ColorSpace", "Linear");
   spec.attribute("Software", "texproc");
-  const std::string e = lower_ext(path);
   if (e == ".jpg" || e == ".jpeg") spec.attribute("Compression", "jpeg:" + std::to_string(o.quality));
   // No timestamps: outputs are a pure function of inputs and options.
   spec.attribute("DateTime", "");
