@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "image/ocio.h"
+#include "image/srgb_rows.h"
 #include "texproc/error.h"
 
 namespace texproc {
@@ -67,14 +68,20 @@ inline float clamp01(float x) { return x > 0.0f ? (x < 1.0f ? x : 1.0f) : 0.0f; 
 // code = lo + (x >= threshold), exact, with one lookup and no loop. Below
 // 2^-13 every value encodes to 0 (the first threshold is 1.5e-4).
 struct Srgb8Encoder {
-  static constexpr int kMantissaBits = 10;
-  static constexpr int kMinExponent = -13;
+  static constexpr int kMantissaBits = detail::kSrgbEncodeMantissaBits;
+  static constexpr int kMinExponent = detail::kSrgbEncodeMinExponent;
   static constexpr int kExponents = 14;  // -13 .. 0 ([1, 2) encodes to 255)
   struct Bin {
     float threshold;
     std::uint32_t lo;
   };
+  static_assert(sizeof(Bin) == 8, "the SIMD encoder gathers bins as float pairs");
   std::array<Bin, kExponents << kMantissaBits> bins{};
+  // The same bins packed for one SIMD gather: lo | low << 8, where `low` is
+  // the threshold's mantissa bits below the bin index (x and the threshold
+  // share everything above them, so comparing these bits compares the
+  // floats), or 1 << 13, above any such bits, where the bin has none.
+  std::array<std::uint32_t, kExponents << kMantissaBits> packed{};
 
   explicit Srgb8Encoder(const Srgb8Tables& t) {
     for (std::size_t i = 0; i < bins.size(); ++i) {
@@ -88,10 +95,15 @@ struct Srgb8Encoder {
       while (code < 255 && lo_x >= t.threshold[code + 1]) ++code;
       bins[i].lo = std::uint32_t(code);
       bins[i].threshold = 4.0f;  // never reached
+      std::uint32_t low = 1u << (23 - kMantissaBits);
       if (code < 255 && t.threshold[code + 1] < hi_x) {
         bins[i].threshold = t.threshold[code + 1];
         assert(code + 2 > 255 || t.threshold[code + 2] >= hi_x);  // one threshold per bin
+        std::uint32_t tb;
+        std::memcpy(&tb, &bins[i].threshold, 4);
+        low = tb & ((1u << (23 - kMantissaBits)) - 1);
       }
+      packed[i] = std::uint32_t(code) | low << 8;
     }
   }
 };
@@ -123,6 +135,36 @@ bool is_color_channel(int c, int channels) { return !((channels == 2 || channels
 }  // namespace
 
 float srgb8_to_linear(std::uint8_t v) { return srgb8().decode[v]; }
+
+namespace detail {
+const float* srgb8_decode_table() { return srgb8().decode.data(); }
+const std::uint32_t* srgb8_encode_packed() { return srgb8_encoder().packed.data(); }
+}  // namespace detail
+
+namespace ref {
+void decode_srgb8_rgba_premultiplied(const std::uint8_t* src, int pixels, float* dst) {
+  const float* table = srgb8().decode.data();
+  for (int x = 0; x < pixels; ++x, src += 4, dst += 4) {
+    const float a = src[3] * (1.0f / 255.0f);
+    dst[0] = table[src[0]] * a;
+    dst[1] = table[src[1]] * a;
+    dst[2] = table[src[2]] * a;
+    dst[3] = a;
+  }
+}
+
+void encode_srgb8_rgba_unpremultiplied(const float* src, int pixels, std::uint8_t* dst) {
+  const Srgb8Encoder& e = srgb8_encoder();
+  for (int x = 0; x < pixels; ++x, src += 4, dst += 4) {
+    const float a = src[3];
+    const float inv = a > 0.0f ? 1.0f / a : 0.0f;
+    dst[0] = encode_srgb8(e, src[0] * inv);
+    dst[1] = encode_srgb8(e, src[1] * inv);
+    dst[2] = encode_srgb8(e, src[2] * inv);
+    dst[3] = encode_unorm8(a);
+  }
+}
+}  // namespace ref
 std::uint8_t linear_to_srgb8(float x) { return encode_srgb8(srgb8_encoder(), x); }
 float srgb16_to_linear(std::uint16_t v) { return srgb16_decode()[v]; }
 std::uint16_t linear_to_srgb16(float x) {

@@ -3,7 +3,10 @@
 #include <cmath>
 #include <cstring>
 #include <cstdlib>
+#include <mutex>
 #include <new>
+#include <utility>
+#include <vector>
 
 #include <sys/mman.h>
 
@@ -15,12 +18,42 @@ constexpr std::size_t kHugePage = std::size_t(2) << 20;
 constexpr std::size_t kLargeBlock = std::size_t(4) << 20;
 }  // namespace
 
-void* allocate_pixels(std::size_t bytes) {
-  if (bytes < kLargeBlock) {
-    void* p = ::operator new(bytes);
-    return p;
+// Freed large blocks are kept (up to kCacheBytes) and handed out again to a
+// request of the same rounded size: a batch of same-sized textures, or the
+// levels of successive chains, then reuse memory whose pages are already
+// mapped instead of faulting in (and zeroing) fresh ones.
+constexpr std::size_t kCacheBytes = std::size_t(512) << 20;
+
+struct BlockCache {
+  std::mutex mutex;
+  std::vector<std::pair<void*, std::size_t>> blocks;
+  std::size_t bytes = 0;
+  ~BlockCache() {
+    for (auto& b : blocks) std::free(b.first);
   }
-  const std::size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
+};
+BlockCache& cache() {
+  static BlockCache c;
+  return c;
+}
+
+std::size_t rounded_size(std::size_t bytes) { return (bytes + kHugePage - 1) / kHugePage * kHugePage; }
+
+void* allocate_pixels(std::size_t bytes) {
+  if (bytes < kLargeBlock) return ::operator new(bytes);
+  const std::size_t rounded = rounded_size(bytes);
+  {
+    BlockCache& c = cache();
+    std::lock_guard<std::mutex> lock(c.mutex);
+    for (std::size_t i = 0; i < c.blocks.size(); ++i) {
+      if (c.blocks[i].second == rounded) {
+        void* p = c.blocks[i].first;
+        c.blocks.erase(c.blocks.begin() + std::ptrdiff_t(i));
+        c.bytes -= rounded;
+        return p;
+      }
+    }
+  }
   void* p = std::aligned_alloc(kHugePage, rounded);
   if (!p) throw std::bad_alloc();
   ::madvise(p, rounded, MADV_HUGEPAGE);  // a hint: harmless where THP is off
@@ -30,9 +63,20 @@ void* allocate_pixels(std::size_t bytes) {
 void free_pixels(void* p, std::size_t bytes) noexcept {
   if (bytes < kLargeBlock) {
     ::operator delete(p);
-  } else {
-    std::free(p);
+    return;
   }
+  const std::size_t rounded = rounded_size(bytes);
+  BlockCache& c = cache();
+  std::lock_guard<std::mutex> lock(c.mutex);
+  if (c.bytes + rounded <= kCacheBytes) {
+    try {
+      c.blocks.emplace_back(p, rounded);
+      c.bytes += rounded;
+      return;
+    } catch (...) {
+    }
+  }
+  std::free(p);
 }
 }  // namespace detail
 

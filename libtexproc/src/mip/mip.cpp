@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "image/srgb_rows.h"
 #include "mip/resample.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
@@ -36,7 +37,7 @@ using FloatBuffer = std::vector<float, detail::DefaultInitAllocator<float>>;
 // Per-thread scratch, reused from block to block: a fresh multi-megabyte
 // allocation per block would cost a page fault per 4 KiB.
 struct Scratch {
-  FloatBuffer decoded, row;
+  FloatBuffer decoded, row, row_out;
   std::vector<const float*> rows, taps;
 };
 Scratch& scratch() {
@@ -55,6 +56,8 @@ struct ChainSetup {
   ColorSpace out_cs = ColorSpace::linear();
   PixelType out_type = PixelType::u8;
   WrapMode wrap = WrapMode::clamp;
+  // 8-bit sRGB RGBA in and out, premultiplied: the SIMD row codecs apply.
+  bool rgba8_srgb_fast = false;
 };
 
 void premultiply_row(float* px, int channels, int width) {
@@ -122,11 +125,40 @@ struct LevelRows {
 };
 
 void decode_input_row(const ChainSetup& s, const ImageView& in, int y, float* dst) {
+  if (s.rgba8_srgb_fast) return decode_srgb8_rgba_premultiplied(in.row<const std::uint8_t>(y), in.width, dst);
   s.in_cs.decode_row(in.row<const void>(y), in.type, s.channels, in.width, dst);
   if (s.premultiply) premultiply_row(dst, s.channels, in.width);
 }
 
-FloatBuffer downsample(const ChainSetup& s, const LevelRows& src, int dw, int dh, const Filter& filter) {
+// One level row from linear premultiplied float to the output encoding.
+void encode_level_row(const ChainSetup& s, const float* src, int w, float alpha_scale, void* dst) {
+  if (s.rgba8_srgb_fast && alpha_scale == 1.0f) {
+    return encode_srgb8_rgba_unpremultiplied(src, w, static_cast<std::uint8_t*>(dst));
+  }
+  const int C = s.channels;
+  FloatBuffer& row = scratch().row_out;
+  row.resize(std::size_t(w) * C);
+  std::memcpy(row.data(), src, row.size() * sizeof(float));
+  if (s.premultiply) unpremultiply_row(row.data(), C, w);
+  if (s.alpha && alpha_scale != 1.0f) {
+    for (int x = 0; x < w; ++x) row[x * C + C - 1] = std::min(1.0f, row[x * C + C - 1] * alpha_scale);
+  }
+  s.out_cs.encode_row(row.data(), C, w, dst, s.out_type);
+}
+
+void encode_level(const ChainSetup& s, const float* src, int w, int h, float alpha_scale, Image& out) {
+  for_each_row_block(h, kBlockRows, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      encode_level_row(s, src + std::size_t(y) * w * s.channels, w, alpha_scale, out.row<void>(y));
+    }
+  });
+}
+
+// Filters `src` down to dw x dh. With `encoded`, each row is also encoded
+// into it while still in cache (when no whole-level statistic such as alpha
+// coverage must be known first).
+FloatBuffer downsample(const ChainSetup& s, const LevelRows& src, int dw, int dh, const Filter& filter,
+                       Image* encoded) {
   const int C = s.channels;
   const int sw = src.width, sh = src.height;
   const AxisWeights wx = compute_axis_weights(sw, dw, filter);
@@ -171,6 +203,7 @@ FloatBuffer downsample(const ChainSetup& s, const LevelRows& src, int dw, int dh
       float* out = dst.data() + std::size_t(y) * dw * C;
       horizontal_pass(mid, C, wx.first.data(), wx.weights.data(), wx.taps, dw, out);
       if (s.normal_map) renormalize_row(out, C, dw);
+      if (encoded) encode_level_row(s, out, dw, 1.0f, encoded->row<void>(y));
     }
   });
   return dst;
@@ -198,22 +231,6 @@ float coverage_scale(const float* px, std::size_t count, int channels, float ref
   const float t = a[want - 1];
   if (t <= 0.0f) return kMaxScale;
   return std::min(kMaxScale, ref / t);
-}
-
-void encode_level(const ChainSetup& s, const float* src, int w, int h, float alpha_scale, Image& out) {
-  const int C = s.channels;
-  for_each_row_block(h, kBlockRows, [&](int y0, int y1) {
-    FloatBuffer& row = scratch().row;
-    row.resize(std::size_t(w) * C);
-    for (int y = y0; y < y1; ++y) {
-      std::memcpy(row.data(), src + std::size_t(y) * w * C, row.size() * sizeof(float));
-      if (s.premultiply) unpremultiply_row(row.data(), C, w);
-      if (s.alpha && alpha_scale != 1.0f) {
-        for (int x = 0; x < w; ++x) row[x * C + C - 1] = std::min(1.0f, row[x * C + C - 1] * alpha_scale);
-      }
-      s.out_cs.encode_row(row.data(), C, w, out.row<void>(y), out.type());
-    }
-  });
 }
 
 bool level0_is_input(const ChainSetup& s, const ImageView& in) {
@@ -314,6 +331,9 @@ MipChain generate(const ImageView& image, Image* owned, const MipOptions& o) {
     }
   }
 
+  s.rgba8_srgb_fast = s.channels == 4 && s.premultiply && image.type == PixelType::u8 &&
+                      s.out_type == PixelType::u8 && s.in_cs.is_srgb() && s.out_cs.is_srgb();
+
   MipChain chain;
   chain.color_space = s.out_cs.name();
   const int levels = mip_level_count(image.width, image.height, o.max_levels, o.min_size);
@@ -338,7 +358,8 @@ MipChain generate(const ImageView& image, Image* owned, const MipOptions& o) {
   LevelRows src{&image, nullptr, image.width, image.height};
   for (int level = 1; level < levels; ++level) {
     const int dw = mip_level_dim(image.width, level), dh = mip_level_dim(image.height, level);
-    FloatBuffer cur = downsample(s, src, dw, dh, o.filter);
+    Image out = Image::uninitialized(dw, dh, s.channels, s.out_type);
+    FloatBuffer cur = downsample(s, src, dw, dh, o.filter, coverage ? nullptr : &out);
     float scale = 1.0f;
     if (coverage) {
       // Coverage is judged on straight alpha, which premultiplication leaves alone.
@@ -346,9 +367,8 @@ MipChain generate(const ImageView& image, Image* owned, const MipOptions& o) {
       chain.alpha_coverage.push_back(
           coverage_of(cur.data(), std::size_t(dw) * dh, s.channels, o.alpha_coverage_ref, scale));
       chain.alpha_scale.push_back(scale);
+      encode_level(s, cur.data(), dw, dh, scale, out);
     }
-    Image out = Image::uninitialized(dw, dh, s.channels, s.out_type);
-    encode_level(s, cur.data(), dw, dh, scale, out);
     chain.levels.push_back(std::move(out));
     prev = std::move(cur);
     src = LevelRows{nullptr, prev.data(), dw, dh};
