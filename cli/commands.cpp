@@ -11,6 +11,8 @@ namespace texproc::cli {
 void add_all_commands(CLI::App& app) {
   add_mip_command(app);
   add_normalmap_command(app);
+  add_sat_command(app);
+  add_info_command(app);
 }
 
 namespace {

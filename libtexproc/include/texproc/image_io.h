@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "texproc/image.h"
@@ -17,6 +18,7 @@ struct ImageFileInfo {
   std::string color_space_tag;     // what the file says ("sRGB", "Linear"...), a hint only
   int subimages = 1;
   int mip_levels = 1;
+  std::vector<std::pair<int, int>> level_sizes;  // probe_image: width, height of each MIP level
 };
 
 // Reads subimage 0, level 0 of any format OpenImageIO reads, with at most

@@ -156,8 +156,12 @@ ImageFileInfo probe_image(const std::string& path) {
   int sub = 0;
   while (in->seek_subimage(sub + 1, 0)) ++sub;
   info.subimages = sub + 1;
+  info.level_sizes.emplace_back(info.width, info.height);
   int mips = 0;
-  while (in->seek_subimage(0, mips + 1)) ++mips;
+  while (in->seek_subimage(0, mips + 1)) {
+    ++mips;
+    info.level_sizes.emplace_back(in->spec().width, in->spec().height);
+  }
   info.mip_levels = mips + 1;
   return info;
 }

@@ -1,0 +1,110 @@
+// texproc info: what a file holds, for people and (with --json) for scripts.
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "commands.h"
+#include "common.h"
+#include "texproc/error.h"
+#include "texproc/image_io.h"
+#include "texproc/sat.h"
+
+namespace fs = std::filesystem;
+
+namespace texproc::cli {
+namespace {
+
+struct InfoArgs {
+  std::vector<std::string> files;
+  bool json = false;
+};
+
+std::string quoted(const std::string& s) {
+  std::string o = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') o += '\\';
+    if (static_cast<unsigned char>(c) < 0x20) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\u%04x", c);
+      o += b;
+      continue;
+    }
+    o += c;
+  }
+  return o + "\"";
+}
+
+std::string num(double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+// One file as a JSON object (the stable form, documented in docs/cli.md) and
+// as text.
+void describe(const std::string& path, std::ostringstream& json, std::ostringstream& text) {
+  if (fs::path(path).extension() == ".sat") {
+    const SummedAreaTable t = read_sat_file(path);
+    json << "{\"file\": " << quoted(path) << ", \"container\": \"sat\", \"width\": " << t.width
+         << ", \"height\": " << t.height << ", \"channels\": " << t.channels << ", \"precision\": \""
+         << to_string(t.precision) << "\", \"source_type\": \"" << to_string(t.source) << "\", \"block\": " << t.block
+         << ", \"max_exact_box\": " << t.max_exact_box() << ", \"error_bound\": " << num(t.error_bound())
+         << ", \"data_bytes\": " << t.data.size() << "}";
+    text << path << ": summed-area table, " << t.width << "x" << t.height << ", " << t.channels << " channel(s), "
+         << to_string(t.precision) << " sums of " << to_string(t.source) << " values";
+    if (t.max_exact_box()) text << ", exact for boxes up to " << t.max_exact_box() << " texels";
+    if (t.error_bound() > 0) text << ", box sums within +-" << num(t.error_bound());
+    text << "\n";
+    return;
+  }
+  const ImageFileInfo i = probe_image(path);
+  json << "{\"file\": " << quoted(path) << ", \"container\": " << quoted(i.format) << ", \"width\": " << i.width
+       << ", \"height\": " << i.height << ", \"channels\": " << i.channels << ", \"type\": " << quoted(i.file_type)
+       << ", \"color_space_tag\": " << quoted(i.color_space_tag) << ", \"subimages\": " << i.subimages
+       << ", \"levels\": [";
+  for (std::size_t l = 0; l < i.level_sizes.size(); ++l) {
+    json << (l ? ", " : "") << "{\"width\": " << i.level_sizes[l].first << ", \"height\": " << i.level_sizes[l].second
+         << "}";
+  }
+  json << "]}";
+  text << path << ": " << i.format << ", " << i.width << "x" << i.height << ", " << i.channels << " channel(s) of "
+       << i.file_type;
+  if (!i.color_space_tag.empty()) text << ", tagged " << i.color_space_tag;
+  if (i.mip_levels > 1) text << ", " << i.mip_levels << " MIP levels";
+  if (i.subimages > 1) text << ", " << i.subimages << " subimages";
+  text << "\n";
+}
+
+int run_info(const InfoArgs& a) {
+  std::ostringstream json, text;
+  json << "[";
+  int failures = 0;
+  ErrorCode last = ErrorCode::success;
+  for (std::size_t k = 0; k < a.files.size(); ++k) {
+    try {
+      std::ostringstream j;
+      describe(a.files[k], j, text);
+      json << (k && json.str().size() > 1 ? ", " : "") << j.str();
+    } catch (const Error& e) {
+      std::cerr << "texproc info: error: " << e.what() << "\n";
+      ++failures;
+      last = e.code();
+    }
+  }
+  json << "]\n";
+  std::cout << (a.json ? json.str() : text.str());
+  return failures ? int(last) : 0;
+}
+
+}  // namespace
+
+void add_info_command(CLI::App& app) {
+  auto args = std::make_shared<InfoArgs>();
+  CLI::App* cmd = app.add_subcommand("info", "Describe image files, MIP chains and .sat tables.");
+  cmd->add_option("files", args->files, "Files to describe")->required();
+  cmd->add_flag("--json", args->json, "Print a JSON array, one object per file (schema in docs/cli.md)");
+  set_runner(*cmd, [args] { return run_info(*args); });
+}
+
+}  // namespace texproc::cli

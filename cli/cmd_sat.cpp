@@ -1,0 +1,186 @@
+// texproc sat: summed-area tables, box queries over them, and box blurs.
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "commands.h"
+#include "common.h"
+#include "texproc/error.h"
+#include "texproc/image_io.h"
+#include "texproc/runtime.h"
+#include "texproc/sat.h"
+
+namespace fs = std::filesystem;
+
+namespace texproc::cli {
+namespace {
+
+struct SatArgs {
+  CommonOptions common;
+  std::string input, output, precision;
+  // query
+  std::string table;
+  long long x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool json = false;
+  // blur
+  std::string blur_input, blur_output, radius_map, wrap = "clamp", color_space;
+  bool linear = false;
+  float radius = 4.0f;
+};
+
+std::string number(double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+int run_build(const SatArgs& a) {
+  if (a.input.empty() || a.output.empty()) {
+    throw Error(ErrorCode::bad_arguments, "sat needs an input image and -o OUT.sat|OUT.exr (or: sat query, sat blur)");
+  }
+  const std::string ext = fs::path(a.output).extension().string();
+  if (ext != ".sat" && ext != ".exr") {
+    throw Error(ErrorCode::unsupported, a.output + ": a table is written as .sat (exact) or .exr (float, for viewing)");
+  }
+  check_output(a.output, {a.input}, a.common.force);
+  ImageFileInfo info;
+  const Image img = read_image(a.input, &info);
+  const SatPrecision p = a.precision.empty() ? default_sat_precision(img.type(), img.width(), img.height())
+                                             : parse_sat_precision(a.precision);
+  const SummedAreaTable t = build_sat(img.view(), p);
+  if (ext == ".sat") {
+    write_sat_file(a.output, t);
+  } else {
+    // For viewing: the true sums S(x, y) as floats.
+    Image view = Image::uninitialized(t.width, t.height, t.channels, PixelType::f32);
+    for_each_row_block(t.height, 16, [&](int y0, int y1) {
+      std::vector<double> s(t.channels);
+      for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < t.width; ++x) {
+          t.box_sum(0, 0, x + 1, y + 1, s.data());
+          for (int c = 0; c < t.channels; ++c) view.row<float>(y)[x * t.channels + c] = float(s[c]);
+        }
+    });
+    write_image(a.output, view.view());
+  }
+  if (!a.common.quiet) {
+    std::cout << a.input << " -> " << a.output << ": " << t.width << "x" << t.height << "x" << t.channels << " "
+              << to_string(p);
+    if (t.max_exact_box() > 0) std::cout << ", exact for boxes up to " << t.max_exact_box() << " texels";
+    if (t.error_bound() > 0) std::cout << ", box sums within +-" << number(t.error_bound());
+    std::cout << "\n";
+  }
+  return 0;
+}
+
+int run_query(const SatArgs& a) {
+  const SummedAreaTable t = read_sat_file(a.table);
+  auto in = [](long long v, long long hi) { return v >= 0 && v <= hi; };
+  if (!in(a.x0, t.width) || !in(a.x1, t.width) || !in(a.y0, t.height) || !in(a.y1, t.height) || a.x0 >= a.x1 ||
+      a.y0 >= a.y1) {
+    throw Error(ErrorCode::bad_arguments,
+                a.table + ": box [" + std::to_string(a.x0) + ", " + std::to_string(a.x1) + ") x [" +
+                    std::to_string(a.y0) + ", " + std::to_string(a.y1) + ") is empty or outside the " +
+                    std::to_string(t.width) + "x" + std::to_string(t.height) +
+                    " table (valid: 0 <= X0 < X1 <= width, 0 <= Y0 < Y1 <= height; X1, Y1 exclusive)");
+  }
+  const std::uint64_t area = std::uint64_t(a.x1 - a.x0) * std::uint64_t(a.y1 - a.y0);
+  const std::uint64_t limit = t.max_exact_box();
+  if ((t.precision == SatPrecision::u32 || t.precision == SatPrecision::u64) && area > limit) {
+    throw Error(ErrorCode::bad_arguments, a.table + ": a box of " + std::to_string(area) + " texels is past what a " +
+                                              to_string(t.precision) + " table of this input sums exactly (" +
+                                              std::to_string(limit) + " texels); rebuild with --precision u64");
+  }
+  std::vector<double> sum(t.channels);
+  t.box_sum(int(a.x0), int(a.y0), int(a.x1), int(a.y1), sum.data());
+  // Integer tables sum integer codes; means are reported in those units too.
+  if (a.json) {
+    std::cout << "{\"box\": [" << a.x0 << ", " << a.y0 << ", " << a.x1 << ", " << a.y1 << "], \"texels\": " << area
+              << ", \"sum\": [";
+    for (int c = 0; c < t.channels; ++c) std::cout << (c ? ", " : "") << number(sum[c]);
+    std::cout << "], \"mean\": [";
+    for (int c = 0; c < t.channels; ++c) std::cout << (c ? ", " : "") << number(sum[c] / double(area));
+    std::cout << "], \"error_bound\": " << number(t.error_bound()) << "}\n";
+  } else {
+    for (int c = 0; c < t.channels; ++c) {
+      std::cout << "channel " << c << ": sum " << number(sum[c]) << ", mean " << number(sum[c] / double(area)) << "\n";
+    }
+  }
+  return 0;
+}
+
+int run_blur(const SatArgs& a) {
+  std::vector<std::string> inputs = {a.blur_input};
+  if (!a.radius_map.empty()) inputs.push_back(a.radius_map);
+  check_output(a.blur_output, inputs, a.common.force);
+  ImageFileInfo info;
+  const Image img = read_image(a.blur_input, &info);
+  Image map;
+  BoxBlurOptions o;
+  o.radius = a.radius;
+  o.wrap = parse_wrap_mode(a.wrap);
+  if (o.wrap == WrapMode::mirror) throw Error(ErrorCode::bad_arguments, "--wrap for sat blur: valid: clamp, repeat");
+  o.color_space = a.linear ? "linear" : a.color_space;
+  if (!a.radius_map.empty()) {
+    map = read_image(a.radius_map);
+    o.radius_map = nullptr;
+  }
+  const ImageView mv = map.view();
+  if (!map.empty()) o.radius_map = &mv;
+  const Image out = box_blur(img.view(), o);
+  WriteOptions w;
+  write_image(a.blur_output, out.view(), w);
+  if (!a.common.quiet) {
+    std::cout << a.blur_input << " -> " << a.blur_output << ": box blur radius " << a.radius
+              << (a.radius_map.empty() ? "" : " x " + a.radius_map) << ", wrap " << a.wrap << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_sat_command(CLI::App& app) {
+  auto args = std::make_shared<SatArgs>();
+  CLI::App* cmd = app.add_subcommand("sat", "Build a summed-area table; query boxes; box-blur with it.");
+  cmd->footer(
+      "texproc sat IN -o OUT.sat|OUT.exr [--precision u32|u64|f32|f64]\n"
+      "texproc sat query TABLE.sat X0 Y0 X1 Y1 [--json]     (X1, Y1 exclusive)\n"
+      "texproc sat blur IN -o OUT --radius R [--radius-map MAP] [--wrap clamp|repeat]\n"
+      "Tables sum the stored values (8/16-bit codes, or floats). See docs/sat.md for the precision table.");
+  cmd->require_subcommand(0, 1);
+  cmd->add_option("input", args->input, "Input image");
+  cmd->add_option("-o,--output", args->output, "Output table: .sat (exact, raw) or .exr (float, for viewing)");
+  cmd->add_option("--precision", args->precision,
+                  "Element type: u32, u64 (wrapping integers), f32 (mean subtracted), f64; default: the smallest "
+                  "that is exact for every box of the input");
+  add_common_options(*cmd, args->common);
+
+  CLI::App* q = cmd->add_subcommand("query", "Sum and mean over a box [X0, X1) x [Y0, Y1) of a .sat table.");
+  q->add_option("table", args->table, "A .sat file")->required();
+  q->add_option("x0", args->x0, "Left column (inclusive)")->required();
+  q->add_option("y0", args->y0, "Top row (inclusive)")->required();
+  q->add_option("x1", args->x1, "Right column (exclusive)")->required();
+  q->add_option("y1", args->y1, "Bottom row (exclusive)")->required();
+  q->add_flag("--json", args->json, "Print {\"sum\": [...], \"mean\": [...], ...}");
+
+  CLI::App* b = cmd->add_subcommand("blur", "Box blur of any radius at constant cost per texel, gamma-correct.");
+  b->add_option("input", args->blur_input, "Input image")->required();
+  b->add_option("-o,--output", args->blur_output, "Output image")->required();
+  b->add_option("--radius", args->radius, "Half-width in texels: a box of 2R+1; fractional radii blend")
+      ->capture_default_str();
+  b->add_option("--radius-map", args->radius_map, "Per-texel radius: R times the map's first channel in [0, 1]");
+  b->add_option("--wrap", args->wrap, "Texels past the edges: clamp, repeat")->capture_default_str();
+  b->add_option("--colorspace", args->color_space, "Source color space (default: srgb for 8/16-bit, linear for float)");
+  b->add_flag("--linear", args->linear, "The input is data: no transfer function");
+  add_common_options(*b, args->common);
+
+  set_runner(*cmd, [args, cmd, q, b] {
+    ThreadLimit threads(args->common.threads);
+    if (q->parsed()) return run_query(*args);
+    if (b->parsed()) return run_blur(*args);
+    return run_build(*args);
+  });
+}
+
+}  // namespace texproc::cli
