@@ -68,6 +68,8 @@ struct SummedAreaTable {
 
   // M at inclusive (x, y), channel c (0 for tables without a model).
   double model(int x, int y, int c) const;
+  // model(x, y, c) for every x and c of row y into out[width * channels].
+  void model_row(int y, double* out) const;
   // Derives the prefix arrays model() reads from block_means; build_sat and
   // read_sat_file call it.
   void prepare_model();
@@ -80,6 +82,9 @@ struct SummedAreaTable {
 // integer input (Error{bad_arguments} otherwise). Bytes never depend on the
 // thread count.
 SummedAreaTable build_sat(const ImageView& image, SatPrecision precision);
+// The same into `table`, reusing its memory when the size allows (a batch,
+// or a table rebuilt every frame, then touches no fresh pages).
+void build_sat(const ImageView& image, SatPrecision precision, SummedAreaTable& table);
 
 // The .sat file (docs/sat.md): a 64-byte header, the offsets, the data.
 void write_sat_file(const std::string& path, const SummedAreaTable& table);

@@ -176,97 +176,163 @@ double SummedAreaTable::model(int x, int y, int c) const {
   return v;
 }
 
+void SummedAreaTable::model_row(int y, double* out) const {
+  const int C = channels;
+  if (block == 0) {
+    std::fill(out, out + std::size_t(width) * C, 0.0);
+    return;
+  }
+  constexpr int B = kBlock;  // a power of two: the divisions below are shifts
+  assert(block == kBlock);
+  const int BW = (width + B - 1) / B;
+  const int Y = y + 1, fy = Y / B, ry = Y % B;
+  const double* full = full_.data() + std::size_t(fy) * (BW + 1) * C;
+  const double* col = col_.data() + std::size_t(fy) * (BW + 1) * C;
+  const double* row = row_.data() + std::size_t(fy) * (BW + 1) * C;
+  const double* means = block_means.data() + std::size_t(fy) * BW * C;
+  for (int x = 0; x < width; ++x) {
+    const int X = x + 1, fx = X / B, rx = X % B;
+    const std::size_t i = std::size_t(fx) * C;
+    for (int c = 0; c < C; ++c) {
+      double v = full[i + c] + rx * col[i + c] + ry * row[i + c];
+      if (rx && ry) v += double(rx) * ry * means[i + c];
+      out[std::size_t(x) * C + c] = v;
+    }
+  }
+}
+
 namespace {
 
 constexpr int kStripRows = 64;
 
-template <typename In>
-const In* in_row(const ImageView& img, int y) {
-  return img.row<const In>(y);
+// One table row from the row above: cur[i] = prev[i] + (prefix over x of
+// this input row), per channel. C is a template argument so that the
+// channel loop unrolls and the four running sums of RGBA vectorize.
+template <int C, typename In, typename Acc>
+void table_row(const In* in, int width, const Acc* prev, Acc* cur) {
+  Acc run[C];
+  for (int c = 0; c < C; ++c) run[c] = Acc(0);
+  for (int x = 0; x < width; ++x) {
+    for (int c = 0; c < C; ++c) {
+      run[c] += Acc(in[x * C + c]);
+      cur[x * C + c] = prev[x * C + c] + run[c];
+    }
+  }
 }
 
-// The strip pipeline for one accumulator type. `Emit` turns the exact row of
-// sums (Acc) of row y into output entries.
-template <typename In, typename Acc, typename Emit>
-void run_strips(const ImageView& img, Emit emit) {
+template <typename In, typename Acc>
+void table_row_any(int channels, const In* in, int width, const Acc* prev, Acc* cur) {
+  switch (channels) {
+    case 1: return table_row<1>(in, width, prev, cur);
+    case 2: return table_row<2>(in, width, prev, cur);
+    case 3: return table_row<3>(in, width, prev, cur);
+    default: return table_row<4>(in, width, prev, cur);
+  }
+}
+
+// The strip pipeline for one accumulator type. Pass 1 sums each strip's
+// columns; a serial step turns them into the table row just above each strip;
+// pass 2 walks each strip's rows. `row_buffer(y)` says where row y of exact
+// sums (Acc) goes: straight into the table when Acc is the element type,
+// else into scratch that `emit(y, row)` then converts.
+template <typename In, typename Acc, typename RowBuffer, typename Emit>
+void run_strips(const ImageView& img, RowBuffer row_buffer, Emit emit) {
   const int W = img.width, H = img.height, C = img.channels;
   const std::size_t n = std::size_t(W) * C;
   const int strips = (H + kStripRows - 1) / kStripRows;
 
-  // Pass 1: column totals of every strip.
-  std::vector<std::vector<Acc>> totals(strips);
+  // totals of strip s at [s * n, (s + 1) * n), then the table row above
+  // strip s at [(strips + s) * n, ...): one block from the pixel allocator,
+  // which keeps large blocks for reuse (no fresh pages on every build).
+  std::vector<Acc, detail::DefaultInitAllocator<Acc>> work(2 * std::size_t(strips) * n);
+  Acc* totals = work.data();
+  Acc* above = work.data() + std::size_t(strips) * n;
   for_each_row_block(strips, 1, [&](int s0, int s1) {
     for (int s = s0; s < s1; ++s) {
-      std::vector<Acc>& t = totals[s];
-      t.assign(n, Acc(0));
+      Acc* t = totals + std::size_t(s) * n;
+      std::fill(t, t + n, Acc(0));
       for (int y = s * kStripRows; y < std::min(H, (s + 1) * kStripRows); ++y) {
-        const In* r = in_row<In>(img, y);
+        const In* r = img.row<const In>(y);
         for (std::size_t i = 0; i < n; ++i) t[i] += Acc(r[i]);
       }
     }
   });
-  // The column sums above each strip, in strip order (fixed: deterministic).
-  std::vector<std::vector<Acc>> above(strips);
-  above[0].assign(n, Acc(0));
-  for (int s = 1; s < strips; ++s) {
-    above[s] = above[s - 1];
-    for (std::size_t i = 0; i < n; ++i) above[s][i] += totals[s - 1][i];
+  // The table row just above strip s: prefix over x of the column sums of
+  // every earlier strip, in strip order (deterministic). Strip s - 1's totals
+  // become running column sums in place.
+  for (int s = 0; s < strips; ++s) {
+    Acc* a = above + std::size_t(s) * n;
+    if (s == 0) {
+      std::fill(a, a + n, Acc(0));
+      continue;
+    }
+    Acc* columns = totals + std::size_t(s - 1) * n;
+    if (s > 1) {
+      const Acc* earlier = totals + std::size_t(s - 2) * n;
+      for (std::size_t i = 0; i < n; ++i) columns[i] += earlier[i];
+    }
+    for (int c = 0; c < C; ++c) {
+      Acc run(0);
+      for (int x = 0; x < W; ++x) {
+        run += columns[std::size_t(x) * C + c];
+        a[std::size_t(x) * C + c] = run;
+      }
+    }
   }
-  // Pass 2: running column sums down each strip; each table row is the
-  // prefix over x of them.
   for_each_row_block(strips, 1, [&](int s0, int s1) {
-    std::vector<Acc> col, row(n);
     for (int s = s0; s < s1; ++s) {
-      col = above[s];
+      const Acc* prev = above + std::size_t(s) * n;
       for (int y = s * kStripRows; y < std::min(H, (s + 1) * kStripRows); ++y) {
-        const In* r = in_row<In>(img, y);
-        Acc run[4] = {Acc(0), Acc(0), Acc(0), Acc(0)};
-        for (int x = 0; x < W; ++x) {
-          for (int c = 0; c < C; ++c) {
-            const std::size_t i = std::size_t(x) * C + c;
-            col[i] += Acc(r[i]);
-            run[c] += col[i];
-            row[i] = run[c];
-          }
-        }
-        emit(y, row.data());
+        Acc* cur = row_buffer(y);
+        table_row_any(C, img.row<const In>(y), W, prev, cur);
+        emit(y, cur);
+        prev = cur;
       }
     }
   });
 }
 
-// Integer tables: the exact row, wrapped to the element type.
+// Integer tables: exact modulo 2^bits, written straight into the table.
 template <typename In, typename Out>
 void build_integer(const ImageView& img, SummedAreaTable& t) {
   const std::size_t n = std::size_t(img.width) * img.channels;
-  run_strips<In, Out>(img, [&](int y, const Out* row) {
-    std::memcpy(t.data.data() + std::size_t(y) * n * sizeof(Out), row, n * sizeof(Out));
-  });
+  Out* base = reinterpret_cast<Out*>(t.data.data());
+  run_strips<In, Out>(
+      img, [&](int y) { return base + std::size_t(y) * n; }, [](int, const Out*) {});
 }
 
 // Float tables: S exact in Acc (int64 for integer input, double for float),
-// minus the block-mean model M, rounded once to Out. Tracks the largest |entry|
-// per strip of rows, combined after (max is order-free).
+// minus the block-mean model M, rounded once to Out. Each thread keeps two
+// rows of exact sums (this one and the one above). The largest |entry| and
+// |M| are kept per row and combined after (max is order-free).
 template <typename In, typename Acc, typename Out>
 void build_float(const ImageView& img, SummedAreaTable& t) {
-  const int W = img.width, C = img.channels;
-  const std::size_t n = std::size_t(W) * C;
+  const std::size_t n = std::size_t(img.width) * img.channels;
   std::vector<double> row_max(img.height, 0.0), model_max(img.height, 0.0);
-  run_strips<In, Acc>(img, [&](int y, const Acc* row) {
-    Out* out = reinterpret_cast<Out*>(t.data.data()) + std::size_t(y) * n;
-    double m = 0.0, mm = 0.0;
-    for (int x = 0; x < W; ++x) {
-      for (int c = 0; c < C; ++c) {
-        const double model = t.model(x, y, c);
-        const Out v = Out(double(row[std::size_t(x) * C + c]) - model);
-        out[std::size_t(x) * C + c] = v;
-        m = std::max(m, std::abs(double(v)));
-        mm = std::max(mm, std::abs(model));
-      }
-    }
-    row_max[y] = m;
-    model_max[y] = mm;
-  });
+  run_strips<In, Acc>(
+      img,
+      [&](int y) {
+        thread_local std::vector<Acc> rows[2];
+        std::vector<Acc>& r = rows[y & 1];
+        r.resize(n);
+        return r.data();
+      },
+      [&](int y, const Acc* row) {
+        Out* out = reinterpret_cast<Out*>(t.data.data()) + std::size_t(y) * n;
+        thread_local std::vector<double> model;
+        model.resize(n);
+        t.model_row(y, model.data());
+        double m = 0.0, mm = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+          const Out v = Out(double(row[i]) - model[i]);
+          out[i] = v;
+          const double av = std::abs(double(v)), am = std::abs(model[i]);
+          m = av > m ? av : m;  // the maxpd form: vectorizes
+          mm = am > mm ? am : mm;
+        }
+        row_max[y] = m;
+        model_max[y] = mm;
+      });
   t.max_abs_entry = *std::max_element(row_max.begin(), row_max.end());
   t.max_abs_model = *std::max_element(model_max.begin(), model_max.end());
 }
@@ -282,13 +348,19 @@ std::vector<double> block_means(const ImageView& img, int B) {
       const int y0 = by * B, y1 = std::min(img.height, y0 + B);
       for (int bx = 0; bx < BW; ++bx) {
         const int x0 = bx * B, x1 = std::min(img.width, x0 + B);
-        for (int c = 0; c < C; ++c) {
-          double sum = 0.0;  // exact: at most 256 values below 2^16 (or floats, in a fixed order)
-          for (int y = y0; y < y1; ++y) {
-            const In* r = img.row<const In>(y);
-            for (int x = x0; x < x1; ++x) sum += double(r[x * C + c]);
+        // Exact: at most 256 values below 2^16 (or floats, in a fixed order).
+        double sum[4] = {0.0, 0.0, 0.0, 0.0};
+        for (int y = y0; y < y1; ++y) {
+          const In* r = img.row<const In>(y) + std::size_t(x0) * C;
+          for (int x = 0; x < x1 - x0; ++x, r += C) {
+            sum[0] += double(r[0]);
+            if (C > 1) sum[1] += double(r[1]);
+            if (C > 2) sum[2] += double(r[2]);
+            if (C > 3) sum[3] += double(r[3]);
           }
-          means[(std::size_t(by) * BW + bx) * C + c] = sum / (double(x1 - x0) * (y1 - y0));
+        }
+        for (int c = 0; c < C; ++c) {
+          means[(std::size_t(by) * BW + bx) * C + c] = sum[c] / (double(x1 - x0) * (y1 - y0));
         }
       }
     }
@@ -299,7 +371,14 @@ std::vector<double> block_means(const ImageView& img, int B) {
 template <typename In>
 void build_typed(const ImageView& img, SummedAreaTable& t) {
   constexpr bool kInt = !std::is_same_v<In, float>;
-  using Exact = std::conditional_t<kInt, std::int64_t, double>;
+  // Sums of 8- and 16-bit codes stay integers below 2^53 (65535 * 2^40
+  // texels): double holds them exactly, and converts to float faster.
+  if constexpr (kInt) {
+    if (double(img.width) * img.height * 65535.0 >= 9007199254740992.0) {
+      throw Error(ErrorCode::unsupported, "image too large for an exact float table");
+    }
+  }
+  using Exact = double;
   switch (t.precision) {
     case SatPrecision::u32:
       if constexpr (kInt) build_integer<In, std::uint32_t>(img, t);
@@ -320,12 +399,21 @@ void build_typed(const ImageView& img, SummedAreaTable& t) {
 }  // namespace
 
 SummedAreaTable build_sat(const ImageView& img, SatPrecision p) {
+  SummedAreaTable t;
+  build_sat(img, p, t);
+  return t;
+}
+
+void build_sat(const ImageView& img, SatPrecision p, SummedAreaTable& t) {
   assert(img.data && img.width > 0 && img.height > 0 && img.channels >= 1 && img.channels <= 4);
   if (img.type == PixelType::f32 && (p == SatPrecision::u32 || p == SatPrecision::u64)) {
     throw Error(ErrorCode::bad_arguments, std::string("--precision ") + to_string(p) +
                                               " needs 8- or 16-bit integer input; this image is float (valid: f32, f64)");
   }
-  SummedAreaTable t;
+  t.block = 0;
+  t.block_means.clear();
+  t.max_abs_entry = t.max_abs_model = 0.0;
+  t.prepare_model();
   t.width = img.width;
   t.height = img.height;
   t.channels = img.channels;
@@ -337,7 +425,6 @@ SummedAreaTable build_sat(const ImageView& img, SatPrecision p) {
     case PixelType::u16: build_typed<std::uint16_t>(img, t); break;
     case PixelType::f32: build_typed<float>(img, t); break;
   }
-  return t;
 }
 
 }  // namespace texproc
