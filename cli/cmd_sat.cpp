@@ -1,5 +1,6 @@
 // texproc sat: summed-area tables, box queries over them, and box blurs.
 #include <cstdio>
+#include <optional>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -43,11 +44,12 @@ int run_build(const SatArgs& a) {
   if (ext != ".sat" && ext != ".exr") {
     throw Error(ErrorCode::unsupported, a.output + ": a table is written as .sat (exact) or .exr (float, for viewing)");
   }
+  std::optional<SatPrecision> requested;
+  if (!a.precision.empty()) requested = parse_sat_precision(a.precision);  // options first, then files
   check_output(a.output, {a.input}, a.common.force);
   ImageFileInfo info;
   const Image img = read_image(a.input, &info);
-  const SatPrecision p = a.precision.empty() ? default_sat_precision(img.type(), img.width(), img.height())
-                                             : parse_sat_precision(a.precision);
+  const SatPrecision p = requested ? *requested : default_sat_precision(img.type(), img.width(), img.height());
   const SummedAreaTable t = build_sat(img.view(), p);
   if (ext == ".sat") {
     write_sat_file(a.output, t);

@@ -44,4 +44,10 @@ $T normalmap samples/height_stein_256.png -o "$W/nm_down.png" --y down --height-
 oiiotool "$W/nm_height.png" "$W/nm_down.png" samples/normal_stein_256.png --mosaic:pad=8 3x1 -d uint8 \
          -o $IMG/normalmap_vs_shipped.jpg >/dev/null
 oiiotool $(for k in $ks; do echo "$W/nm_$k.png"; done) --mosaic:pad=8 4x2 -d uint8 -o $IMG/normalmap_kernels.jpg >/dev/null
-echo "wrote $IMG/mip_*.png $IMG/normalmap_*.jpg"
+# 5. Variable-radius box blur: a radius map rising from 0 (left) to 1 (right).
+oiiotool --pattern fill:left=0:right=1 512x512 1 -d uint8 -o "$W/rmap.png" >/dev/null
+$T sat blur samples/albedo_desert_512.png -o "$W/blurred.png" --radius 16 --radius-map "$W/rmap.png" --wrap repeat -q --force
+oiiotool "$W/rmap.png" --ch 0,0,0 -o "$W/rmap3.png" >/dev/null
+oiiotool samples/albedo_desert_512.png "$W/rmap3.png" "$W/blurred.png" --mosaic:pad=8 3x1 --resize 50% -d uint8 \
+         -o $IMG/sat_blur_radius_map.jpg >/dev/null
+echo "wrote $IMG/mip_*.png $IMG/normalmap_*.jpg $IMG/sat_*.jpg"

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "support/images.h"
 #include "support/run.h"
@@ -143,5 +144,55 @@ TEST(Cli, NormalmapOutputsAndErrors) {
   const ImageFileInfo mi = probe_image(dir + "/m.tif");
   EXPECT_EQ(mi.mip_levels, 6);
   EXPECT_EQ(mi.channels, 2);
+  fs::remove_all(dir);
+}
+
+TEST(Cli, SatBuildQueryBlurAndInfo) {
+  const std::string dir = temp_dir("cli_sat");
+  Image img(10, 6, 2, PixelType::u8);
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 10; ++x) {
+      img.row<std::uint8_t>(y)[2 * x] = std::uint8_t(x + 10 * y);
+      img.row<std::uint8_t>(y)[2 * x + 1] = 200;
+    }
+  write_image(dir + "/in.png", img.view());
+  RunResult r = run_texproc("sat " + dir + "/in.png -o " + dir + "/t.sat -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Box [2, 5) x [1, 3): the values x + 10y for x = 2..4, y = 1..2 (sum 108, mean 18).
+  double want = 0;
+  for (int y = 1; y < 3; ++y)
+    for (int x = 2; x < 5; ++x) want += x + 10 * y;
+  r = run_texproc("sat query " + dir + "/t.sat 2 1 5 3 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"sum\": [" + std::to_string(int(want)) + ", 1200]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"mean\": [" + std::to_string(int(want / 6)) + ", 200]"), std::string::npos) << r.out;
+  r = run_texproc("sat query " + dir + "/t.sat 0 0 11 1");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("outside the 10x6 table"), std::string::npos) << r.err;
+  r = run_texproc("sat query " + dir + "/missing.sat 0 0 1 1");
+  EXPECT_EQ(r.exit_code, 2);
+  {
+    std::ofstream(dir + "/junk.sat") << "not a table";
+  }
+  r = run_texproc("sat query " + dir + "/junk.sat 0 0 1 1");
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("junk.sat: not a valid .sat file"), std::string::npos) << r.err;
+  r = run_texproc("sat " + dir + "/in.png -o " + dir + "/t.sat --precision f16");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("(valid: u32, u64, f32, f64)"), std::string::npos) << r.err;
+
+  r = run_texproc("info --json " + dir + "/t.sat " + dir + "/in.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"container\": \"sat\", \"width\": 10, \"height\": 6, \"channels\": 2, \"precision\": \"u32\""),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("\"container\": \"png\""), std::string::npos) << r.out;
+  r = run_texproc("info " + dir + "/nope.png " + dir + "/in.png");
+  EXPECT_EQ(r.exit_code, 2);  // the failure is reported, the good file still described
+  EXPECT_NE(r.out.find("in.png: png, 10x6"), std::string::npos) << r.out;
+
+  r = run_texproc("sat blur " + dir + "/in.png -o " + dir + "/b.png --radius 2 --wrap repeat -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_image(dir + "/b.png").width(), 10);
   fs::remove_all(dir);
 }
