@@ -1,11 +1,13 @@
 // texproc info: what a file holds, for people and (with --json) for scripts.
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
 #include "commands.h"
 #include "common.h"
+#include "texproc/container.h"
 #include "texproc/error.h"
 #include "texproc/image_io.h"
 #include "texproc/sat.h"
@@ -58,6 +60,42 @@ void describe(const std::string& path, std::ostringstream& json, std::ostringstr
     text << "\n";
     return;
   }
+  if (is_texture_container(path)) {
+    const Texture t = read_texture(path);
+    const FormatInfo& f = format_info(t.format);
+    std::string container = "dds";
+    {
+      std::ifstream in(path, std::ios::binary);
+      char h[8] = {};
+      in.read(h, 8);
+      if (std::string(h, 4) == "PKM ") container = "pkm";
+      else if (std::string(h + 1, 6) == "KTX 20") container = "ktx2";
+      else if (std::string(h + 1, 6) == "KTX 11") container = "ktx1";
+    }
+    json << "{\"file\": " << quoted(path) << ", \"container\": \"" << container << "\", \"format\": \"" << f.name
+         << "\", \"vk_format\": " << f.vk_format << ", \"dxgi_format\": " << f.dxgi_format
+         << ", \"color_space\": \"" << (f.srgb ? "srgb" : "linear") << "\", \"width\": " << t.width
+         << ", \"height\": " << t.height << ", \"faces\": " << t.faces << ", \"layers\": " << t.layers
+         << ", \"is_array\": " << (t.is_array ? "true" : "false") << ", \"levels\": [";
+    std::uint64_t total = 0;
+    for (std::uint32_t l = 0; l < t.levels; ++l) {
+      const std::uint64_t bytes = std::uint64_t(t.image(l).size()) * t.layers * t.faces;
+      total += bytes;
+      json << (l ? ", " : "") << "{\"width\": " << t.level_width(l) << ", \"height\": " << t.level_height(l)
+           << ", \"bytes\": " << bytes << "}";
+    }
+    json << "], \"data_bytes\": " << total << "}";
+    text << path << ": " << container << ", " << f.name << " (" << (f.srgb ? "sRGB" : "linear") << "), " << t.width
+         << "x" << t.height << ", " << t.levels << " level(s)";
+    if (t.faces == 6) text << ", cubemap";
+    if (t.is_array) text << ", " << t.layers << " layers";
+    text << ", " << total << " bytes of texel data\n";
+    for (std::uint32_t l = 0; l < t.levels; ++l) {
+      text << "  level " << l << ": " << t.level_width(l) << "x" << t.level_height(l) << ", "
+           << std::uint64_t(t.image(l).size()) * t.layers * t.faces << " bytes\n";
+    }
+    return;
+  }
   const ImageFileInfo i = probe_image(path);
   json << "{\"file\": " << quoted(path) << ", \"container\": " << quoted(i.format) << ", \"width\": " << i.width
        << ", \"height\": " << i.height << ", \"channels\": " << i.channels << ", \"type\": " << quoted(i.file_type)
@@ -101,7 +139,7 @@ int run_info(const InfoArgs& a) {
 
 void add_info_command(CLI::App& app) {
   auto args = std::make_shared<InfoArgs>();
-  CLI::App* cmd = app.add_subcommand("info", "Describe image files, MIP chains and .sat tables.");
+  CLI::App* cmd = app.add_subcommand("info", "Describe images, MIP chains, DDS/KTX2/KTX1/PKM textures and .sat tables.");
   cmd->add_option("files", args->files, "Files to describe")->required();
   cmd->add_flag("--json", args->json, "Print a JSON array, one object per file (schema in docs/cli.md)");
   set_runner(*cmd, [args] { return run_info(*args); });

@@ -5,6 +5,7 @@
 
 #include "commands.h"
 #include "common.h"
+#include "texproc/container.h"
 #include "texproc/error.h"
 #include "texproc/image_io.h"
 #include "texproc/mip.h"
@@ -27,6 +28,7 @@ struct MipArgs {
   bool normal_map = false;
   bool no_premultiply = false;
   std::string compression;
+  std::string dds_header = "auto";
 };
 
 int run_mip(const MipArgs& a) {
@@ -43,8 +45,10 @@ int run_mip(const MipArgs& a) {
   o.normal_map = a.normal_map;
   o.premultiplied_alpha = !a.no_premultiply;
 
-  const bool single_file = holds_mip_levels(a.output);
+  const bool container = is_container_path(a.output);
+  const bool single_file = container || holds_mip_levels(a.output);
   const bool exr = fs::path(a.output).extension() == ".exr";
+  const DdsHeader dds_header = parse_dds_header(a.dds_header);
   WriteOptions w;
   w.compression = a.compression;
   o.output_type = parse_output_type(a.type, w);
@@ -56,7 +60,7 @@ int run_mip(const MipArgs& a) {
   // Check every output name before doing any work.
   ImageFileInfo info = probe_image(a.input);
   const int n = mip_level_count(info.width, info.height, o.max_levels, o.min_size);
-  const std::vector<std::string> outputs = level_outputs(a.output, n);
+  const std::vector<std::string> outputs = container ? std::vector{a.output} : level_outputs(a.output, n);
   for (const auto& out : outputs) check_output(out, {a.input}, a.common.force);
 
   using Clock = std::chrono::steady_clock;
@@ -66,7 +70,12 @@ int run_mip(const MipArgs& a) {
   MipChain chain = generate_mips(std::move(image), o);
   const auto t2 = Clock::now();
   w.color_space = chain.color_space == "srgb" ? "srgb" : chain.color_space == "linear" ? "linear" : "";
-  write_levels(a.output, chain.levels, w);
+  if (container) {
+    // Uncompressed GPU formats: r8/rg8/rgba8 (sRGB when the chain is), 16-bit, half or float.
+    write_texture(a.output, texture_from_levels(chain.levels, chain.color_space == "srgb", w.half), dds_header);
+  } else {
+    write_levels(a.output, chain.levels, w);
+  }
   const auto t3 = Clock::now();
   auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
   if (a.common.verbose) {
@@ -94,7 +103,8 @@ void add_mip_command(CLI::App& app) {
   auto args = std::make_shared<MipArgs>();
   CLI::App* cmd = app.add_subcommand("mip", "Build a gamma-correct mip chain from an image.");
   cmd->footer(
-      "Outputs: .tif/.tiff/.exr write one MIP-mapped file (OpenImageIO reads the levels back, as from\n"
+      "Outputs: .dds/.ktx2/.ktx write the chain as an uncompressed GPU texture (rgba8 sRGB or unorm,\n"
+      "r8, rg8, 16-bit, half or float); .tif/.tiff/.exr write one MIP-mapped file (OpenImageIO reads the levels back, as from\n"
       "maketx); .png/.tga/.jpg/.bmp write one file per level, named {stem}_mip{L}.{ext}.\n"
       "Levels are max(1, floor(n/2)) per axis down to 1x1, each filtered from the previous level in\n"
       "linear premultiplied float. See docs/mip.md.");
@@ -115,6 +125,9 @@ void add_mip_command(CLI::App& app) {
   cmd->add_flag("--no-premultiply", args->no_premultiply, "Filter color without weighting it by alpha");
   cmd->add_option("--compression", args->compression,
                   "Output compression: TIFF zip:N (deflate level 1-12, default zip:1), none, lzw; EXR zip, piz, dwaa... (OpenImageIO's names)");
+  cmd->add_option("--dds-header", args->dds_header,
+                  "DDS header: auto (legacy when a FourCC or masks can say the format, else DX10), dx9, dx10")
+      ->capture_default_str();
   add_common_options(*cmd, args->common);
   set_runner(*cmd, [args] { return run_mip(*args); });
 }

@@ -95,6 +95,19 @@ void write_levels(const std::string& output, const std::vector<Image>& levels, c
   for (std::size_t l = 0; l < levels.size(); ++l) write_image(names[l], levels[l].view(), options);
 }
 
+bool is_container_path(const std::string& path) {
+  std::string e = fs::path(path).extension().string();
+  for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return e == ".dds" || e == ".ktx2" || e == ".ktx" || e == ".pkm";
+}
+
+DdsHeader parse_dds_header(const std::string& s) {
+  if (s == "auto") return DdsHeader::automatic;
+  if (s == "dx9") return DdsHeader::dx9;
+  if (s == "dx10") return DdsHeader::dx10;
+  throw Error(ErrorCode::bad_arguments, "unknown --dds-header '" + s + "' (valid: auto, dx9, dx10)");
+}
+
 std::string join(const std::vector<std::string>& items, const char* sep) {
   std::string s;
   for (const auto& i : items) s += (s.empty() ? "" : sep) + i;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "texproc/image.h"
+#include "texproc/container.h"
 #include "texproc/image_io.h"
 
 namespace texproc::cli {
@@ -53,6 +54,11 @@ std::vector<std::string> level_outputs(const std::string& output, int levels);
 // Writes a chain to the names level_outputs gives.
 void write_levels(const std::string& output, const std::vector<texproc::Image>& levels,
                   const texproc::WriteOptions& options);
+
+// True for .dds, .ktx2, .ktx, .pkm outputs.
+bool is_container_path(const std::string& path);
+// --dds-header auto|dx9|dx10. Throws Error{bad_arguments}.
+texproc::DdsHeader parse_dds_header(const std::string& s);
 
 // "Strings like a, b, c" for messages.
 std::string join(const std::vector<std::string>& items, const char* sep = ", ");

@@ -1,0 +1,54 @@
+// texproc/container.h: DDS, KTX2, KTX1 and PKM files.
+//
+// Writers lay files out exactly as the specifications say (docs/formats.md);
+// readers check every field against the file size before using it and
+// reject truncated files, trailing bytes, overflowing sizes, level counts
+// that do not match and unknown formats with Error{invalid_file} (or
+// Error{unsupported}) naming the file and the field. They never read out of
+// bounds, whatever the bytes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "texproc/texture.h"
+
+namespace texproc {
+
+enum class ContainerKind { dds, ktx2, ktx1, pkm };
+// From the extension: .dds, .ktx2, .ktx, .pkm. Throws Error{unsupported}.
+ContainerKind container_for_path(const std::string& path);
+const char* to_string(ContainerKind k);
+
+enum class DdsHeader {
+  automatic,  // legacy whenever a FourCC or masks say the format, else DX10
+  dx9,        // legacy only (Error{unsupported} if the format needs DX10)
+  dx10        // always the DX10 extended header
+};
+
+struct ReadLimits {
+  std::uint32_t max_dimension = 16384;  // DirectXTex's limit; raise for bigger textures
+  std::uint32_t max_layers = 2048;
+};
+
+// In-memory encoders and decoders (`name` appears in error messages).
+std::vector<std::uint8_t> encode_dds(const Texture& t, DdsHeader header = DdsHeader::automatic);
+std::vector<std::uint8_t> encode_ktx2(const Texture& t, const std::string& writer = "");
+std::vector<std::uint8_t> encode_ktx1(const Texture& t);
+std::vector<std::uint8_t> encode_pkm(const Texture& t);  // ETC1/ETC2 RGB, one level
+Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& = {});
+Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& = {});
+Texture decode_ktx1(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& = {});
+Texture decode_pkm(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& = {});
+
+// Files: written atomically; the container follows the extension.
+void write_texture(const std::string& path, const Texture& t, DdsHeader dds_header = DdsHeader::automatic);
+Texture read_texture(const std::string& path, const ReadLimits& limits = {});
+// True if the file starts with a DDS, KTX1, KTX2 or PKM signature.
+bool is_texture_container(const std::string& path);
+
+// KTX2's Data Format Descriptor for a format, as libktx writes it.
+std::vector<std::uint8_t> ktx2_dfd(TexelFormat f);
+
+}  // namespace texproc

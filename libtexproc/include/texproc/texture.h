@@ -1,0 +1,85 @@
+// texproc/texture.h: GPU texel formats and textures as engines load them
+// (levels, cube faces, array layers of raw texel or block data).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "texproc/image.h"
+
+namespace texproc {
+
+enum class TexelFormat {
+  // uncompressed
+  r8_unorm, rg8_unorm, rgba8_unorm, rgba8_srgb, bgra8_unorm, bgra8_srgb,
+  r16_unorm, rg16_unorm, rgba16_unorm, rgba16_float, rgba32_float,
+  // BC (S3TC / RGTC)
+  bc1_rgb_unorm, bc1_rgb_srgb, bc1_rgba_unorm, bc1_rgba_srgb, bc2_unorm, bc2_srgb, bc3_unorm, bc3_srgb,
+  bc4_unorm, bc4_snorm, bc5_unorm, bc5_snorm,
+  // ETC / EAC (ETC1 is written as ETC2 RGB, of which it is a subset)
+  etc1_rgb, etc2_rgb_unorm, etc2_rgb_srgb, etc2_rgba1_unorm, etc2_rgba1_srgb, etc2_rgba8_unorm, etc2_rgba8_srgb,
+  eac_r11_unorm, eac_r11_snorm, eac_rg11_unorm, eac_rg11_snorm,
+};
+
+// Everything the containers need to know about a format, from one table
+// (libtexproc/src/container/formats.cpp).
+struct FormatInfo {
+  TexelFormat format;
+  const char* name;         // "rgba8_srgb", "bc1_rgba_unorm", ...
+  int block_width, block_height;
+  int block_bytes;          // bytes per block (per texel for uncompressed formats)
+  int channels;             // 1..4
+  bool srgb, snorm, is_float, compressed;
+  int type_size;            // KTX2 typeSize: 1 for block formats, else bytes per component
+  std::uint32_t vk_format;  // VkFormat
+  std::uint32_t dxgi_format;  // DXGI_FORMAT, 0 if DDS cannot hold it
+  std::uint32_t gl_internal_format, gl_format, gl_type;  // KTX1
+};
+
+const FormatInfo& format_info(TexelFormat f);
+const FormatInfo* find_format_by_vk(std::uint32_t vk_format);
+const FormatInfo* find_format_by_dxgi(std::uint32_t dxgi_format);
+const FormatInfo* find_format_by_gl(std::uint32_t gl_internal_format);
+TexelFormat parse_texel_format(std::string_view name);  // throws Error{bad_arguments}
+std::vector<std::string> texel_format_names();
+
+// Bytes of one width x height image in format f (whole blocks: sizes that are
+// not multiples of the block are rounded up). Returns 0 on overflow past 2^62.
+std::uint64_t image_bytes(TexelFormat f, std::uint32_t width, std::uint32_t height);
+
+struct Texture {
+  TexelFormat format = TexelFormat::rgba8_unorm;
+  std::uint32_t width = 0, height = 0;
+  std::uint32_t levels = 1;
+  std::uint32_t faces = 1;   // 1, or 6 for a cubemap (+X, -X, +Y, -Y, +Z, -Z)
+  std::uint32_t layers = 1;  // array layers (1 for a plain texture)
+  bool is_array = false;     // an array texture even with one layer
+  // One image per (level, layer, face), index (level * layers + layer) * faces + face.
+  std::vector<std::vector<std::uint8_t>> images;
+
+  std::uint32_t level_width(std::uint32_t level) const { return width >> level ? width >> level : 1; }
+  std::uint32_t level_height(std::uint32_t level) const { return height >> level ? height >> level : 1; }
+  std::vector<std::uint8_t>& image(std::uint32_t level, std::uint32_t layer = 0, std::uint32_t face = 0) {
+    return images[(std::size_t(level) * layers + layer) * faces + face];
+  }
+  const std::vector<std::uint8_t>& image(std::uint32_t level, std::uint32_t layer = 0, std::uint32_t face = 0) const {
+    return images[(std::size_t(level) * layers + layer) * faces + face];
+  }
+};
+
+// Checks a texture's structure: sizes, counts, every image's byte size.
+// Throws Error{bad_arguments} naming the problem.
+void validate(const Texture& t);
+
+// A mip chain of images (u8 1, 2 or 4 channels; u8 3 channels get alpha 255;
+// u16; f32) as an uncompressed texture: r8/rg8/rgba8 (srgb or unorm), r16/
+// rg16/rgba16 unorm, rgba16_float (half = true) or rgba32_float. Gray+alpha
+// goes to rg8 (rg16); float with fewer than 4 channels is padded to RGBA.
+Texture texture_from_levels(const std::vector<Image>& levels, bool srgb, bool half = false);
+// One image of an uncompressed texture back as an Image (bgra swizzled to
+// rgba, half widened to f32). Throws Error{unsupported} for block formats.
+Image image_from_texture(const Texture& t, std::uint32_t level, std::uint32_t layer = 0, std::uint32_t face = 0);
+
+}  // namespace texproc

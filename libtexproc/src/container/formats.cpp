@@ -1,0 +1,232 @@
+// The texel-format table: block sizes and the codes of every API and
+// container, in one place. VkFormat values from the Vulkan registry,
+// DXGI_FORMAT from dxgiformat.h, GL enums from the KTX 1.1 specification
+// and the GL registry.
+#include <Imath/half.h>
+
+#include <cassert>
+#include <cstring>
+
+#include "texproc/error.h"
+#include "texproc/texture.h"
+
+namespace texproc {
+namespace {
+
+constexpr std::uint32_t kGlRed = 0x1903, kGlRg = 0x8227, kGlRgba = 0x1908, kGlBgra = 0x80E1;
+constexpr std::uint32_t kGlUByte = 0x1401, kGlUShort = 0x1403, kGlHalf = 0x140B, kGlFloat = 0x1406;
+
+using F = TexelFormat;
+// format, name, block w, h, bytes, channels, srgb, snorm, float, compressed, typeSize, vk, dxgi, gl internal, gl format, gl type
+const FormatInfo kFormats[] = {
+    {F::r8_unorm, "r8_unorm", 1, 1, 1, 1, false, false, false, false, 1, 9, 61, 0x8229, kGlRed, kGlUByte},
+    {F::rg8_unorm, "rg8_unorm", 1, 1, 2, 2, false, false, false, false, 1, 16, 49, 0x822B, kGlRg, kGlUByte},
+    {F::rgba8_unorm, "rgba8_unorm", 1, 1, 4, 4, false, false, false, false, 1, 37, 28, 0x8058, kGlRgba, kGlUByte},
+    {F::rgba8_srgb, "rgba8_srgb", 1, 1, 4, 4, true, false, false, false, 1, 43, 29, 0x8C43, kGlRgba, kGlUByte},
+    {F::bgra8_unorm, "bgra8_unorm", 1, 1, 4, 4, false, false, false, false, 1, 44, 87, 0x93A1, kGlBgra, kGlUByte},
+    {F::bgra8_srgb, "bgra8_srgb", 1, 1, 4, 4, true, false, false, false, 1, 50, 91, 0, kGlBgra, kGlUByte},
+    {F::r16_unorm, "r16_unorm", 1, 1, 2, 1, false, false, false, false, 2, 70, 56, 0x822A, kGlRed, kGlUShort},
+    {F::rg16_unorm, "rg16_unorm", 1, 1, 4, 2, false, false, false, false, 2, 77, 35, 0x822C, kGlRg, kGlUShort},
+    {F::rgba16_unorm, "rgba16_unorm", 1, 1, 8, 4, false, false, false, false, 2, 91, 11, 0x805B, kGlRgba, kGlUShort},
+    {F::rgba16_float, "rgba16_float", 1, 1, 8, 4, false, false, true, false, 2, 97, 10, 0x881A, kGlRgba, kGlHalf},
+    {F::rgba32_float, "rgba32_float", 1, 1, 16, 4, false, false, true, false, 4, 109, 2, 0x8814, kGlRgba, kGlFloat},
+    {F::bc1_rgb_unorm, "bc1_rgb_unorm", 4, 4, 8, 3, false, false, false, true, 1, 131, 71, 0x83F0, 0, 0},
+    {F::bc1_rgb_srgb, "bc1_rgb_srgb", 4, 4, 8, 3, true, false, false, true, 1, 132, 72, 0x8C4C, 0, 0},
+    {F::bc1_rgba_unorm, "bc1_rgba_unorm", 4, 4, 8, 4, false, false, false, true, 1, 133, 71, 0x83F1, 0, 0},
+    {F::bc1_rgba_srgb, "bc1_rgba_srgb", 4, 4, 8, 4, true, false, false, true, 1, 134, 72, 0x8C4D, 0, 0},
+    {F::bc2_unorm, "bc2_unorm", 4, 4, 16, 4, false, false, false, true, 1, 135, 74, 0x83F2, 0, 0},
+    {F::bc2_srgb, "bc2_srgb", 4, 4, 16, 4, true, false, false, true, 1, 136, 75, 0x8C4E, 0, 0},
+    {F::bc3_unorm, "bc3_unorm", 4, 4, 16, 4, false, false, false, true, 1, 137, 77, 0x83F3, 0, 0},
+    {F::bc3_srgb, "bc3_srgb", 4, 4, 16, 4, true, false, false, true, 1, 138, 78, 0x8C4F, 0, 0},
+    {F::bc4_unorm, "bc4_unorm", 4, 4, 8, 1, false, false, false, true, 1, 139, 80, 0x8DBB, 0, 0},
+    {F::bc4_snorm, "bc4_snorm", 4, 4, 8, 1, false, true, false, true, 1, 140, 81, 0x8DBC, 0, 0},
+    {F::bc5_unorm, "bc5_unorm", 4, 4, 16, 2, false, false, false, true, 1, 141, 83, 0x8DBD, 0, 0},
+    {F::bc5_snorm, "bc5_snorm", 4, 4, 16, 2, false, true, false, true, 1, 142, 84, 0x8DBE, 0, 0},
+    {F::etc1_rgb, "etc1_rgb", 4, 4, 8, 3, false, false, false, true, 1, 147, 0, 0x8D64, 0, 0},
+    {F::etc2_rgb_unorm, "etc2_rgb_unorm", 4, 4, 8, 3, false, false, false, true, 1, 147, 0, 0x9274, 0, 0},
+    {F::etc2_rgb_srgb, "etc2_rgb_srgb", 4, 4, 8, 3, true, false, false, true, 1, 148, 0, 0x9275, 0, 0},
+    {F::etc2_rgba1_unorm, "etc2_rgba1_unorm", 4, 4, 8, 4, false, false, false, true, 1, 149, 0, 0x9276, 0, 0},
+    {F::etc2_rgba1_srgb, "etc2_rgba1_srgb", 4, 4, 8, 4, true, false, false, true, 1, 150, 0, 0x9277, 0, 0},
+    {F::etc2_rgba8_unorm, "etc2_rgba8_unorm", 4, 4, 16, 4, false, false, false, true, 1, 151, 0, 0x9278, 0, 0},
+    {F::etc2_rgba8_srgb, "etc2_rgba8_srgb", 4, 4, 16, 4, true, false, false, true, 1, 152, 0, 0x9279, 0, 0},
+    {F::eac_r11_unorm, "eac_r11_unorm", 4, 4, 8, 1, false, false, false, true, 1, 153, 0, 0x9270, 0, 0},
+    {F::eac_r11_snorm, "eac_r11_snorm", 4, 4, 8, 1, false, true, false, true, 1, 154, 0, 0x9271, 0, 0},
+    {F::eac_rg11_unorm, "eac_rg11_unorm", 4, 4, 16, 2, false, false, false, true, 1, 155, 0, 0x9272, 0, 0},
+    {F::eac_rg11_snorm, "eac_rg11_snorm", 4, 4, 16, 2, false, true, false, true, 1, 156, 0, 0x9273, 0, 0},
+};
+
+}  // namespace
+
+const FormatInfo& format_info(TexelFormat f) {
+  for (const auto& i : kFormats) {
+    if (i.format == f) return i;
+  }
+  assert(false && "format missing from the table");
+  return kFormats[0];
+}
+
+const FormatInfo* find_format_by_vk(std::uint32_t vk) {
+  for (const auto& i : kFormats) {
+    if (i.vk_format == vk && i.format != F::etc1_rgb) return &i;  // 147 is ETC2 RGB
+  }
+  return nullptr;
+}
+
+const FormatInfo* find_format_by_dxgi(std::uint32_t dxgi) {
+  if (dxgi == 0) return nullptr;
+  // DXGI has one BC1 per color space, which may carry 1-bit alpha.
+  if (dxgi == 71) return &format_info(F::bc1_rgba_unorm);
+  if (dxgi == 72) return &format_info(F::bc1_rgba_srgb);
+  for (const auto& i : kFormats) {
+    if (i.dxgi_format == dxgi) return &i;
+  }
+  return nullptr;
+}
+
+const FormatInfo* find_format_by_gl(std::uint32_t gl) {
+  if (gl == 0) return nullptr;
+  for (const auto& i : kFormats) {
+    if (i.gl_internal_format == gl) return &i;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> texel_format_names() {
+  std::vector<std::string> v;
+  for (const auto& i : kFormats) v.emplace_back(i.name);
+  return v;
+}
+
+TexelFormat parse_texel_format(std::string_view name) {
+  for (const auto& i : kFormats) {
+    if (name == i.name) return i.format;
+  }
+  std::string valid;
+  for (const auto& n : texel_format_names()) valid += (valid.empty() ? "" : ", ") + n;
+  throw Error(ErrorCode::bad_arguments, "unknown texel format '" + std::string(name) + "' (valid: " + valid + ")");
+}
+
+std::uint64_t image_bytes(TexelFormat f, std::uint32_t width, std::uint32_t height) {
+  const FormatInfo& i = format_info(f);
+  const std::uint64_t bw = (std::uint64_t(width) + i.block_width - 1) / i.block_width;
+  const std::uint64_t bh = (std::uint64_t(height) + i.block_height - 1) / i.block_height;
+  // width, height < 2^32 and bytes <= 16: the product is below 2^68 only in
+  // theory; callers limit sizes first. Guard anyway.
+  if (bw && bh > (std::uint64_t(1) << 62) / bw / i.block_bytes) return 0;
+  return bw * bh * i.block_bytes;
+}
+
+void validate(const Texture& t) {
+  auto fail = [](const std::string& what) { throw Error(ErrorCode::bad_arguments, "invalid texture: " + what); };
+  if (t.width == 0 || t.height == 0) fail("zero size");
+  if (t.faces != 1 && t.faces != 6) fail("faces must be 1 or 6");
+  if (t.faces == 6 && t.width != t.height) fail("cubemap faces must be square");
+  if (t.layers == 0) fail("no layers");
+  std::uint32_t max_levels = 1;
+  for (std::uint32_t m = std::max(t.width, t.height); m > 1; m >>= 1) ++max_levels;
+  if (t.levels == 0 || t.levels > max_levels) fail("level count " + std::to_string(t.levels));
+  if (t.images.size() != std::size_t(t.levels) * t.layers * t.faces) fail("image count does not match");
+  for (std::uint32_t l = 0; l < t.levels; ++l) {
+    const std::uint64_t want = image_bytes(t.format, t.level_width(l), t.level_height(l));
+    for (std::uint32_t a = 0; a < t.layers; ++a)
+      for (std::uint32_t f = 0; f < t.faces; ++f) {
+        if (t.image(l, a, f).size() != want) {
+          fail("level " + std::to_string(l) + " holds " + std::to_string(t.image(l, a, f).size()) +
+               " bytes, expected " + std::to_string(want));
+        }
+      }
+  }
+}
+
+Texture texture_from_levels(const std::vector<Image>& levels, bool srgb, bool half) {
+  if (levels.empty()) throw Error(ErrorCode::bad_arguments, "no levels");
+  const Image& top = levels[0];
+  const int C = top.channels();
+  Texture t;
+  t.width = std::uint32_t(top.width());
+  t.height = std::uint32_t(top.height());
+  t.levels = std::uint32_t(levels.size());
+  switch (top.type()) {
+    case PixelType::u8:
+      t.format = C == 1 ? F::r8_unorm : C == 2 ? F::rg8_unorm : srgb ? F::rgba8_srgb : F::rgba8_unorm;
+      break;
+    case PixelType::u16: t.format = C == 1 ? F::r16_unorm : C == 2 ? F::rg16_unorm : F::rgba16_unorm; break;
+    case PixelType::f32: t.format = half ? F::rgba16_float : F::rgba32_float; break;
+  }
+  const FormatInfo& info = format_info(t.format);
+  for (const Image& im : levels) {
+    std::vector<std::uint8_t> bytes(std::size_t(im.width()) * im.height() * info.block_bytes);
+    const int out_c = info.channels;
+    for (int y = 0; y < im.height(); ++y)
+      for (int x = 0; x < im.width(); ++x) {
+        const std::size_t o = (std::size_t(y) * im.width() + x) * out_c;
+        for (int c = 0; c < out_c; ++c) {
+          // 3 -> 4 channels: alpha 1; float 1/2 channels: gray to RGB, alpha.
+          const bool have = c < C && !(C < 4 && out_c == 4 && c == 3 && C != 2);
+          switch (top.type()) {
+            case PixelType::u8: {
+              std::uint8_t v = have ? im.row<std::uint8_t>(y)[x * C + c] : 255;
+              bytes[o + c] = v;
+              break;
+            }
+            case PixelType::u16: {
+              std::uint16_t v = have ? im.row<std::uint16_t>(y)[x * C + c] : 65535;
+              std::memcpy(bytes.data() + (o + c) * 2, &v, 2);
+              break;
+            }
+            case PixelType::f32: {
+              const float* p = im.row<float>(y) + x * C;
+              float v = c == 3 ? (C == 2 || C == 4 ? p[C - 1] : 1.0f) : (C <= 2 ? p[0] : p[c]);
+              if (half) {
+                const Imath::half h(v);
+                const std::uint16_t bits = h.bits();
+                std::memcpy(bytes.data() + (o + c) * 2, &bits, 2);
+              } else {
+                std::memcpy(bytes.data() + (o + c) * 4, &v, 4);
+              }
+              break;
+            }
+          }
+        }
+      }
+    t.images.push_back(std::move(bytes));
+  }
+  validate(t);
+  return t;
+}
+
+Image image_from_texture(const Texture& t, std::uint32_t level, std::uint32_t layer, std::uint32_t face) {
+  const FormatInfo& info = format_info(t.format);
+  if (info.compressed) {
+    throw Error(ErrorCode::unsupported, std::string(info.name) + " is block-compressed: decompress it first");
+  }
+  const int w = int(t.level_width(level)), h = int(t.level_height(level)), C = info.channels;
+  const std::vector<std::uint8_t>& src = t.image(level, layer, face);
+  const PixelType type = info.is_float ? PixelType::f32 : info.type_size == 2 ? PixelType::u16 : PixelType::u8;
+  Image out = Image::uninitialized(w, h, C, type);
+  const bool bgra = t.format == F::bgra8_unorm || t.format == F::bgra8_srgb;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < C; ++c) {
+        const int sc = bgra && c < 3 ? 2 - c : c;
+        const std::size_t i = (std::size_t(y) * w + x) * C + sc;
+        switch (type) {
+          case PixelType::u8: out.row<std::uint8_t>(y)[x * C + c] = src[i]; break;
+          case PixelType::u16: std::memcpy(out.row<std::uint16_t>(y) + x * C + c, src.data() + 2 * i, 2); break;
+          case PixelType::f32:
+            if (t.format == F::rgba16_float) {
+              std::uint16_t bits;
+              std::memcpy(&bits, src.data() + 2 * i, 2);
+              Imath::half hv;
+              hv.setBits(bits);
+              out.row<float>(y)[x * C + c] = float(hv);
+            } else {
+              std::memcpy(out.row<float>(y) + x * C + c, src.data() + 4 * i, 4);
+            }
+            break;
+        }
+      }
+  return out;
+}
+
+}  // namespace texproc

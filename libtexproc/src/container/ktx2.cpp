@@ -1,0 +1,176 @@
+// KTX 2.0 (Khronos KTX File Format Specification 2.0): identifier, header,
+// index, level index (level 0 first), DFD, key/value data (sorted, with
+// KTXwriter), then the levels stored smallest first, each aligned to
+// lcm(texel block bytes, 4). No supercompression.
+#include <algorithm>
+#include <map>
+#include <numeric>
+
+#include "container/bytes.h"
+#include "texproc/container.h"
+#include "texproc/version.h"
+
+namespace texproc {
+namespace {
+
+constexpr std::uint8_t kIdentifier[12] = {0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A};
+constexpr std::size_t kHeaderEnd = 80;  // identifier 12 + header 36 + index 32
+
+std::uint32_t level_alignment(const FormatInfo& i) { return std::lcm(std::uint32_t(i.block_bytes), 4u); }
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_ktx2(const Texture& t, const std::string& writer) {
+  validate(t);
+  const FormatInfo& info = format_info(t.format);
+  ByteWriter w;
+  w.raw(kIdentifier, 12);
+  w.u32(info.vk_format);
+  w.u32(std::uint32_t(info.type_size));
+  w.u32(t.width);
+  w.u32(t.height);
+  w.u32(0);                                   // pixelDepth
+  w.u32(t.is_array || t.layers > 1 ? t.layers : 0);  // layerCount: 0 for a non-array texture
+  w.u32(t.faces);
+  w.u32(t.levels);
+  w.u32(0);  // supercompressionScheme
+  const std::size_t index_at = w.size();
+  w.zeros(32);  // dfd offset/length, kvd offset/length, sgd offset/length (u64)
+  const std::size_t level_index_at = w.size();
+  w.zeros(std::size_t(t.levels) * 24);
+
+  const std::uint32_t dfd_offset = std::uint32_t(w.size());
+  const std::vector<std::uint8_t> dfd = ktx2_dfd(t.format);
+  w.raw(dfd.data(), dfd.size());
+
+  // Key/value data: sorted by key (std::map), each entry padded to 4 bytes.
+  std::map<std::string, std::string> kv;
+  kv["KTXwriter"] = writer.empty() ? std::string("texproc ") + version_string() : writer;
+  const std::uint32_t kvd_offset = std::uint32_t(w.size());
+  for (const auto& [key, value] : kv) {
+    const std::uint32_t len = std::uint32_t(key.size() + 1 + value.size() + 1);
+    w.u32(len);
+    w.raw(key.data(), key.size());
+    w.u8(0);
+    w.raw(value.data(), value.size());
+    w.u8(0);
+    w.pad_to(4);
+  }
+  const std::uint32_t kvd_length = std::uint32_t(w.size()) - kvd_offset;
+  w.put_u32_at(index_at, dfd_offset);
+  w.put_u32_at(index_at + 4, std::uint32_t(dfd.size()));
+  w.put_u32_at(index_at + 8, kvd_offset);
+  w.put_u32_at(index_at + 12, kvd_length);
+  // sgd offset and length stay 0.
+
+  const std::uint32_t align = level_alignment(info);
+  for (std::uint32_t l = t.levels; l-- > 0;) {
+    w.pad_to(align);
+    const std::uint64_t offset = w.size();
+    // Within a level: layers, then faces (z slices, then rows).
+    for (std::uint32_t a = 0; a < t.layers; ++a)
+      for (std::uint32_t f = 0; f < t.faces; ++f) {
+        const auto& img = t.image(l, a, f);
+        w.raw(img.data(), img.size());
+      }
+    const std::uint64_t length = w.size() - offset;
+    w.put_u64_at(level_index_at + 24 * l, offset);
+    w.put_u64_at(level_index_at + 24 * l + 8, length);
+    w.put_u64_at(level_index_at + 24 * l + 16, length);
+  }
+  return std::move(w.bytes());
+}
+
+Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& limits) {
+  ByteReader r(data, size, name);
+  if (size < 12 || std::memcmp(r.at(0, 12, "identifier"), kIdentifier, 12) != 0) r.fail("not a KTX2 file (bad identifier)");
+  const std::uint32_t vk = r.u32(12, "vkFormat"), type_size = r.u32(16, "typeSize");
+  const std::uint32_t width = r.u32(20, "pixelWidth"), height = r.u32(24, "pixelHeight"),
+                      depth = r.u32(28, "pixelDepth"), layer_count = r.u32(32, "layerCount"),
+                      faces = r.u32(36, "faceCount"), level_count = r.u32(40, "levelCount"),
+                      scheme = r.u32(44, "supercompressionScheme");
+  const std::uint32_t dfd_offset = r.u32(48, "dfdByteOffset"), dfd_length = r.u32(52, "dfdByteLength");
+  const std::uint32_t kvd_offset = r.u32(56, "kvdByteOffset"), kvd_length = r.u32(60, "kvdByteLength");
+  const std::uint64_t sgd_offset = r.u64(64, "sgdByteOffset"), sgd_length = r.u64(72, "sgdByteLength");
+  if (scheme != 0) r.unsupported("supercompression scheme " + std::to_string(scheme) + " (texproc reads scheme 0, none)");
+  const FormatInfo* fi = find_format_by_vk(vk);
+  if (!fi) r.unsupported("vkFormat " + std::to_string(vk) + " is not one texproc reads");
+  if (type_size != std::uint32_t(fi->type_size)) {
+    r.fail("typeSize " + std::to_string(type_size) + " (valid for " + fi->name + ": " + std::to_string(fi->type_size) + ")");
+  }
+  if (width == 0 || height == 0) r.fail("zero pixelWidth or pixelHeight (1D textures are not supported)");
+  if (width > limits.max_dimension || height > limits.max_dimension) {
+    r.unsupported(std::to_string(width) + "x" + std::to_string(height) + " is larger than " +
+                  std::to_string(limits.max_dimension) + " texels a side");
+  }
+  if (depth != 0) r.unsupported("3D textures are not supported");
+  if (faces != 1 && faces != 6) r.fail("faceCount " + std::to_string(faces) + " (valid: 1, 6)");
+  if (faces == 6 && width != height) r.fail("cubemap faces are not square");
+  if (layer_count > limits.max_layers) r.fail("layerCount " + std::to_string(layer_count));
+  std::uint32_t max_levels = 1;
+  for (std::uint32_t m = std::max(width, height); m > 1; m >>= 1) ++max_levels;
+  if (level_count > max_levels) {
+    r.fail("levelCount " + std::to_string(level_count) + " is more than a " + std::to_string(width) + "x" +
+           std::to_string(height) + " texture has (" + std::to_string(max_levels) + ")");
+  }
+  if (level_count == 0) r.unsupported("levelCount 0 (generate mipmaps at load) is not supported");
+  if (sgd_offset != 0 || sgd_length != 0) r.fail("supercompression global data without a scheme");
+  // The DFD must be the one this format has (texproc reads what it writes,
+  // and what libktx writes for the same VkFormat).
+  const std::vector<std::uint8_t> want_dfd = ktx2_dfd(fi->format);
+  if (dfd_offset < kHeaderEnd + 24ull * level_count) r.fail("dfdByteOffset overlaps the level index");
+  const std::uint8_t* dfd = r.at(dfd_offset, dfd_length, "data format descriptor");
+  if (dfd_length < 4 || r.u32(dfd_offset, "dfdTotalSize") != dfd_length) r.fail("dfdTotalSize does not match dfdByteLength");
+  if (dfd_length != want_dfd.size() || std::memcmp(dfd, want_dfd.data(), dfd_length) != 0) {
+    // Accept another writer's descriptor only if its transfer function agrees with the format.
+    if (dfd_length < 28) r.fail("data format descriptor too short");
+    const std::uint32_t transfer = (r.u32(dfd_offset + 12, "DFD transfer") >> 16) & 0xFF;
+    if ((transfer == 2) != fi->srgb) r.fail("DFD transfer function contradicts vkFormat");
+  }
+  if (kvd_length) {
+    r.at(kvd_offset, kvd_length, "key/value data");
+    // Walk the entries: every length must stay inside the block.
+    std::uint64_t p = kvd_offset, end = std::uint64_t(kvd_offset) + kvd_length;
+    while (p < end) {
+      const std::uint32_t len = r.u32(p, "key/value length");
+      if (len > end - p - 4) r.fail("key/value entry runs past the key/value data");
+      p += 4 + ((std::uint64_t(len) + 3) & ~std::uint64_t(3));
+    }
+  }
+  Texture t;
+  t.format = fi->format;
+  t.width = width;
+  t.height = height;
+  t.levels = level_count;
+  t.faces = faces;
+  t.layers = std::max(layer_count, 1u);
+  t.is_array = layer_count > 0;
+  t.images.resize(std::size_t(t.levels) * t.layers * t.faces);
+  const std::uint32_t align = level_alignment(*fi);
+  std::uint64_t covered = 0;
+  for (std::uint32_t l = 0; l < level_count; ++l) {
+    const std::uint64_t offset = r.u64(kHeaderEnd + 24ull * l, "level byteOffset");
+    const std::uint64_t length = r.u64(kHeaderEnd + 24ull * l + 8, "level byteLength");
+    const std::uint64_t ulength = r.u64(kHeaderEnd + 24ull * l + 16, "level uncompressedByteLength");
+    const std::uint64_t image = image_bytes(t.format, t.level_width(l), t.level_height(l));
+    const std::uint64_t want = image * t.layers * t.faces;
+    if (length != want || ulength != want) {
+      r.fail("level " + std::to_string(l) + " byteLength " + std::to_string(length) + " (expected " +
+             std::to_string(want) + ")");
+    }
+    if (offset % align) r.fail("level " + std::to_string(l) + " is not aligned to " + std::to_string(align) + " bytes");
+    r.at(offset, length, "level data");
+    covered = std::max(covered, offset + length);
+    std::uint64_t p = offset;
+    for (std::uint32_t a = 0; a < t.layers; ++a)
+      for (std::uint32_t f = 0; f < t.faces; ++f) {
+        const std::uint8_t* src = r.at(p, image, "level data");
+        t.image(l, a, f).assign(src, src + image);
+        p += image;
+      }
+  }
+  if (covered != size) r.fail(std::to_string(size - covered) + " trailing bytes after the last level");
+  return t;
+}
+
+}  // namespace texproc
