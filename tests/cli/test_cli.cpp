@@ -196,3 +196,33 @@ TEST(Cli, SatBuildQueryBlurAndInfo) {
   EXPECT_EQ(read_image(dir + "/b.png").width(), 10);
   fs::remove_all(dir);
 }
+
+TEST(Cli, MipIntoContainersAndInfo) {
+  const std::string dir = temp_dir("cli_containers");
+  write_image(dir + "/a.png", checkerboard(16, 8, 4).view());
+  for (const char* ext : {".dds", ".ktx2", ".ktx"}) {
+    RunResult r = run_texproc("mip " + dir + "/a.png -o " + dir + "/a" + ext + " -q");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = run_texproc("info --json " + dir + "/a" + ext);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("\"format\": \"rgba8_srgb\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"levels\": [{\"width\": 16, \"height\": 8, \"bytes\": 512}"), std::string::npos) << r.out;
+  }
+  // sRGB needs the DX10 header: asking for a legacy one is refused, by name.
+  RunResult r = run_texproc("mip " + dir + "/a.png -o " + dir + "/b.dds --dds-header dx9");
+  EXPECT_EQ(r.exit_code, 5);
+  EXPECT_NE(r.err.find("b.dds: a legacy (DX9) DDS header cannot say rgba8_srgb"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/b.dds"));
+  r = run_texproc("mip " + dir + "/a.png -o " + dir + "/c.dds --dds-header dx9 --linear -q");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = run_texproc("mip " + dir + "/a.png -o " + dir + "/d.dds --dds-header dx11");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("(valid: auto, dx9, dx10)"), std::string::npos) << r.err;
+  {
+    std::ofstream(dir + "/bad.ktx2", std::ios::binary) << std::string("\xABKTX 20\xBB\r\n\x1A\n", 12) << "short";
+  }
+  r = run_texproc("info " + dir + "/bad.ktx2");
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("bad.ktx2: truncated: typeSize needs bytes 16..20 of 17"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
