@@ -8,7 +8,7 @@ packages=(
   libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
   libtiff-dev libdeflate-dev libcli11-dev googletest libgtest-dev libbenchmark-dev libtbb-dev libhwy-dev
   # independent checks and peers used by tests and benchmarks
-  libnvtt-bin libsquish-dev
+  libnvtt-bin libsquish-dev python3-pil
 )
 missing=()
 for p in "${packages[@]}"; do
@@ -20,7 +20,9 @@ if [ ${#missing[@]} -gt 0 ]; then
   apt-get update -qq
   apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
-# A second KTX2 parser for the tests (npm registry); the tests skip it if absent.
+# A second KTX2 parser for the tests, from the npm registry with the machine's own
+# node and npm (not installed here: Debian's npm would fight a NodeSource node);
+# the test that uses it is skipped if it is absent.
 if command -v npm >/dev/null 2>&1 && [ ! -d tests/tools/node_modules/ktx-parse ]; then
   (cd tests/tools && npm install --silent --no-audit --no-fund --no-save ktx-parse@2.0.0 >/dev/null 2>&1) ||
     echo "setup: could not install ktx-parse from npm; its test will be skipped"

@@ -501,3 +501,70 @@ TEST(Container, MipChainsThroughTheContainers) {
   EXPECT_NEAR(back.get(3, 2, 2), f.get(3, 2, 0), 1e-3);
   fs::remove_all(dir);
 }
+
+// KTX1 bytes (KTX 1.1 specification): a 3x2 R8 texture, one level. Rows of
+// 3 bytes are padded to 4 (GL_UNPACK_ALIGNMENT); imageSize counts the padding.
+TEST(Container, Ktx1HeaderBytes) {
+  Texture t = random_texture(TexelFormat::r8_unorm, 3, 2, 1, 1, 1, 8);
+  const std::vector<std::uint8_t> b = encode_ktx1(t);
+  auto u32 = [&](std::size_t at) {
+    std::uint32_t v;
+    std::memcpy(&v, &b[at], 4);
+    return v;
+  };
+  const std::uint8_t id[12] = {0xAB, 'K', 'T', 'X', ' ', '1', '1', 0xBB, '\r', '\n', 0x1A, '\n'};
+  EXPECT_EQ(0, std::memcmp(b.data(), id, 12));
+  EXPECT_EQ(u32(12), 0x04030201u);  // endianness
+  EXPECT_EQ(u32(16), 0x1401u);      // glType UNSIGNED_BYTE
+  EXPECT_EQ(u32(20), 1u);           // glTypeSize
+  EXPECT_EQ(u32(24), 0x1903u);      // glFormat RED
+  EXPECT_EQ(u32(28), 0x8229u);      // glInternalFormat R8
+  EXPECT_EQ(u32(32), 0x1903u);      // glBaseInternalFormat RED
+  EXPECT_EQ(u32(36), 3u);
+  EXPECT_EQ(u32(40), 2u);
+  EXPECT_EQ(u32(44), 0u);           // depth
+  EXPECT_EQ(u32(48), 0u);           // not an array
+  EXPECT_EQ(u32(52), 1u);           // faces
+  EXPECT_EQ(u32(56), 1u);           // levels
+  EXPECT_EQ(u32(60), 0u);           // no key/value data
+  EXPECT_EQ(u32(64), 8u);           // imageSize: 2 rows of 4 bytes
+  EXPECT_EQ(b.size(), 76u);
+  EXPECT_EQ(0, std::memcmp(&b[68], t.images[0].data(), 3));
+  EXPECT_EQ(b[71], 0);  // row padding
+  EXPECT_EQ(0, std::memcmp(&b[72], t.images[0].data() + 3, 3));
+}
+
+// PKM bytes (etc1tool's format): "PKM ", "10", type 0, padded then real
+// sizes, all big-endian; 5x3 ETC1 is 2x1 blocks of 8 bytes.
+TEST(Container, PkmHeaderBytes) {
+  const Texture t = random_texture(TexelFormat::etc1_rgb, 5, 3, 1, 1, 1, 9);
+  const std::vector<std::uint8_t> b = encode_pkm(t);
+  const std::uint8_t want[16] = {'P', 'K', 'M', ' ', '1', '0', 0, 0, 0, 8, 0, 4, 0, 5, 0, 3};
+  ASSERT_EQ(b.size(), 16u + 16u);
+  EXPECT_EQ(0, std::memcmp(b.data(), want, 16));
+  Texture e2 = t;
+  e2.format = TexelFormat::etc2_rgb_unorm;
+  const auto b2 = encode_pkm(e2);
+  EXPECT_EQ(b2[4], '2');
+  EXPECT_EQ(b2[7], 1);  // ETC2 RGB
+}
+
+// Pillow (python3-pil), a third DDS reader, reads texproc's legacy RGBA8 DDS.
+TEST(Container, PillowReadsLegacyDds) {
+  if (std::system("/usr/bin/python3 -c 'import PIL' >/dev/null 2>&1") != 0) GTEST_SKIP() << "python3-pil not installed";
+  const std::string dir = temp_dir("dds_pil");
+  const Texture t = random_texture(TexelFormat::rgba8_unorm, 7, 5, 1, 1, 1, 31);
+  write_texture(dir + "/p.dds", t);
+  const std::string out = dir + "/hex.txt";
+  const std::string cmd = "/usr/bin/python3 -c \"from PIL import Image; im = Image.open('" + dir +
+                          "/p.dds'); print(im.mode, im.size[0], im.size[1], im.tobytes().hex())\" > " + out + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(out);
+  std::string hex;
+  for (std::uint8_t v : t.images[0]) {
+    char h[3];
+    std::snprintf(h, sizeof h, "%02x", v);
+    hex += h;
+  }
+  EXPECT_EQ(slurp(out), "RGBA 7 5 " + hex + "\n");
+  fs::remove_all(dir);
+}
