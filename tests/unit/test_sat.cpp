@@ -276,3 +276,30 @@ TEST(SatBlur, GammaCorrectAndRadiusMap) {
   o.radius_map = &ov;
   EXPECT_EQ(0, std::memcmp(box_blur(cb.view(), o).data(), out.data(), out.byte_size()));
 }
+
+// The SIMD RGBA rows against their scalar twin on every target.
+#include <hwy/targets.h>
+
+#include "sat/sat_rows.h"
+
+TEST(Sat, SimdRowsMatchReferenceOnEveryTarget) {
+  std::mt19937 rng(12);
+  for (int width : {1, 3, 17, 1000}) {
+    std::vector<std::uint8_t> in8(4 * width);
+    std::vector<std::uint16_t> in16(4 * width);
+    std::vector<std::uint32_t> prev(4 * width), want(4 * width), got(4 * width);
+    for (auto& v : in8) v = std::uint8_t(rng());
+    for (auto& v : in16) v = std::uint16_t(rng());
+    for (auto& v : prev) v = std::uint32_t(rng());  // wraps: arbitrary earlier rows
+    for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
+      hwy::SetSupportedTargetsForTest(target);
+      ref::sat_row_rgba8_u32(in8.data(), width, prev.data(), want.data());
+      sat_row_rgba8_u32(in8.data(), width, prev.data(), got.data());
+      EXPECT_EQ(got, want) << hwy::TargetName(target);
+      ref::sat_row_rgba16_u32(in16.data(), width, prev.data(), want.data());
+      sat_row_rgba16_u32(in16.data(), width, prev.data(), got.data());
+      EXPECT_EQ(got, want) << hwy::TargetName(target);
+    }
+    hwy::SetSupportedTargetsForTest(0);
+  }
+}

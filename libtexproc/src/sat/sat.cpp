@@ -18,10 +18,29 @@
 #include <cstring>
 #include <limits>
 
+#include "sat/sat_rows.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
 
 namespace texproc {
+
+namespace ref {
+template <typename In>
+void sat_row_rgba_u32(const In* in, int width, const std::uint32_t* prev, std::uint32_t* cur) {
+  std::uint32_t run[4] = {0, 0, 0, 0};
+  for (int x = 0; x < width; ++x)
+    for (int c = 0; c < 4; ++c) {
+      run[c] += in[4 * x + c];
+      cur[4 * x + c] = prev[4 * x + c] + run[c];
+    }
+}
+void sat_row_rgba8_u32(const std::uint8_t* in, int width, const std::uint32_t* prev, std::uint32_t* cur) {
+  sat_row_rgba_u32(in, width, prev, cur);
+}
+void sat_row_rgba16_u32(const std::uint16_t* in, int width, const std::uint32_t* prev, std::uint32_t* cur) {
+  sat_row_rgba_u32(in, width, prev, cur);
+}
+}  // namespace ref
 
 const char* to_string(SatPrecision p) {
   switch (p) {
@@ -222,6 +241,12 @@ void table_row(const In* in, int width, const Acc* prev, Acc* cur) {
 
 template <typename In, typename Acc>
 void table_row_any(int channels, const In* in, int width, const Acc* prev, Acc* cur) {
+  if constexpr (std::is_same_v<Acc, std::uint32_t> && std::is_same_v<In, std::uint8_t>) {
+    if (channels == 4) return sat_row_rgba8_u32(in, width, prev, cur);
+  }
+  if constexpr (std::is_same_v<Acc, std::uint32_t> && std::is_same_v<In, std::uint16_t>) {
+    if (channels == 4) return sat_row_rgba16_u32(in, width, prev, cur);
+  }
   switch (channels) {
     case 1: return table_row<1>(in, width, prev, cur);
     case 2: return table_row<2>(in, width, prev, cur);
