@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "common.h"
+#include "texproc/container.h"
 #include "texproc/error.h"
 #include "texproc/image_io.h"
 #include "texproc/mip.h"
@@ -31,6 +32,7 @@ struct NormalMapArgs {
   std::string type;
   bool mips = false;
   std::string compression;
+  std::string dds_header = "auto";
 };
 
 int run_normalmap(const NormalMapArgs& a) {
@@ -60,7 +62,9 @@ int run_normalmap(const NormalMapArgs& a) {
     w.half = true;
   }
   const int levels = a.mips ? mip_level_count(info.width, info.height, a.chain.levels, a.chain.min_size) : 1;
-  const std::vector<std::string> outputs = a.mips ? level_outputs(a.output, levels) : std::vector{a.output};
+  const bool container = is_container_path(a.output);
+  const std::vector<std::string> outputs =
+      a.mips && !container ? level_outputs(a.output, levels) : std::vector{a.output};
   for (const auto& out : outputs) check_output(out, {a.input}, a.common.force);
 
   const Image heights = read_image(a.input, &info);
@@ -95,7 +99,11 @@ int run_normalmap(const NormalMapArgs& a) {
       chain.push_back(std::move(xy));
     }
   }
-  if (a.mips) {
+  if (container) {
+    // Uncompressed rg8/rgba8/16-bit/half/float (block compression in the same
+    // call comes with `compress`); normals are data: linear formats.
+    write_texture(a.output, texture_from_levels(chain, false, w.half), parse_dds_header(a.dds_header));
+  } else if (a.mips) {
     write_levels(a.output, chain, w);
   } else {
     write_image(a.output, chain[0].view(), w);
@@ -139,6 +147,8 @@ void add_normalmap_command(CLI::App& app) {
   cmd->add_flag("--mips", args->mips, "Write a mip chain, renormalized each level");
   add_chain_options(*cmd, args->chain);
   cmd->add_option("--compression", args->compression, "Output compression, as for `texproc mip`");
+  cmd->add_option("--dds-header", args->dds_header, "DDS header for .dds output: auto, dx9, dx10")
+      ->capture_default_str();
   add_common_options(*cmd, args->common);
   set_runner(*cmd, [args] { return run_normalmap(*args); });
 }

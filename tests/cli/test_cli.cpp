@@ -6,6 +6,7 @@
 
 #include "support/images.h"
 #include "support/run.h"
+#include "texproc/container.h"
 #include "texproc/image_io.h"
 #include "texproc/mip.h"
 
@@ -144,6 +145,12 @@ TEST(Cli, NormalmapOutputsAndErrors) {
   const ImageFileInfo mi = probe_image(dir + "/m.tif");
   EXPECT_EQ(mi.mip_levels, 6);
   EXPECT_EQ(mi.channels, 2);
+  // Into a container: rg8 (two channels for BC5-style shaders), the whole chain.
+  r = run_texproc("normalmap " + dir + "/h.png -o " + dir + "/n.ktx2 --mips --channels xy --type u8 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Texture t = read_texture(dir + "/n.ktx2");
+  EXPECT_EQ(t.format, TexelFormat::rg8_unorm);
+  EXPECT_EQ(t.levels, 6u);
   fs::remove_all(dir);
 }
 

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstring>
 
-#include "mip/resample.h"  // vertical_pass
 #include "normalmap/kernels.h"
 #include "normalmap/normalmap_kernels.h"
 #include "texproc/error.h"
@@ -21,6 +20,24 @@ void convolve_row(const float* in, const float* w, int taps, int n, float* out) 
     for (int k = 0; k < taps; ++k) acc = acc + w[k] * in[x + k];
     out[x] = acc;
   }
+}
+
+void vertical_pass2(const float* const* rows, const float* wa, const float* wb, int taps, int n, float* a, float* b) {
+  for (int x = 0; x < n; ++x) {
+    float acc_a = 0.0f, acc_b = 0.0f;
+    for (int k = 0; k < taps; ++k) {
+      acc_a = acc_a + wa[k] * rows[k][x];
+      acc_b = acc_b + wb[k] * rows[k][x];
+    }
+    a[x] = acc_a;
+    b[x] = acc_b;
+  }
+}
+
+void convolve_rows2(const float* ina, const float* wa, const float* inb, const float* wb, int taps, int n, float* a,
+                    float* b) {
+  convolve_row(ina, wa, taps, n, a);
+  convolve_row(inb, wb, taps, n, b);
 }
 
 void normals_from_gradients(const float* gx, const float* gy, int n, float sx, float sy, float* nx, float* ny,
@@ -228,10 +245,9 @@ void compute_normal_map(const ImageView& in, const ImageView& out, const NormalM
     for (FloatBuffer* b : {&sc.gx, &sc.gy, &sc.nx, &sc.ny, &sc.nz}) b->resize(W);
     for (int y = y0; y < y1; ++y) {
       const float* const* rows = sc.rows.data() + (y + first - lo);
-      vertical_pass(rows, k.smooth.data(), taps, PW, sc.vs.data());
-      vertical_pass(rows, k.deriv.data(), taps, PW, sc.vd.data());
-      convolve_row(sc.vs.data() + pad + first, k.deriv.data(), taps, W, sc.gx.data());
-      convolve_row(sc.vd.data() + pad + first, k.smooth.data(), taps, W, sc.gy.data());
+      vertical_pass2(rows, k.smooth.data(), k.deriv.data(), taps, PW, sc.vs.data(), sc.vd.data());
+      convolve_rows2(sc.vs.data() + pad + first, k.deriv.data(), sc.vd.data() + pad + first, k.smooth.data(), taps, W,
+                     sc.gx.data(), sc.gy.data());
       const float* h = sc.rows[y - lo] + pad;
       if (out.type == PixelType::u8) {
         gradients_to_u8(sc.gx.data(), sc.gy.data(), h, W, sx, sy, out.channels, out.row<std::uint8_t>(y));

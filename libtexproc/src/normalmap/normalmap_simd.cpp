@@ -25,6 +25,44 @@ void ConvolveRow(const float* in, const float* w, int taps, int n, float* out) {
   if (x < n) ref::convolve_row(in + x, w, taps, n - x, out + x);
 }
 
+void VerticalPass2(const float* const* rows, const float* wa, const float* wb, int taps, int n, float* a, float* b) {
+  const hn::ScalableTag<float> d;
+  const int lanes = int(hn::Lanes(d));
+  int x = 0;
+  for (; x + lanes <= n; x += lanes) {
+    auto acc_a = hn::Zero(d), acc_b = hn::Zero(d);
+    for (int k = 0; k < taps; ++k) {
+      const auto v = hn::LoadU(d, rows[k] + x);
+      acc_a = hn::Add(acc_a, hn::Mul(hn::Set(d, wa[k]), v));
+      acc_b = hn::Add(acc_b, hn::Mul(hn::Set(d, wb[k]), v));
+    }
+    hn::StoreU(acc_a, d, a + x);
+    hn::StoreU(acc_b, d, b + x);
+  }
+  if (x < n) {
+    const float* shifted[16];
+    for (int k = 0; k < taps; ++k) shifted[k] = rows[k] + x;
+    ref::vertical_pass2(shifted, wa, wb, taps, n - x, a + x, b + x);
+  }
+}
+
+void ConvolveRows2(const float* ina, const float* wa, const float* inb, const float* wb, int taps, int n, float* a,
+                   float* b) {
+  const hn::ScalableTag<float> d;
+  const int lanes = int(hn::Lanes(d));
+  int x = 0;
+  for (; x + lanes <= n; x += lanes) {
+    auto acc_a = hn::Zero(d), acc_b = hn::Zero(d);
+    for (int k = 0; k < taps; ++k) {
+      acc_a = hn::Add(acc_a, hn::Mul(hn::Set(d, wa[k]), hn::LoadU(d, ina + x + k)));
+      acc_b = hn::Add(acc_b, hn::Mul(hn::Set(d, wb[k]), hn::LoadU(d, inb + x + k)));
+    }
+    hn::StoreU(acc_a, d, a + x);
+    hn::StoreU(acc_b, d, b + x);
+  }
+  if (x < n) ref::convolve_rows2(ina + x, wa, inb + x, wb, taps, n - x, a + x, b + x);
+}
+
 void NormalsFromGradients(const float* gx, const float* gy, int n, float sx, float sy, float* nx, float* ny,
                           float* nz) {
   const hn::ScalableTag<float> d;
@@ -120,6 +158,19 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace texproc {
 HWY_EXPORT(ConvolveRow);
+HWY_EXPORT(VerticalPass2);
+HWY_EXPORT(ConvolveRows2);
+
+void vertical_pass2(const float* const* rows, const float* wa, const float* wb, int taps, int n, float* a, float* b) {
+  if (force_scalar()) return ref::vertical_pass2(rows, wa, wb, taps, n, a, b);
+  HWY_DYNAMIC_DISPATCH(VerticalPass2)(rows, wa, wb, taps, n, a, b);
+}
+
+void convolve_rows2(const float* ina, const float* wa, const float* inb, const float* wb, int taps, int n, float* a,
+                    float* b) {
+  if (force_scalar()) return ref::convolve_rows2(ina, wa, inb, wb, taps, n, a, b);
+  HWY_DYNAMIC_DISPATCH(ConvolveRows2)(ina, wa, inb, wb, taps, n, a, b);
+}
 HWY_EXPORT(NormalsFromGradients);
 HWY_EXPORT(EncodeNormalsU8);
 HWY_EXPORT(GradientsToU8);
