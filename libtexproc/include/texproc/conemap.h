@@ -1,0 +1,72 @@
+// texproc/conemap.h: cone step maps (Dummer 2006) from heightmaps, and a CPU
+// renderer that traces relief-mapped rays with them.
+//
+// Height 1 is the top of the relief, 0 the bottom; the relief is `depth`
+// texture widths deep. The cone ratio of texel p is the smallest, over every
+// texel q higher than p, of |p - q| / (depth * (h_q - h_p)), with |p - q| the
+// distance between texel centres in texture coordinates (x / width, y / height),
+// capped by max_ratio: the widest upward cone at p that no texel centre enters.
+#pragma once
+
+#include <vector>
+
+#include "texproc/filters.h"
+#include "texproc/image.h"
+
+namespace texproc {
+
+struct ConeMapOptions {
+  float depth = 1.0f;       // relief depth in texture widths (> 0)
+  float max_ratio = 1.0f;   // cap on the ratio (> 0); the map stores sqrt(ratio / max_ratio)
+  WrapMode wrap = WrapMode::repeat;  // repeat: tiling reliefs see across the edges; clamp: they do not
+};
+
+// Exact conservative cone ratios of a width x height field of heights in
+// [0, 1] (row-major), by branch and bound over a maximum mip pyramid: a
+// block is skipped when even its highest texel at its nearest point cannot
+// narrow the cone found so far, and blocks are visited nearest first, so the
+// bound tightens early. The result equals brute force bit for bit (tested).
+// Identical for any thread count. Throws Error{bad_arguments} for invalid
+// options (mirror wrap is not supported).
+std::vector<float> cone_ratios(const std::vector<float>& heights, int width, int height, const ConeMapOptions& o);
+
+// The O(N^2)-per-texel definition, for tests and small maps.
+std::vector<float> cone_ratios_brute_force(const std::vector<float>& heights, int width, int height,
+                                           const ConeMapOptions& o);
+
+// A cone map image: R = height, G = sqrt(ratio / max_ratio), rounded down
+// (so quantization never widens a cone), in `type` (u8, u16 or f32).
+Image cone_map_image(const std::vector<float>& heights, const std::vector<float>& ratios, int width, int height,
+                     const ConeMapOptions& o, PixelType type);
+
+// Ray tracing through the relief, in texture space. A ray starts at (u, v)
+// on the top plane (height 1) and moves by (du, dv) per unit of height
+// descended (the view direction's horizontal part over its vertical part).
+struct ReliefHit {
+  float u = 0, v = 0, height = 0;
+  int steps = 0;       // height-map lookups
+  bool hit = false;    // false if the ray left the texture (clamp) without a hit
+};
+
+// The exact first hit on the texel-centre (nearest-texel) surface: a grid
+// traversal that visits every texel the ray crosses. The tests' reference.
+ReliefHit trace_exact(const std::vector<float>& heights, int width, int height, const ConeMapOptions& o, float u,
+                      float v, float du, float dv);
+// What shaders do without a cone map: `linear_steps` equal steps down the
+// depth, then a binary refinement. Can miss thin features.
+ReliefHit trace_linear(const std::vector<float>& heights, int width, int height, const ConeMapOptions& o, float u,
+                       float v, float du, float dv, int linear_steps = 64, int binary_steps = 8);
+// Conservative cone stepping with `ratios` while the steps are longer than a
+// tenth of a texel, then the exact grid traversal for the rest: the hit is
+// the exact first hit as long as no cone step crossed the surface.
+ReliefHit trace_cones(const std::vector<float>& heights, const std::vector<float>& ratios, int width, int height,
+                      const ConeMapOptions& o, float u, float v, float du, float dv, int binary_steps = 8);
+
+// A side-by-side preview: the relief lit and rendered at `view_angle_deg`
+// from the normal by linear search (64 steps) + binary refinement and by cone stepping,
+// each with a heat map of its height-map lookups per pixel (blue few, red
+// many), as an RGB8 image of 2 x 2 panels of `size` x `size`.
+Image render_preview(const std::vector<float>& heights, const std::vector<float>& ratios, int width, int height,
+                     const ConeMapOptions& o, int size, float view_angle_deg);
+
+}  // namespace texproc

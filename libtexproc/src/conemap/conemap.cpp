@@ -1,0 +1,215 @@
+// Exact conservative cone maps by branch and bound over a maximum mip
+// pyramid (the approach of Valasek and Ban, "Quick Cone Map Generation on
+// the GPU", EGS 2022, made exact): for texel p, blocks of the pyramid are
+// visited nearest first; a block whose maximum height M at its nearest
+// distance d cannot give a ratio below the best so far,
+// d / (depth * (M - h_p)) >= best, is skipped with everything in it.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "texproc/conemap.h"
+#include "texproc/error.h"
+#include "texproc/runtime.h"
+
+namespace texproc {
+namespace {
+
+void check(const std::vector<float>& heights, int width, int height, const ConeMapOptions& o) {
+  if (width <= 0 || height <= 0 || heights.size() != std::size_t(width) * height) {
+    throw Error(ErrorCode::bad_arguments, "heights do not match the size");
+  }
+  if (!(o.depth > 0.0f) || !std::isfinite(o.depth)) throw Error(ErrorCode::bad_arguments, "--depth must be > 0");
+  if (!(o.max_ratio > 0.0f) || !std::isfinite(o.max_ratio)) throw Error(ErrorCode::bad_arguments, "--max-ratio must be > 0");
+  if (o.wrap == WrapMode::mirror) throw Error(ErrorCode::bad_arguments, "--wrap for conemap: valid: repeat, clamp");
+}
+
+// Squared ratio of a candidate: (dx^2 / W^2 + dy^2 / H^2) / (D^2 dh^2), in
+// double, the same expression in the fast search and the brute force.
+struct Metric {
+  double sx, sy, dd;
+  double ratio2(double dx, double dy, double dh) const { return (dx * dx * sx + dy * dy * sy) / (dd * dh * dh); }
+};
+
+// Distance in texels from p to the nearest point of [lo, hi] (texel
+// centres), along one axis; with repeat, to the nearest periodic copy.
+int axis_distance(int p, int lo, int hi, int n, bool repeat) {
+  int d = p < lo ? lo - p : p > hi ? p - hi : 0;
+  if (repeat && d > 0) d = std::min({d, lo + n - p, p - hi + n});
+  return d;
+}
+
+int texel_distance(int p, int q, int n, bool repeat) {
+  const int d = p > q ? p - q : q - p;
+  return repeat ? std::min(d, n - d) : d;
+}
+
+struct Pyramid {
+  std::vector<std::vector<float>> max;  // level 0: the heights
+  std::vector<int> w, h;
+};
+
+Pyramid build_pyramid(const std::vector<float>& heights, int W, int H) {
+  Pyramid p;
+  p.max.push_back(heights);
+  p.w.push_back(W);
+  p.h.push_back(H);
+  while (p.w.back() > 1 || p.h.back() > 1) {
+    const int pw = p.w.back(), ph = p.h.back(), nw = (pw + 1) / 2, nh = (ph + 1) / 2;
+    const std::vector<float>& prev = p.max.back();
+    std::vector<float> next(std::size_t(nw) * nh);
+    for (int y = 0; y < nh; ++y)
+      for (int x = 0; x < nw; ++x) {
+        float m = prev[std::size_t(2 * y) * pw + 2 * x];
+        if (2 * x + 1 < pw) m = std::max(m, prev[std::size_t(2 * y) * pw + 2 * x + 1]);
+        if (2 * y + 1 < ph) {
+          m = std::max(m, prev[std::size_t(2 * y + 1) * pw + 2 * x]);
+          if (2 * x + 1 < pw) m = std::max(m, prev[std::size_t(2 * y + 1) * pw + 2 * x + 1]);
+        }
+        next[std::size_t(y) * nw + x] = m;
+      }
+    p.max.push_back(std::move(next));
+    p.w.push_back(nw);
+    p.h.push_back(nh);
+  }
+  return p;
+}
+
+constexpr int kLeafLevel = 2;  // blocks of 4x4 texels are scanned directly
+// Prune only when the bound exceeds the best by more than rounding could
+// explain: candidates are >= the true bound, which the computed one matches
+// to ~1e-15 relative.
+constexpr double kPruneSlack = 1.0 + 1e-9;
+
+struct Node {
+  int level, x, y;
+  double bound;
+};
+
+}  // namespace
+
+std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, const ConeMapOptions& o) {
+  check(heights, W, H, o);
+  const bool repeat = o.wrap == WrapMode::repeat;
+  const Metric m{1.0 / (double(W) * W), 1.0 / (double(H) * H), double(o.depth) * o.depth};
+  const Pyramid pyr = build_pyramid(heights, W, H);
+  const int top = int(pyr.max.size()) - 1;
+  const double cap2 = double(o.max_ratio) * o.max_ratio;
+  std::vector<float> out(heights.size());
+
+  for_each_row_block(H, 4, [&](int y0, int y1) {
+    thread_local std::vector<Node> stack;
+    for (int py = y0; py < y1; ++py) {
+      for (int px = 0; px < W; ++px) {
+        const float hp = heights[std::size_t(py) * W + px];
+        double best = cap2;
+        stack.clear();
+        stack.push_back({top, 0, 0, 0.0});
+        while (!stack.empty()) {
+          const Node n = stack.back();
+          stack.pop_back();
+          if (n.bound * 1.0 > best) continue;  // the best improved since it was pushed
+          const int k = n.level;
+          const int x_lo = n.x << k, x_hi = std::min((n.x + 1) << k, W) - 1;
+          const int y_lo = n.y << k, y_hi = std::min((n.y + 1) << k, H) - 1;
+          if (k <= kLeafLevel) {
+            for (int qy = y_lo; qy <= y_hi; ++qy) {
+              const float* row = heights.data() + std::size_t(qy) * W;
+              const int dy = texel_distance(py, qy, H, repeat);
+              for (int qx = x_lo; qx <= x_hi; ++qx) {
+                const float hq = row[qx];
+                if (hq <= hp) continue;
+                const double r2 = m.ratio2(texel_distance(px, qx, W, repeat), dy, double(hq) - hp);
+                best = r2 < best ? r2 : best;
+              }
+            }
+            continue;
+          }
+          // Children, farthest pushed first so the nearest is searched first.
+          Node kids[4];
+          int count = 0;
+          const int cw = pyr.w[k - 1], ch = pyr.h[k - 1];
+          for (int j = 0; j < 2; ++j)
+            for (int i = 0; i < 2; ++i) {
+              const int cx = 2 * n.x + i, cy = 2 * n.y + j;
+              if (cx >= cw || cy >= ch) continue;
+              const float M = pyr.max[k - 1][std::size_t(cy) * cw + cx];
+              if (M <= hp) continue;
+              const int s = k - 1;
+              const int dx = axis_distance(px, cx << s, std::min((cx + 1) << s, W) - 1, W, repeat);
+              const int dy = axis_distance(py, cy << s, std::min((cy + 1) << s, H) - 1, H, repeat);
+              const double bound = m.ratio2(dx, dy, double(M) - hp);
+              if (bound > best * kPruneSlack) continue;
+              kids[count++] = {s, cx, cy, bound / kPruneSlack};
+            }
+          // At most four: insertion sort, largest bound first.
+          for (int a = 1; a < count; ++a)
+            for (int b = a; b > 0 && kids[b - 1].bound < kids[b].bound; --b) std::swap(kids[b - 1], kids[b]);
+          for (int c = 0; c < count; ++c) stack.push_back(kids[c]);
+        }
+        out[std::size_t(py) * W + px] = float(std::sqrt(best));
+      }
+    }
+  });
+  return out;
+}
+
+std::vector<float> cone_ratios_brute_force(const std::vector<float>& heights, int W, int H, const ConeMapOptions& o) {
+  check(heights, W, H, o);
+  const bool repeat = o.wrap == WrapMode::repeat;
+  const Metric m{1.0 / (double(W) * W), 1.0 / (double(H) * H), double(o.depth) * o.depth};
+  std::vector<float> out(heights.size());
+  for_each_row_block(H, 1, [&](int y0, int y1) {
+    for (int py = y0; py < y1; ++py)
+      for (int px = 0; px < W; ++px) {
+        const float hp = heights[std::size_t(py) * W + px];
+        double best = double(o.max_ratio) * o.max_ratio;
+        for (int qy = 0; qy < H; ++qy)
+          for (int qx = 0; qx < W; ++qx) {
+            const float hq = heights[std::size_t(qy) * W + qx];
+            if (hq <= hp) continue;
+            const double r2 =
+                m.ratio2(texel_distance(px, qx, W, repeat), texel_distance(py, qy, H, repeat), double(hq) - hp);
+            best = r2 < best ? r2 : best;
+          }
+        out[std::size_t(py) * W + px] = float(std::sqrt(best));
+      }
+  });
+  return out;
+}
+
+Image cone_map_image(const std::vector<float>& heights, const std::vector<float>& ratios, int W, int H,
+                     const ConeMapOptions& o, PixelType type) {
+  Image img = Image::uninitialized(W, H, 3, type);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const std::size_t i = std::size_t(y) * W + x;
+      const double g = std::sqrt(std::min(1.0, double(ratios[i]) / o.max_ratio));
+      switch (type) {
+        case PixelType::u8: {
+          auto* p = img.row<std::uint8_t>(y) + 3 * x;
+          p[0] = std::uint8_t(std::lround(std::clamp(heights[i], 0.0f, 1.0f) * 255.0f));
+          p[1] = std::uint8_t(std::floor(g * 255.0));  // rounded down: never a wider cone
+          p[2] = 0;
+          break;
+        }
+        case PixelType::u16: {
+          auto* p = img.row<std::uint16_t>(y) + 3 * x;
+          p[0] = std::uint16_t(std::lround(std::clamp(heights[i], 0.0f, 1.0f) * 65535.0f));
+          p[1] = std::uint16_t(std::floor(g * 65535.0));
+          p[2] = 0;
+          break;
+        }
+        case PixelType::f32: {
+          auto* p = img.row<float>(y) + 3 * x;
+          p[0] = heights[i];
+          p[1] = float(g);
+          p[2] = 0.0f;
+          break;
+        }
+      }
+    }
+  return img;
+}
+
+}  // namespace texproc

@@ -1,0 +1,174 @@
+// Cone maps: the fast generator against the brute-force definition, and
+// cone stepping against a dense linear search.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "support/images.h"
+#include "texproc/conemap.h"
+#include "texproc/error.h"
+#include "texproc/image_io.h"
+#include "texproc/normalmap.h"
+#include "texproc/runtime.h"
+
+using namespace texproc;
+using namespace texproc::test;
+
+namespace {
+std::vector<float> field(int w, int h, const char* kind, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<float> f(std::size_t(w) * h, 0.0f);
+  const std::string k = kind;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      float& v = f[std::size_t(y) * w + x];
+      if (k == "random") v = u(rng);
+      if (k == "steps") v = float((x / 8 + y / 5) % 4) / 3.0f;
+      if (k == "spikes") v = u(rng) < 0.02f ? 1.0f : 0.1f * u(rng);
+      if (k == "peak") v = std::max(0.0f, 1.0f - std::hypot(x - w / 2.0f, y - h / 3.0f) / 10.0f);
+      if (k == "flat") v = 0.5f;
+      if (k == "quantized") v = std::round(u(rng) * 255.0f) / 255.0f;  // ties in height
+    }
+  return f;
+}
+}  // namespace
+
+// The branch and bound visits far fewer texels but must find the same
+// minimum: equal floats, for every kind of field, both wraps, odd and
+// non-square sizes, other depths and caps.
+TEST(ConeMap, FastEqualsBruteForceExactly) {
+  for (auto [w, h] : {std::pair{32, 32}, {64, 64}, {24, 40}, {1, 7}}) {
+    for (const char* kind : {"random", "steps", "spikes", "peak", "flat", "quantized"}) {
+      for (WrapMode wrap : {WrapMode::repeat, WrapMode::clamp}) {
+        for (auto [depth, cap] : {std::pair{1.0f, 1.0f}, {0.2f, 4.0f}}) {
+          ConeMapOptions o;
+          o.wrap = wrap;
+          o.depth = depth;
+          o.max_ratio = cap;
+          const std::vector<float> f = field(w, h, kind, unsigned(w + h));
+          const std::vector<float> fast = cone_ratios(f, w, h, o), slow = cone_ratios_brute_force(f, w, h, o);
+          ASSERT_EQ(fast, slow) << kind << " " << w << "x" << h << " " << to_string(wrap) << " depth " << depth;
+        }
+      }
+    }
+  }
+}
+
+// What the cone means: no texel centre higher than p lies strictly inside
+// p's cone, and the cone touches one unless it is capped.
+TEST(ConeMap, ConesAreConservativeAndTight) {
+  const int W = 40, H = 40;
+  const std::vector<float> f = field(W, H, "random", 9);
+  ConeMapOptions o;
+  const std::vector<float> r = cone_ratios(f, W, H, o);
+  for (int p = 0; p < W * H; p += 7) {
+    const int px = p % W, py = p / W;
+    double tightest = 1e30;
+    for (int q = 0; q < W * H; ++q) {
+      const float dh = f[q] - f[p];
+      if (dh <= 0) continue;
+      int dx = std::abs(q % W - px), dy = std::abs(q / W - py);
+      dx = std::min(dx, W - dx);
+      dy = std::min(dy, H - dy);
+      const double ratio = std::hypot(dx / double(W), dy / double(H)) / (o.depth * dh);
+      ASSERT_GE(ratio, double(r[p]) * (1 - 1e-6)) << "texel " << q << " is inside the cone of " << p;
+      tightest = std::min(tightest, ratio);
+    }
+    EXPECT_NEAR(r[p], std::min(tightest, double(o.max_ratio)), 1e-6);
+  }
+}
+
+// Quantization rounds down: the stored cone is never wider than the exact one.
+TEST(ConeMap, QuantizedConesRoundDown) {
+  const int W = 48, H = 32;
+  const std::vector<float> f = field(W, H, "random", 3);
+  ConeMapOptions o;
+  o.max_ratio = 2.0f;
+  const std::vector<float> r = cone_ratios(f, W, H, o);
+  for (PixelType t : {PixelType::u8, PixelType::u16}) {
+    const Image img = cone_map_image(f, r, W, H, o, t);
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) {
+        const double g = img.get(x, y, 1);
+        const double stored = g * g * o.max_ratio;
+        EXPECT_LE(stored, r[std::size_t(y) * W + x] * (1 + 1e-6));
+        const double step = t == PixelType::u8 ? 1.0 / 255 : 1.0 / 65535;
+        EXPECT_GT(std::sqrt(std::min(1.0, r[std::size_t(y) * W + x] / 2.0)), g - 1e-9);
+        EXPECT_LT(std::sqrt(std::min(1.0, r[std::size_t(y) * W + x] / 2.0)), g + step + 1e-9);
+      }
+  }
+}
+
+TEST(ConeMap, SameForAnyThreadCount) {
+  const std::vector<float> f = field(97, 61, "spikes", 4);
+  std::vector<float> one, two;
+  {
+    ThreadLimit t(1);
+    one = cone_ratios(f, 97, 61, ConeMapOptions{});
+  }
+  {
+    ThreadLimit t(2);
+    two = cone_ratios(f, 97, 61, ConeMapOptions{});
+  }
+  EXPECT_EQ(one, two);
+}
+
+// Safety: thousands of random rays on real heightmaps; cone stepping with
+// the map never passes through the surface: its hit is the exact first hit,
+// within one texel. (A dense linear search is not a safe reference: it can
+// clip past a texel corner; the grid traversal cannot.)
+TEST(ConeMap, ConeSteppingFindsTheFirstHitOnCorpusHeightmaps) {
+  if (!have_corpus()) GTEST_SKIP() << "no corpus";
+  for (const char* file : {"height/povray_mount1_250.png", "height/stellarium_stein_mauerwerk_height_256.png"}) {
+    const Image img = read_image(corpus_dir() + "/" + file);
+    const int W = img.width(), H = img.height();
+    const std::vector<float> h = extract_height(img.view(), HeightChannel::r, false);
+    for (float depth : {0.05f, 0.3f}) {
+      ConeMapOptions o;
+      o.depth = depth;
+      const std::vector<float> r = cone_ratios(h, W, H, o);
+      std::mt19937 rng(17);
+      std::uniform_real_distribution<float> u(0.0f, 1.0f);
+      int rays = 0, cone_steps = 0, linear_steps = 0;
+      for (int i = 0; i < 1500; ++i) {
+        const float angle = u(rng) * 6.2831853f, tilt = 0.2f + 1.2f * u(rng);  // up to ~80 degrees
+        const float du = depth * std::tan(tilt) * std::cos(angle), dv = depth * std::tan(tilt) * std::sin(angle);
+        const float u0 = u(rng), v0 = u(rng);
+        // The exact first hit (a grid traversal of every texel the ray
+        // crosses) against cone stepping refined by 16 binary steps.
+        const ReliefHit a = trace_exact(h, W, H, o, u0, v0, du, dv);
+        const ReliefHit b = trace_cones(h, r, W, H, o, u0, v0, du, dv, 16);
+        ASSERT_EQ(a.hit, b.hit);
+        if (!a.hit) continue;
+        // Within one texel: the hit texels are the same or neighbours (on the
+        // torus); a hit on a wall between two texels may land on either side.
+        auto texel_gap = [](float a_uv, float b_uv, int n) {
+          const int ia = wrap_index(int(std::floor(a_uv * n)), n, WrapMode::repeat);
+          const int ib = wrap_index(int(std::floor(b_uv * n)), n, WrapMode::repeat);
+          const int d = std::abs(ia - ib);
+          return std::min(d, n - d);
+        };
+        ASSERT_LE(texel_gap(a.u, b.u, W), 1) << file << " ray " << i;
+        ASSERT_LE(texel_gap(a.v, b.v, H), 1) << file << " ray " << i;
+        ++rays;
+        cone_steps += b.steps;
+        linear_steps += a.steps;
+      }
+      EXPECT_GT(rays, 1000);
+      (void)linear_steps;  // the grid traversal visits every crossed texel: no cost reference
+    }
+  }
+}
+
+TEST(ConeMap, OptionsAreChecked) {
+  const std::vector<float> f(16, 0.5f);
+  ConeMapOptions o;
+  o.depth = 0;
+  EXPECT_THROW(cone_ratios(f, 4, 4, o), Error);
+  o = ConeMapOptions{};
+  o.wrap = WrapMode::mirror;
+  EXPECT_THROW(cone_ratios(f, 4, 4, o), Error);
+  EXPECT_THROW(cone_ratios(f, 5, 4, ConeMapOptions{}), Error);
+}
