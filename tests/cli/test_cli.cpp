@@ -233,3 +233,27 @@ TEST(Cli, MipIntoContainersAndInfo) {
   EXPECT_NE(r.err.find("bad.ktx2: truncated: typeSize needs bytes 16..20 of 17"), std::string::npos) << r.err;
   fs::remove_all(dir);
 }
+
+TEST(Cli, ConemapWritesMapAndPreview) {
+  const std::string dir = temp_dir("cli_cone");
+  Image h(24, 24, 1, PixelType::u8);
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 24; ++x) h.set(x, y, 0, (x / 6 + y / 6) % 2 ? 0.8f : 0.1f);
+  write_image(dir + "/h.png", h.view());
+  RunResult r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/c.png --preview " + dir + "/p.png --preview-size 32 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image c = read_image(dir + "/c.png");
+  EXPECT_EQ(c.channels(), 3);
+  EXPECT_EQ(c.get(3, 3, 0), h.get(3, 3, 0));  // R is the height
+  EXPECT_EQ(read_image(dir + "/p.png").width(), 64);
+  // The fast generator and the brute force write the same bytes.
+  r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/b.png --brute-force -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(slurp(dir + "/b.png") == slurp(dir + "/c.png"));
+  r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/x.png --mode relaxed");
+  EXPECT_EQ(r.exit_code, 5);
+  r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/x.png --depth 0");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("--depth must be > 0"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
