@@ -257,3 +257,30 @@ TEST(Cli, ConemapWritesMapAndPreview) {
   EXPECT_NE(r.err.find("--depth must be > 0"), std::string::npos) << r.err;
   fs::remove_all(dir);
 }
+
+TEST(Cli, DecompressContainers) {
+  const std::string dir = temp_dir("cli_decompress");
+  write_image(dir + "/a.png", checkerboard(8, 8, 4).view());
+  RunResult r = run_texproc("mip " + dir + "/a.png -o " + dir + "/a.ktx2 --wrap repeat -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_texproc("decompress " + dir + "/a.ktx2 -o " + dir + "/out/a.png --all-levels -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image l0 = read_image(dir + "/out/a_mip0.png");
+  EXPECT_EQ(l0.get(1, 0, 0), 1.0f);
+  const int v = read_image(dir + "/out/a_mip1.png").row<std::uint8_t>(0)[0];
+  EXPECT_TRUE(v == 187 || v == 188) << v;  // gamma-correct average, through the container
+  EXPECT_TRUE(fs::exists(dir + "/out/a_mip3.png"));
+  // A BC5 SNORM texture to float: values in [-1, 1].
+  Texture t;
+  t.format = TexelFormat::bc5_snorm;
+  t.width = t.height = 4;
+  t.images.push_back(std::vector<std::uint8_t>(16, 0x81));  // endpoints -127: every texel -1
+  write_texture(dir + "/n.dds", t);
+  r = run_texproc("decompress " + dir + "/n.dds -o " + dir + "/n.exr -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_image(dir + "/n.exr").get(2, 2, 1), -1.0f);
+  r = run_texproc("decompress " + dir + "/n.dds -o " + dir + "/n2.png --level 3");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("--level 3 (valid: 0 to 0)"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}

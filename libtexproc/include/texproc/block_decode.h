@@ -1,0 +1,33 @@
+// texproc/block_decode.h: decoding BC1-BC5 blocks and block-compressed
+// textures, to the Khronos Data Format Specification (S3TC and RGTC
+// chapters).
+#pragma once
+
+#include <cstdint>
+
+#include "texproc/image.h"
+#include "texproc/texture.h"
+
+namespace texproc {
+
+// Decodes one 4x4 block of `format` (a BC format) into texels[16][4], RGBA,
+// row by row. UNORM results are in [0, 1], SNORM in [-1, 1]; channels the
+// format lacks are 0 (green, blue) and 1 (alpha).
+//
+// Rounding: the RGTC values (BC4, BC5 and BC2/BC3 alpha interpolation) are
+// exact, (a (7 - k) + b k) / 7 / 255 in float, as GPUs return them. BC1
+// colours expand 5/6-bit endpoints to 8 bits by bit replication and
+// interpolate in 8 bits rounded to nearest: (2 a + b + 1) / 3 and
+// (a + b + 1) / 2. Hardware differs by one or two 8-bit levels on the
+// interpolated colours; the specification allows that.
+void decode_bc_block(TexelFormat format, const std::uint8_t* block, float texels[16][4]);
+
+// Decodes one image (level, layer, face) of a texture of any format texproc
+// reads: block formats through decode_bc_block, uncompressed ones converted.
+// `type` u8 or u16 stores UNORM values rounded, SNORM values biased as
+// (v + 1) / 2; f32 stores the values. Channels: the format's (1, 2 or 4; 3
+// for BC1 RGB). Throws Error{unsupported} for ETC formats (not decoded yet).
+Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t layer, std::uint32_t face,
+                           PixelType type);
+
+}  // namespace texproc
