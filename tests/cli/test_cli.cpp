@@ -284,3 +284,36 @@ TEST(Cli, DecompressContainers) {
   EXPECT_NE(r.err.find("--level 3 (valid: 0 to 0)"), std::string::npos) << r.err;
   fs::remove_all(dir);
 }
+
+TEST(Cli, CompressBc4Bc5IntoContainers) {
+  const std::string dir = temp_dir("cli_compress");
+  Image h(30, 18, 1, PixelType::u8);
+  for (int y = 0; y < 18; ++y)
+    for (int x = 0; x < 30; ++x) h.set(x, y, 0, 0.5f + 0.45f * std::sin(x * 0.3f + y * 0.2f));
+  write_image(dir + "/h.png", h.view());
+  RunResult r = run_texproc("compress " + dir + "/h.png -o " + dir + "/h.dds --format bc4 --mips --quality high -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Texture t = read_texture(dir + "/h.dds");
+  EXPECT_EQ(t.format, TexelFormat::bc4_unorm);
+  EXPECT_EQ(t.levels, 5u);  // 30x18 -> 15x9 -> 7x4 -> 3x2 -> 1x1
+  r = run_texproc("decompress " + dir + "/h.dds -o " + dir + "/back.png -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image back = read_image(dir + "/back.png");
+  double se = 0;
+  for (int y = 0; y < 18; ++y)
+    for (int x = 0; x < 30; ++x) se += std::pow(back.get(x, y, 0) - h.get(x, y, 0), 2);
+  // A steep field (0.45 * 0.3 of the range per texel: ~100 levels across a
+  // block, so palette steps of ~14 levels): PSNR well above 30 dB.
+  EXPECT_GT(10 * std::log10(1.0 / (se / (30 * 18))), 33.0);
+  r = run_texproc("compress " + dir + "/h.png -o " + dir + "/n.ktx2 --format bc5s -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_texture(dir + "/n.ktx2").format, TexelFormat::bc5_snorm);
+  r = run_texproc("compress " + dir + "/h.png -o " + dir + "/x.dds --format bc1");
+  EXPECT_EQ(r.exit_code, 5);
+  EXPECT_NE(r.err.find("not implemented yet"), std::string::npos) << r.err;
+  r = run_texproc("compress " + dir + "/h.png -o " + dir + "/x.dds --format bc9");
+  EXPECT_EQ(r.exit_code, 1);
+  r = run_texproc("compress " + dir + "/h.png -o " + dir + "/x.png --format bc4");
+  EXPECT_EQ(r.exit_code, 5);
+  fs::remove_all(dir);
+}

@@ -1,0 +1,189 @@
+// BC4/BC5 encoding: endpoint search under the exact RGTC decoding
+// (Khronos Data Format Specification, "RGTC Compressed Texture Image
+// Formats"). For a pair of endpoints the palette is known in closed form, so
+// each texel's index is found by rounding, and a candidate costs 16 steps.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "texproc/block_decode.h"
+#include "texproc/block_encode.h"
+#include "texproc/error.h"
+#include "texproc/runtime.h"
+
+namespace texproc {
+
+Quality parse_quality(std::string_view n) {
+  if (n == "fast") return Quality::fast;
+  if (n == "normal") return Quality::normal;
+  if (n == "high") return Quality::high;
+  if (n == "max") return Quality::max;
+  throw Error(ErrorCode::bad_arguments, "unknown --quality '" + std::string(n) + "' (valid: fast, normal, high, max)");
+}
+
+const char* to_string(Quality q) {
+  switch (q) {
+    case Quality::fast: return "fast";
+    case Quality::normal: return "normal";
+    case Quality::high: return "high";
+    case Quality::max: return "max";
+  }
+  return "?";
+}
+
+namespace {
+
+struct Candidate {
+  int r0, r1;
+  double error;
+  std::uint8_t indices[16];
+};
+
+// Evaluates endpoints (r0, r1) in the mode they select (r0 > r1: eight
+// values; else six values plus the range's two ends), writing each texel's
+// best code. Palette positions are exact fractions of the endpoints.
+void evaluate(const float v[16], int r0, int r1, bool snorm, Candidate& c) {
+  const double lo_end = snorm ? -127.0 : 0.0, hi_end = snorm ? 127.0 : 255.0;
+  double pal[8];
+  pal[0] = r0;
+  pal[1] = r1;
+  if (r0 > r1) {
+    for (int k = 1; k <= 6; ++k) pal[k + 1] = double(r0 * (7 - k) + r1 * k) / 7.0;
+  } else {
+    for (int k = 1; k <= 4; ++k) pal[k + 1] = double(r0 * (5 - k) + r1 * k) / 5.0;
+    pal[6] = lo_end;
+    pal[7] = hi_end;
+  }
+  double err = 0.0;
+  for (int i = 0; i < 16; ++i) {
+    const double t = std::clamp(double(v[i]), lo_end, hi_end);
+    int best = 0;
+    double be = (t - pal[0]) * (t - pal[0]);
+    for (int k = 1; k < 8; ++k) {
+      const double e = (t - pal[k]) * (t - pal[k]);
+      if (e < be) be = e, best = k;
+    }
+    c.indices[i] = std::uint8_t(best);
+    err += be;
+  }
+  c.r0 = r0;
+  c.r1 = r1;
+  c.error = err;
+}
+
+void write_block(const Candidate& c, bool snorm, std::uint8_t out[8]) {
+  out[0] = std::uint8_t(snorm ? std::uint8_t(std::int8_t(c.r0)) : c.r0);
+  out[1] = std::uint8_t(snorm ? std::uint8_t(std::int8_t(c.r1)) : c.r1);
+  std::uint64_t bits = 0;
+  for (int i = 0; i < 16; ++i) bits |= std::uint64_t(c.indices[i]) << (3 * i);
+  for (int b = 0; b < 6; ++b) out[2 + b] = std::uint8_t(bits >> (8 * b));
+}
+
+}  // namespace
+
+void encode_bc4_block(const float v[16], bool snorm, Quality q, std::uint8_t out[8]) {
+  const int lo_code = snorm ? -127 : 0, hi_code = snorm ? 127 : 255;
+  float mn = v[0], mx = v[0];
+  for (int i = 1; i < 16; ++i) mn = std::min(mn, v[i]), mx = std::max(mx, v[i]);
+  const int lo = std::clamp(int(std::floor(mn)), lo_code, hi_code), hi = std::clamp(int(std::ceil(mx)), lo_code, hi_code);
+  Candidate best, c;
+  // Eight-value mode needs r0 > r1; a flat block uses the six-value mode
+  // with equal endpoints, which decodes every code 0-5 to that value.
+  if (hi > lo) {
+    evaluate(v, hi, lo, snorm, best);
+  } else {
+    evaluate(v, lo, lo, snorm, best);
+  }
+  auto consider = [&](int r0, int r1) {
+    if (r0 < lo_code || r0 > hi_code || r1 < lo_code || r1 > hi_code) return;
+    evaluate(v, r0, r1, snorm, c);
+    if (c.error < best.error) best = c;
+  };
+  // The six-value mode has the range's two ends for free, so its endpoints
+  // should span the values strictly inside the range, not the extremes.
+  float mn6 = float(hi_code), mx6 = float(lo_code);
+  for (int i = 0; i < 16; ++i) {
+    if (v[i] > lo_code + 0.5f && v[i] < hi_code - 0.5f) mn6 = std::min(mn6, v[i]), mx6 = std::max(mx6, v[i]);
+  }
+  const bool has_inner = mn6 <= mx6;
+  const int lo6 = has_inner ? std::clamp(int(std::floor(mn6)), lo_code, hi_code) : lo;
+  const int hi6 = has_inner ? std::clamp(int(std::ceil(mx6)), lo_code, hi_code) : hi;
+  if (has_inner && (lo6 != lo || hi6 != hi)) consider(lo6, hi6);
+  if (q == Quality::max) {
+    for (int a = lo_code; a <= hi_code; ++a)
+      for (int b = lo_code; b <= hi_code; ++b) consider(a, b);
+  } else if (q != Quality::fast && best.error > 0.0) {
+    const int r = q == Quality::normal ? 2 : 8;
+    for (int a = hi - r; a <= hi + r; ++a)
+      for (int b = lo - r; b <= lo + r; ++b) consider(a, b);  // eight-value mode (a > b)
+    for (int a = lo6 - r; a <= lo6 + r; ++a)
+      for (int b = hi6 - r; b <= hi6 + r; ++b) consider(a, b);  // six-value mode (a <= b)
+  }
+  write_block(best, snorm, out);
+}
+
+double bc4_block_error(const std::uint8_t block[8], const float values[16], bool snorm) {
+  // Exact palette in code units (the same rationals the decoder returns,
+  // before its division by 255 or 127), so a lossless block scores 0.
+  const int r0 = snorm ? std::max(-127, int(std::int8_t(block[0]))) : block[0];
+  const int r1 = snorm ? std::max(-127, int(std::int8_t(block[1]))) : block[1];
+  Candidate c;
+  std::uint64_t bits = 0;
+  for (int b = 0; b < 6; ++b) bits |= std::uint64_t(block[2 + b]) << (8 * b);
+  const double lo_end = snorm ? -127.0 : 0.0, hi_end = snorm ? 127.0 : 255.0;
+  double pal[8] = {double(r0), double(r1)};
+  if (r0 > r1) {
+    for (int k = 1; k <= 6; ++k) pal[k + 1] = double(r0 * (7 - k) + r1 * k) / 7.0;
+  } else {
+    for (int k = 1; k <= 4; ++k) pal[k + 1] = double(r0 * (5 - k) + r1 * k) / 5.0;
+    pal[6] = lo_end;
+    pal[7] = hi_end;
+  }
+  (void)c;
+  double e = 0.0;
+  for (int i = 0; i < 16; ++i) {
+    const double d = pal[bits >> (3 * i) & 7] - std::clamp(double(values[i]), lo_end, hi_end);
+    e += d * d;
+  }
+  return e;
+}
+
+std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat format, Quality q) {
+  const bool bc5 = format == TexelFormat::bc5_unorm || format == TexelFormat::bc5_snorm;
+  const bool snorm = format == TexelFormat::bc4_snorm || format == TexelFormat::bc5_snorm;
+  if (!bc5 && format != TexelFormat::bc4_unorm && format != TexelFormat::bc4_snorm) {
+    throw Error(ErrorCode::unsupported, std::string("encoding ") + format_info(format).name +
+                                            " is not implemented yet (so far: bc4_unorm, bc4_snorm, bc5_unorm, bc5_snorm)");
+  }
+  const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
+  const int block_bytes = bc5 ? 16 : 8;
+  std::vector<std::uint8_t> out(std::size_t(bw) * bh * block_bytes);
+  auto value = [&](int x, int y, int c) -> float {
+    if (c >= img.channels) return snorm ? 0.0f : 0.0f;
+    float v = 0.0f;
+    switch (img.type) {
+      case PixelType::u8: v = img.row<const std::uint8_t>(y)[x * img.channels + c] / 255.0f; break;
+      case PixelType::u16: v = img.row<const std::uint16_t>(y)[x * img.channels + c] / 65535.0f; break;
+      case PixelType::f32: v = img.row<const float>(y)[x * img.channels + c]; break;
+    }
+    return snorm ? (v * 2.0f - 1.0f) * 127.0f : v * 255.0f;
+  };
+  for_each_row_block(bh, 4, [&](int by0, int by1) {
+    float v[16];
+    for (int by = by0; by < by1; ++by)
+      for (int bx = 0; bx < bw; ++bx) {
+        std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx) * block_bytes;
+        for (int ch = 0; ch < (bc5 ? 2 : 1); ++ch) {
+          for (int i = 0; i < 16; ++i) {
+            // Partial blocks: the edge texels repeat into the missing ones.
+            const int x = std::min(bx * 4 + i % 4, img.width - 1), y = std::min(by * 4 + i / 4, img.height - 1);
+            v[i] = value(x, y, ch);
+          }
+          encode_bc4_block(v, snorm, q, dst + 8 * ch);
+        }
+      }
+  });
+  return out;
+}
+
+}  // namespace texproc
