@@ -13,8 +13,8 @@ namespace texproc {
 
 enum class Quality {
   fast,    // BC4: min/max endpoints, 8-value mode
-  normal,  // + both modes, endpoints searched +-2 around min/max
-  high,    // + endpoints searched +-8 around min/max
+  normal,  // + both modes, least-squares endpoint refinement, +-1 window
+  high,    // + +-3 around the refined endpoints and +-8 around min/max
   max      // exhaustive endpoint pairs (slow; for reference)
 };
 Quality parse_quality(std::string_view name);  // throws Error{bad_arguments}

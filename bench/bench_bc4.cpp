@@ -1,0 +1,95 @@
+// BC4 benchmark: texproc's encoder at each quality against libsquish's BC4
+// (Debian's libsquish-dev 1.15, a scalar build) on the corpus heightmaps,
+// single thread, in one run. PSNR is scored with the specification's exact
+// decoding (texproc's decoder; libsquish's own BC4 decoding is not used).
+#include <benchmark/benchmark.h>
+#include <squish.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "texproc/block_decode.h"
+#include "texproc/block_encode.h"
+#include "texproc/image_io.h"
+#include "texproc/normalmap.h"
+#include "texproc/runtime.h"
+
+using namespace texproc;
+
+namespace {
+
+struct Height {
+  std::string name;
+  Image r8;  // one channel, 8-bit, width and height multiples of 4 (cropped)
+};
+
+const std::vector<Height>& heights() {
+  static const std::vector<Height> h = [] {
+    std::vector<Height> out;
+    for (const char* f : {"height/trigger_swiss_h_1024.png", "height/irrlicht_terrain_heightmap_256.bmp",
+                          "height/povray_mount1_250.png", "height/scorched3d_denali_256.bmp",
+                          "height/stellarium_stein_mauerwerk_height_256.png"}) {
+      const Image img = read_image(std::string(TEXPROC_CORPUS_DIR) + "/" + f);
+      const std::vector<float> v = extract_height(img.view(), HeightChannel::r, false);
+      const int w = img.width() / 4 * 4, hh = img.height() / 4 * 4;
+      Image r(w, hh, 1, PixelType::u8);
+      for (int y = 0; y < hh; ++y)
+        for (int x = 0; x < w; ++x) r.set(x, y, 0, v[std::size_t(y) * img.width() + x]);
+      out.push_back({f, std::move(r)});
+    }
+    return out;
+  }();
+  return h;
+}
+
+double psnr(const Image& src, const std::vector<std::uint8_t>& blocks) {
+  Texture t;
+  t.format = TexelFormat::bc4_unorm;
+  t.width = std::uint32_t(src.width());
+  t.height = std::uint32_t(src.height());
+  t.images.push_back(blocks);
+  const Image d = decode_texture_image(t, 0, 0, 0, PixelType::f32);
+  double se = 0;
+  for (int y = 0; y < src.height(); ++y)
+    for (int x = 0; x < src.width(); ++x) se += std::pow(d.get(x, y, 0) * 255.0 - src.row<std::uint8_t>(y)[x], 2);
+  return 10 * std::log10(255.0 * 255.0 / (se / (double(src.width()) * src.height())));
+}
+
+std::map<std::string, double> g_psnr;
+
+void run(benchmark::State& state, const std::string& who, Quality q) {
+  ThreadLimit one(1);
+  double pixels = 0, psnr_sum = 0;
+  for (auto _ : state) {
+    psnr_sum = 0;
+    for (const Height& h : heights()) {
+      std::vector<std::uint8_t> blocks;
+      if (who == "libsquish") {
+        // libsquish takes RGBA8 and compresses the red channel for kBc4.
+        std::vector<squish::u8> rgba(std::size_t(h.r8.width()) * h.r8.height() * 4, 255);
+        for (std::size_t i = 0; i < std::size_t(h.r8.width()) * h.r8.height(); ++i) rgba[4 * i] = h.r8.data()[i];
+        blocks.resize(squish::GetStorageRequirements(h.r8.width(), h.r8.height(), squish::kBc4));
+        squish::CompressImage(rgba.data(), h.r8.width(), h.r8.height(), blocks.data(), squish::kBc4);
+      } else {
+        blocks = compress_image(h.r8.view(), TexelFormat::bc4_unorm, q);
+      }
+      benchmark::DoNotOptimize(blocks.data());
+      state.PauseTiming();
+      psnr_sum += psnr(h.r8, blocks);
+      state.ResumeTiming();
+    }
+  }
+  for (const Height& h : heights()) pixels += double(h.r8.width()) * h.r8.height();
+  state.counters["MPix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["PSNR"] = psnr_sum / double(heights().size());
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(run, libsquish_bc4, std::string("libsquish"), Quality::normal)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK_CAPTURE(run, texproc_fast, std::string("texproc"), Quality::fast)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK_CAPTURE(run, texproc_normal, std::string("texproc"), Quality::normal)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK_CAPTURE(run, texproc_high, std::string("texproc"), Quality::high)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+
+BENCHMARK_MAIN();
