@@ -303,6 +303,13 @@ TEST(Container, Ktx2CompressedDfds) {
   const auto a1 = words(TexelFormat::etc2_rgba1_unorm);
   EXPECT_EQ(a1[7], 63u << 16 | 2u << 24);
   EXPECT_EQ(a1[11], 63u << 16 | 15u << 24);
+  // R8 sRGB: one sample, no alpha to mark LINEAR; transfer sRGB.
+  const auto r8s = words(TexelFormat::r8_srgb);
+  EXPECT_EQ(r8s[0], 44u);
+  EXPECT_EQ(r8s[3], 1u | 1 << 8 | 2 << 16);
+  EXPECT_EQ(r8s[5], 1u);
+  EXPECT_EQ(r8s[7], 7u << 16);
+  EXPECT_EQ(r8s[10], 255u);
   // Half floats: FLOAT|SIGNED, [-1.0f, 1.0f] as float bits, 16-bit samples, typeSize 2.
   const auto h = words(TexelFormat::rgba16_float);
   EXPECT_EQ(h[7], 15u << 16 | 0xC0u << 24);

@@ -13,7 +13,7 @@ namespace texproc {
 
 enum class TexelFormat {
   // uncompressed
-  r8_unorm, rg8_unorm, rgba8_unorm, rgba8_srgb, bgra8_unorm, bgra8_srgb,
+  r8_unorm, r8_srgb, rg8_unorm, rg8_srgb, rgba8_unorm, rgba8_srgb, bgra8_unorm, bgra8_srgb,
   r16_unorm, rg16_unorm, rgba16_unorm, rgba16_float, rgba32_float,
   // BC (S3TC / RGTC)
   bc1_rgb_unorm, bc1_rgb_srgb, bc1_rgba_unorm, bc1_rgba_srgb, bc2_unorm, bc2_srgb, bc3_unorm, bc3_srgb,

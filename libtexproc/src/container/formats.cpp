@@ -20,7 +20,9 @@ using F = TexelFormat;
 // format, name, block w, h, bytes, channels, srgb, snorm, float, compressed, typeSize, vk, dxgi, gl internal, gl format, gl type
 const FormatInfo kFormats[] = {
     {F::r8_unorm, "r8_unorm", 1, 1, 1, 1, false, false, false, false, 1, 9, 61, 0x8229, kGlRed, kGlUByte},
+    {F::r8_srgb, "r8_srgb", 1, 1, 1, 1, true, false, false, false, 1, 15, 0, 0x8FBD, kGlRed, kGlUByte},
     {F::rg8_unorm, "rg8_unorm", 1, 1, 2, 2, false, false, false, false, 1, 16, 49, 0x822B, kGlRg, kGlUByte},
+    {F::rg8_srgb, "rg8_srgb", 1, 1, 2, 2, true, false, false, false, 1, 22, 0, 0x8FBE, kGlRg, kGlUByte},
     {F::rgba8_unorm, "rgba8_unorm", 1, 1, 4, 4, false, false, false, false, 1, 37, 28, 0x8058, kGlRgba, kGlUByte},
     {F::rgba8_srgb, "rgba8_srgb", 1, 1, 4, 4, true, false, false, false, 1, 43, 29, 0x8C43, kGlRgba, kGlUByte},
     {F::bgra8_unorm, "bgra8_unorm", 1, 1, 4, 4, false, false, false, false, 1, 44, 87, 0x93A1, kGlBgra, kGlUByte},
