@@ -42,18 +42,24 @@ struct Candidate {
 // Evaluates endpoints (r0, r1) in the mode they select (r0 > r1: eight
 // values; else six values plus the range's two ends), writing each texel's
 // best code. Palette positions are exact fractions of the endpoints.
-void evaluate(const float v[16], int r0, int r1, bool snorm, Candidate& c) {
-  const double lo_end = snorm ? -127.0 : 0.0, hi_end = snorm ? 127.0 : 255.0;
-  double pal[8];
+// The eight decoded values of endpoints (r0, r1), by code, in code units:
+// exact rationals (the decoder divides these by 255 or 127).
+void palette(int r0, int r1, bool snorm, double pal[8]) {
   pal[0] = r0;
   pal[1] = r1;
   if (r0 > r1) {
     for (int k = 1; k <= 6; ++k) pal[k + 1] = double(r0 * (7 - k) + r1 * k) / 7.0;
   } else {
     for (int k = 1; k <= 4; ++k) pal[k + 1] = double(r0 * (5 - k) + r1 * k) / 5.0;
-    pal[6] = lo_end;
-    pal[7] = hi_end;
+    pal[6] = snorm ? -127.0 : 0.0;
+    pal[7] = snorm ? 127.0 : 255.0;
   }
+}
+
+void evaluate(const float v[16], int r0, int r1, bool snorm, Candidate& c) {
+  const double lo_end = snorm ? -127.0 : 0.0, hi_end = snorm ? 127.0 : 255.0;
+  double pal[8];
+  palette(r0, r1, snorm, pal);
   double err = 0.0;
   for (int i = 0; i < 16; ++i) {
     const double t = std::clamp(double(v[i]), lo_end, hi_end);
@@ -181,19 +187,11 @@ double bc4_block_error(const std::uint8_t block[8], const float values[16], bool
   // before its division by 255 or 127), so a lossless block scores 0.
   const int r0 = snorm ? std::max(-127, int(std::int8_t(block[0]))) : block[0];
   const int r1 = snorm ? std::max(-127, int(std::int8_t(block[1]))) : block[1];
-  Candidate c;
   std::uint64_t bits = 0;
   for (int b = 0; b < 6; ++b) bits |= std::uint64_t(block[2 + b]) << (8 * b);
   const double lo_end = snorm ? -127.0 : 0.0, hi_end = snorm ? 127.0 : 255.0;
-  double pal[8] = {double(r0), double(r1)};
-  if (r0 > r1) {
-    for (int k = 1; k <= 6; ++k) pal[k + 1] = double(r0 * (7 - k) + r1 * k) / 7.0;
-  } else {
-    for (int k = 1; k <= 4; ++k) pal[k + 1] = double(r0 * (5 - k) + r1 * k) / 5.0;
-    pal[6] = lo_end;
-    pal[7] = hi_end;
-  }
-  (void)c;
+  double pal[8];
+  palette(r0, r1, snorm, pal);
   double e = 0.0;
   for (int i = 0; i < 16; ++i) {
     const double d = pal[bits >> (3 * i) & 7] - std::clamp(double(values[i]), lo_end, hi_end);
