@@ -114,5 +114,133 @@ TEST(Bc5Encode, ImagesDeterministicAndClose) {
   for (int y = 0; y < 22; ++y)
     for (int x = 0; x < 37; ++x)
       for (int c = 0; c < 2; ++c) ASSERT_NEAR(back.get(x, y, c), smooth.get(x, y, c), 7.0 / 255) << x << "," << y;
-  EXPECT_THROW(compress_image(img.view(), TexelFormat::bc1_rgb_unorm, Quality::normal), Error);
+  EXPECT_THROW(compress_image(img.view(), TexelFormat::etc2_rgb_unorm, Quality::normal), Error);  // ETC: not yet
+}
+
+// ---- BC1 / BC2 / BC3 ----------------------------------------------------
+
+namespace {
+int expand(int v, int bits) { return bits == 5 ? (v << 3 | v >> 2) : (v << 2 | v >> 4); }
+
+// The least squared error any BC1 block can give a one-colour block: all 16
+// texels share an index, so each channel independently picks its best
+// endpoint pair for that palette entry. Exhaustive over index choices and
+// endpoint pairs (32 x 32 or 64 x 64 per channel), with the decoder's rounding.
+long long best_single_color_error(const int rgb[3]) {
+  long long best = -1;
+  for (int mode = 0; mode < 5; ++mode) {  // 0-3: four-colour index, 4: three-colour average
+    long long total = 0;
+    for (int ch = 0; ch < 3; ++ch) {
+      const int bits = ch == 1 ? 6 : 5, n = 1 << bits;
+      int bc = 1 << 30;
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+          const int ea = expand(a, bits), eb = expand(b, bits);
+          const int v = mode == 0 ? ea : mode == 1 ? eb : mode == 2 ? (2 * ea + eb + 1) / 3
+                      : mode == 3 ? (ea + 2 * eb + 1) / 3 : (ea + eb + 1) / 2;
+          bc = std::min(bc, std::abs(v - rgb[ch]));
+        }
+      total += 16LL * bc * bc;
+    }
+    if (best < 0 || total < best) best = total;
+  }
+  return best;
+}
+
+long long bc1_error(const std::uint8_t block[8], const std::uint8_t rgba[16][4]) {
+  float t[16][4];
+  decode_bc_block(TexelFormat::bc1_rgb_unorm, block, t);
+  long long e = 0;
+  for (int i = 0; i < 16; ++i)
+    for (int c = 0; c < 3; ++c) {
+      const long long d = std::lround(t[i][c] * 255.0f) - rgba[i][c];
+      e += d * d;
+    }
+  return e;
+}
+}  // namespace
+
+#include "bc/bc1_encode.h"
+
+// One-colour blocks come back with the smallest error BC1 allows for that
+// colour (through its interpolated colours), for a spread of colours.
+TEST(Bc1Encode, SingleColourBlocksAreOptimal) {
+  std::mt19937 rng(6);
+  for (int n = 0; n < 300; ++n) {
+    int rgb[3] = {int(rng() % 256), int(rng() % 256), int(rng() % 256)};
+    if (n < 6) rgb[0] = rgb[1] = rgb[2] = n * 51;  // greys, black and white
+    std::uint8_t px[16][4];
+    for (auto& p : px) p[0] = std::uint8_t(rgb[0]), p[1] = std::uint8_t(rgb[1]), p[2] = std::uint8_t(rgb[2]), p[3] = 255;
+    std::uint8_t block[8];
+    encode_bc1_color(px, ColorMode::bc1, Quality::fast, block);
+    ASSERT_EQ(bc1_error(block, px), best_single_color_error(rgb)) << rgb[0] << "," << rgb[1] << "," << rgb[2];
+  }
+}
+
+// Two colours exactly on the 565 grid are lossless.
+TEST(Bc1Encode, TwoGridColoursAreLossless) {
+  std::mt19937 rng(7);
+  for (int n = 0; n < 200; ++n) {
+    int c[2][3];
+    for (auto& col : c) col[0] = expand(int(rng() % 32), 5), col[1] = expand(int(rng() % 64), 6), col[2] = expand(int(rng() % 32), 5);
+    std::uint8_t px[16][4];
+    for (int i = 0; i < 16; ++i) {
+      const int* col = c[(i * 7 + n) % 3 == 0 ? 1 : 0];
+      px[i][0] = std::uint8_t(col[0]), px[i][1] = std::uint8_t(col[1]), px[i][2] = std::uint8_t(col[2]), px[i][3] = 255;
+    }
+    for (Quality q : {Quality::fast, Quality::normal}) {
+      std::uint8_t block[8];
+      encode_bc1_color(px, ColorMode::bc1, q, block);
+      ASSERT_EQ(bc1_error(block, px), 0) << n << " " << to_string(q);
+    }
+  }
+}
+
+// BC1 with alpha: texels under alpha 128 decode transparent, the rest opaque;
+// BC3: an alpha that is an eight-value palette comes back exactly.
+TEST(Bc1Encode, PunchThroughAndBc3Alpha) {
+  Image img(8, 4, 4, PixelType::u8);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 8; ++x) {
+      img.set(x, y, 0, 0.8f);
+      img.set(x, y, 1, 0.2f * (x % 4));
+      img.set(x, y, 2, 0.3f);
+      img.row<std::uint8_t>(y)[4 * x + 3] = std::uint8_t(x < 4 ? (y % 2 ? 255 : 0) : 147 - 20 * ((x + y) % 8));
+    }
+  Texture t;
+  t.format = TexelFormat::bc1_rgba_unorm;
+  t.width = 8;
+  t.height = 4;
+  t.images.push_back(compress_image(img.view(), t.format, Quality::normal));
+  Image d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) EXPECT_EQ(d.row<std::uint8_t>(y)[4 * x + 3], y % 2 ? 255 : 0);
+  t.format = TexelFormat::bc3_unorm;
+  t.images[0] = compress_image(img.view(), t.format, Quality::normal);
+  d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 4; x < 8; ++x) EXPECT_EQ(d.row<std::uint8_t>(y)[4 * x + 3], img.row<std::uint8_t>(y)[4 * x + 3]);
+  t.format = TexelFormat::bc2_unorm;
+  t.images[0] = compress_image(img.view(), t.format, Quality::normal);
+  d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 8; ++x) {
+      EXPECT_LE(std::abs(d.row<std::uint8_t>(y)[4 * x + 3] - img.row<std::uint8_t>(y)[4 * x + 3]), 9);  // 4 bits: 17 steps
+    }
+}
+
+TEST(Bc1Encode, SameBytesForAnyThreadCount) {
+  const Image img = random_image(61, 45, 4, PixelType::u8, 12);
+  for (TexelFormat f : {TexelFormat::bc1_rgb_unorm, TexelFormat::bc3_srgb}) {
+    std::vector<std::uint8_t> one, two;
+    {
+      ThreadLimit t(1);
+      one = compress_image(img.view(), f, Quality::high);
+    }
+    {
+      ThreadLimit t(2);
+      two = compress_image(img.view(), f, Quality::high);
+    }
+    EXPECT_EQ(one, two) << format_info(f).name;
+  }
 }

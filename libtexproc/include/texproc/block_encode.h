@@ -1,6 +1,5 @@
-// texproc/block_encode.h: block compression. So far the RGTC pair: BC4
-// (one channel) and BC5 (two channels), UNORM and SNORM; BC1-BC3 and the
-// ETC family are in progress (see the open compression issues).
+// texproc/block_encode.h: block compression: BC1-BC5 so far (the ETC family
+// is in progress; see the open compression issues and docs/compression.md).
 #pragma once
 
 #include <cstdint>
@@ -29,13 +28,13 @@ void encode_bc4_block(const float values[16], bool snorm, Quality q, std::uint8_
 // Squared error of a BC4 block against the targets, decoded exactly.
 double bc4_block_error(const std::uint8_t block[8], const float values[16], bool snorm);
 
-// Compresses a whole image to `format` (bc4_unorm, bc4_snorm, bc5_unorm,
-// bc5_snorm). Channels: BC4 takes the first, BC5 the first two (for one-
-// channel input BC5's green is 0). Values are read as data: integers scaled
-// to [0, 1], SNORM formats map [0, 1] to [-1, 1] (so a normal map's stored
+// Compresses a whole image to a BC format. BC1-BC3 take the stored values
+// as RGBA8 (gray fills RGB, missing alpha is opaque; 16-bit and float are
+// rounded to 8 bits). BC4 takes the first channel, BC5 the first two (for
+// one-channel input BC5's green is 0), as data: integers scaled to [0, 1],
+// SNORM formats map [0, 1] to [-1, 1] (so a normal map's stored
 // x * 0.5 + 0.5 becomes x). Partial blocks replicate the edge texels. Bytes
-// are identical for any thread count. Throws Error{unsupported} for other
-// formats.
+// are identical for any thread count. Throws Error{unsupported} for ETC.
 std::vector<std::uint8_t> compress_image(const ImageView& image, TexelFormat format, Quality q);
 
 }  // namespace texproc

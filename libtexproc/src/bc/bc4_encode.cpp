@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "bc/bc1_encode.h"
 #include "texproc/block_decode.h"
 #include "texproc/block_encode.h"
 #include "texproc/error.h"
@@ -200,12 +201,68 @@ double bc4_block_error(const std::uint8_t block[8], const float values[16], bool
   return e;
 }
 
+namespace {
+// The stored value of channel c as 8 bits (gray fills RGB; no alpha is 255).
+std::uint8_t texel8(const ImageView& img, int x, int y, int c) {
+  const int C = img.channels;
+  int src = c;
+  if (C <= 2 && c < 3) src = 0;
+  if (c == 3) src = (C == 2 || C == 4) ? C - 1 : -1;
+  if (src < 0) return 255;
+  switch (img.type) {
+    case PixelType::u8: return img.row<const std::uint8_t>(y)[x * C + src];
+    case PixelType::u16: return std::uint8_t((img.row<const std::uint16_t>(y)[x * C + src] * 255 + 32767) / 65535);
+    case PixelType::f32:
+      return std::uint8_t(std::lround(std::clamp(img.row<const float>(y)[x * C + src], 0.0f, 1.0f) * 255.0f));
+  }
+  return 0;
+}
+
+std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat format, Quality q) {
+  using F = TexelFormat;
+  const bool bc1 = format == F::bc1_rgb_unorm || format == F::bc1_rgb_srgb;
+  const bool bc1a = format == F::bc1_rgba_unorm || format == F::bc1_rgba_srgb;
+  const bool bc2 = format == F::bc2_unorm || format == F::bc2_srgb;
+  const int block_bytes = bc1 || bc1a ? 8 : 16;
+  const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
+  std::vector<std::uint8_t> out(std::size_t(bw) * bh * block_bytes);
+  for_each_row_block(bh, 4, [&](int by0, int by1) {
+    std::uint8_t rgba[16][4];
+    for (int by = by0; by < by1; ++by)
+      for (int bx = 0; bx < bw; ++bx) {
+        for (int i = 0; i < 16; ++i) {
+          const int x = std::min(bx * 4 + i % 4, img.width - 1), y = std::min(by * 4 + i / 4, img.height - 1);
+          for (int c = 0; c < 4; ++c) rgba[i][c] = texel8(img, x, y, c);
+        }
+        std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx) * block_bytes;
+        if (bc1 || bc1a) {
+          encode_bc1_color(rgba, bc1a ? ColorMode::bc1_punch_through : ColorMode::bc1, q, dst);
+          continue;
+        }
+        if (bc2) {  // explicit 4-bit alpha, rounded
+          for (int i = 0; i < 16; i += 2) {
+            const int a0 = (rgba[i][3] * 15 + 127) / 255, a1 = (rgba[i + 1][3] * 15 + 127) / 255;
+            dst[i / 2] = std::uint8_t(a0 | a1 << 4);
+          }
+        } else {  // BC3: the alpha as a BC4 block
+          float alpha[16];
+          for (int i = 0; i < 16; ++i) alpha[i] = rgba[i][3];
+          encode_bc4_block(alpha, false, q, dst);
+        }
+        encode_bc1_color(rgba, ColorMode::four_only, q, dst + 8);
+      }
+  });
+  return out;
+}
+}  // namespace
+
 std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat format, Quality q) {
+  if (format >= TexelFormat::bc1_rgb_unorm && format <= TexelFormat::bc3_srgb) return compress_color(img, format, q);
   const bool bc5 = format == TexelFormat::bc5_unorm || format == TexelFormat::bc5_snorm;
   const bool snorm = format == TexelFormat::bc4_snorm || format == TexelFormat::bc5_snorm;
   if (!bc5 && format != TexelFormat::bc4_unorm && format != TexelFormat::bc4_snorm) {
     throw Error(ErrorCode::unsupported, std::string("encoding ") + format_info(format).name +
-                                            " is not implemented yet (so far: bc4_unorm, bc4_snorm, bc5_unorm, bc5_snorm)");
+                                            " is not implemented yet (so far: BC1-BC5)");
   }
   const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
   const int block_bytes = bc5 ? 16 : 8;

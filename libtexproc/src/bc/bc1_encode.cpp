@@ -1,0 +1,293 @@
+// BC1 colour blocks (and the colour half of BC2 and BC3): principal-axis
+// endpoints, least-squares refinement, both BC1 modes, and optimal
+// single-colour blocks. Errors are squared RGB differences in the stored
+// (8-bit, usually sRGB-encoded) values, decoded exactly as bc_decode.cpp
+// does (5/6-bit endpoints expanded by bit replication, interpolation rounded
+// to nearest).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+
+#include "bc/bc1_encode.h"
+
+namespace texproc {
+namespace {
+
+int expand5(int v) { return v << 3 | v >> 2; }
+int expand6(int v) { return v << 2 | v >> 4; }
+
+struct Endpoints {
+  int c[2][3];  // quantized: 5, 6, 5 bits
+};
+
+std::uint16_t pack(const int q[3]) { return std::uint16_t(q[0] << 11 | q[1] << 5 | q[2]); }
+
+void palette(const Endpoints& e, bool four, int pal[4][3]) {
+  for (int k = 0; k < 2; ++k) {
+    pal[k][0] = expand5(e.c[k][0]);
+    pal[k][1] = expand6(e.c[k][1]);
+    pal[k][2] = expand5(e.c[k][2]);
+  }
+  for (int ch = 0; ch < 3; ++ch) {
+    if (four) {
+      pal[2][ch] = (2 * pal[0][ch] + pal[1][ch] + 1) / 3;
+      pal[3][ch] = (pal[0][ch] + 2 * pal[1][ch] + 1) / 3;
+    } else {
+      pal[2][ch] = (pal[0][ch] + pal[1][ch] + 1) / 2;
+      pal[3][ch] = 0;
+    }
+  }
+}
+
+struct Result {
+  Endpoints e;
+  bool four = true;
+  std::uint8_t idx[16] = {};
+  long long error = 0;
+};
+
+// Best index per texel for endpoints in a mode; `transparent[i]` texels take
+// index 3 of the three-colour mode; `allow_black`: opaque texels may use it.
+void assign(const std::uint8_t rgb[16][3], const bool transparent[16], const Endpoints& e, bool four, bool allow_black,
+            Result& r) {
+  int pal[4][3];
+  palette(e, four, pal);
+  r.e = e;
+  r.four = four;
+  r.error = 0;
+  const int candidates = four ? 4 : (allow_black ? 4 : 3);
+  for (int i = 0; i < 16; ++i) {
+    if (transparent[i]) {
+      r.idx[i] = 3;
+      continue;
+    }
+    int best = 0;
+    long long be = -1;
+    for (int k = 0; k < candidates; ++k) {
+      long long d = 0;
+      for (int ch = 0; ch < 3; ++ch) {
+        const int t = rgb[i][ch] - pal[k][ch];
+        d += t * t;
+      }
+      if (be < 0 || d < be) be = d, best = k;
+    }
+    r.idx[i] = std::uint8_t(best);
+    r.error += be;
+  }
+}
+
+int quantize(float v, int bits) {
+  const int max = (1 << bits) - 1;
+  return std::clamp(int(std::lround(v / 255.0f * max)), 0, max);
+}
+
+Endpoints quantize(const float a[3], const float b[3]) {
+  Endpoints e;
+  for (int k = 0; k < 2; ++k) {
+    const float* src = k ? b : a;
+    e.c[k][0] = quantize(src[0], 5);
+    e.c[k][1] = quantize(src[1], 6);
+    e.c[k][2] = quantize(src[2], 5);
+  }
+  return e;
+}
+
+// Least-squares endpoints for the current indices (weights along c0 -> c1
+// for the palette positions). False if singular (all texels at one end).
+bool refit(const std::uint8_t rgb[16][3], const bool transparent[16], const Result& r, float a[3], float b[3]) {
+  static constexpr float kFour[4] = {0.0f, 1.0f, 1.0f / 3.0f, 2.0f / 3.0f};
+  static constexpr float kThree[3] = {0.0f, 1.0f, 0.5f};
+  double aa = 0, ab = 0, bb = 0, at[3] = {}, bt[3] = {};
+  for (int i = 0; i < 16; ++i) {
+    if (transparent[i] || (!r.four && r.idx[i] == 3)) continue;
+    const double w = r.four ? kFour[r.idx[i]] : kThree[r.idx[i]], u = 1.0 - w;
+    aa += u * u, ab += u * w, bb += w * w;
+    for (int ch = 0; ch < 3; ++ch) at[ch] += u * rgb[i][ch], bt[ch] += w * rgb[i][ch];
+  }
+  const double det = aa * bb - ab * ab;
+  if (std::abs(det) < 1e-6) return false;
+  for (int ch = 0; ch < 3; ++ch) {
+    a[ch] = float(std::clamp((at[ch] * bb - bt[ch] * ab) / det, 0.0, 255.0));
+    b[ch] = float(std::clamp((bt[ch] * aa - at[ch] * ab) / det, 0.0, 255.0));
+  }
+  return true;
+}
+
+// For every 8-bit value, the endpoint pair (5 or 6 bits) whose 2/3-1/3
+// interpolation (index 2 of the four-colour mode) comes closest; the
+// optimal encoding of a one-colour block (as stb_dxt's and rgbcx's tables).
+// And the same for the three-colour mode's average (a + b + 1) / 2. A
+// one-colour block uses one index in every channel, so it is one of these
+// two (indices 0, 1 and 3 are the same entries with equal or swapped ends).
+struct SingleColorTables {
+  // [mode][value] = endpoint pair; mode 0: four-colour index 2, 1: average.
+  std::array<std::array<std::array<std::uint8_t, 2>, 256>, 2> five{}, six{};
+  SingleColorTables() {
+    for (int mode = 0; mode < 2; ++mode)
+      for (int bits : {5, 6}) {
+        const int n = 1 << bits;
+        for (int v = 0; v < 256; ++v) {
+          int best = 1 << 30;
+          for (int a = 0; a < n; ++a)
+            for (int b = 0; b < n; ++b) {
+              const int ea = bits == 5 ? expand5(a) : expand6(a), eb = bits == 5 ? expand5(b) : expand6(b);
+              const int value = mode == 0 ? (2 * ea + eb + 1) / 3 : (ea + eb + 1) / 2;
+              const int d = std::abs(value - v);
+              if (d < best) {
+                best = d;
+                (bits == 5 ? five : six)[mode][v] = {std::uint8_t(a), std::uint8_t(b)};
+              }
+            }
+        }
+      }
+  }
+};
+
+const SingleColorTables& single() {
+  static const SingleColorTables t;
+  return t;
+}
+
+void write(const Result& r, std::uint8_t out[8]) {
+  Endpoints e = r.e;
+  std::uint8_t idx[16];
+  std::memcpy(idx, r.idx, 16);
+  std::uint16_t c0 = pack(e.c[0]), c1 = pack(e.c[1]);
+  if (r.four) {
+    if (c0 < c1) {
+      std::swap(c0, c1);
+      for (auto& i : idx) i = std::uint8_t(i < 2 ? 1 - i : 5 - i);  // 0<->1, 2<->3
+    } else if (c0 == c1) {
+      for (auto& i : idx) i = 0;  // a flat block: every index may be c0
+      // c0 == c1 reads as the three-colour mode; index 0 is c0 there too.
+    }
+  } else if (c0 > c1) {
+    std::swap(c0, c1);
+    for (auto& i : idx) i = std::uint8_t(i == 0 ? 1 : i == 1 ? 0 : i);  // 0<->1; 2 (average) and 3 stay
+  }
+  out[0] = std::uint8_t(c0), out[1] = std::uint8_t(c0 >> 8), out[2] = std::uint8_t(c1), out[3] = std::uint8_t(c1 >> 8);
+  std::uint32_t bits = 0;
+  for (int i = 0; i < 16; ++i) bits |= std::uint32_t(idx[i]) << (2 * i);
+  for (int b = 0; b < 4; ++b) out[4 + b] = std::uint8_t(bits >> (8 * b));
+}
+
+}  // namespace
+
+void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
+  std::uint8_t rgb[16][3];
+  bool transparent[16];
+  bool any_transparent = false;
+  for (int i = 0; i < 16; ++i) {
+    for (int ch = 0; ch < 3; ++ch) rgb[i][ch] = rgba[i][ch];
+    transparent[i] = mode == ColorMode::bc1_punch_through && rgba[i][3] < 128;
+    any_transparent |= transparent[i];
+  }
+  const bool three_allowed = mode != ColorMode::four_only;
+  Result best;
+  best.error = -1;
+  auto keep = [&](const Result& r) {
+    if (best.error < 0 || r.error < best.error) best = r;
+  };
+
+  // Opaque texels only decide the endpoints.
+  int n = 0;
+  float mean[3] = {};
+  for (int i = 0; i < 16; ++i) {
+    if (transparent[i]) continue;
+    ++n;
+    for (int ch = 0; ch < 3; ++ch) mean[ch] += rgb[i][ch];
+  }
+  if (n == 0) {  // fully transparent: any endpoints, every index 3
+    Result r;
+    r.four = false;
+    std::memset(&r.e, 0, sizeof r.e);
+    std::fill(r.idx, r.idx + 16, std::uint8_t(3));
+    write(r, out);
+    return;
+  }
+  for (float& m : mean) m /= float(n);
+
+  // One colour: the optimal single-colour pair through index 2.
+  bool flat = !any_transparent;
+  for (int i = 1; i < 16 && flat; ++i) flat = std::memcmp(rgb[i], rgb[0], 3) == 0;
+  if (flat) {
+    const SingleColorTables& s = single();
+    for (int mode = 0; mode < (three_allowed ? 2 : 1); ++mode) {
+      Endpoints e;
+      for (int k = 0; k < 2; ++k) {
+        e.c[k][0] = s.five[mode][rgb[0][0]][k];
+        e.c[k][1] = s.six[mode][rgb[0][1]][k];
+        e.c[k][2] = s.five[mode][rgb[0][2]][k];
+      }
+      Result r;
+      assign(rgb, transparent, e, mode == 0, false, r);
+      keep(r);
+    }
+  }
+
+  // Principal axis of the opaque colours (power iteration on the covariance).
+  double cov[6] = {};
+  for (int i = 0; i < 16; ++i) {
+    if (transparent[i]) continue;
+    const double d[3] = {rgb[i][0] - mean[0], rgb[i][1] - mean[1], rgb[i][2] - mean[2]};
+    cov[0] += d[0] * d[0], cov[1] += d[0] * d[1], cov[2] += d[0] * d[2];
+    cov[3] += d[1] * d[1], cov[4] += d[1] * d[2], cov[5] += d[2] * d[2];
+  }
+  double axis[3] = {0.57735, 0.57735, 0.57735};
+  for (int it = 0; it < 8; ++it) {
+    const double x = cov[0] * axis[0] + cov[1] * axis[1] + cov[2] * axis[2];
+    const double y = cov[1] * axis[0] + cov[3] * axis[1] + cov[4] * axis[2];
+    const double z = cov[2] * axis[0] + cov[4] * axis[1] + cov[5] * axis[2];
+    const double len = std::sqrt(x * x + y * y + z * z);
+    if (len < 1e-12) break;
+    axis[0] = x / len, axis[1] = y / len, axis[2] = z / len;
+  }
+  double lo = 1e30, hi = -1e30;
+  for (int i = 0; i < 16; ++i) {
+    if (transparent[i]) continue;
+    const double p = (rgb[i][0] - mean[0]) * axis[0] + (rgb[i][1] - mean[1]) * axis[1] + (rgb[i][2] - mean[2]) * axis[2];
+    lo = std::min(lo, p), hi = std::max(hi, p);
+  }
+  float a[3], b[3];
+  for (int ch = 0; ch < 3; ++ch) {
+    a[ch] = float(std::clamp(mean[ch] + hi * axis[ch], 0.0, 255.0));
+    b[ch] = float(std::clamp(mean[ch] + lo * axis[ch], 0.0, 255.0));
+  }
+  const int refinements = q == Quality::fast ? 0 : q == Quality::normal ? 2 : 4;
+  for (int four = 1; four >= 0; --four) {
+    if (!four && !three_allowed) continue;
+    if (four && any_transparent) continue;  // transparent texels need the three-colour mode
+    Result r;
+    assign(rgb, transparent, quantize(a, b), four, false, r);
+    for (int it = 0; it < refinements; ++it) {
+      float ra[3], rb[3];
+      if (!refit(rgb, transparent, r, ra, rb)) break;
+      Result n2;
+      assign(rgb, transparent, quantize(ra, rb), four, false, n2);
+      if (n2.error >= r.error) break;
+      r = n2;
+    }
+    if (q == Quality::high || q == Quality::max) {
+      // Nudge each quantized endpoint channel by one step while it helps.
+      bool improved = true;
+      for (int pass = 0; improved && pass < 4; ++pass) {
+        improved = false;
+        for (int k = 0; k < 2; ++k)
+          for (int ch = 0; ch < 3; ++ch)
+            for (int d : {-1, 1}) {
+              Endpoints e = r.e;
+              e.c[k][ch] += d;
+              if (e.c[k][ch] < 0 || e.c[k][ch] > (ch == 1 ? 63 : 31)) continue;
+              Result n2;
+              assign(rgb, transparent, e, four, false, n2);
+              if (n2.error < r.error) r = n2, improved = true;
+            }
+      }
+    }
+    keep(r);
+  }
+  write(best, out);
+}
+
+}  // namespace texproc
