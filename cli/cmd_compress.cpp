@@ -12,6 +12,7 @@
 #include "texproc/image_io.h"
 #include "texproc/mip.h"
 #include "texproc/runtime.h"
+#include "texproc/transparent_color.h"
 
 namespace texproc::cli {
 namespace {
@@ -20,6 +21,7 @@ struct CompressArgs {
   CommonOptions common;
   ChainArgs chain;
   std::string input, output, format, quality = "normal", wrap = "clamp", dds_header = "auto";
+  std::string transparent_color = "keep";
   bool mips = false, normal_map = false, linear = false, srgb = false;
 };
 
@@ -46,6 +48,7 @@ int run_compress(const CompressArgs& a) {
   if (a.linear && a.srgb) throw Error(ErrorCode::bad_arguments, "--srgb and --linear contradict each other");
   const Quality q = parse_quality(a.quality);
   const DdsHeader header = parse_dds_header(a.dds_header);
+  const TransparentColor transparent = parse_transparent_color(a.transparent_color);
   container_for_path(a.output);  // a container extension, or an error now
   check_output(a.output, {a.input}, a.common.force);
   Image img = read_image(a.input);
@@ -73,7 +76,13 @@ int run_compress(const CompressArgs& a) {
   t.height = std::uint32_t(levels[0].height());
   t.levels = std::uint32_t(levels.size());
   const auto t0 = std::chrono::steady_clock::now();
-  for (const Image& l : levels) t.images.push_back(compress_image(l.view(), format, q));
+  for (Image& l : levels) {
+    // The policy applies to each stored level (the chain itself was filtered
+    // premultiplied, so it has no fringes; the GPU's filtering of straight
+    // alpha would add them back from the colour under alpha 0).
+    if (format_info(format).channels == 4) apply_transparent_color(l, transparent);
+    t.images.push_back(compress_image(l.view(), format, q));
+  }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   write_texture(a.output, t, header);
   if (!a.common.quiet) {
@@ -103,6 +112,9 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option("--wrap", args->wrap, "Mip filter taps past the edges: clamp, repeat, mirror")->capture_default_str();
   add_chain_options(*cmd, args->chain);
   cmd->add_option("--dds-header", args->dds_header, "auto, dx9, dx10")->capture_default_str();
+  cmd->add_option("--transparent-color", args->transparent_color,
+                  "Colour under alpha 0 (bc1a, bc2, bc3): keep, bleed (from the visible texels), zero")
+      ->capture_default_str();
   add_common_options(*cmd, args->common);
   set_runner(*cmd, [args] { return run_compress(*args); });
 }

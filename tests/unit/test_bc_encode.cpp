@@ -244,3 +244,34 @@ TEST(Bc1Encode, SameBytesForAnyThreadCount) {
     EXPECT_EQ(one, two) << format_info(f).name;
   }
 }
+
+#include "texproc/transparent_color.h"
+
+// Colour under alpha 0: zero blackens it, bleed spreads the visible colour
+// ring by ring; alpha and visible texels never change.
+TEST(TransparentColor, ZeroAndBleed) {
+  Image img(6, 3, 4, PixelType::u8);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 6; ++x) {
+      std::uint8_t* p = img.row<std::uint8_t>(y) + 4 * x;
+      p[0] = x < 2 ? 200 : 13, p[1] = x < 2 ? 40 : 14, p[2] = x < 2 ? 10 : 15;
+      p[3] = x < 2 ? 255 : 0;
+    }
+  Image z = img;
+  apply_transparent_color(z, TransparentColor::zero);
+  EXPECT_EQ(z.row<std::uint8_t>(1)[4 * 4], 0);
+  EXPECT_EQ(z.row<std::uint8_t>(1)[0], 200);
+  Image b = img;
+  apply_transparent_color(b, TransparentColor::bleed);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 6; ++x) {
+      const std::uint8_t* p = b.row<std::uint8_t>(y) + 4 * x;
+      EXPECT_EQ(p[0], 200) << x;  // one visible colour: every ring takes it exactly
+      EXPECT_EQ(p[1], 40);
+      EXPECT_EQ(p[3], x < 2 ? 255 : 0);
+    }
+  Image k = img;
+  apply_transparent_color(k, TransparentColor::keep);
+  EXPECT_EQ(0, std::memcmp(k.data(), img.data(), img.byte_size()));
+  EXPECT_THROW(parse_transparent_color("black"), Error);
+}
