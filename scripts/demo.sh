@@ -14,4 +14,16 @@ $T mip samples/cutout_fence_512x256.png -o out/cutout_fence_512x256.tif --alpha-
 # Normal map: renormalized each level. Heightmap: data, no transfer function.
 $T mip samples/normal_stein_256.png -o out/normal_stein_256.tif --normal-map --wrap repeat --force
 $T mip samples/height_mount_250.png -o out/height_mount_250.exr --linear --force
+# Normal map from the height map (OpenGL green), with its renormalized chain, as BC5 too.
+$T normalmap samples/height_stein_256.png -o out/normal_from_height_256.png --height-channel r --height-scale 16 --force
+$T compress out/normal_from_height_256.png -o out/normal_from_height_256_bc5.ktx2 --format bc5 --mips --normal-map --wrap repeat --force
+# Albedo and cutout block-compressed with mips; the cutout's hidden colour bled.
+$T compress samples/albedo_desert_512.png -o out/albedo_desert_512_bc1.dds --format bc1 --mips --wrap repeat --force
+$T compress samples/cutout_fence_512x256.png -o out/cutout_fence_bc3.dds --format bc3 --mips --transparent-color bleed --force
+# Summed-area table and a box query; a cone map with its preview.
+$T sat samples/height_mount_250.png -o out/height_mount_250.sat --force
+$T sat query out/height_mount_250.sat 0 0 250 250 --json
+$T conemap samples/height_stein_256.png -o out/cone_stein_256.png --height-channel r --depth 0.08 \
+   --preview out/cone_stein_256_preview.png --force
+$T info out/albedo_desert_512_bc1.dds out/normal_from_height_256_bc5.ktx2
 echo "demo: results are in $(pwd)/out/"
