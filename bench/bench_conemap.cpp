@@ -76,7 +76,47 @@ void cones(benchmark::State& state, const std::string& kind, int n, int threads,
   }
 }
 
+// --fast: time, and the mean of fast / exact ratio over the texels (the
+// exact map computed once per field, outside the timing).
+void fast_cones(benchmark::State& state, const std::string& kind, int n, int threads, int reach) {
+  const std::vector<float>& f = field(kind, n);
+  ThreadLimit limit(threads);
+  ConeMapOptions o;
+  o.fast_reach = reach;
+  std::vector<float> r;
+  for (auto _ : state) {
+    r = cone_ratios(f, n, n, o);
+    benchmark::DoNotOptimize(r.data());
+  }
+  static std::map<std::pair<std::string, int>, std::vector<float>> exact_cache;
+  auto& exact = exact_cache[{kind, n}];
+  if (exact.empty()) {
+    ThreadLimit all(0);
+    exact = cone_ratios(f, n, n, ConeMapOptions{});
+  }
+  double sum = 0, worst = 1;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    const double q = exact[i] > 0 ? double(r[i]) / exact[i] : 1.0;
+    if (q > 1.0 + 1e-6) state.SkipWithError("fast cone wider than exact");
+    sum += q;
+    worst = std::min(worst, q);
+  }
+  state.counters["mean_fast_over_exact"] = sum / double(r.size());
+  state.counters["min_fast_over_exact"] = worst;
+}
+
 void register_all() {
+  for (const char* kind : {"terrain", "hemisphere", "fractal", "spikes"}) {
+    for (int n : {1024, 4096}) {
+      for (int reach : {1, 2, 4}) {
+        if (n == 4096 && reach != 2) continue;
+        benchmark::RegisterBenchmark((std::string("fast/") + kind + "/" + std::to_string(n) + "/reach:" +
+                                      std::to_string(reach) + "/threads:2").c_str(),
+                                     [kind, n, reach](benchmark::State& s) { fast_cones(s, kind, n, 2, reach); })
+            ->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+      }
+    }
+  }
   for (int n : {256, 512, 1024, 2048, 4096}) {
     for (int t : {1, 2}) {
       if (n == 4096 && t == 1) continue;

@@ -26,6 +26,8 @@ struct ConeArgs {
   std::string type;
   std::string mode = "conservative";
   bool brute_force = false;
+  bool fast = false;
+  int fast_reach = 2;
   int preview_size = 256;
   float view_angle = 60.0f;
 };
@@ -36,6 +38,8 @@ int run_conemap(const ConeArgs& a) {
   o.depth = a.depth;
   o.max_ratio = a.max_ratio;
   o.wrap = parse_wrap_mode(a.wrap);
+  if (a.fast && a.brute_force) throw Error(ErrorCode::bad_arguments, "--fast and --brute-force exclude each other");
+  o.fast_reach = a.fast ? a.fast_reach : 0;
   const HeightChannel channel = parse_height_channel(a.height_channel);
   if (a.mode != "conservative") {
     throw Error(ErrorCode::unsupported, "--mode " + a.mode + ": only conservative cones are implemented so far (valid: conservative)");
@@ -65,7 +69,7 @@ int run_conemap(const ConeArgs& a) {
   }
   if (!a.common.quiet) {
     std::cout << a.input << " -> " << a.output << ": " << img.width() << "x" << img.height() << " conservative cones ("
-              << (a.brute_force ? "brute force" : "exact, max-mip branch and bound") << ") in " << seconds << " s"
+              << (a.brute_force ? "brute force" : a.fast ? "fast, never wider than exact" : "exact, max-mip branch and bound") << ") in " << seconds << " s"
               << (a.preview.empty() ? "" : ", preview " + a.preview) << "\n";
   }
   return 0;
@@ -89,6 +93,11 @@ void add_conemap_command(CLI::App& app) {
   cmd->add_option("--wrap", args->wrap, "repeat (tiling reliefs see across edges) or clamp")->capture_default_str();
   cmd->add_option("--mode", args->mode, "conservative (relaxed cones are not implemented yet)")->capture_default_str();
   cmd->add_option("--type", args->type, "Output element type: u8, u16, f16, f32 (default: u8 for 8-bit input, else u16)");
+  cmd->add_flag("--fast", args->fast,
+                "Faster, never wider cones: pyramid blocks >= --fast-reach block sizes away count as one obstacle");
+  cmd->add_option("--fast-reach", args->fast_reach, "With --fast: distance, in block sizes, at which blocks stay closed (>= 1)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
   cmd->add_flag("--brute-force", args->brute_force, "Use the O(N^2)-per-texel definition (slow; for checking)");
   cmd->add_option("--preview", args->preview,
                   "Also render a preview PNG: linear search vs cone stepping, with lookups-per-pixel heat maps");

@@ -250,6 +250,14 @@ TEST(Cli, ConemapWritesMapAndPreview) {
   r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/b.png --brute-force -q");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(slurp(dir + "/b.png") == slurp(dir + "/c.png"));
+  // --fast: never a wider cone than the exact map, texel for texel.
+  r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/f.png --fast --fast-reach 1 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image f = read_image(dir + "/f.png");
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 24; ++x) EXPECT_LE(f.get(x, y, 1), c.get(x, y, 1)) << x << "," << y;
+  r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/x.png --fast --brute-force");
+  EXPECT_EQ(r.exit_code, 1);
   r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/x.png --mode relaxed");
   EXPECT_EQ(r.exit_code, 5);
   r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/x.png --depth 0");

@@ -56,6 +56,69 @@ TEST(ConeMap, FastEqualsBruteForceExactly) {
   }
 }
 
+// --fast: every cone at most the exact one (texel for texel, against the
+// brute force), for every reach, field kind and wrap; the same bytes for any
+// thread count.
+TEST(ConeMap, FastModeNeverWiderThanExact) {
+  for (auto [w, h] : {std::pair{64, 64}, {24, 40}}) {
+    for (const char* kind : {"random", "steps", "spikes", "peak", "flat", "quantized"}) {
+      for (WrapMode wrap : {WrapMode::repeat, WrapMode::clamp}) {
+        ConeMapOptions o;
+        o.wrap = wrap;
+        const std::vector<float> f = field(w, h, kind, unsigned(3 * w + h));
+        const std::vector<float> exact = cone_ratios_brute_force(f, w, h, o);
+        for (int reach : {1, 2, 4}) {
+          o.fast_reach = reach;
+          const std::vector<float> fast = cone_ratios(f, w, h, o);
+          for (std::size_t i = 0; i < f.size(); ++i) {
+            ASSERT_LE(fast[i], exact[i]) << kind << " reach " << reach << " texel " << i;
+            ASSERT_GE(fast[i], 0.0f);
+          }
+        }
+      }
+    }
+  }
+  ConeMapOptions o;
+  o.fast_reach = 2;
+  const std::vector<float> f = field(97, 61, "spikes", 4);
+  std::vector<float> one, two;
+  {
+    ThreadLimit t(1);
+    one = cone_ratios(f, 97, 61, o);
+  }
+  {
+    ThreadLimit t(2);
+    two = cone_ratios(f, 97, 61, o);
+  }
+  EXPECT_EQ(one, two);
+}
+
+// --fast keeps most of the cone on a smooth relief (the mean fast / exact
+// ratio over texels; the benchmark reports it on corpus and hard cases).
+TEST(ConeMap, FastModeKeepsMostOfTheCone) {
+  const int n = 128;
+  std::vector<float> f(std::size_t(n) * n);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const double a = 2 * M_PI * x / n, b = 2 * M_PI * y / n;
+      f[std::size_t(y) * n + x] = float(0.5 + 0.25 * std::sin(3 * a) * std::cos(2 * b) + 0.2 * std::sin(a + 5 * b));
+    }
+  ConeMapOptions o;
+  const std::vector<float> exact = cone_ratios(f, n, n, o);
+  double previous = 0;
+  for (int reach : {1, 2, 4}) {
+    o.fast_reach = reach;
+    const std::vector<float> fast = cone_ratios(f, n, n, o);
+    double sum = 0;
+    for (std::size_t i = 0; i < f.size(); ++i) sum += exact[i] > 0 ? fast[i] / exact[i] : 1.0;
+    const double mean = sum / double(f.size());
+    EXPECT_GE(mean, reach == 1 ? 0.6 : 0.75) << "reach " << reach;
+    EXPECT_GT(mean, previous) << "a longer reach must give wider cones";
+    EXPECT_LT(mean, 1.0) << "reach " << reach << " should be approximate here";
+    previous = mean;
+  }
+}
+
 // What the cone means: no texel centre higher than p lies strictly inside
 // p's cone, and the cone touches one unless it is capped.
 TEST(ConeMap, ConesAreConservativeAndTight) {

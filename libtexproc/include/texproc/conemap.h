@@ -19,6 +19,12 @@ struct ConeMapOptions {
   float depth = 1.0f;       // relief depth in texture widths (> 0)
   float max_ratio = 1.0f;   // cap on the ratio (> 0); the map stores sqrt(ratio / max_ratio)
   WrapMode wrap = WrapMode::repeat;  // repeat: tiling reliefs see across the edges; clamp: they do not
+  // Fast conservative cones: a pyramid block at least `fast_reach` block
+  // sizes away (Chebyshev, in texels) is not opened; its highest texel is
+  // taken at the block's nearest point instead. Every such candidate is <= the
+  // ratio of every texel in the block, so the cone is never wider than the
+  // exact one, only narrower by the block's extent. 0 = exact.
+  int fast_reach = 0;
 };
 
 // Exact conservative cone ratios of a width x height field of heights in

@@ -95,6 +95,8 @@ std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, 
   const Pyramid pyr = build_pyramid(heights, W, H);
   const int top = int(pyr.max.size()) - 1;
   const double cap2 = double(o.max_ratio) * o.max_ratio;
+  const int reach = o.fast_reach;
+  if (reach < 0) throw Error(ErrorCode::bad_arguments, "fast_reach must be >= 0");
   std::vector<float> out(heights.size());
 
   for_each_row_block(H, 4, [&](int y0, int y1) {
@@ -156,6 +158,10 @@ std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, 
               const int dy = axis_distance(py, cy << s, std::min((cy + 1) << s, H) - 1, H, repeat);
               const double bound = m.ratio2(dx, dy, double(M) - hp);
               if (bound > best * kPruneSlack) continue;
+              if (reach > 0 && std::max(dx, dy) >= (reach << s)) {  // --fast: the block as one obstacle
+                best = bound < best ? bound : best;
+                continue;
+              }
               kids[count++] = {s, cx, cy, bound / kPruneSlack};
             }
           // At most four: insertion sort, largest bound first.
