@@ -192,6 +192,10 @@ TEST(ConeMap, ConeSteppingFindsTheFirstHitOnCorpusHeightmaps) {
       ConeMapOptions o;
       o.depth = depth;
       const std::vector<float> r = cone_ratios(h, W, H, o);
+      ConeMapOptions fast_o = o;
+      fast_o.fast_reach = 1;
+      const std::vector<float> fast = cone_ratios(h, W, H, fast_o);
+      int fast_steps = 0;
       std::mt19937 rng(17);
       std::uniform_real_distribution<float> u(0.0f, 1.0f);
       int rays = 0, cone_steps = 0, linear_steps = 0;
@@ -215,11 +219,18 @@ TEST(ConeMap, ConeSteppingFindsTheFirstHitOnCorpusHeightmaps) {
         };
         ASSERT_LE(texel_gap(a.u, b.u, W), 1) << file << " ray " << i;
         ASSERT_LE(texel_gap(a.v, b.v, H), 1) << file << " ray " << i;
+        // The --fast map is as safe (its cones are never wider).
+        const ReliefHit c = trace_cones(h, fast, W, H, o, u0, v0, du, dv, 16);
+        ASSERT_TRUE(c.hit);
+        ASSERT_LE(texel_gap(a.u, c.u, W), 1) << file << " ray " << i << " (fast)";
+        ASSERT_LE(texel_gap(a.v, c.v, H), 1) << file << " ray " << i << " (fast)";
+        fast_steps += c.steps;
         ++rays;
         cone_steps += b.steps;
         linear_steps += a.steps;
       }
       EXPECT_GT(rays, 1000);
+      EXPECT_GE(fast_steps, cone_steps) << "narrower cones should take more steps in total";
       (void)linear_steps;  // the grid traversal visits every crossed texel: no cost reference
     }
   }
