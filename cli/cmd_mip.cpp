@@ -5,6 +5,7 @@
 
 #include "commands.h"
 #include "common.h"
+#include "texproc/color.h"
 #include "texproc/container.h"
 #include "texproc/error.h"
 #include "texproc/image_io.h"
@@ -70,6 +71,12 @@ int run_mip(const MipArgs& a) {
   MipChain chain = generate_mips(std::move(image), o);
   const auto t2 = Clock::now();
   w.color_space = chain.color_space == "srgb" ? "srgb" : chain.color_space == "linear" ? "linear" : "";
+  // An OpenColorIO config the color spaces came from is a dependency too.
+  for (const std::string& name : {a.color_space, a.out_color_space}) {
+    if (name.empty() || name == "auto" || a.linear) continue;
+    const std::string config = ColorSpace::from_name(name).config_path();
+    if (!config.empty()) record_input(config);
+  }
   if (container) {
     // Uncompressed GPU formats: r8/rg8/rgba8 (sRGB when the chain is), 16-bit, half or float.
     write_texture(a.output, texture_from_levels(chain.levels, chain.color_space == "srgb", w.half), dds_header);

@@ -38,7 +38,9 @@ int run_selected(CLI::App& app) {
     CommandRunner* run = runner_of(*sub);
     if (!run) break;
     try {
-      return (*run)();
+      const int rc = (*run)();
+      if (rc == 0) write_depfile_if_requested();
+      return rc;
     } catch (const texproc::Error& e) {
       std::cerr << "texproc " << cmd << ": error: " << e.what() << "\n";
       if (e.code() == ErrorCode::bad_arguments) std::cerr << "See 'texproc " << cmd << " --help'.\n";

@@ -1,13 +1,26 @@
 #include "common.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 
 #include "texproc/error.h"
+#include "texproc/file_io.h"
 
 namespace fs = std::filesystem;
 
 namespace texproc::cli {
+
+namespace {
+struct DepfileState {
+  std::string path;
+  std::vector<std::string> outputs, inputs;
+};
+DepfileState& depfile_state() {
+  static DepfileState d;
+  return d;
+}
+}  // namespace
 
 void add_common_options(CLI::App& cmd, CommonOptions& o) {
   cmd.add_option("-j,--threads", o.threads, "Worker threads (default 0: all cores). Output is identical for any value.")
@@ -16,6 +29,63 @@ void add_common_options(CLI::App& cmd, CommonOptions& o) {
   cmd.add_flag("-f,--force", o.force, "Overwrite outputs that already exist")->group("Common");
   cmd.add_flag("-q,--quiet", o.quiet, "Print nothing but errors")->group("Common");
   cmd.add_flag("-v,--verbose", o.verbose, "Print details of the work")->group("Common");
+  cmd.add_option("--depfile", depfile_state().path,
+                 "After success, write a Make-style dependency file (outputs: inputs) for Make and Ninja")
+      ->group("Common");
+}
+
+void record_input(const std::string& path) {
+  auto& v = depfile_state().inputs;
+  if (std::find(v.begin(), v.end(), path) == v.end()) v.push_back(path);
+}
+
+namespace {
+std::string escape_make(const std::string& path) {
+  std::string out;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const char c = path[i];
+    if (c == '$') {
+      out += "$$";
+    } else if (c == ' ' || c == '#') {
+      // gcc's rule: backslashes right before a space or '#' are doubled too.
+      for (std::size_t j = i; j > 0 && path[j - 1] == '\\'; --j) out += '\\';
+      out += '\\';
+      out += c;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+}  // namespace
+
+std::string make_rule(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs) {
+  std::string rule;
+  for (std::size_t i = 0; i < outputs.size(); ++i) rule += (i ? " " : "") + escape_make(outputs[i]);
+  rule += ":";
+  for (const auto& in : inputs) rule += " \\\n  " + escape_make(in);
+  rule += "\n";
+  return rule;
+}
+
+void write_depfile_if_requested() {
+  const DepfileState& d = depfile_state();
+  if (d.path.empty()) return;
+  if (d.outputs.empty()) throw Error(ErrorCode::bad_arguments, d.path + ": --depfile: this command writes no files");
+  std::error_code ec;
+  for (const auto& f : d.inputs) {
+    if (fs::exists(d.path, ec) && fs::equivalent(d.path, f, ec)) {
+      throw Error(ErrorCode::bad_arguments, d.path + ": --depfile would overwrite an input");
+    }
+  }
+  for (const auto& f : d.outputs) {
+    if (fs::path(f).lexically_normal() == fs::path(d.path).lexically_normal()) {
+      throw Error(ErrorCode::bad_arguments, d.path + ": --depfile names an output of the command");
+    }
+  }
+  const fs::path parent = fs::path(d.path).parent_path();
+  if (!parent.empty()) fs::create_directories(parent, ec);
+  write_file_atomic(d.path, make_rule(d.outputs, d.inputs));
 }
 
 namespace {
@@ -32,6 +102,9 @@ CommandRunner* runner_of(CLI::App& cmd) {
 }
 
 void check_output(const std::string& output, const std::vector<std::string>& inputs, bool force) {
+  DepfileState& d = depfile_state();
+  if (std::find(d.outputs.begin(), d.outputs.end(), output) == d.outputs.end()) d.outputs.push_back(output);
+  for (const auto& in : inputs) record_input(in);
   std::error_code ec;
   for (const auto& in : inputs) {
     if (fs::exists(output, ec) && fs::equivalent(output, in, ec)) {

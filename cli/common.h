@@ -23,6 +23,18 @@ struct CommonOptions {
 };
 void add_common_options(CLI::App& cmd, CommonOptions& o);
 
+// Build-system dependencies of this run. check_output() records each output
+// and its inputs; commands record other files they read (an OpenColorIO
+// config) here. After a successful run, `--depfile FILE` (every command)
+// writes them as a Make rule, "outputs: inputs", as gcc -MD does; Make and
+// Ninja (depfile = ..., deps = gcc) read it.
+void record_input(const std::string& path);
+// Writes the depfile if --depfile was given (atomically). Throws Error.
+void write_depfile_if_requested();
+// The rule text for `outputs` and `inputs`: spaces, '#' and '\' escaped as
+// Make and Ninja expect, '$' doubled. Exposed for tests.
+std::string make_rule(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs);
+
 // A command registers itself with add_<name>_command and stores here what
 // main() runs after parsing.
 using CommandRunner = std::function<int()>;

@@ -1,6 +1,7 @@
 // The CLI through its real output: exit codes, messages, files.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 
@@ -323,5 +324,90 @@ TEST(Cli, CompressBc4Bc5IntoContainers) {
   EXPECT_EQ(r.exit_code, 1);
   r = run_texproc("compress " + dir + "/h.png -o " + dir + "/x.png --format bc4");
   EXPECT_EQ(r.exit_code, 5);
+  fs::remove_all(dir);
+}
+
+namespace {
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+void write_text(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+// A small OpenColorIO config with one extra space, to show that the config a
+// run read is listed as a dependency.
+const char* kGammaConfig = R"(ocio_profile_version: 2
+roles:
+  default: lin
+  scene_linear: lin
+file_rules:
+  - !<Rule> {name: Default, colorspace: default}
+displays:
+  sRGB:
+    - !<View> {name: Raw, colorspace: lin}
+colorspaces:
+  - !<ColorSpace>
+    name: lin
+  - !<ColorSpace>
+    name: gamma22
+    to_scene_reference: !<ExponentTransform> {value: 2.2}
+)";
+}  // namespace
+
+// --depfile: a Make rule "outputs: inputs", with spaces and '#' escaped as
+// gcc -MD escapes them, the OpenColorIO config included; nothing on failure.
+TEST(Cli, DepfileListsOutputsAndInputs) {
+  const std::string dir = temp_dir("cli_depfile");
+  fs::create_directories(dir + "/in put");
+  write_image(dir + "/in put/a#1.png", random_image(8, 8, 3, PixelType::u8, 5).view());
+  write_text(dir + "/cfg.ocio", kGammaConfig);
+  RunResult r = run_texproc("mip '" + dir + "/in put/a#1.png' -o " + dir + "/out/a.png --levels 2 --depfile " + dir +
+                            "/deps/a.d -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_text(dir + "/deps/a.d"), dir + "/out/a_mip0.png " + dir + "/out/a_mip1.png: \\\n  " + dir +
+                                              "/in\\ put/a\\#1.png\n");
+  // The config is a dependency when a space came from it.
+  const std::string env = "OCIO=" + dir + "/cfg.ocio ";
+  const int status = std::system((env + TEXPROC_CLI_PATH + " mip '" + dir + "/in put/a#1.png' -o " + dir +
+                                  "/out/g.tif --colorspace gamma22 --depfile " + dir + "/g.d -q")
+                                     .c_str());
+  ASSERT_EQ(status, 0);
+  EXPECT_EQ(read_text(dir + "/g.d"),
+            dir + "/out/g.tif: \\\n  " + dir + "/in\\ put/a\\#1.png \\\n  " + dir + "/cfg.ocio\n");
+  // A failed run writes no depfile.
+  r = run_texproc("mip " + dir + "/missing.png -o " + dir + "/out/m.png --depfile " + dir + "/m.d");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_FALSE(fs::exists(dir + "/m.d"));
+  fs::remove_all(dir);
+}
+
+// Make reads the depfile: nothing to do after a build; touching the input
+// or the OpenColorIO config (which the Makefile does not name) rebuilds.
+TEST(Cli, DepfileDrivesMake) {
+  if (std::system("command -v make >/dev/null 2>&1") != 0) GTEST_SKIP() << "no make";
+  const std::string dir = temp_dir("cli_depfile_make");
+  write_image(dir + "/h.png", random_image(8, 8, 3, PixelType::u8, 5).view());
+  write_text(dir + "/cfg.ocio", kGammaConfig);
+  write_text(dir + "/Makefile", std::string("out.tif:\n\tOCIO=cfg.ocio ") + TEXPROC_CLI_PATH +
+                                    " mip h.png -o out.tif --colorspace gamma22 -f -q --depfile out.d\n"
+                                    "-include out.d\n");
+  auto make_q = [&] { return WEXITSTATUS(std::system(("make -s -q -C " + dir + " out.tif").c_str())); };
+  // Times in the past, so nothing is in the future for Make: everything a
+  // minute old, then the changed file half a minute old.
+  auto later = [&](const std::string& f) {
+    const auto now = fs::file_time_type::clock::now();
+    for (const char* g : {"h.png", "cfg.ocio", "out.tif", "out.d", "Makefile"})
+      fs::last_write_time(dir + "/" + g, now - std::chrono::seconds(60));
+    fs::last_write_time(dir + "/" + f, now - std::chrono::seconds(30));
+  };
+  ASSERT_EQ(std::system(("make -s -C " + dir + " out.tif").c_str()), 0);
+  ASSERT_TRUE(fs::exists(dir + "/out.d"));
+  EXPECT_EQ(make_q(), 0) << "up to date after a build";
+  later("h.png");
+  EXPECT_EQ(make_q(), 1) << "the input changed";
+  ASSERT_EQ(std::system(("make -s -C " + dir + " out.tif").c_str()), 0);
+  EXPECT_EQ(make_q(), 0);
+  later("cfg.ocio");
+  EXPECT_EQ(make_q(), 1) << "the OCIO config changed";
   fs::remove_all(dir);
 }
