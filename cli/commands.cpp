@@ -5,6 +5,7 @@
 #include "common.h"
 #include "exit_codes.h"
 #include "texproc/error.h"
+#include "texproc/file_io.h"
 
 namespace texproc::cli {
 
@@ -38,6 +39,7 @@ int run_selected(CLI::App& app) {
     CommandRunner* run = runner_of(*sub);
     if (!run) break;
     try {
+      if (write_if_changed()) set_commit_policy(CommitPolicy::keep_identical);
       const int rc = (*run)();
       if (rc == 0) write_depfile_if_requested();
       return rc;

@@ -14,6 +14,7 @@ namespace texproc::cli {
 namespace {
 struct DepfileState {
   std::string path;
+  bool write_if_changed = false;
   std::vector<std::string> outputs, inputs;
 };
 DepfileState& depfile_state() {
@@ -32,7 +33,12 @@ void add_common_options(CLI::App& cmd, CommonOptions& o) {
   cmd.add_option("--depfile", depfile_state().path,
                  "After success, write a Make-style dependency file (outputs: inputs) for Make and Ninja")
       ->group("Common");
+  cmd.add_flag("--write-if-changed", depfile_state().write_if_changed,
+               "Overwrite outputs, but leave an output untouched (time stamp too) when its bytes would not change")
+      ->group("Common");
 }
+
+bool write_if_changed() { return depfile_state().write_if_changed; }
 
 void record_input(const std::string& path) {
   auto& v = depfile_state().inputs;
@@ -113,7 +119,9 @@ void check_output(const std::string& output, const std::vector<std::string>& inp
   }
   if (fs::exists(output, ec)) {
     if (fs::is_directory(output, ec)) throw Error(ErrorCode::bad_arguments, output + ": output is a directory");
-    if (!force) throw Error(ErrorCode::bad_arguments, output + ": output exists (use --force to overwrite it)");
+    if (!force && !d.write_if_changed) {
+      throw Error(ErrorCode::bad_arguments, output + ": output exists (use --force or --write-if-changed to replace it)");
+    }
   }
   const fs::path parent = fs::path(output).parent_path();
   if (!parent.empty() && !fs::exists(parent, ec)) {

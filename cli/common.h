@@ -29,6 +29,9 @@ void add_common_options(CLI::App& cmd, CommonOptions& o);
 // writes them as a Make rule, "outputs: inputs", as gcc -MD does; Make and
 // Ninja (depfile = ..., deps = gcc) read it.
 void record_input(const std::string& path);
+// --write-if-changed was given: existing outputs may be replaced, and are
+// kept (bytes and time stamp) when the new bytes are the same.
+bool write_if_changed();
 // Writes the depfile if --depfile was given (atomically). Throws Error.
 void write_depfile_if_requested();
 // The rule text for `outputs` and `inputs`: spaces, '#' and '\' escaped as

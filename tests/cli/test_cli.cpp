@@ -411,3 +411,32 @@ TEST(Cli, DepfileDrivesMake) {
   EXPECT_EQ(make_q(), 1) << "the OCIO config changed";
   fs::remove_all(dir);
 }
+
+// --write-if-changed: replaces an output when its bytes change, leaves it
+// (and its time stamp) alone when they do not; for Ninja's restat.
+TEST(Cli, WriteIfChangedKeepsIdenticalOutputs) {
+  const std::string dir = temp_dir("cli_write_if_changed");
+  write_image(dir + "/in.png", random_image(16, 16, 3, PixelType::u8, 7).view());
+  const std::string base = "mip " + dir + "/in.png -o " + dir + "/out.dds -q";
+  ASSERT_EQ(run_texproc(base).exit_code, 0);
+  const auto old_time = fs::file_time_type::clock::now() - std::chrono::seconds(100);
+  fs::last_write_time(dir + "/out.dds", old_time);
+  const std::string first = slurp(dir + "/out.dds");
+  // Same options: same bytes, the file is not touched.
+  RunResult r = run_texproc(base + " --write-if-changed");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(fs::last_write_time(dir + "/out.dds"), old_time);
+  // Other options: other bytes, the file is replaced.
+  r = run_texproc(base + " --write-if-changed --filter box");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(fs::last_write_time(dir + "/out.dds"), old_time);
+  EXPECT_FALSE(slurp(dir + "/out.dds") == first);
+  // No temporary files are left behind either way.
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(dir)) files += e.is_regular_file();
+  EXPECT_EQ(files, 2);
+  // Without it (or --force) an existing output is still an error.
+  r = run_texproc(base);
+  EXPECT_EQ(r.exit_code, 1);
+  fs::remove_all(dir);
+}

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <OpenImageIO/imageio.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -199,5 +200,32 @@ TEST(ImageIo, FailedWriteLeavesNothingBehind) {
   const Image img = random_image(4, 4, 3, PixelType::u8, 1);
   EXPECT_THROW(write_image(dir + "/no/such/folder/x.png", img.view()), Error);
   EXPECT_FALSE(fs::exists(dir + "/no"));
+  fs::remove_all(dir);
+}
+
+// CommitPolicy::keep_identical: the same bytes leave the file (and its time
+// stamp) alone; other bytes, or another size, replace it; no temporaries stay.
+TEST(ImageIo, KeepIdenticalCommitPolicy) {
+  const std::string dir = temp_dir("keep_identical");
+  const std::string path = dir + "/f.bin";
+  write_file_atomic(path, "abcdef");
+  const auto old_time = fs::file_time_type::clock::now() - std::chrono::seconds(100);
+  fs::last_write_time(path, old_time);
+  set_commit_policy(CommitPolicy::keep_identical);
+  write_file_atomic(path, "abcdef");
+  EXPECT_EQ(fs::last_write_time(path), old_time);
+  write_file_atomic(path, "abcdeg");  // same size, other bytes
+  EXPECT_NE(fs::last_write_time(path), old_time);
+  fs::last_write_time(path, old_time);
+  write_file_atomic(path, "abcdegh");  // other size
+  EXPECT_NE(fs::last_write_time(path), old_time);
+  set_commit_policy(CommitPolicy::replace);
+  std::ifstream in(path);
+  std::string s;
+  in >> s;
+  EXPECT_EQ(s, "abcdegh");
+  std::size_t files = 0;
+  for (auto& e : fs::directory_iterator(dir)) files += e.is_regular_file();
+  EXPECT_EQ(files, 1u);
   fs::remove_all(dir);
 }
