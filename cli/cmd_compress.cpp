@@ -51,6 +51,7 @@ int run_compress(const CompressArgs& a) {
   const TransparentColor transparent = parse_transparent_color(a.transparent_color);
   container_for_path(a.output);  // a container extension, or an error now
   check_output(a.output, {a.input}, a.common.force);
+  if (stop_for_dry_run()) return 0;
   Image img = read_image(a.input);
   // Colour is sRGB unless --linear, a normal map, or float input.
   const bool srgb = a.srgb || (!a.linear && !a.normal_map && img.type() != PixelType::f32);

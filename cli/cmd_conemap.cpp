@@ -54,6 +54,7 @@ int run_conemap(const ConeArgs& a) {
   std::vector<std::string> inputs{a.input};
   check_output(a.output, inputs, a.common.force);
   if (!a.preview.empty()) check_output(a.preview, inputs, a.common.force);
+  if (stop_for_dry_run()) return 0;
 
   ImageFileInfo info;
   const Image img = read_image(a.input, &info);

@@ -56,6 +56,7 @@ int run_decompress(const DecompressArgs& a) {
     outputs = {a.output};
   }
   for (const auto& o : outputs) check_output(o, {a.input}, a.common.force);
+  if (stop_for_dry_run()) return 0;
   w.color_space = format_info(t.format).srgb ? "srgb" : "linear";
   for (std::uint32_t l = first; l < last; ++l) {
     const Image img = decode_texture_image(t, l, std::uint32_t(a.layer), std::uint32_t(a.face), *type);

@@ -63,6 +63,7 @@ int run_mip(const MipArgs& a) {
   const int n = mip_level_count(info.width, info.height, o.max_levels, o.min_size);
   const std::vector<std::string> outputs = container ? std::vector{a.output} : level_outputs(a.output, n);
   for (const auto& out : outputs) check_output(out, {a.input}, a.common.force);
+  if (stop_for_dry_run()) return 0;
 
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();

@@ -66,6 +66,7 @@ int run_normalmap(const NormalMapArgs& a) {
   const std::vector<std::string> outputs =
       a.mips && !container ? level_outputs(a.output, levels) : std::vector{a.output};
   for (const auto& out : outputs) check_output(out, {a.input}, a.common.force);
+  if (stop_for_dry_run()) return 0;
 
   const Image heights = read_image(a.input, &info);
   std::vector<Image> chain;

@@ -47,6 +47,7 @@ int run_build(const SatArgs& a) {
   std::optional<SatPrecision> requested;
   if (!a.precision.empty()) requested = parse_sat_precision(a.precision);  // options first, then files
   check_output(a.output, {a.input}, a.common.force);
+  if (stop_for_dry_run()) return 0;
   ImageFileInfo info;
   const Image img = read_image(a.input, &info);
   const SatPrecision p = requested ? *requested : default_sat_precision(img.type(), img.width(), img.height());
@@ -116,6 +117,7 @@ int run_blur(const SatArgs& a) {
   std::vector<std::string> inputs = {a.blur_input};
   if (!a.radius_map.empty()) inputs.push_back(a.radius_map);
   check_output(a.blur_output, inputs, a.common.force);
+  if (stop_for_dry_run()) return 0;
   ImageFileInfo info;
   const Image img = read_image(a.blur_input, &info);
   Image map;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <iostream>
 #include <map>
 
 #include "texproc/error.h"
@@ -15,6 +16,7 @@ namespace {
 struct DepfileState {
   std::string path;
   bool write_if_changed = false;
+  bool dry_run = false;
   std::vector<std::string> outputs, inputs;
 };
 DepfileState& depfile_state() {
@@ -33,12 +35,26 @@ void add_common_options(CLI::App& cmd, CommonOptions& o) {
   cmd.add_option("--depfile", depfile_state().path,
                  "After success, write a Make-style dependency file (outputs: inputs) for Make and Ninja")
       ->group("Common");
+  cmd.add_flag("-n,--dry-run", depfile_state().dry_run,
+               "Check the arguments and inputs, print the outputs that would be written, one a line; write nothing")
+      ->group("Common");
   cmd.add_flag("--write-if-changed", depfile_state().write_if_changed,
                "Overwrite outputs, but leave an output untouched (time stamp too) when its bytes would not change")
       ->group("Common");
 }
 
 bool write_if_changed() { return depfile_state().write_if_changed; }
+
+bool stop_for_dry_run() {
+  const DepfileState& d = depfile_state();
+  if (!d.dry_run) return false;
+  std::error_code ec;
+  for (const auto& in : d.inputs) {
+    if (!fs::is_regular_file(in, ec)) throw Error(ErrorCode::io, in + ": cannot open: no such file");
+  }
+  for (const auto& out : d.outputs) std::cout << out << "\n";
+  return true;
+}
 
 void record_input(const std::string& path) {
   auto& v = depfile_state().inputs;
@@ -76,7 +92,7 @@ std::string make_rule(const std::vector<std::string>& outputs, const std::vector
 
 void write_depfile_if_requested() {
   const DepfileState& d = depfile_state();
-  if (d.path.empty()) return;
+  if (d.path.empty() || d.dry_run) return;
   if (d.outputs.empty()) throw Error(ErrorCode::bad_arguments, d.path + ": --depfile: this command writes no files");
   std::error_code ec;
   for (const auto& f : d.inputs) {

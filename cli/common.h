@@ -32,6 +32,10 @@ void record_input(const std::string& path);
 // --write-if-changed was given: existing outputs may be replaced, and are
 // kept (bytes and time stamp) when the new bytes are the same.
 bool write_if_changed();
+// --dry-run: called by a command once every output is checked. If given,
+// checks that the recorded inputs exist, prints the outputs, one a line, and
+// returns true: the command returns 0 without doing the work.
+bool stop_for_dry_run();
 // Writes the depfile if --depfile was given (atomically). Throws Error.
 void write_depfile_if_requested();
 // The rule text for `outputs` and `inputs`: spaces, '#' and '\' escaped as

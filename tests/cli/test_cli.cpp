@@ -440,3 +440,26 @@ TEST(Cli, WriteIfChangedKeepsIdenticalOutputs) {
   EXPECT_EQ(r.exit_code, 1);
   fs::remove_all(dir);
 }
+
+// --dry-run: the outputs, one a line, after every check; nothing written.
+TEST(Cli, DryRunListsOutputsAndWritesNothing) {
+  const std::string dir = temp_dir("cli_dry_run");
+  write_image(dir + "/in.png", random_image(4, 2, 3, PixelType::u8, 3).view());
+  RunResult r = run_texproc("mip " + dir + "/in.png -o " + dir + "/o/a.png --dry-run --depfile " + dir + "/a.d");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, dir + "/o/a_mip0.png\n" + dir + "/o/a_mip1.png\n" + dir + "/o/a_mip2.png\n");
+  EXPECT_FALSE(fs::exists(dir + "/o/a_mip0.png"));
+  EXPECT_FALSE(fs::exists(dir + "/a.d"));
+  r = run_texproc("compress " + dir + "/in.png -o " + dir + "/c.dds --format bc1 -n");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, dir + "/c.dds\n");
+  EXPECT_FALSE(fs::exists(dir + "/c.dds"));
+  // The same checks as a real run: a missing input, an existing output.
+  r = run_texproc("compress " + dir + "/nope.png -o " + dir + "/c.dds --format bc1 -n");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("nope.png: cannot open"), std::string::npos) << r.err;
+  r = run_texproc("conemap " + dir + "/in.png -o " + dir + "/in.png -n");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("output would overwrite the input"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
