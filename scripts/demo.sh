@@ -26,4 +26,7 @@ $T sat query out/height_mount_250.sat 0 0 250 250 --json
 $T conemap samples/height_stein_256.png -o out/cone_stein_256.png --height-channel r --depth 0.08 \
    --preview out/cone_stein_256_preview.png --force
 $T info out/albedo_desert_512_bc1.dds out/normal_from_height_256_bc5.ktx2
-echo "demo: results are in $(pwd)/out/"
+# The build-system way: samples/Makefile cooks every sample with depfiles
+# (run it again and nothing is redone).
+make -s -C samples TEXPROC="$(realpath "$T")" OUT="$(pwd)/out/cooked"
+echo "demo: results are in $(pwd)/out/ (cooked by samples/Makefile: $(pwd)/out/cooked/)"
