@@ -3,6 +3,11 @@
 
 #include <chrono>
 #include <filesystem>
+#include <unistd.h>
+#include <sys/wait.h>
+#include <fcntl.h>
+#include <csignal>
+#include <thread>
 #include <map>
 #include <fstream>
 
@@ -540,4 +545,48 @@ TEST(Cli, SamplesCMakeRebuildsExactlyWhatChanged) {
     }
     fs::remove_all(dir);
   }
+}
+
+// A run killed with SIGKILL at any moment leaves either no file under the
+// final name or the whole file (never part of one): outputs are written to
+// a temporary name and renamed.
+TEST(Cli, KilledRunLeavesNoPartialOutput) {
+  const std::string dir = temp_dir("cli_sigkill");
+  write_image(dir + "/in.tif", random_image(2048, 2048, 4, PixelType::u8, 11).view());
+  const std::string out = dir + "/out.tif";
+  auto spawn = [&] {
+    const pid_t pid = fork();
+    if (pid == 0) {
+      const int null = ::open("/dev/null", O_WRONLY);
+      dup2(null, 1);
+      dup2(null, 2);
+      execl(TEXPROC_CLI_PATH, "texproc", "mip", (dir + "/in.tif").c_str(), "-o", out.c_str(), "-f", "-q",
+            static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    return pid;
+  };
+  int status = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  waitpid(spawn(), &status, 0);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  const auto full_run = std::chrono::steady_clock::now() - t0;
+  const std::string reference = slurp(out);
+  ASSERT_FALSE(reference.empty());
+  int killed_before = 0, killed_after = 0;
+  for (int i = 0; i < 12; ++i) {
+    fs::remove(out);
+    const pid_t pid = spawn();
+    std::this_thread::sleep_for(full_run * (i + 0.5) / 12);
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+    if (fs::exists(out)) {
+      EXPECT_TRUE(slurp(out) == reference) << "partial output after a kill at step " << i;
+      ++killed_after;
+    } else {
+      ++killed_before;
+    }
+  }
+  EXPECT_GT(killed_before, 0) << "no kill landed before the output was in place";
+  fs::remove_all(dir);
 }
