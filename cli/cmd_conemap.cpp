@@ -70,7 +70,10 @@ int run_conemap(const ConeArgs& a) {
   }
   if (!a.common.quiet) {
     std::cout << a.input << " -> " << a.output << ": " << img.width() << "x" << img.height() << " conservative cones ("
-              << (a.brute_force ? "brute force" : a.fast ? "fast, never wider than exact" : "exact, max-mip branch and bound") << ") in " << seconds << " s"
+              << (a.brute_force ? "brute force"
+                  : a.fast      ? "fast, never wider than exact"
+                                : "exact, max-mip branch and bound")
+              << ") in " << seconds << " s"
               << (a.preview.empty() ? "" : ", preview " + a.preview) << "\n";
   }
   return 0;

@@ -74,7 +74,7 @@ int run_mip(const MipArgs& a) {
   w.color_space = chain.color_space == "srgb" ? "srgb" : chain.color_space == "linear" ? "linear" : "";
   // An OpenColorIO config the color spaces came from is a dependency too.
   for (const std::string& name : {a.color_space, a.out_color_space}) {
-    if (name.empty() || name == "auto" || a.linear) continue;
+    if (name.empty() || a.linear) continue;
     const std::string config = ColorSpace::from_name(name).config_path();
     if (!config.empty()) record_input(config);
   }

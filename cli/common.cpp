@@ -13,15 +13,29 @@ namespace fs = std::filesystem;
 namespace texproc::cli {
 
 namespace {
-struct DepfileState {
-  std::string path;
+// What --depfile, --dry-run and --write-if-changed need, for the one
+// command a process runs: the options, and the files check_output() saw.
+struct BuildState {
+  std::string path;  // --depfile
   bool write_if_changed = false;
   bool dry_run = false;
   std::vector<std::string> outputs, inputs;
 };
-DepfileState& depfile_state() {
-  static DepfileState d;
+BuildState& build_state() {
+  static BuildState d;
   return d;
+}
+
+// Throws Error{bad_arguments} when `output` is the same file as one of
+// `inputs` (compared as files, not strings); `what` names the output.
+void refuse_overwriting_input(const std::string& output, const std::vector<std::string>& inputs, const char* what) {
+  std::error_code ec;
+  if (!fs::exists(output, ec)) return;
+  for (const auto& in : inputs) {
+    if (fs::equivalent(output, in, ec)) {
+      throw Error(ErrorCode::bad_arguments, output + ": " + what + " would overwrite the input; choose another name");
+    }
+  }
 }
 }  // namespace
 
@@ -32,21 +46,21 @@ void add_common_options(CLI::App& cmd, CommonOptions& o) {
   cmd.add_flag("-f,--force", o.force, "Overwrite outputs that already exist")->group("Common");
   cmd.add_flag("-q,--quiet", o.quiet, "Print nothing but errors")->group("Common");
   cmd.add_flag("-v,--verbose", o.verbose, "Print details of the work")->group("Common");
-  cmd.add_option("--depfile", depfile_state().path,
+  cmd.add_option("--depfile", build_state().path,
                  "After success, write a Make-style dependency file (outputs: inputs) for Make and Ninja")
       ->group("Common");
-  cmd.add_flag("-n,--dry-run", depfile_state().dry_run,
+  cmd.add_flag("-n,--dry-run", build_state().dry_run,
                "Check the arguments and inputs, print the outputs that would be written, one a line; write nothing")
       ->group("Common");
-  cmd.add_flag("--write-if-changed", depfile_state().write_if_changed,
+  cmd.add_flag("--write-if-changed", build_state().write_if_changed,
                "Overwrite outputs, but leave an output untouched (time stamp too) when its bytes would not change")
       ->group("Common");
 }
 
-bool write_if_changed() { return depfile_state().write_if_changed; }
+bool write_if_changed() { return build_state().write_if_changed; }
 
 bool stop_for_dry_run() {
-  const DepfileState& d = depfile_state();
+  const BuildState& d = build_state();
   if (!d.dry_run) return false;
   std::error_code ec;
   for (const auto& in : d.inputs) {
@@ -57,7 +71,7 @@ bool stop_for_dry_run() {
 }
 
 void record_input(const std::string& path) {
-  auto& v = depfile_state().inputs;
+  auto& v = build_state().inputs;
   if (std::find(v.begin(), v.end(), path) == v.end()) v.push_back(path);
 }
 
@@ -79,8 +93,9 @@ std::string escape_make(const std::string& path) {
   }
   return out;
 }
-}  // namespace
 
+// The rule "outputs: inputs" with spaces and '#' escaped by backslashes (and
+// backslashes right before them doubled) and '$' doubled, as gcc -MD writes.
 std::string make_rule(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs) {
   std::string rule;
   for (std::size_t i = 0; i < outputs.size(); ++i) rule += (i ? " " : "") + escape_make(outputs[i]);
@@ -89,24 +104,21 @@ std::string make_rule(const std::vector<std::string>& outputs, const std::vector
   rule += "\n";
   return rule;
 }
+}  // namespace
 
 void write_depfile_if_requested() {
-  const DepfileState& d = depfile_state();
+  const BuildState& d = build_state();
   if (d.path.empty() || d.dry_run) return;
   if (d.outputs.empty()) throw Error(ErrorCode::bad_arguments, d.path + ": --depfile: this command writes no files");
-  std::error_code ec;
-  for (const auto& f : d.inputs) {
-    if (fs::exists(d.path, ec) && fs::equivalent(d.path, f, ec)) {
-      throw Error(ErrorCode::bad_arguments, d.path + ": --depfile would overwrite an input");
-    }
-  }
+  refuse_overwriting_input(d.path, d.inputs, "--depfile");
   for (const auto& f : d.outputs) {
     if (fs::path(f).lexically_normal() == fs::path(d.path).lexically_normal()) {
       throw Error(ErrorCode::bad_arguments, d.path + ": --depfile names an output of the command");
     }
   }
+  std::error_code ec;
   const fs::path parent = fs::path(d.path).parent_path();
-  if (!parent.empty()) fs::create_directories(parent, ec);
+  if (!parent.empty()) fs::create_directories(parent, ec);  // a failure is reported by the write
   write_file_atomic(d.path, make_rule(d.outputs, d.inputs));
 }
 
@@ -124,15 +136,11 @@ CommandRunner* runner_of(CLI::App& cmd) {
 }
 
 void check_output(const std::string& output, const std::vector<std::string>& inputs, bool force) {
-  DepfileState& d = depfile_state();
+  BuildState& d = build_state();
   if (std::find(d.outputs.begin(), d.outputs.end(), output) == d.outputs.end()) d.outputs.push_back(output);
   for (const auto& in : inputs) record_input(in);
+  refuse_overwriting_input(output, inputs, "output");
   std::error_code ec;
-  for (const auto& in : inputs) {
-    if (fs::exists(output, ec) && fs::equivalent(output, in, ec)) {
-      throw Error(ErrorCode::bad_arguments, output + ": output would overwrite the input; choose another name");
-    }
-  }
   if (fs::exists(output, ec)) {
     if (fs::is_directory(output, ec)) throw Error(ErrorCode::bad_arguments, output + ": output is a directory");
     if (!force && !d.write_if_changed) {

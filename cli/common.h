@@ -38,9 +38,6 @@ bool write_if_changed();
 bool stop_for_dry_run();
 // Writes the depfile if --depfile was given (atomically). Throws Error.
 void write_depfile_if_requested();
-// The rule text for `outputs` and `inputs`: spaces, '#' and '\' escaped as
-// Make and Ninja expect, '$' doubled. Exposed for tests.
-std::string make_rule(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs);
 
 // A command registers itself with add_<name>_command and stores here what
 // main() runs after parsing.

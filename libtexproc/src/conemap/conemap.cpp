@@ -22,6 +22,7 @@ void check(const std::vector<float>& heights, int width, int height, const ConeM
   if (!(o.depth > 0.0f) || !std::isfinite(o.depth)) throw Error(ErrorCode::bad_arguments, "--depth must be > 0");
   if (!(o.max_ratio > 0.0f) || !std::isfinite(o.max_ratio)) throw Error(ErrorCode::bad_arguments, "--max-ratio must be > 0");
   if (o.wrap == WrapMode::mirror) throw Error(ErrorCode::bad_arguments, "--wrap for conemap: valid: repeat, clamp");
+  if (o.fast_reach < 0) throw Error(ErrorCode::bad_arguments, "--fast-reach must be >= 1 (0: exact cones)");
 }
 
 // Squared ratio of a candidate: (dx^2 / W^2 + dy^2 / H^2) / (D^2 dh^2), in
@@ -96,7 +97,6 @@ std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, 
   const int top = int(pyr.max.size()) - 1;
   const double cap2 = double(o.max_ratio) * o.max_ratio;
   const int reach = o.fast_reach;
-  if (reach < 0) throw Error(ErrorCode::bad_arguments, "fast_reach must be >= 0");
   std::vector<float> out(heights.size());
 
   for_each_row_block(H, 4, [&](int y0, int y1) {
