@@ -110,12 +110,7 @@ void write_depfile_if_requested() {
   const BuildState& d = build_state();
   if (d.path.empty() || d.dry_run) return;
   if (d.outputs.empty()) throw Error(ErrorCode::bad_arguments, d.path + ": --depfile: this command writes no files");
-  refuse_overwriting_input(d.path, d.inputs, "--depfile");
-  for (const auto& f : d.outputs) {
-    if (fs::path(f).lexically_normal() == fs::path(d.path).lexically_normal()) {
-      throw Error(ErrorCode::bad_arguments, d.path + ": --depfile names an output of the command");
-    }
-  }
+  refuse_overwriting_input(d.path, d.inputs, "--depfile");  // again: commands record inputs late (a config)
   std::error_code ec;
   const fs::path parent = fs::path(d.path).parent_path();
   if (!parent.empty()) fs::create_directories(parent, ec);  // a failure is reported by the write
@@ -140,6 +135,12 @@ void check_output(const std::string& output, const std::vector<std::string>& inp
   if (std::find(d.outputs.begin(), d.outputs.end(), output) == d.outputs.end()) d.outputs.push_back(output);
   for (const auto& in : inputs) record_input(in);
   refuse_overwriting_input(output, inputs, "output");
+  if (!d.path.empty()) {  // --depfile, checked before any work
+    refuse_overwriting_input(d.path, inputs, "--depfile");
+    if (fs::path(output).lexically_normal() == fs::path(d.path).lexically_normal()) {
+      throw Error(ErrorCode::bad_arguments, d.path + ": --depfile names an output of the command");
+    }
+  }
   std::error_code ec;
   if (fs::exists(output, ec)) {
     if (fs::is_directory(output, ec)) throw Error(ErrorCode::bad_arguments, output + ": output is a directory");

@@ -384,6 +384,14 @@ TEST(Cli, DepfileListsOutputsAndInputs) {
   r = run_texproc("mip " + dir + "/missing.png -o " + dir + "/out/m.png --depfile " + dir + "/m.d");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_FALSE(fs::exists(dir + "/m.d"));
+  // A depfile that names an output or an input is refused before any work.
+  r = run_texproc("mip " + dir + "/out/g.tif -o " + dir + "/out/h.tif --depfile " + dir + "/out/h.tif");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("h.tif: --depfile names an output of the command"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/out/h.tif"));
+  r = run_texproc("mip " + dir + "/out/g.tif -o " + dir + "/out/h.tif --depfile " + dir + "/out/g.tif");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("g.tif: --depfile would overwrite the input"), std::string::npos) << r.err;
   fs::remove_all(dir);
 }
 
