@@ -1,11 +1,17 @@
 // texproc compress: block compression into DDS, KTX2 or KTX1, optionally
 // with a mip chain. So far the RGTC formats (BC4, BC5).
 #include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
 #include <iostream>
 #include <map>
 
 #include "commands.h"
+#include "batch.h"
 #include "common.h"
+#include "texproc/block_decode.h"
+#include "texproc/metrics.h"
 #include "texproc/block_encode.h"
 #include "texproc/container.h"
 #include "texproc/error.h"
@@ -19,10 +25,15 @@ namespace {
 
 struct CompressArgs {
   CommonOptions common;
+  BatchInputs io;
   ChainArgs chain;
-  std::string input, output, format, quality = "normal", wrap = "clamp", dds_header = "auto";
+  std::string format, quality = "normal", wrap = "clamp", dds_header = "auto";
   std::string transparent_color = "keep";
-  bool mips = false, normal_map = false, linear = false, srgb = false;
+  bool mips = false, normal_map = false, linear = false, srgb = false, report = false;
+  // From the options, once (validate):
+  Quality q = Quality::normal;
+  DdsHeader header = DdsHeader::automatic;
+  TransparentColor transparent = TransparentColor::keep;
 };
 
 // --format and the colour space: BC1-BC3 take the sRGB variant for colour
@@ -43,16 +54,49 @@ TexelFormat format_for(const std::string& f, bool srgb) {
               "unknown --format '" + f + "' (valid: bc1, bc1a, bc2, bc3, bc4, bc4s, bc5, bc5s)");
 }
 
-int run_compress(const CompressArgs& a) {
-  ThreadLimit threads(a.common.threads);
+void validate(CompressArgs& a) {
   if (a.linear && a.srgb) throw Error(ErrorCode::bad_arguments, "--srgb and --linear contradict each other");
-  const Quality q = parse_quality(a.quality);
-  const DdsHeader header = parse_dds_header(a.dds_header);
-  const TransparentColor transparent = parse_transparent_color(a.transparent_color);
-  container_for_path(a.output);  // a container extension, or an error now
-  check_output(a.output, {a.input}, a.common.force);
-  if (stop_for_dry_run()) return 0;
-  Image img = read_image(a.input);
+  a.q = parse_quality(a.quality);
+  a.header = parse_dds_header(a.dds_header);
+  a.transparent = parse_transparent_color(a.transparent_color);
+  format_for(a.format, false);  // a known format, or an error now
+  parse_filter_kind(a.chain.filter);
+  parse_wrap_mode(a.wrap);
+}
+
+// The encoded level and its decoding as f32 images with the format's
+// channels, on one scale ([0, 1]; SNORM mapped back from [-1, 1]).
+ImageDifference encoding_error(const Image& level, const Texture& t) {
+  const Image decoded = decode_texture_image(t, 0, 0, 0, PixelType::f32);
+  const int channels = decoded.channels();
+  const bool snorm = format_info(t.format).snorm;
+  Image src = Image::uninitialized(level.width(), level.height(), channels, PixelType::f32);
+  Image dec = Image::uninitialized(level.width(), level.height(), channels, PixelType::f32);
+  const int n = level.channels();
+  for (int y = 0; y < level.height(); ++y) {
+    for (int x = 0; x < level.width(); ++x) {
+      for (int c = 0; c < channels; ++c) {
+        float v;
+        if (channels <= 2) {
+          v = c < n ? level.get(x, y, c) : 0.0f;  // BC4/BC5: the first channels, as data
+        } else if (c < 3) {
+          v = level.get(x, y, n >= 3 ? c : 0);  // gray fills RGB
+        } else {
+          v = n == 4 ? level.get(x, y, 3) : n == 2 ? level.get(x, y, 1) : 1.0f;
+        }
+        src.row<float>(y)[x * channels + c] = v;
+        const float d = decoded.row<float>(y)[x * channels + c];
+        dec.row<float>(y)[x * channels + c] = snorm ? (d + 1.0f) * 0.5f : d;
+      }
+    }
+  }
+  return compare_images(src.view(), dec.view());
+}
+
+Json::Value number_or_null(double v) { return std::isfinite(v) ? Json::Value(v) : Json::Value(); }
+
+void run_compress(const CompressArgs& a, const std::string& input, const std::string& output, FileReport& r) {
+  Image img = read_image(input);
   // Colour is sRGB unless --linear, a normal map, or float input.
   const bool srgb = a.srgb || (!a.linear && !a.normal_map && img.type() != PixelType::f32);
   const TexelFormat format = format_for(a.format, srgb);
@@ -81,16 +125,39 @@ int run_compress(const CompressArgs& a) {
     // The policy applies to each stored level (the chain itself was filtered
     // premultiplied, so it has no fringes; the GPU's filtering of straight
     // alpha would add them back from the colour under alpha 0).
-    if (format_info(format).channels == 4) apply_transparent_color(l, transparent);
-    t.images.push_back(compress_image(l.view(), format, q));
+    if (format_info(format).channels == 4) apply_transparent_color(l, a.transparent);
+    t.images.push_back(compress_image(l.view(), format, a.q));
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  write_texture(a.output, t, header);
-  if (!a.common.quiet) {
-    std::cout << a.input << " -> " << a.output << ": " << format_info(format).name << ", " << t.levels
-              << " level(s), quality " << a.quality << ", encoded in " << s << " s\n";
+  write_texture(output, t, a.header);
+  std::ostringstream line;
+  line << input << " -> " << output << ": " << format_info(format).name << ", " << t.levels << " level(s), quality "
+       << a.quality << ", encoded in " << s << " s";
+  r.details["format"] = format_info(format).name;
+  r.details["width"] = t.width;
+  r.details["height"] = t.height;
+  r.details["levels"] = t.levels;
+  r.details["quality"] = a.quality;
+  r.details["encode_seconds"] = s;
+  if (a.report) {
+    const ImageDifference d = encoding_error(levels[0], t);
+    Json::Value rep(Json::objectValue);
+    rep["psnr"] = number_or_null(d.psnr());
+    if (d.channels >= 3) rep["psnr_rgb"] = number_or_null(d.psnr_rgb());
+    Json::Value per(Json::arrayValue);
+    for (int c = 0; c < d.channels; ++c) per.append(number_or_null(d.psnr_channel(c)));
+    rep["psnr_channels"] = per;
+    rep["max_error"] = d.max_abs;
+    r.details["report"] = rep;
+    char b[96];
+    std::snprintf(b, sizeof b, ", PSNR %.2f dB", d.psnr());
+    line << b;
+    if (d.channels >= 3) {
+      std::snprintf(b, sizeof b, " (RGB %.2f dB)", d.psnr_rgb());
+      line << b;
+    }
   }
-  return 0;
+  r.line = line.str();
 }
 
 }  // namespace
@@ -102,8 +169,8 @@ void add_compress_command(CLI::App& app) {
       "BC4 stores one channel, BC5 two (the red and green of the input; for a normal map its X and Y, the\n"
       "shader rebuilds Z). SNORM variants map the stored [0, 1] to [-1, 1]. Values are data: no transfer\n"
       "function. ETC is in progress. See docs/compression.md.");
-  cmd->add_option("input", args->input, "Input image")->required();
-  cmd->add_option("-o,--output", args->output, "Output texture: .dds, .ktx2, .ktx")->required();
+  add_batch_inputs(*cmd, args->io, "Input images",
+                   "Output texture (.dds, .ktx2, .ktx), folder (DIR/: {stem}.dds each) or template ('out/{stem}.ktx2')");
   cmd->add_option("--format", args->format, "bc1, bc1a (1-bit alpha), bc2, bc3, bc4, bc4s, bc5, bc5s")->required();
   cmd->add_flag("--srgb", args->srgb, "BC1-BC3: write the sRGB format (the default for 8/16-bit colour input)");
   cmd->add_flag("--linear", args->linear, "The input is data: UNORM formats, linear mip filtering");
@@ -116,8 +183,21 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option("--transparent-color", args->transparent_color,
                   "Colour under alpha 0 (bc1a, bc2, bc3): keep, bleed (from the visible texels), zero")
       ->capture_default_str();
+  cmd->add_flag("--report", args->report, "Decode level 0 again and report its PSNR (all channels, RGB, each channel)");
   add_common_options(*cmd, args->common);
-  set_runner(*cmd, [args] { return run_compress(*args); });
+  set_runner(*cmd, [args] {
+    BatchCommand c;
+    c.name = "compress";
+    c.default_extension = ".dds";
+    c.input_extensions = image_extensions();
+    c.validate = [args] { validate(*args); };
+    c.plan = [](const InputFile&, const std::string& out) {
+      container_for_path(out);  // a container extension, or an error now
+      return std::vector<std::string>{out};
+    };
+    c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_compress(*args, in, out, r); };
+    return run_batch(c, args->io, args->common);
+  });
 }
 
 }  // namespace texproc::cli

@@ -3,8 +3,10 @@
 #include <chrono>
 #include <optional>
 #include <iostream>
+#include <sstream>
 
 #include "commands.h"
+#include "batch.h"
 #include "common.h"
 #include "texproc/conemap.h"
 #include "texproc/error.h"
@@ -17,7 +19,8 @@ namespace {
 
 struct ConeArgs {
   CommonOptions common;
-  std::string input, output, preview;
+  BatchInputs io;
+  std::string preview;
   std::string height_channel = "auto";
   bool invert = false;
   float depth = 1.0f;
@@ -30,17 +33,20 @@ struct ConeArgs {
   int fast_reach = 2;
   int preview_size = 256;
   float view_angle = 60.0f;
+  // From the options, once (validate):
+  ConeMapOptions options;
+  HeightChannel channel = HeightChannel::automatic;
+  std::optional<PixelType> type_choice;
 };
 
-int run_conemap(const ConeArgs& a) {
-  ThreadLimit threads(a.common.threads);
-  ConeMapOptions o;
+void validate(ConeArgs& a) {
+  ConeMapOptions& o = a.options;
   o.depth = a.depth;
   o.max_ratio = a.max_ratio;
   o.wrap = parse_wrap_mode(a.wrap);
   if (a.fast && a.brute_force) throw Error(ErrorCode::bad_arguments, "--fast and --brute-force exclude each other");
   o.fast_reach = a.fast ? a.fast_reach : 0;
-  const HeightChannel channel = parse_height_channel(a.height_channel);
+  a.channel = parse_height_channel(a.height_channel);
   if (a.mode != "conservative") {
     throw Error(ErrorCode::unsupported, "--mode " + a.mode + ": only conservative cones are implemented so far (valid: conservative)");
   }
@@ -49,34 +55,40 @@ int run_conemap(const ConeArgs& a) {
     throw Error(ErrorCode::bad_arguments, "--view-angle must be in [0, 89) degrees from the normal");
   }
   WriteOptions w;
-  w.color_space = "linear";
-  std::optional<PixelType> type = parse_output_type(a.type, w);
-  std::vector<std::string> inputs{a.input};
-  check_output(a.output, inputs, a.common.force);
-  if (!a.preview.empty()) check_output(a.preview, inputs, a.common.force);
-  if (stop_for_dry_run()) return 0;
+  a.type_choice = parse_output_type(a.type, w);
+}
 
+void run_conemap(const ConeArgs& a, const std::string& input, const std::string& output, FileReport& r) {
+  const ConeMapOptions& o = a.options;
+  WriteOptions w;
+  w.color_space = "linear";
+  parse_output_type(a.type, w);
   ImageFileInfo info;
-  const Image img = read_image(a.input, &info);
-  const std::vector<float> h = extract_height(img.view(), channel, a.invert);
+  const Image img = read_image(input, &info);
+  const std::vector<float> h = extract_height(img.view(), a.channel, a.invert);
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<float> ratios = a.brute_force ? cone_ratios_brute_force(h, img.width(), img.height(), o)
                                                   : cone_ratios(h, img.width(), img.height(), o);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const PixelType out_type = type ? *type : (img.type() == PixelType::u8 ? PixelType::u8 : PixelType::u16);
-  write_image(a.output, cone_map_image(h, ratios, img.width(), img.height(), o, out_type).view(), w);
-  if (!a.preview.empty()) {
-    write_image(a.preview, render_preview(h, ratios, img.width(), img.height(), o, a.preview_size, a.view_angle).view());
+  const PixelType out_type = a.type_choice ? *a.type_choice : (img.type() == PixelType::u8 ? PixelType::u8 : PixelType::u16);
+  write_image(output, cone_map_image(h, ratios, img.width(), img.height(), o, out_type).view(), w);
+  const std::string preview = r.outputs.size() > 1 ? r.outputs[1] : "";
+  if (!preview.empty()) {
+    write_image(preview, render_preview(h, ratios, img.width(), img.height(), o, a.preview_size, a.view_angle).view());
   }
-  if (!a.common.quiet) {
-    std::cout << a.input << " -> " << a.output << ": " << img.width() << "x" << img.height() << " conservative cones ("
-              << (a.brute_force ? "brute force"
-                  : a.fast      ? "fast, never wider than exact"
-                                : "exact, max-mip branch and bound")
-              << ") in " << seconds << " s"
-              << (a.preview.empty() ? "" : ", preview " + a.preview) << "\n";
-  }
-  return 0;
+  std::ostringstream line;
+  line << input << " -> " << output << ": " << img.width() << "x" << img.height() << " conservative cones ("
+       << (a.brute_force ? "brute force"
+           : a.fast      ? "fast, never wider than exact"
+                         : "exact, max-mip branch and bound")
+       << ") in " << seconds << " s" << (preview.empty() ? "" : ", preview " + preview);
+  r.line = line.str();
+  double mean = 0;
+  for (float v : ratios) mean += v;
+  r.details["width"] = img.width();
+  r.details["height"] = img.height();
+  r.details["cone_seconds"] = seconds;
+  r.details["mean_ratio"] = ratios.empty() ? 0.0 : mean / double(ratios.size());
 }
 
 }  // namespace
@@ -88,8 +100,8 @@ void add_conemap_command(CLI::App& app) {
       "The cone ratio of a texel is the smallest, over every higher texel, of their distance (texture\n"
       "widths) over depth times the height difference, capped by --max-ratio; G stores\n"
       "sqrt(ratio / max-ratio), rounded down. See docs/conemap.md.");
-  cmd->add_option("input", args->input, "Heightmap (8, 16-bit or float; height 1 is the top)")->required();
-  cmd->add_option("-o,--output", args->output, "Output cone map (RGB: height, sqrt ratio, 0)")->required();
+  add_batch_inputs(*cmd, args->io, "Heightmaps (8, 16-bit or float; height 1 is the top)",
+                   "Output cone map (RGB: height, sqrt ratio, 0), folder (DIR/: {stem}.png each) or template");
   cmd->add_option("--height-channel", args->height_channel, "Height from: auto, r, g, b, a, luma")->capture_default_str();
   cmd->add_flag("--invert", args->invert, "Depth map: use 1 - h");
   cmd->add_option("--depth", args->depth, "Relief depth in texture widths (> 0)")->capture_default_str();
@@ -104,11 +116,25 @@ void add_conemap_command(CLI::App& app) {
       ->check(CLI::Range(1, 64));
   cmd->add_flag("--brute-force", args->brute_force, "Use the O(N^2)-per-texel definition (slow; for checking)");
   cmd->add_option("--preview", args->preview,
-                  "Also render a preview PNG: linear search vs cone stepping, with lookups-per-pixel heat maps");
+                  "Also render a preview PNG: linear search vs cone stepping, with lookups-per-pixel heat maps "
+                  "(a template such as 'previews/{stem}.png' for several inputs)");
   cmd->add_option("--preview-size", args->preview_size, "Preview panel size in pixels")->capture_default_str();
   cmd->add_option("--view-angle", args->view_angle, "Preview view angle from the normal, degrees")->capture_default_str();
   add_common_options(*cmd, args->common);
-  set_runner(*cmd, [args] { return run_conemap(*args); });
+  set_runner(*cmd, [args] {
+    BatchCommand c;
+    c.name = "conemap";
+    c.default_extension = ".png";
+    c.input_extensions = image_extensions();
+    c.validate = [args] { validate(*args); };
+    c.plan = [args](const InputFile& in, const std::string& out) {
+      std::vector<std::string> outs{out};
+      if (!args->preview.empty()) outs.push_back(expand_template(args->preview, in));
+      return outs;
+    };
+    c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_conemap(*args, in, out, r); };
+    return run_batch(c, args->io, args->common);
+  });
 }
 
 }  // namespace texproc::cli

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "batch.h"
 #include "common.h"
 #include "texproc/block_decode.h"
 #include "texproc/container.h"
@@ -18,55 +19,53 @@ namespace {
 
 struct DecompressArgs {
   CommonOptions common;
-  std::string input, output, type;
+  BatchInputs io;
+  std::string type;
   int level = 0, layer = 0, face = 0;
   bool all_levels = false;
 };
 
-int run_decompress(const DecompressArgs& a) {
-  ThreadLimit threads(a.common.threads);
+void check_index(const std::string& input, const char* what, int value, std::uint32_t count) {
+  if (value < 0 || std::uint32_t(value) >= count) {
+    throw Error(ErrorCode::bad_arguments, input + ": " + what + " " + std::to_string(value) + " (valid: 0 to " +
+                                              std::to_string(count - 1) + ")");
+  }
+}
+
+std::vector<std::string> plan(const DecompressArgs& a, const std::string& input, const std::string& output) {
+  if (!a.all_levels) return {output};
+  const Texture t = read_texture(input);
+  std::vector<std::string> outputs = level_outputs(output, int(t.levels));
+  if (outputs.size() == 1) {
+    throw Error(ErrorCode::unsupported, output + ": --all-levels writes one file per level (use .png, .exr, .tga)");
+  }
+  return outputs;
+}
+
+void run_decompress(const DecompressArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   WriteOptions w;
-  const bool exr = fs::path(a.output).extension() == ".exr";
+  const bool exr = fs::path(output).extension() == ".exr";
   std::optional<PixelType> type = parse_output_type(a.type, w);
   if (!type) {
     type = exr ? PixelType::f32 : PixelType::u8;
     w.half = exr;
   }
-  const Texture t = read_texture(a.input);
-  if (a.level < 0 || std::uint32_t(a.level) >= t.levels) {
-    throw Error(ErrorCode::bad_arguments, a.input + ": --level " + std::to_string(a.level) + " (valid: 0 to " +
-                                              std::to_string(t.levels - 1) + ")");
-  }
-  if (a.layer < 0 || std::uint32_t(a.layer) >= t.layers) {
-    throw Error(ErrorCode::bad_arguments, a.input + ": --layer " + std::to_string(a.layer) + " (valid: 0 to " +
-                                              std::to_string(t.layers - 1) + ")");
-  }
-  if (a.face < 0 || std::uint32_t(a.face) >= t.faces) {
-    throw Error(ErrorCode::bad_arguments, a.input + ": --face " + std::to_string(a.face) + " (valid: 0 to " +
-                                              std::to_string(t.faces - 1) + ")");
-  }
+  const Texture t = read_texture(input);
+  check_index(input, "--level", a.level, t.levels);
+  check_index(input, "--layer", a.layer, t.layers);
+  check_index(input, "--face", a.face, t.faces);
   const std::uint32_t first = a.all_levels ? 0 : std::uint32_t(a.level), last = a.all_levels ? t.levels : first + 1;
-  std::vector<std::string> outputs;
-  if (a.all_levels) {
-    outputs = level_outputs(a.output, int(t.levels));
-    if (outputs.size() == 1) {
-      throw Error(ErrorCode::unsupported, a.output + ": --all-levels writes one file per level (use .png, .exr, .tga)");
-    }
-  } else {
-    outputs = {a.output};
-  }
-  for (const auto& o : outputs) check_output(o, {a.input}, a.common.force);
-  if (stop_for_dry_run()) return 0;
   w.color_space = format_info(t.format).srgb ? "srgb" : "linear";
   for (std::uint32_t l = first; l < last; ++l) {
     const Image img = decode_texture_image(t, l, std::uint32_t(a.layer), std::uint32_t(a.face), *type);
-    write_image(outputs[a.all_levels ? l : 0], img.view(), w);
+    write_image(a.all_levels ? r.outputs.at(l) : output, img.view(), w);
   }
-  if (!a.common.quiet) {
-    std::cout << a.input << " -> " << outputs[0] << (outputs.size() > 1 ? " ..." : "") << ": "
-              << format_info(t.format).name << ", " << (last - first) << " level(s)\n";
-  }
-  return 0;
+  r.line = input + " -> " + r.outputs[0] + (r.outputs.size() > 1 ? " ..." : "") + ": " + format_info(t.format).name +
+           ", " + std::to_string(last - first) + " level(s)";
+  r.details["format"] = format_info(t.format).name;
+  r.details["width"] = t.width;
+  r.details["height"] = t.height;
+  r.details["levels"] = last - first;
 }
 
 }  // namespace
@@ -77,15 +76,27 @@ void add_decompress_command(CLI::App& app) {
   cmd->footer(
       "BC1-BC5 and uncompressed formats (ETC decoding comes with the ETC codecs). SNORM data goes to float\n"
       "(.exr, or --type f32) as [-1, 1], to 8/16-bit as the usual biased (v + 1) / 2.");
-  cmd->add_option("input", args->input, "Texture file")->required();
-  cmd->add_option("-o,--output", args->output, "Output image (.png, .exr, .tga, .tif)")->required();
+  add_batch_inputs(*cmd, args->io, "Texture files (.dds, .ktx2, .ktx, .pkm)",
+                   "Output image (.png, .exr, .tga, .tif), folder (DIR/: {stem}.png each) or template");
   cmd->add_option("--level", args->level, "Mip level to write (default 0)");
   cmd->add_flag("--all-levels", args->all_levels, "Write every level as {stem}_mip{L}.{ext}");
   cmd->add_option("--layer", args->layer, "Array layer (default 0)");
   cmd->add_option("--face", args->face, "Cubemap face 0-5: +X, -X, +Y, -Y, +Z, -Z (default 0)");
   cmd->add_option("--type", args->type, "Output element type: u8, u16, f16, f32 (default u8; f16 for .exr)");
   add_common_options(*cmd, args->common);
-  set_runner(*cmd, [args] { return run_decompress(*args); });
+  set_runner(*cmd, [args] {
+    BatchCommand c;
+    c.name = "decompress";
+    c.default_extension = ".png";
+    c.input_extensions = texture_extensions();
+    c.validate = [args] {
+      WriteOptions w;
+      parse_output_type(args->type, w);
+    };
+    c.plan = [args](const InputFile& in, const std::string& out) { return plan(*args, in.path, out); };
+    c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_decompress(*args, in, out, r); };
+    return run_batch(c, args->io, args->common);
+  });
 }
 
 }  // namespace texproc::cli

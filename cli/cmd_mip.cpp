@@ -2,8 +2,10 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 
 #include "commands.h"
+#include "batch.h"
 #include "common.h"
 #include "texproc/color.h"
 #include "texproc/container.h"
@@ -19,7 +21,7 @@ namespace {
 
 struct MipArgs {
   CommonOptions common;
-  std::string input, output;
+  BatchInputs io;
   ChainArgs chain;
   std::string wrap = "clamp";
   std::string color_space, out_color_space;
@@ -30,11 +32,15 @@ struct MipArgs {
   bool no_premultiply = false;
   std::string compression;
   std::string dds_header = "auto";
+  bool report = false;
+  // From the options, once (validate):
+  MipOptions mip;
+  WriteOptions write;
+  DdsHeader header = DdsHeader::automatic;
 };
 
-int run_mip(const MipArgs& a) {
-  ThreadLimit threads(a.common.threads);
-  MipOptions o;
+void validate(MipArgs& a) {
+  MipOptions& o = a.mip;
   o.filter.kind = parse_filter_kind(a.chain.filter);
   o.filter.sigma = a.chain.sigma;
   o.wrap = parse_wrap_mode(a.wrap);
@@ -45,79 +51,88 @@ int run_mip(const MipArgs& a) {
   o.alpha_coverage_ref = a.alpha_coverage;
   o.normal_map = a.normal_map;
   o.premultiplied_alpha = !a.no_premultiply;
-
-  const bool container = is_container_path(a.output);
-  const bool single_file = container || holds_mip_levels(a.output);
-  const bool exr = fs::path(a.output).extension() == ".exr";
-  const DdsHeader dds_header = parse_dds_header(a.dds_header);
-  WriteOptions w;
-  w.compression = a.compression;
-  o.output_type = parse_output_type(a.type, w);
-  if (!o.output_type && exr) {
-    o.output_type = PixelType::f32;  // OpenEXR holds floats: write half
-    w.half = true;
-  }
-
-  // Check every output name before doing any work.
-  ImageFileInfo info = probe_image(a.input);
-  const int n = mip_level_count(info.width, info.height, o.max_levels, o.min_size);
-  const std::vector<std::string> outputs = container ? std::vector{a.output} : level_outputs(a.output, n);
-  for (const auto& out : outputs) check_output(out, {a.input}, a.common.force);
-  if (stop_for_dry_run()) return 0;
-
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
-  Image image = read_image(a.input, &info);
-  const auto t1 = Clock::now();
-  MipChain chain = generate_mips(std::move(image), o);
-  const auto t2 = Clock::now();
-  w.color_space = chain.color_space == "srgb" ? "srgb" : chain.color_space == "linear" ? "linear" : "";
-  // An OpenColorIO config the color spaces came from is a dependency too.
+  a.header = parse_dds_header(a.dds_header);
+  a.write.compression = a.compression;
+  o.output_type = parse_output_type(a.type, a.write);
+  // An OpenColorIO config the color spaces come from is a dependency too.
   for (const std::string& name : {a.color_space, a.out_color_space}) {
     if (name.empty() || a.linear) continue;
     const std::string config = ColorSpace::from_name(name).config_path();
     if (!config.empty()) record_input(config);
   }
+}
+
+std::vector<std::string> plan(const MipArgs& a, const std::string& input, const std::string& output) {
+  if (is_container_path(output)) return {output};
+  const ImageFileInfo info = probe_image(input);
+  return level_outputs(output, mip_level_count(info.width, info.height, a.mip.max_levels, a.mip.min_size));
+}
+
+void run_mip(const MipArgs& a, const std::string& input, const std::string& output, FileReport& r) {
+  MipOptions o = a.mip;
+  WriteOptions w = a.write;
+  const bool container = is_container_path(output);
+  if (!o.output_type && fs::path(output).extension() == ".exr") {
+    o.output_type = PixelType::f32;  // OpenEXR holds floats: write half
+    w.half = true;
+  }
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  ImageFileInfo info;
+  Image image = read_image(input, &info);
+  const auto t1 = Clock::now();
+  MipChain chain = generate_mips(std::move(image), o);
+  const auto t2 = Clock::now();
+  w.color_space = chain.color_space == "srgb" ? "srgb" : chain.color_space == "linear" ? "linear" : "";
   if (container) {
     // Uncompressed GPU formats: r8/rg8/rgba8 (sRGB when the chain is), 16-bit, half or float.
-    write_texture(a.output, texture_from_levels(chain.levels, chain.color_space == "srgb", w.half), dds_header);
+    write_texture(output, texture_from_levels(chain.levels, chain.color_space == "srgb", w.half), a.header);
   } else {
-    write_levels(a.output, chain.levels, w);
+    write_levels(output, chain.levels, w);
   }
   const auto t3 = Clock::now();
   auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
+  std::ostringstream line;
+  line << input << " -> " << (r.outputs.size() == 1 ? output : r.outputs[0] + " ...") << ": " << chain.levels.size()
+       << " levels, " << info.width << "x" << info.height << " " << to_string(chain.levels[0].type()) << " "
+       << chain.color_space << ", filter " << a.chain.filter << ", wrap " << a.wrap;
   if (a.common.verbose) {
-    std::cerr << "texproc mip: read " << ms(t1 - t0) << " ms, mips " << ms(t2 - t1) << " ms, write " << ms(t3 - t2)
-              << " ms\n";
-  }
-  if (!a.common.quiet) {
-    std::cout << a.input << " -> " << (single_file ? a.output : outputs[0] + " ...") << ": "
-              << chain.levels.size() << " levels, " << info.width << "x" << info.height << " "
-              << to_string(chain.levels[0].type()) << " " << chain.color_space << ", filter " << a.chain.filter
-              << ", wrap " << a.wrap << "\n";
-    if (a.common.verbose && !chain.alpha_coverage.empty()) {
-      for (std::size_t l = 0; l < chain.alpha_coverage.size(); ++l) {
-        std::cout << "  level " << l << ": alpha coverage " << chain.alpha_coverage[l] << " (alpha x "
-                  << chain.alpha_scale[l] << ")\n";
-      }
+    line << "\n  read " << ms(t1 - t0) << " ms, mips " << ms(t2 - t1) << " ms, write " << ms(t3 - t2) << " ms";
+    for (std::size_t l = 0; l < chain.alpha_coverage.size(); ++l) {
+      line << "\n  level " << l << ": alpha coverage " << chain.alpha_coverage[l] << " (alpha x "
+           << chain.alpha_scale[l] << ")";
     }
   }
-  return 0;
+  r.line = line.str();
+  r.details["width"] = info.width;
+  r.details["height"] = info.height;
+  r.details["levels"] = Json::UInt(chain.levels.size());
+  r.details["type"] = to_string(chain.levels[0].type());
+  r.details["color_space"] = chain.color_space;
+  if (a.report && !chain.alpha_coverage.empty()) {
+    Json::Value cov(Json::arrayValue), scale(Json::arrayValue);
+    for (std::size_t l = 0; l < chain.alpha_coverage.size(); ++l) {
+      cov.append(chain.alpha_coverage[l]);
+      scale.append(chain.alpha_scale[l]);
+    }
+    r.details["alpha_coverage"] = cov;
+    r.details["alpha_scale"] = scale;
+  }
 }
 
 }  // namespace
 
 void add_mip_command(CLI::App& app) {
   auto args = std::make_shared<MipArgs>();
-  CLI::App* cmd = app.add_subcommand("mip", "Build a gamma-correct mip chain from an image.");
+  CLI::App* cmd = app.add_subcommand("mip", "Build gamma-correct mip chains from images.");
   cmd->footer(
       "Outputs: .dds/.ktx2/.ktx write the chain as an uncompressed GPU texture (rgba8 sRGB or unorm,\n"
       "r8, rg8, 16-bit, half or float); .tif/.tiff/.exr write one MIP-mapped file (OpenImageIO reads the levels back, as from\n"
       "maketx); .png/.tga/.jpg/.bmp write one file per level, named {stem}_mip{L}.{ext}.\n"
       "Levels are max(1, floor(n/2)) per axis down to 1x1, each filtered from the previous level in\n"
       "linear premultiplied float. See docs/mip.md.");
-  cmd->add_option("input", args->input, "Input image (any format OpenImageIO reads)")->required();
-  cmd->add_option("-o,--output", args->output, "Output file (see below for naming)")->required();
+  add_batch_inputs(*cmd, args->io, "Input images (any format OpenImageIO reads)",
+                   "Output file, folder (DIR/: {stem}.dds each) or template ('out/{stem}.ktx2'); see below");
   add_chain_options(*cmd, args->chain, "Options");
   cmd->add_option("--wrap", args->wrap, "Texels past the edges: clamp, repeat, mirror")->capture_default_str();
   cmd->add_option("--colorspace", args->color_space,
@@ -136,8 +151,18 @@ void add_mip_command(CLI::App& app) {
   cmd->add_option("--dds-header", args->dds_header,
                   "DDS header: auto (legacy when a FourCC or masks can say the format, else DX10), dx9, dx10")
       ->capture_default_str();
+  cmd->add_flag("--report", args->report, "With --json: alpha coverage and its scale per level (--alpha-coverage)");
   add_common_options(*cmd, args->common);
-  set_runner(*cmd, [args] { return run_mip(*args); });
+  set_runner(*cmd, [args] {
+    BatchCommand c;
+    c.name = "mip";
+    c.default_extension = ".dds";
+    c.input_extensions = image_extensions();
+    c.validate = [args] { validate(*args); };
+    c.plan = [args](const InputFile& in, const std::string& out) { return plan(*args, in.path, out); };
+    c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_mip(*args, in, out, r); };
+    return run_batch(c, args->io, args->common);
+  });
 }
 
 }  // namespace texproc::cli

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "batch.h"
 #include "common.h"
 #include "texproc/container.h"
 #include "texproc/error.h"
@@ -18,8 +19,8 @@ namespace {
 
 struct NormalMapArgs {
   CommonOptions common;
+  BatchInputs io;
   ChainArgs chain;
-  std::string input, output;
   std::string kernel = "sobel3";
   std::string height_channel = "auto";
   bool invert = false;
@@ -33,11 +34,12 @@ struct NormalMapArgs {
   bool mips = false;
   std::string compression;
   std::string dds_header = "auto";
+  // From the options, once (validate):
+  NormalMapOptions options;
 };
 
-int run_normalmap(const NormalMapArgs& a) {
-  ThreadLimit threads(a.common.threads);
-  NormalMapOptions o;
+void validate(NormalMapArgs& a) {
+  NormalMapOptions& o = a.options;
   o.kernel = parse_gradient_kernel(a.kernel);
   o.height_channel = parse_height_channel(a.height_channel);
   o.invert = a.invert;
@@ -51,24 +53,31 @@ int run_normalmap(const NormalMapArgs& a) {
   o.channels = parse_normal_channels(a.channels);
   o.multiscale_weights = a.multiscale_weights;
   WriteOptions w;
+  parse_output_type(a.type, w);
+  parse_dds_header(a.dds_header);
+  parse_filter_kind(a.chain.filter);
+}
+
+std::vector<std::string> plan(const NormalMapArgs& a, const std::string& input, const std::string& output) {
+  if (!a.mips || is_container_path(output)) return {output};
+  const ImageFileInfo info = probe_image(input);
+  return level_outputs(output, mip_level_count(info.width, info.height, a.chain.levels, a.chain.min_size));
+}
+
+void run_normalmap(const NormalMapArgs& a, const std::string& input, const std::string& output, FileReport& r) {
+  const NormalMapOptions& o = a.options;
+  WriteOptions w;
   w.compression = a.compression;
   w.color_space = "linear";
-
-  ImageFileInfo info = probe_image(a.input);
+  ImageFileInfo info;
+  const Image heights = read_image(input, &info);
   std::optional<PixelType> type = parse_output_type(a.type, w);
   if (!type) type = info.type == PixelType::u8 ? PixelType::u8 : PixelType::u16;
-  if (a.type.empty() && std::filesystem::path(a.output).extension() == ".exr") {
+  if (a.type.empty() && std::filesystem::path(output).extension() == ".exr") {
     type = PixelType::f32;
     w.half = true;
   }
-  const int levels = a.mips ? mip_level_count(info.width, info.height, a.chain.levels, a.chain.min_size) : 1;
-  const bool container = is_container_path(a.output);
-  const std::vector<std::string> outputs =
-      a.mips && !container ? level_outputs(a.output, levels) : std::vector{a.output};
-  for (const auto& out : outputs) check_output(out, {a.input}, a.common.force);
-  if (stop_for_dry_run()) return 0;
-
-  const Image heights = read_image(a.input, &info);
+  const bool container = is_container_path(output);
   std::vector<Image> chain;
   if (!a.mips) {
     chain.push_back(normal_map(heights.view(), o, *type));
@@ -103,17 +112,21 @@ int run_normalmap(const NormalMapArgs& a) {
   if (container) {
     // Uncompressed rg8/rgba8/16-bit/half/float (block compression in the same
     // call comes with `compress`); normals are data: linear formats.
-    write_texture(a.output, texture_from_levels(chain, false, w.half), parse_dds_header(a.dds_header));
+    write_texture(output, texture_from_levels(chain, false, w.half), parse_dds_header(a.dds_header));
   } else if (a.mips) {
-    write_levels(a.output, chain, w);
+    write_levels(output, chain, w);
   } else {
-    write_image(a.output, chain[0].view(), w);
+    write_image(output, chain[0].view(), w);
   }
-  if (!a.common.quiet) {
-    std::cout << a.input << " -> " << outputs[0] << (outputs.size() > 1 ? " ..." : "") << ": " << a.kernel << ", "
-              << a.channels << ", " << chain.size() << " level(s), " << info.width << "x" << info.height << "\n";
-  }
-  return 0;
+  std::ostringstream line;
+  line << input << " -> " << r.outputs[0] << (r.outputs.size() > 1 ? " ..." : "") << ": " << a.kernel << ", "
+       << a.channels << ", " << chain.size() << " level(s), " << info.width << "x" << info.height;
+  r.line = line.str();
+  r.details["width"] = info.width;
+  r.details["height"] = info.height;
+  r.details["levels"] = Json::UInt(chain.size());
+  r.details["kernel"] = a.kernel;
+  r.details["channels"] = a.channels;
 }
 
 }  // namespace
@@ -126,9 +139,9 @@ void add_normalmap_command(CLI::App& app) {
       "ramp rising 1/S per texel is a 45 degree slope for every kernel; --strength multiplies on top.\n"
       "Output: xyz = RGB (n * 0.5 + 0.5), xy = RG for BC5/EAC RG11 (z = sqrt(1 - x^2 - y^2)), xyzh = RGBA\n"
       "with the height in A. See docs/normalmap.md.");
-  cmd->add_option("input", args->input, "Heightmap (8, 16-bit or float, any format OpenImageIO reads)")->required();
-  cmd->add_option("-o,--output", args->output, "Output image (.png, .tif, .exr...; with --mips as for `mip`)")
-      ->required();
+  add_batch_inputs(*cmd, args->io, "Heightmaps (8, 16-bit or float, any format OpenImageIO reads)",
+                   "Output image (.png, .tif, .exr...; with --mips as for `mip`), folder (DIR/: {stem}.png each) or "
+                   "template ('out/{stem}_n.png')");
   cmd->add_option("--kernel", args->kernel,
                   "Gradient kernel: gather2x2, central, sobel3, sobel5, prewitt3, prewitt5, scharr3, multiscale")
       ->capture_default_str();
@@ -151,7 +164,16 @@ void add_normalmap_command(CLI::App& app) {
   cmd->add_option("--dds-header", args->dds_header, "DDS header for .dds output: auto, dx9, dx10")
       ->capture_default_str();
   add_common_options(*cmd, args->common);
-  set_runner(*cmd, [args] { return run_normalmap(*args); });
+  set_runner(*cmd, [args] {
+    BatchCommand c;
+    c.name = "normalmap";
+    c.default_extension = ".png";
+    c.input_extensions = image_extensions();
+    c.validate = [args] { validate(*args); };
+    c.plan = [args](const InputFile& in, const std::string& out) { return plan(*args, in.path, out); };
+    c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_normalmap(*args, in, out, r); };
+    return run_batch(c, args->io, args->common);
+  });
 }
 
 }  // namespace texproc::cli

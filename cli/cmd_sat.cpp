@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "batch.h"
 #include "common.h"
 #include "texproc/error.h"
 #include "texproc/image_io.h"
@@ -19,15 +20,20 @@ namespace {
 
 struct SatArgs {
   CommonOptions common;
-  std::string input, output, precision;
+  BatchInputs io;
+  std::string precision;
   // query
   std::string table;
   long long x0 = 0, y0 = 0, x1 = 0, y1 = 0;
   bool json = false;
   // blur
-  std::string blur_input, blur_output, radius_map, wrap = "clamp", color_space;
+  BatchInputs blur_io;
+  std::string radius_map, wrap = "clamp", color_space;
   bool linear = false;
   float radius = 4.0f;
+  // From the options, once (validate_blur):
+  BoxBlurOptions blur;
+  Image map;
 };
 
 std::string number(double v) {
@@ -36,24 +42,23 @@ std::string number(double v) {
   return b;
 }
 
-int run_build(const SatArgs& a) {
-  if (a.input.empty() || a.output.empty()) {
-    throw Error(ErrorCode::bad_arguments, "sat needs an input image and -o OUT.sat|OUT.exr (or: sat query, sat blur)");
-  }
-  const std::string ext = fs::path(a.output).extension().string();
+std::vector<std::string> plan_build(const std::string& output) {
+  const std::string ext = fs::path(output).extension().string();
   if (ext != ".sat" && ext != ".exr") {
-    throw Error(ErrorCode::unsupported, a.output + ": a table is written as .sat (exact) or .exr (float, for viewing)");
+    throw Error(ErrorCode::unsupported, output + ": a table is written as .sat (exact) or .exr (float, for viewing)");
   }
+  return {output};
+}
+
+void run_build(const SatArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   std::optional<SatPrecision> requested;
-  if (!a.precision.empty()) requested = parse_sat_precision(a.precision);  // options first, then files
-  check_output(a.output, {a.input}, a.common.force);
-  if (stop_for_dry_run()) return 0;
+  if (!a.precision.empty()) requested = parse_sat_precision(a.precision);
   ImageFileInfo info;
-  const Image img = read_image(a.input, &info);
+  const Image img = read_image(input, &info);
   const SatPrecision p = requested ? *requested : default_sat_precision(img.type(), img.width(), img.height());
   const SummedAreaTable t = build_sat(img.view(), p);
-  if (ext == ".sat") {
-    write_sat_file(a.output, t);
+  if (fs::path(output).extension() == ".sat") {
+    write_sat_file(output, t);
   } else {
     // For viewing: the true sums S(x, y) as floats.
     Image view = Image::uninitialized(t.width, t.height, t.channels, PixelType::f32);
@@ -65,16 +70,17 @@ int run_build(const SatArgs& a) {
           for (int c = 0; c < t.channels; ++c) view.row<float>(y)[x * t.channels + c] = float(s[c]);
         }
     });
-    write_image(a.output, view.view());
+    write_image(output, view.view());
   }
-  if (!a.common.quiet) {
-    std::cout << a.input << " -> " << a.output << ": " << t.width << "x" << t.height << "x" << t.channels << " "
-              << to_string(p);
-    if (t.max_exact_box() > 0) std::cout << ", exact for boxes up to " << t.max_exact_box() << " texels";
-    if (t.error_bound() > 0) std::cout << ", box sums within +-" << number(t.error_bound());
-    std::cout << "\n";
-  }
-  return 0;
+  std::ostringstream line;
+  line << input << " -> " << output << ": " << t.width << "x" << t.height << "x" << t.channels << " " << to_string(p);
+  if (t.max_exact_box() > 0) line << ", exact for boxes up to " << t.max_exact_box() << " texels";
+  if (t.error_bound() > 0) line << ", box sums within +-" << number(t.error_bound());
+  r.line = line.str();
+  r.details["width"] = t.width;
+  r.details["height"] = t.height;
+  r.details["channels"] = t.channels;
+  r.details["precision"] = to_string(p);
 }
 
 int run_query(const SatArgs& a) {
@@ -113,33 +119,28 @@ int run_query(const SatArgs& a) {
   return 0;
 }
 
-int run_blur(const SatArgs& a) {
-  std::vector<std::string> inputs = {a.blur_input};
-  if (!a.radius_map.empty()) inputs.push_back(a.radius_map);
-  check_output(a.blur_output, inputs, a.common.force);
-  if (stop_for_dry_run()) return 0;
-  ImageFileInfo info;
-  const Image img = read_image(a.blur_input, &info);
-  Image map;
-  BoxBlurOptions o;
-  o.radius = a.radius;
-  o.wrap = parse_wrap_mode(a.wrap);
-  if (o.wrap == WrapMode::mirror) throw Error(ErrorCode::bad_arguments, "--wrap for sat blur: valid: clamp, repeat");
-  o.color_space = a.linear ? "linear" : a.color_space;
+void validate_blur(SatArgs& a) {
+  a.blur.radius = a.radius;
+  a.blur.wrap = parse_wrap_mode(a.wrap);
+  if (a.blur.wrap == WrapMode::mirror) throw Error(ErrorCode::bad_arguments, "--wrap for sat blur: valid: clamp, repeat");
+  a.blur.color_space = a.linear ? "linear" : a.color_space;
   if (!a.radius_map.empty()) {
-    map = read_image(a.radius_map);
-    o.radius_map = nullptr;
+    a.map = read_image(a.radius_map);
+    record_input(a.radius_map);
   }
-  const ImageView mv = map.view();
-  if (!map.empty()) o.radius_map = &mv;
+}
+
+void run_blur(const SatArgs& a, const std::string& input, const std::string& output, FileReport& r) {
+  const Image img = read_image(input);
+  BoxBlurOptions o = a.blur;
+  const ImageView mv = a.map.view();
+  if (!a.map.empty()) o.radius_map = &mv;
   const Image out = box_blur(img.view(), o);
-  WriteOptions w;
-  write_image(a.blur_output, out.view(), w);
-  if (!a.common.quiet) {
-    std::cout << a.blur_input << " -> " << a.blur_output << ": box blur radius " << a.radius
-              << (a.radius_map.empty() ? "" : " x " + a.radius_map) << ", wrap " << a.wrap << "\n";
-  }
-  return 0;
+  write_image(output, out.view(), WriteOptions{});
+  r.line = input + " -> " + output + ": box blur radius " + number(a.radius) +
+           (a.radius_map.empty() ? "" : " x " + a.radius_map) + ", wrap " + a.wrap;
+  r.details["width"] = img.width();
+  r.details["height"] = img.height();
 }
 
 }  // namespace
@@ -153,8 +154,10 @@ void add_sat_command(CLI::App& app) {
       "texproc sat blur IN -o OUT --radius R [--radius-map MAP] [--wrap clamp|repeat]\n"
       "Tables sum the stored values (8/16-bit codes, or floats). See docs/sat.md for the precision table.");
   cmd->require_subcommand(0, 1);
-  cmd->add_option("input", args->input, "Input image");
-  cmd->add_option("-o,--output", args->output, "Output table: .sat (exact, raw) or .exr (float, for viewing)");
+  add_batch_inputs(*cmd, args->io, "Input images",
+                   "Output table: .sat (exact, raw) or .exr (float, for viewing), folder (DIR/: {stem}.sat each) or "
+                   "template",
+                   false);
   cmd->add_option("--precision", args->precision,
                   "Element type: u32, u64 (wrapping integers), f32 (mean subtracted), f64; default: the smallest "
                   "that is exact for every box of the input");
@@ -169,8 +172,8 @@ void add_sat_command(CLI::App& app) {
   q->add_flag("--json", args->json, "Print {\"sum\": [...], \"mean\": [...], ...}");
 
   CLI::App* b = cmd->add_subcommand("blur", "Box blur of any radius at constant cost per texel, gamma-correct.");
-  b->add_option("input", args->blur_input, "Input image")->required();
-  b->add_option("-o,--output", args->blur_output, "Output image")->required();
+  add_batch_inputs(*b, args->blur_io, "Input images",
+                   "Output image, folder (DIR/: same name each) or template ('blurred/{name}')");
   b->add_option("--radius", args->radius, "Half-width in texels: a box of 2R+1; fractional radii blend")
       ->capture_default_str();
   b->add_option("--radius-map", args->radius_map, "Per-texel radius: R times the map's first channel in [0, 1]");
@@ -180,10 +183,33 @@ void add_sat_command(CLI::App& app) {
   add_common_options(*b, args->common);
 
   set_runner(*cmd, [args, cmd, q, b] {
-    ThreadLimit threads(args->common.threads);
-    if (q->parsed()) return run_query(*args);
-    if (b->parsed()) return run_blur(*args);
-    return run_build(*args);
+    if (q->parsed()) {
+      ThreadLimit threads(args->common.threads);
+      return run_query(*args);
+    }
+    BatchCommand c;
+    if (b->parsed()) {
+      c.name = "sat blur";
+      c.default_extension = "";  // the input's
+      c.input_extensions = image_extensions();
+      c.validate = [args] { validate_blur(*args); };
+      c.plan = [](const InputFile&, const std::string& out) { return std::vector<std::string>{out}; };
+      c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_blur(*args, in, out, r); };
+      return run_batch(c, args->blur_io, args->common);
+    }
+    if (args->io.inputs.empty() && args->io.file_list.empty()) {
+      throw Error(ErrorCode::bad_arguments, "sat needs input images and -o OUT.sat|OUT.exr|DIR/ (or: sat query, sat blur)");
+    }
+    if (args->io.output.empty()) throw Error(ErrorCode::bad_arguments, "sat: -o OUT.sat|OUT.exr|DIR/ is required");
+    c.name = "sat";
+    c.default_extension = ".sat";
+    c.input_extensions = image_extensions();
+    c.validate = [args] {
+      if (!args->precision.empty()) parse_sat_precision(args->precision);
+    };
+    c.plan = [](const InputFile&, const std::string& out) { return plan_build(out); };
+    c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_build(*args, in, out, r); };
+    return run_batch(c, args->io, args->common);
   });
 }
 

@@ -2,6 +2,7 @@
 
 #include <iostream>
 
+#include "batch.h"
 #include "common.h"
 #include "exit_codes.h"
 #include "texproc/error.h"
@@ -42,10 +43,13 @@ int run_selected(CLI::App& app) {
       if (write_if_changed()) set_commit_policy(CommitPolicy::keep_identical);
       const int rc = (*run)();
       if (rc == 0) write_depfile_if_requested();
+      print_failure_summary(cmd);
+      if (session_options().json) print_json_summary(cmd, rc);
       return rc;
     } catch (const texproc::Error& e) {
       std::cerr << "texproc " << cmd << ": error: " << e.what() << "\n";
       if (e.code() == ErrorCode::bad_arguments) std::cerr << "See 'texproc " << cmd << " --help'.\n";
+      if (session_options().json) print_json_summary(cmd, int(e.code()), e.what());
       return int(e.code());
     } catch (const std::bad_alloc&) {
       std::cerr << "texproc " << cmd << ": error: out of memory\n";

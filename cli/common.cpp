@@ -4,7 +4,9 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <mutex>
 
+#include "batch.h"
 #include "texproc/error.h"
 #include "texproc/file_io.h"
 
@@ -20,6 +22,7 @@ struct BuildState {
   bool write_if_changed = false;
   bool dry_run = false;
   std::vector<std::string> outputs, inputs;
+  std::mutex mutex;  // commands record inputs from worker threads
 };
 BuildState& build_state() {
   static BuildState d;
@@ -40,9 +43,21 @@ void refuse_overwriting_input(const std::string& output, const std::vector<std::
 }  // namespace
 
 void add_common_options(CLI::App& cmd, CommonOptions& o) {
-  cmd.add_option("-j,--threads", o.threads, "Worker threads (default 0: all cores). Output is identical for any value.")
+  SessionOptions& s = session_options();
+  cmd.add_option("--threads", o.threads, "Worker threads (default 0: all cores). Output is identical for any value.")
       ->check(CLI::NonNegativeNumber)
       ->group("Common");
+  cmd.add_option("-j,--jobs", s.jobs,
+                 "Files processed at once (default 0: as many as threads); they share the threads, output is "
+                 "identical for any value")
+      ->check(CLI::NonNegativeNumber)
+      ->group("Common");
+  cmd.add_flag("--fail-fast", s.fail_fast, "Stop starting files after the first failure (default: do the rest)")
+      ->group("Common");
+  cmd.add_flag("--skip-existing", s.skip_existing, "Skip inputs whose outputs all exist already")->group("Common");
+  cmd.add_flag("--json", s.json, "Print one JSON summary on stdout (schema in docs/cli.md) instead of lines")
+      ->group("Common");
+  cmd.add_flag("--progress", s.progress, "Draw progress on stderr even when it is not a terminal")->group("Common");
   cmd.add_flag("-f,--force", o.force, "Overwrite outputs that already exist")->group("Common");
   cmd.add_flag("-q,--quiet", o.quiet, "Print nothing but errors")->group("Common");
   cmd.add_flag("-v,--verbose", o.verbose, "Print details of the work")->group("Common");
@@ -58,19 +73,10 @@ void add_common_options(CLI::App& cmd, CommonOptions& o) {
 }
 
 bool write_if_changed() { return build_state().write_if_changed; }
-
-bool stop_for_dry_run() {
-  const BuildState& d = build_state();
-  if (!d.dry_run) return false;
-  std::error_code ec;
-  for (const auto& in : d.inputs) {
-    if (!fs::is_regular_file(in, ec)) throw Error(ErrorCode::io, in + ": cannot open: no such file");
-  }
-  for (const auto& out : d.outputs) std::cout << out << "\n";
-  return true;
-}
+bool dry_run() { return build_state().dry_run; }
 
 void record_input(const std::string& path) {
+  std::lock_guard lock(build_state().mutex);
   auto& v = build_state().inputs;
   if (std::find(v.begin(), v.end(), path) == v.end()) v.push_back(path);
 }
@@ -149,7 +155,7 @@ void check_output(const std::string& output, const std::vector<std::string>& inp
     }
   }
   const fs::path parent = fs::path(output).parent_path();
-  if (!parent.empty() && !fs::exists(parent, ec)) {
+  if (!d.dry_run && !parent.empty() && !fs::exists(parent, ec)) {
     fs::create_directories(parent, ec);
     if (ec) throw Error(ErrorCode::io, parent.string() + ": cannot create folder: " + ec.message());
   }
@@ -199,6 +205,16 @@ void write_levels(const std::string& output, const std::vector<Image>& levels, c
   }
   const auto names = level_outputs(output, int(levels.size()));
   for (std::size_t l = 0; l < levels.size(); ++l) write_image(names[l], levels[l].view(), options);
+}
+
+const std::vector<std::string>& image_extensions() {
+  static const std::vector<std::string> e = {".png", ".jpg", ".jpeg", ".tga", ".tif", ".tiff", ".exr", ".hdr",
+                                             ".bmp", ".psd", ".webp", ".gif", ".ppm", ".pgm", ".pnm", ".dds"};
+  return e;
+}
+const std::vector<std::string>& texture_extensions() {
+  static const std::vector<std::string> e = {".dds", ".ktx2", ".ktx", ".pkm"};
+  return e;
 }
 
 bool is_container_path(const std::string& path) {

@@ -14,7 +14,9 @@
 
 namespace texproc::cli {
 
-// --threads, --force, --quiet, --verbose: one struct, one registration.
+// --threads, --force, --quiet, --verbose: one struct, one registration,
+// with the options of the whole run (--depfile, --dry-run, --write-if-changed,
+// --jobs, --fail-fast, --skip-existing, --json, --progress).
 struct CommonOptions {
   int threads = 0;
   bool force = false;
@@ -32,10 +34,8 @@ void record_input(const std::string& path);
 // --write-if-changed was given: existing outputs may be replaced, and are
 // kept (bytes and time stamp) when the new bytes are the same.
 bool write_if_changed();
-// --dry-run: called by a command once every output is checked. If given,
-// checks that the recorded inputs exist, prints the outputs, one a line, and
-// returns true: the command returns 0 without doing the work.
-bool stop_for_dry_run();
+// --dry-run was given.
+bool dry_run();
 // Writes the depfile if --depfile was given (atomically). Throws Error.
 void write_depfile_if_requested();
 
@@ -47,7 +47,7 @@ CommandRunner* runner_of(CLI::App& cmd);
 
 // Checks that writing `output` is allowed: it must not be one of `inputs`
 // (compared as files, not strings) and must not exist unless --force.
-// Creates the parent folder. Throws Error{bad_arguments}.
+// Creates the parent folder (not under --dry-run). Throws Error{bad_arguments}.
 void check_output(const std::string& output, const std::vector<std::string>& inputs, bool force);
 
 // Options that shape a mip chain, shared by every command that writes one.
@@ -70,6 +70,11 @@ std::vector<std::string> level_outputs(const std::string& output, int levels);
 // Writes a chain to the names level_outputs gives.
 void write_levels(const std::string& output, const std::vector<texproc::Image>& levels,
                   const texproc::WriteOptions& options);
+
+// File extensions (lower case, with the dot) that folder inputs pick: the
+// image formats texproc reads, and the texture containers.
+const std::vector<std::string>& image_extensions();
+const std::vector<std::string>& texture_extensions();
 
 // True for .dds, .ktx2, .ktx, .pkm outputs.
 bool is_container_path(const std::string& path);

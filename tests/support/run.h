@@ -24,12 +24,14 @@ inline std::string slurp(const std::string& path) {
   return ss.str();
 }
 
-// `args` is appended to the binary's path as shell words.
-inline RunResult run_texproc(const std::string& args) {
+// `args` is appended to the binary's path as shell words; `cwd`: the folder
+// to run in (empty: this process's).
+inline RunResult run_texproc(const std::string& args, const std::string& cwd = "") {
   const std::string dir = std::filesystem::temp_directory_path().string();
   static int counter = 0;
   const std::string base = dir + "/texproc_run_" + std::to_string(::getpid()) + "_" + std::to_string(counter++);
-  const std::string cmd = std::string(TEXPROC_CLI_PATH) + " " + args + " >" + base + ".out 2>" + base + ".err";
+  const std::string cmd = (cwd.empty() ? "" : "cd '" + cwd + "' && ") + std::string(TEXPROC_CLI_PATH) + " " + args +
+                          " >" + base + ".out 2>" + base + ".err";
   const int status = std::system(cmd.c_str());
   RunResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

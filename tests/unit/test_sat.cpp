@@ -51,7 +51,9 @@ TEST(Sat, EveryBoxMatchesBruteForce) {
           }
           const SummedAreaTable s = build_sat(img.view(), p);
           const double bound = s.error_bound();
-          if (p != SatPrecision::f32 && t != PixelType::f32) EXPECT_EQ(bound, 0.0);
+          if (p != SatPrecision::f32 && t != PixelType::f32) {
+            EXPECT_EQ(bound, 0.0);
+          }
           std::vector<double> got(ch);
           for (int y0 = 0; y0 <= h; ++y0)
             for (int y1 = y0; y1 <= h; ++y1)

@@ -213,15 +213,15 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q,
   for (int i = 1; i < 16 && flat; ++i) flat = std::memcmp(rgb[i], rgb[0], 3) == 0;
   if (flat) {
     const SingleColorTables& s = single();
-    for (int mode = 0; mode < (three_allowed ? 2 : 1); ++mode) {
+    for (int m = 0; m < (three_allowed ? 2 : 1); ++m) {
       Endpoints e;
       for (int k = 0; k < 2; ++k) {
-        e.c[k][0] = s.five[mode][rgb[0][0]][k];
-        e.c[k][1] = s.six[mode][rgb[0][1]][k];
-        e.c[k][2] = s.five[mode][rgb[0][2]][k];
+        e.c[k][0] = s.five[m][rgb[0][0]][k];
+        e.c[k][1] = s.six[m][rgb[0][1]][k];
+        e.c[k][2] = s.five[m][rgb[0][2]][k];
       }
       Result r;
-      assign(rgb, transparent, e, mode == 0, false, r);
+      assign(rgb, transparent, e, m == 0, false, r);
       keep(r);
     }
   }

@@ -1,0 +1,400 @@
+#include "batch.h"
+
+#include <json/writer.h>
+#include <tbb/parallel_pipeline.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "progress.h"
+#include "texproc/runtime.h"
+
+namespace fs = std::filesystem;
+
+namespace texproc::cli {
+
+SessionOptions& session_options() {
+  static SessionOptions s;
+  return s;
+}
+
+std::vector<FileReport>& session_reports() {
+  static std::vector<FileReport> r;
+  return r;
+}
+
+void add_batch_inputs(CLI::App& cmd, BatchInputs& b, const char* what, const char* output_help,
+                      bool output_required) {
+  cmd.add_option("inputs", b.inputs, std::string(what) + ": files, or folders (their files; with -r, recursively)");
+  cmd.add_option("-o,--output", b.output, output_help)->required(output_required);
+  cmd.add_flag("-r,--recursive", b.recursive, "Folder inputs: take the files of their subfolders too")
+      ->group("Batch");
+  cmd.add_option("--file-list", b.file_list, "Read more inputs from FILE, one a line ('#' starts a comment)")
+      ->group("Batch");
+}
+
+bool is_template(const std::string& output) { return output.find('{') != std::string::npos; }
+
+std::string expand_template(const std::string& pattern, const InputFile& in) {
+  const fs::path p(in.path);
+  std::string ext = p.extension().string();
+  if (!ext.empty()) ext.erase(0, 1);
+  std::string dir = p.parent_path().string();
+  if (dir.empty()) dir = ".";
+  const std::string reldir = in.reldir.empty() ? "." : in.reldir;
+  std::string out;
+  for (std::size_t i = 0; i < pattern.size(); ++i) {
+    const char c = pattern[i];
+    if ((c == '{' || c == '}') && i + 1 < pattern.size() && pattern[i + 1] == c) {
+      out += c;
+      ++i;
+      continue;
+    }
+    if (c != '{') {
+      out += c;
+      continue;
+    }
+    const std::size_t close = pattern.find('}', i);
+    if (close == std::string::npos) {
+      throw Error(ErrorCode::bad_arguments, "-o '" + pattern + "': '{' without '}' (write {{ for a literal brace)");
+    }
+    const std::string key = pattern.substr(i + 1, close - i - 1);
+    if (key == "stem") out += p.stem().string();
+    else if (key == "name") out += p.filename().string();
+    else if (key == "ext") out += ext;
+    else if (key == "dir") out += dir;
+    else if (key == "reldir") out += reldir;
+    else {
+      throw Error(ErrorCode::bad_arguments, "-o '" + pattern + "': unknown placeholder {" + key +
+                                                "} (valid: {stem}, {name}, {ext}, {dir}, {reldir})");
+    }
+    i = close;
+  }
+  return fs::path(out).lexically_normal().string();
+}
+
+namespace {
+
+std::string lower(std::string s) {
+  for (auto& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+bool wanted(const fs::path& p, const std::vector<std::string>& extensions) {
+  const std::string name = p.filename().string();
+  if (name.empty() || name[0] == '.') return false;  // hidden files and our own temporaries
+  const std::string e = lower(p.extension().string());
+  return std::find(extensions.begin(), extensions.end(), e) != extensions.end();
+}
+
+// The files a folder argument stands for, sorted by path (the same order on
+// every machine).
+void add_folder(const std::string& folder, bool recursive, const std::vector<std::string>& extensions,
+                std::vector<InputFile>& out) {
+  std::vector<InputFile> found;
+  std::error_code ec;
+  auto take = [&](const fs::directory_entry& e) {
+    if (!e.is_regular_file(ec) || !wanted(e.path(), extensions)) return;
+    const fs::path rel = e.path().lexically_relative(folder).parent_path();
+    found.push_back({e.path().lexically_normal().string(), rel.empty() ? "" : rel.string()});
+  };
+  if (recursive) {
+    for (fs::recursive_directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+      const std::string n = it->path().filename().string();
+      if (!n.empty() && n[0] == '.' && it->is_directory(ec)) {
+        it.disable_recursion_pending();  // .git and friends
+        continue;
+      }
+      take(*it);
+    }
+  } else {
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) take(*it);
+  }
+  if (ec) throw Error(ErrorCode::io, folder + ": cannot list folder: " + ec.message());
+  std::sort(found.begin(), found.end(), [](const InputFile& a, const InputFile& b) { return a.path < b.path; });
+  if (found.empty()) {
+    throw Error(ErrorCode::bad_arguments, folder + ": folder holds no input files (" + join(extensions, " ") + ")" +
+                                              (recursive ? "" : "; -r searches its subfolders"));
+  }
+  out.insert(out.end(), found.begin(), found.end());
+}
+
+std::vector<InputFile> expand_inputs(const BatchInputs& b, const std::vector<std::string>& extensions) {
+  std::vector<std::string> args = b.inputs;
+  if (!b.file_list.empty()) {
+    std::ifstream list(b.file_list);
+    if (!list) throw Error(ErrorCode::io, b.file_list + ": cannot open file list");
+    record_input(b.file_list);
+    std::string line;
+    while (std::getline(list, line)) {
+      const auto first = line.find_first_not_of(" \t\r");
+      if (first == std::string::npos || line[first] == '#') continue;
+      const auto last = line.find_last_not_of(" \t\r");
+      args.push_back(line.substr(first, last - first + 1));
+    }
+  }
+  if (args.empty()) throw Error(ErrorCode::bad_arguments, "no inputs: name files or folders, or use --file-list");
+  std::vector<InputFile> files;
+  std::error_code ec;
+  for (const auto& a : args) {
+    if (fs::is_directory(a, ec)) {
+      add_folder(a, b.recursive, extensions, files);
+    } else {
+      files.push_back({a, ""});  // a missing file fails on its own, later
+    }
+  }
+  return files;
+}
+
+// The output for each input: -o names one file (one input only), a folder
+// (-o DIR/, an existing folder, or several inputs and no extension), or a
+// template.
+std::vector<std::string> name_outputs(const BatchCommand& c, const BatchInputs& b, const std::vector<InputFile>& files) {
+  std::vector<std::string> outs;
+  std::error_code ec;
+  const std::string& o = b.output;
+  const bool folder = !is_template(o) && (o.back() == '/' || fs::is_directory(o, ec) ||
+                                           (files.size() > 1 && fs::path(o).extension().empty()));
+  if (!is_template(o) && !folder && files.size() > 1) {
+    throw Error(ErrorCode::bad_arguments, "-o " + o + " names one file, but there are " +
+                                              std::to_string(files.size()) + " inputs; use -o DIR/ or a template "
+                                              "such as -o 'out/{stem}" + c.default_extension + "'");
+  }
+  for (const auto& f : files) {
+    if (is_template(o)) {
+      outs.push_back(expand_template(o, f));
+    } else if (folder) {
+      // The folder mirrors the inputs' subfolders under a folder argument.
+      const std::string ext = c.default_extension.empty() ? fs::path(f.path).extension().string() : c.default_extension;
+      outs.push_back((fs::path(o) / f.reldir / (fs::path(f.path).stem().string() + ext))
+                         .lexically_normal()
+                         .string());
+    } else {
+      outs.push_back(o);
+    }
+  }
+  std::map<std::string, std::size_t> seen;
+  for (std::size_t i = 0; i < outs.size(); ++i) {
+    auto [it, fresh] = seen.emplace(outs[i], i);
+    if (!fresh) {
+      throw Error(ErrorCode::bad_arguments, outs[i] + ": both " + files[it->second].path + " and " + files[i].path +
+                                                " would write this output; use a template with {name} or {dir}");
+    }
+  }
+  return outs;
+}
+
+void fail(FileReport& r, ErrorCode code, const std::string& message) {
+  r.status = "failed";
+  r.code = code;
+  r.error = message;
+}
+
+}  // namespace
+
+int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& common) {
+  const SessionOptions& s = session_options();
+  ThreadLimit threads(common.threads);
+  if (c.validate) c.validate();
+  const std::vector<InputFile> files = expand_inputs(b, c.input_extensions);
+  const std::vector<std::string> outputs = name_outputs(c, b, files);
+
+  // Plan every file (names, existence, overwrites) before any work.
+  std::vector<FileReport> reports(files.size());
+  std::vector<std::size_t> todo;
+  std::error_code ec;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    FileReport& r = reports[i];
+    r.input = files[i].path;
+    try {
+      if (!fs::is_regular_file(r.input, ec)) {
+        throw Error(ErrorCode::io, r.input + (fs::exists(r.input, ec) ? ": not a file" : ": no such file"));
+      }
+      r.outputs = c.plan(files[i], outputs[i]);
+      if (s.skip_existing && std::all_of(r.outputs.begin(), r.outputs.end(),
+                                         [&](const std::string& f) { return fs::exists(f, ec); })) {
+        r.status = "skipped";
+        r.line = r.input + ": skipped, outputs exist";
+        continue;
+      }
+      for (const auto& out : r.outputs) check_output(out, {r.input}, common.force);
+      todo.push_back(i);
+    } catch (const Error& e) {
+      fail(r, e.code(), e.what());
+    }
+  }
+  // Two files must not write one output (an extra output such as a preview
+  // named without a template).
+  std::map<std::string, std::size_t> writer;
+  for (std::size_t i = 0; i < reports.size(); ++i) {
+    for (const auto& o : reports[i].outputs) {
+      auto [it, fresh] = writer.emplace(fs::path(o).lexically_normal().string(), i);
+      if (!fresh && it->second != i) {
+        throw Error(ErrorCode::bad_arguments, o + ": both " + reports[it->second].input + " and " + reports[i].input +
+                                                  " would write this output; name it with a template ({stem})");
+      }
+    }
+  }
+  auto finish = [&]() {
+    int rc = 0;
+    for (const auto& r : reports) {
+      if (r.status == "failed" && rc == 0) rc = int(r.code);
+      session_reports().push_back(r);
+    }
+    return rc;
+  };
+
+  if (dry_run()) {
+    for (const auto& r : reports) {
+      if (r.status == "failed") {
+        std::cerr << "texproc " << c.name << ": error: " << r.error << "\n";
+      } else if (!s.json) {
+        for (const auto& o : r.outputs) std::cout << o << "\n";
+      }
+    }
+    return finish();
+  }
+
+  // Plan failures are reported now; the work goes on for the others unless --fail-fast.
+  bool failed = false;
+  for (const auto& r : reports) {
+    if (r.status != "failed") continue;
+    failed = true;
+    std::cerr << "texproc " << c.name << ": error: " << r.error << "\n";
+  }
+  if (failed && s.fail_fast) {
+    for (std::size_t i : todo) reports[i].status = "not_run";
+    return finish();
+  }
+
+  Progress progress(c.name, todo.size(), !common.quiet && (s.progress || ::isatty(2)));
+  std::atomic<bool> stop{false};
+  std::size_t next = 0;
+  const int hw = hardware_threads();
+  const std::size_t tokens = std::size_t(std::max(1, s.jobs > 0 ? s.jobs : (common.threads > 0 ? common.threads : hw)));
+  tbb::parallel_pipeline(
+      tokens,
+      tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
+                                          [&](tbb::flow_control& fc) -> std::size_t {
+                                            if (next == todo.size() || stop) {
+                                              fc.stop();
+                                              return 0;
+                                            }
+                                            return todo[next++];
+                                          }) &
+          tbb::make_filter<std::size_t, std::size_t>(
+              tbb::filter_mode::parallel,
+              [&](std::size_t i) {
+                FileReport& r = reports[i];
+                progress.started(r.input);
+                const auto t0 = std::chrono::steady_clock::now();
+                try {
+                  c.run(r.input, outputs[i], r);
+                } catch (const Error& e) {
+                  fail(r, e.code(), e.what());
+                } catch (const std::bad_alloc&) {
+                  fail(r, ErrorCode::runtime, r.input + ": out of memory");
+                } catch (const std::exception& e) {
+                  fail(r, ErrorCode::runtime, r.input + ": " + e.what());
+                }
+                r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                return i;
+              }) &
+          tbb::make_filter<std::size_t, void>(tbb::filter_mode::serial_in_order, [&](std::size_t i) {
+            FileReport& r = reports[i];
+            progress.finished(r.input, [&] {
+              if (r.status == "failed") {
+                std::cerr << "texproc " << c.name << ": error: " << r.error << "\n";
+              } else if (!common.quiet && !s.json && !r.line.empty()) {
+                std::cout << r.line << "\n" << std::flush;
+              }
+            });
+            if (r.status == "failed" && s.fail_fast) stop = true;
+          }));
+  progress.close();
+  if (stop) {
+    for (std::size_t k = next; k < todo.size(); ++k) reports[todo[k]].status = "not_run";
+  }
+  return finish();
+}
+
+std::string to_json(const Json::Value& v) {
+  Json::StreamWriterBuilder w;
+  w["indentation"] = "  ";
+  w["precision"] = 6;
+  w["emitUTF8"] = true;
+  return Json::writeString(w, v);
+}
+
+void print_json_summary(const std::string& command, int exit_code, const std::string& error) {
+  Json::Value root(Json::objectValue);
+  root["command"] = command;
+  root["exit_code"] = exit_code;
+  if (!error.empty()) root["error"] = error;
+  Json::Value files(Json::arrayValue);
+  int ok = 0, failed = 0, skipped = 0, not_run = 0;
+  for (const auto& r : session_reports()) {
+    Json::Value f(Json::objectValue);
+    f["input"] = r.input;
+    Json::Value outs(Json::arrayValue);
+    for (const auto& o : r.outputs) outs.append(o);
+    f["outputs"] = outs;
+    f["status"] = r.status;
+    if (r.status == "failed") {
+      f["error"] = r.error;
+      f["exit_code"] = int(r.code);
+    }
+    if (r.status == "ok") {
+      std::error_code ec;
+      const auto in_bytes = fs::file_size(r.input, ec);
+      if (!ec) f["input_bytes"] = Json::UInt64(in_bytes);
+      Json::UInt64 out_bytes = 0;
+      for (const auto& o : r.outputs) {
+        const auto n = fs::file_size(o, ec);
+        if (!ec) out_bytes += n;
+      }
+      if (!dry_run()) {
+        f["output_bytes"] = out_bytes;
+        f["seconds"] = r.seconds;
+      }
+      for (const auto& key : r.details.getMemberNames()) f[key] = r.details[key];
+    }
+    (r.status == "ok" ? ok : r.status == "failed" ? failed : r.status == "skipped" ? skipped : not_run)++;
+    files.append(f);
+  }
+  root["files"] = files;
+  root["ok"] = ok;
+  root["failed"] = failed;
+  root["skipped"] = skipped;
+  root["not_run"] = not_run;
+  root["dry_run"] = dry_run();
+  std::cout << to_json(root) << "\n";
+}
+
+void print_failure_summary(const std::string& command) {
+  const auto& reports = session_reports();
+  std::vector<const FileReport*> failed;
+  std::size_t not_run = 0;
+  for (const auto& r : reports) {
+    if (r.status == "failed") failed.push_back(&r);
+    if (r.status == "not_run") ++not_run;
+  }
+  if (reports.size() < 2 || failed.empty()) return;
+  std::cerr << "texproc " << command << ": " << failed.size() << " of " << reports.size() << " files failed";
+  if (not_run) std::cerr << ", " << not_run << " not run (--fail-fast)";
+  std::cerr << ":\n";
+  for (const FileReport* r : failed) {
+    const bool named = r->error.rfind(r->input, 0) == 0;  // messages usually start with the file
+    std::cerr << "  " << (named ? "" : r->input + ": ") << r->error << "\n";
+  }
+}
+
+}  // namespace texproc::cli

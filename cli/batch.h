@@ -1,0 +1,103 @@
+// Many inputs in one call: every command that turns an input file into
+// output files runs through run_batch(), which expands the inputs (files,
+// folders with -r, --file-list), names the outputs (-o FILE, -o DIR, or a
+// template such as 'out/{stem}.dds'), checks every output before any work,
+// processes the files in parallel on the one oneTBB pool the block-level
+// kernels use, prints one line per file in input order, shows progress on a
+// terminal, and keeps going past a failed file unless --fail-fast.
+//
+// What a run produced is collected as FileReports; the top level prints
+// them as JSON (--json) and turns failures into the exit code.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <json/value.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "common.h"
+#include "texproc/error.h"
+
+namespace texproc::cli {
+
+// The inputs and output naming of one command invocation.
+struct BatchInputs {
+  std::vector<std::string> inputs;
+  std::string output;  // a file, a folder, or a template with {placeholders}
+  bool recursive = false;
+  std::string file_list;
+};
+// Registers `inputs` (positional, 1 or more), -o, -r and --file-list.
+// `what` names the inputs in the help ("Input images").
+void add_batch_inputs(CLI::App& cmd, BatchInputs& b, const char* what, const char* output_help,
+                      bool output_required = true);
+
+// One input file found by expansion.
+struct InputFile {
+  std::string path;    // as given or as found under a folder argument
+  std::string reldir;  // its folder relative to the folder argument ("" if named directly)
+};
+
+// Expands {stem}, {name}, {ext}, {dir}, {reldir} in `pattern` for `in`
+// ({{ and }} are literal braces). Throws Error{bad_arguments} for an
+// unknown placeholder.
+std::string expand_template(const std::string& pattern, const InputFile& in);
+bool is_template(const std::string& output);
+
+// What a run produced for one input.
+struct FileReport {
+  std::string input;
+  std::vector<std::string> outputs;  // the files written (or, with --dry-run, to be written)
+  std::string status = "ok";         // ok, failed, skipped (--skip-existing), not_run (--fail-fast)
+  std::string error;                 // the message, when failed
+  ErrorCode code = ErrorCode::success;
+  std::string line;                  // the human summary ("a.png -> a.dds: ..."), printed unless --quiet
+  Json::Value details{Json::objectValue};  // format, sizes, levels, quality figures (--report)
+  double seconds = 0;
+};
+
+// A command that maps each input file to output files.
+struct BatchCommand {
+  std::string name;               // "mip"
+  std::string default_extension;  // for -o DIR: ".dds"
+  std::vector<std::string> input_extensions;  // files picked from folders (lower case, with the dot)
+  // Once, before any file: checks the options; throws Error (the whole run fails).
+  std::function<void()> validate;
+  // Per file, before any work: every file `output` stands for (one name, or
+  // one per mip level). Throws Error for this file only (a missing input).
+  std::function<std::vector<std::string>(const InputFile& input, const std::string& output)> plan;
+  // Per file: the work. Fills the report's line and details.
+  std::function<void(const std::string& input, const std::string& output, FileReport& report)> run;
+};
+
+// Runs `c` over the inputs; returns 0, or the exit code of the first failed
+// file in input order. Throws Error for problems of the whole run (options,
+// an -o that cannot name several files, two inputs naming one output).
+int run_batch(const BatchCommand& c, const BatchInputs& in, const CommonOptions& common);
+
+// Options of the whole process (the top-level command): set by
+// add_common_options, read by run_batch and main.
+struct SessionOptions {
+  int jobs = 0;  // files in flight (0: as many as threads)
+  bool fail_fast = false;
+  bool skip_existing = false;
+  bool json = false;
+  bool progress = false;  // --progress: draw progress even when stderr is not a terminal
+};
+SessionOptions& session_options();
+
+// Every FileReport of this process, in order (a `build` recipe adds several
+// batches).
+std::vector<FileReport>& session_reports();
+// Prints the --json summary of session_reports() for `command` to stdout;
+// `error`: a failure of the whole run (bad options), if any.
+void print_json_summary(const std::string& command, int exit_code, const std::string& error = "");
+// After several files, a closing line on stderr listing the failures.
+void print_failure_summary(const std::string& command);
+
+// Writes a Json::Value as the summaries and `info --json` do.
+std::string to_json(const Json::Value& v);
+
+}  // namespace texproc::cli

@@ -1,0 +1,41 @@
+// texproc/metrics.h: how far two images are apart (PSNR and friends), for
+// `texproc compare`, `compress --report` and the benchmarks.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "texproc/image.h"
+
+namespace texproc {
+
+struct ChannelDifference {
+  double mse = 0;       // mean squared difference
+  double mean_abs = 0;  // mean absolute difference
+  double max_abs = 0;   // largest absolute difference
+};
+
+struct ImageDifference {
+  int width = 0, height = 0, channels = 0;
+  std::vector<ChannelDifference> channel;
+  double mse = 0;      // over every channel
+  double mse_rgb = 0;  // over the first min(3, channels) channels (color without alpha)
+  double max_abs = 0;  // over every channel
+  std::uint64_t differing_texels = 0;  // texels where any channel differs at all
+  // 10 log10(1 / mse): values are compared on a [0, 1] scale, so the peak is
+  // 1. +infinity for identical images.
+  double psnr() const;
+  double psnr_rgb() const;
+  double psnr_channel(int c) const;
+};
+
+double psnr_from_mse(double mse);
+
+// Compares two images of the same size and channel count, texel by texel,
+// on a [0, 1] scale (8-bit codes / 255, 16-bit / 65535, floats as they are;
+// the types may differ). Sums are in double over fixed row blocks: the
+// result is the same for any thread count. Throws Error{bad_arguments} when
+// the sizes or channel counts differ.
+ImageDifference compare_images(const ImageView& a, const ImageView& b);
+
+}  // namespace texproc
