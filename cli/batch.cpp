@@ -206,6 +206,7 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
   if (c.validate) c.validate();
   const std::vector<InputFile> files = expand_inputs(b, c.input_extensions);
   const std::vector<std::string> outputs = name_outputs(c, b, files);
+  if (s.check_only) return 0;
 
   // Plan every file (names, existence, overwrites) before any work.
   std::vector<FileReport> reports(files.size());

@@ -85,6 +85,9 @@ struct SessionOptions {
   bool skip_existing = false;
   bool json = false;
   bool progress = false;  // --progress: draw progress even when stderr is not a terminal
+  // Set by `build` for a first pass over its jobs: run_batch checks the
+  // options, inputs and output names, and returns before planning files.
+  bool check_only = false;
 };
 SessionOptions& session_options();
 
