@@ -14,6 +14,7 @@ void add_decompress_command(CLI::App& app);
 void add_compress_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 void add_build_command(CLI::App& app);
+void add_compare_command(CLI::App& app);
 
 void add_all_commands(CLI::App& app);
 int report_usage_error(CLI::App& app, const CLI::ParseError& e);

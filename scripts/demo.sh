@@ -29,4 +29,7 @@ $T info out/albedo_desert_512_bc1.dds out/normal_from_height_256_bc5.ktx2
 # The build-system way: samples/Makefile cooks every sample with depfiles
 # (run it again and nothing is redone).
 make -s -C samples TEXPROC="$(realpath "$T")" OUT="$(pwd)/out/cooked"
-echo "demo: results are in $(pwd)/out/ (cooked by samples/Makefile: $(pwd)/out/cooked/)"
+# The same samples from the version-controlled recipe, two files at a time, with a JSON report.
+$T build samples/recipe.toml --out-dir out/recipe -j 2 --force --json > out/recipe-report.json
+$T compare samples/albedo_desert_512.png out/recipe/textures/albedo_desert_512.dds --ssim --min-psnr 30
+echo "demo: results are in $(pwd)/out/ (samples/Makefile: out/cooked/, samples/recipe.toml: out/recipe/)"

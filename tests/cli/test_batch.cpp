@@ -228,3 +228,37 @@ TEST(Batch, ProgressOnlyWhereAsked) {
   EXPECT_NE(r.err.find("files/s"), std::string::npos) << r.err;
   fs::remove_all(dir);
 }
+
+TEST(Compare, ExitCodesAndFigures) {
+  const std::string dir = temp_dir("compare");
+  write_image(dir + "/a.png", random_image(16, 16, 3, PixelType::u8, 1).view());
+  RunResult r = run_texproc("compress a.png -o a.dds --format bc1 -q", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_texproc("compare a.png a.png", dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("PSNR inf dB"), std::string::npos) << r.out;
+  // Without limits any difference is exit 7; with limits, the limits decide.
+  r = run_texproc("compare a.png a.dds", dir);
+  EXPECT_EQ(r.exit_code, 7) << r.err;
+  EXPECT_NE(r.err.find("a.png and a.dds differ: texels differ"), std::string::npos) << r.err;
+  r = run_texproc("compare a.png a.dds --json --ssim", dir);
+  const Json::Value j = parse_json(r.out);
+  const double psnr = j["psnr"].asDouble();
+  EXPECT_GT(psnr, 10.0);
+  EXPECT_LT(psnr, 45.0);
+  EXPECT_EQ(j["channel"].size(), 3u);
+  EXPECT_GT(j["ssim"].asDouble(), 0.0);
+  EXPECT_LT(j["ssim"].asDouble(), 1.0);
+  r = run_texproc("compare a.png a.dds --min-psnr " + std::to_string(psnr - 0.01) + " -q", dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = run_texproc("compare a.png a.dds --min-psnr " + std::to_string(psnr + 0.01) + " -q", dir);
+  EXPECT_EQ(r.exit_code, 7) << r.err;
+  // The figure agrees with compress --report's.
+  r = run_texproc("compress a.png -o b.dds --format bc1 --json --report", dir);
+  EXPECT_NEAR(parse_json(r.out)["files"][0]["report"]["psnr"].asDouble(), psnr, 1e-3);
+  write_image(dir + "/small.png", random_image(8, 8, 3, PixelType::u8, 1).view());
+  r = run_texproc("compare a.png small.png", dir);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("images of different sizes"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}

@@ -21,7 +21,7 @@ struct ImageDifference {
   double mse = 0;      // over every channel
   double mse_rgb = 0;  // over the first min(3, channels) channels (color without alpha)
   double max_abs = 0;  // over every channel
-  std::uint64_t differing_texels = 0;  // texels where any channel differs at all
+  std::uint64_t differing_texels = 0;  // texels where any channel differs (by more than 1e-6)
   // 10 log10(1 / mse): values are compared on a [0, 1] scale, so the peak is
   // 1. +infinity for identical images.
   double psnr() const;
@@ -30,6 +30,12 @@ struct ImageDifference {
 };
 
 double psnr_from_mse(double mse);
+
+// Mean structural similarity (Wang, Bovik, Sheikh and Simoncelli 2004) per
+// channel on the [0, 1] scale: an 11x11 Gaussian window of sigma 1.5 (edge
+// texels repeated), C1 = 0.01^2, C2 = 0.03^2. 1 for identical images.
+// Same size and channel count required (Error{bad_arguments}).
+std::vector<double> ssim_per_channel(const ImageView& a, const ImageView& b);
 
 // Compares two images of the same size and channel count, texel by texel,
 // on a [0, 1] scale (8-bit codes / 255, 16-bit / 65535, floats as they are;

@@ -1,5 +1,6 @@
 #include "texproc/metrics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -42,14 +43,7 @@ void load_row(const ImageView& v, int y, std::vector<double>& out) {
   }
 }
 
-struct Partial {
-  std::vector<double> sq, abs, max;
-  std::uint64_t differing = 0;
-};
-
-}  // namespace
-
-ImageDifference compare_images(const ImageView& a, const ImageView& b) {
+void check_same_shape(const ImageView& a, const ImageView& b) {
   if (a.width != b.width || a.height != b.height) {
     throw Error(ErrorCode::bad_arguments, "the images differ in size: " + std::to_string(a.width) + "x" +
                                               std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
@@ -59,6 +53,21 @@ ImageDifference compare_images(const ImageView& a, const ImageView& b) {
     throw Error(ErrorCode::bad_arguments, "the images differ in channel count: " + std::to_string(a.channels) +
                                               " and " + std::to_string(b.channels));
   }
+}
+
+// Values closer than this are the same value (8-bit and float forms of one
+// code differ by float rounding only).
+constexpr double kSameValue = 1e-6;
+
+struct Partial {
+  std::vector<double> sq, abs, max;
+  std::uint64_t differing = 0;
+};
+
+}  // namespace
+
+ImageDifference compare_images(const ImageView& a, const ImageView& b) {
+  check_same_shape(a, b);
   const int channels = a.channels;
   constexpr int kBlockRows = 32;
   const int blocks = (a.height + kBlockRows - 1) / kBlockRows;
@@ -80,7 +89,7 @@ ImageDifference compare_images(const ImageView& a, const ImageView& b) {
           p.sq[std::size_t(c)] += d * d;
           p.abs[std::size_t(c)] += d;
           if (d > p.max[std::size_t(c)]) p.max[std::size_t(c)] = d;
-          differs |= ra[i] != rb[i];
+          differs |= d > kSameValue;
         }
         p.differing += differs;
       }
@@ -112,6 +121,78 @@ ImageDifference compare_images(const ImageView& a, const ImageView& b) {
     r.max_abs = std::max(r.max_abs, d.max_abs);
   }
   return r;
+}
+
+namespace {
+
+// One channel as doubles, and the separable Gaussian blur SSIM uses.
+std::vector<double> channel_plane(const ImageView& v, int c) {
+  std::vector<double> out(std::size_t(v.width) * std::size_t(v.height));
+  std::vector<double> row;
+  for (int y = 0; y < v.height; ++y) {
+    load_row(v, y, row);
+    for (int x = 0; x < v.width; ++x) out[std::size_t(y) * v.width + x] = row[std::size_t(x) * v.channels + c];
+  }
+  return out;
+}
+
+std::vector<double> gaussian_blur(const std::vector<double>& in, int w, int h) {
+  constexpr int kRadius = 5;
+  double k[2 * kRadius + 1], sum = 0;
+  for (int i = -kRadius; i <= kRadius; ++i) sum += k[i + kRadius] = std::exp(-(i * i) / (2.0 * 1.5 * 1.5));
+  for (double& v : k) v /= sum;
+  std::vector<double> tmp(in.size()), out(in.size());
+  for_each_row_block(h, 32, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < w; ++x) {
+        double acc = 0;
+        for (int i = -kRadius; i <= kRadius; ++i) {
+          const int xx = std::clamp(x + i, 0, w - 1);
+          acc += k[i + kRadius] * in[std::size_t(y) * w + xx];
+        }
+        tmp[std::size_t(y) * w + x] = acc;
+      }
+  });
+  for_each_row_block(h, 32, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < w; ++x) {
+        double acc = 0;
+        for (int i = -kRadius; i <= kRadius; ++i) {
+          const int yy = std::clamp(y + i, 0, h - 1);
+          acc += k[i + kRadius] * tmp[std::size_t(yy) * w + x];
+        }
+        out[std::size_t(y) * w + x] = acc;
+      }
+  });
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> ssim_per_channel(const ImageView& a, const ImageView& b) {
+  check_same_shape(a, b);
+  const int w = a.width, h = a.height;
+  const double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
+  std::vector<double> result;
+  for (int c = 0; c < a.channels; ++c) {
+    const std::vector<double> x = channel_plane(a, c), y = channel_plane(b, c);
+    std::vector<double> xx(x.size()), yy(x.size()), xy(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      xx[i] = x[i] * x[i];
+      yy[i] = y[i] * y[i];
+      xy[i] = x[i] * y[i];
+    }
+    const auto mx = gaussian_blur(x, w, h), my = gaussian_blur(y, w, h);
+    const auto sxx = gaussian_blur(xx, w, h), syy = gaussian_blur(yy, w, h), sxy = gaussian_blur(xy, w, h);
+    double sum = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const double vx = sxx[i] - mx[i] * mx[i], vy = syy[i] - my[i] * my[i], cov = sxy[i] - mx[i] * my[i];
+      sum += ((2 * mx[i] * my[i] + c1) * (2 * cov + c2)) /
+             ((mx[i] * mx[i] + my[i] * my[i] + c1) * (vx + vy + c2));
+    }
+    result.push_back(x.empty() ? 1.0 : sum / double(x.size()));
+  }
+  return result;
 }
 
 }  // namespace texproc

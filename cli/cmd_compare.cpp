@@ -1,0 +1,172 @@
+// texproc compare: how far two images or textures are apart (PSNR, RMSE,
+// max error, SSIM), and an exit code for scripts: 7 when they differ beyond
+// the given limits.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "batch.h"
+#include "commands.h"
+#include "common.h"
+#include "texproc/block_decode.h"
+#include "texproc/container.h"
+#include "texproc/error.h"
+#include "texproc/image_io.h"
+#include "texproc/metrics.h"
+#include "texproc/runtime.h"
+
+namespace texproc::cli {
+namespace {
+
+struct CompareArgs {
+  CommonOptions common;
+  std::string a, b;
+  int level = 0;
+  double min_psnr = -1, max_error = -1, min_ssim = -1;
+  bool ssim = false, json = false;
+};
+
+// An image file, or one level of a texture decoded (SNORM to [0, 1]).
+Image load(const std::string& path, int level) {
+  if (is_texture_container(path)) {
+    const Texture t = read_texture(path);
+    if (level < 0 || std::uint32_t(level) >= t.levels) {
+      throw Error(ErrorCode::bad_arguments, path + ": --level " + std::to_string(level) + " (valid: 0 to " +
+                                                std::to_string(t.levels - 1) + ")");
+    }
+    Image img = decode_texture_image(t, std::uint32_t(level), 0, 0, PixelType::f32);
+    if (format_info(t.format).snorm) {
+      for (int y = 0; y < img.height(); ++y)
+        for (std::size_t i = 0; i < std::size_t(img.width()) * img.channels(); ++i) {
+          float& v = img.row<float>(y)[i];
+          v = (v + 1.0f) * 0.5f;
+        }
+    }
+    return img;
+  }
+  if (level != 0) throw Error(ErrorCode::bad_arguments, path + ": --level applies to textures (.dds, .ktx2, .ktx)");
+  return read_image(path);
+}
+
+// The first `n` channels of `img`.
+Image first_channels(const Image& img, int n) {
+  if (img.channels() == n) return img;
+  Image out = Image::uninitialized(img.width(), img.height(), n, PixelType::f32);
+  for (int y = 0; y < img.height(); ++y)
+    for (int x = 0; x < img.width(); ++x)
+      for (int c = 0; c < n; ++c) out.row<float>(y)[x * n + c] = img.get(x, y, c);
+  return out;
+}
+
+Json::Value finite(double v) { return std::isfinite(v) ? Json::Value(v) : Json::Value(); }
+
+std::string db(double v) {
+  if (!std::isfinite(v)) return "inf";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.2f", v);
+  return b;
+}
+
+int run_compare(const CompareArgs& a) {
+  ThreadLimit threads(a.common.threads);
+  const Image ia = load(a.a, a.level), ib = load(a.b, a.level);
+  if (ia.width() != ib.width() || ia.height() != ib.height()) {
+    throw Error(ErrorCode::bad_arguments, a.a + " is " + std::to_string(ia.width()) + "x" +
+                                              std::to_string(ia.height()) + ", " + a.b + " is " +
+                                              std::to_string(ib.width()) + "x" + std::to_string(ib.height()) +
+                                              ": images of different sizes cannot be compared");
+  }
+  // A texture format may store fewer channels than the image it came from
+  // (BC1: RGB of an RGBA image): compare the channels both have.
+  const int n = std::min(ia.channels(), ib.channels());
+  const Image ca = first_channels(ia, n), cb = first_channels(ib, n);
+  const ImageDifference d = compare_images(ca.view(), cb.view());
+  const bool want_ssim = a.ssim || a.min_ssim >= 0;
+  const std::vector<double> ssim = want_ssim ? ssim_per_channel(ca.view(), cb.view()) : std::vector<double>{};
+  double ssim_mean = 0;
+  for (double s : ssim) ssim_mean += s / double(ssim.size());
+
+  std::vector<std::string> failed;
+  const bool limits = a.min_psnr >= 0 || a.max_error >= 0 || a.min_ssim >= 0;
+  if (!limits && d.differing_texels > 0) failed.push_back("texels differ");
+  if (a.min_psnr >= 0 && d.psnr() < a.min_psnr) failed.push_back("PSNR " + db(d.psnr()) + " dB < " + db(a.min_psnr));
+  if (a.max_error >= 0 && d.max_abs > a.max_error) {
+    failed.push_back("max error " + std::to_string(d.max_abs) + " > " + std::to_string(a.max_error));
+  }
+  if (a.min_ssim >= 0 && ssim_mean < a.min_ssim) {
+    failed.push_back("SSIM " + std::to_string(ssim_mean) + " < " + std::to_string(a.min_ssim));
+  }
+  const int rc = failed.empty() ? 0 : int(ErrorCode::difference_found);
+
+  const char* names = n >= 3 ? "RGBA" : n == 2 ? "RG" : "R";
+  if (a.json) {
+    Json::Value j(Json::objectValue);
+    j["a"] = a.a;
+    j["b"] = a.b;
+    j["width"] = d.width;
+    j["height"] = d.height;
+    j["channels"] = n;
+    j["psnr"] = finite(d.psnr());
+    if (n >= 3) j["psnr_rgb"] = finite(d.psnr_rgb());
+    j["rmse"] = std::sqrt(d.mse);
+    j["max_error"] = d.max_abs;
+    j["differing_texels"] = Json::UInt64(d.differing_texels);
+    Json::Value per(Json::arrayValue);
+    for (int c = 0; c < n; ++c) {
+      Json::Value ch(Json::objectValue);
+      ch["name"] = std::string(1, names[c]);
+      ch["psnr"] = finite(d.psnr_channel(c));
+      ch["rmse"] = std::sqrt(d.channel[std::size_t(c)].mse);
+      ch["mean_error"] = d.channel[std::size_t(c)].mean_abs;
+      ch["max_error"] = d.channel[std::size_t(c)].max_abs;
+      if (want_ssim) ch["ssim"] = ssim[std::size_t(c)];
+      per.append(ch);
+    }
+    j["channel"] = per;
+    if (want_ssim) j["ssim"] = ssim_mean;
+    j["identical"] = d.differing_texels == 0;
+    j["within_limits"] = failed.empty();
+    std::cout << to_json(j) << "\n";
+  } else if (!a.common.quiet) {
+    std::ostringstream s;
+    s << a.a << " vs " << a.b << ": " << d.width << "x" << d.height << "x" << n << ", PSNR " << db(d.psnr()) << " dB";
+    if (n >= 3) s << " (RGB " << db(d.psnr_rgb()) << " dB)";
+    s << " [";
+    for (int c = 0; c < n; ++c) s << (c ? " " : "") << names[c] << " " << db(d.psnr_channel(c));
+    s << "], RMSE " << std::sqrt(d.mse) << ", max error " << d.max_abs << " (" << std::lround(d.max_abs * 255)
+      << "/255)";
+    if (want_ssim) s << ", SSIM " << ssim_mean;
+    char pct[32];
+    std::snprintf(pct, sizeof pct, "%.2f", 100.0 * double(d.differing_texels) / (double(d.width) * d.height));
+    s << ", " << d.differing_texels << " texels differ (" << pct << "%)";
+    std::cout << s.str() << "\n";
+  }
+  if (!failed.empty()) std::cerr << "texproc compare: " << a.a << " and " << a.b << " differ: " << join(failed) << "\n";
+  return rc;
+}
+
+}  // namespace
+
+void add_compare_command(CLI::App& app) {
+  auto args = std::make_shared<CompareArgs>();
+  CLI::App* cmd = app.add_subcommand("compare", "Compare two images or textures: PSNR, RMSE, max error, SSIM.");
+  cmd->footer(
+      "Values are compared on a [0, 1] scale (8-bit codes / 255, 16-bit / 65535, floats as stored; textures\n"
+      "decoded, SNORM mapped to [0, 1]). With no limit given, exit 7 when any texel differs; with limits,\n"
+      "exit 7 when one is not met. When the channel counts differ, the channels both have are compared.");
+  cmd->add_option("a", args->a, "First image or texture")->required();
+  cmd->add_option("b", args->b, "Second image or texture")->required();
+  cmd->add_option("--level", args->level, "Mip level of textures to compare (default 0)");
+  cmd->add_option("--min-psnr", args->min_psnr, "Exit 7 when the PSNR (all channels) is below this, in dB");
+  cmd->add_option("--max-error", args->max_error, "Exit 7 when any value differs by more than this (0..1; 1/255 = 0.0039)");
+  cmd->add_option("--min-ssim", args->min_ssim, "Exit 7 when the mean SSIM is below this (0..1)");
+  cmd->add_flag("--ssim", args->ssim, "Also compute SSIM (11x11 Gaussian window)");
+  cmd->add_option("--threads", args->common.threads, "Worker threads (default 0: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("-q,--quiet", args->common.quiet, "Print nothing; the exit code tells");
+  cmd->add_flag("--json", args->json, "Print the figures as one JSON object");
+  set_runner(*cmd, [args] { return run_compare(*args); });
+}
+
+}  // namespace texproc::cli
