@@ -127,33 +127,6 @@ void add_folder(const std::string& folder, bool recursive, const std::vector<std
   out.insert(out.end(), found.begin(), found.end());
 }
 
-std::vector<InputFile> expand_inputs(const BatchInputs& b, const std::vector<std::string>& extensions) {
-  std::vector<std::string> args = b.inputs;
-  if (!b.file_list.empty()) {
-    std::ifstream list(b.file_list);
-    if (!list) throw Error(ErrorCode::io, b.file_list + ": cannot open file list");
-    record_input(b.file_list);
-    std::string line;
-    while (std::getline(list, line)) {
-      const auto first = line.find_first_not_of(" \t\r");
-      if (first == std::string::npos || line[first] == '#') continue;
-      const auto last = line.find_last_not_of(" \t\r");
-      args.push_back(line.substr(first, last - first + 1));
-    }
-  }
-  if (args.empty()) throw Error(ErrorCode::bad_arguments, "no inputs: name files or folders, or use --file-list");
-  std::vector<InputFile> files;
-  std::error_code ec;
-  for (const auto& a : args) {
-    if (fs::is_directory(a, ec)) {
-      add_folder(a, b.recursive, extensions, files);
-    } else {
-      files.push_back({a, ""});  // a missing file fails on its own, later
-    }
-  }
-  return files;
-}
-
 // The output for each input: -o names one file (one input only), a folder
 // (-o DIR/, an existing folder, or several inputs and no extension), or a
 // template.
@@ -199,6 +172,33 @@ void fail(FileReport& r, ErrorCode code, const std::string& message) {
 }
 
 }  // namespace
+
+std::vector<InputFile> expand_inputs(const BatchInputs& b, const std::vector<std::string>& extensions) {
+  std::vector<std::string> args = b.inputs;
+  if (!b.file_list.empty()) {
+    std::ifstream list(b.file_list);
+    if (!list) throw Error(ErrorCode::io, b.file_list + ": cannot open file list");
+    record_input(b.file_list);
+    std::string line;
+    while (std::getline(list, line)) {
+      const auto first = line.find_first_not_of(" \t\r");
+      if (first == std::string::npos || line[first] == '#') continue;
+      const auto last = line.find_last_not_of(" \t\r");
+      args.push_back(line.substr(first, last - first + 1));
+    }
+  }
+  if (args.empty()) throw Error(ErrorCode::bad_arguments, "no inputs: name files or folders, or use --file-list");
+  std::vector<InputFile> files;
+  std::error_code ec;
+  for (const auto& a : args) {
+    if (fs::is_directory(a, ec)) {
+      add_folder(a, b.recursive, extensions, files);
+    } else {
+      files.push_back({a, ""});  // a missing file fails on its own, later
+    }
+  }
+  return files;
+}
 
 int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& common) {
   const SessionOptions& s = session_options();

@@ -40,6 +40,11 @@ struct InputFile {
   std::string reldir;  // its folder relative to the folder argument ("" if named directly)
 };
 
+// The input files `b` stands for: files as given, folders expanded (sorted;
+// -r: recursively) to the files with `extensions`, --file-list read.
+// Throws Error for an unreadable list or a folder with no such files.
+std::vector<InputFile> expand_inputs(const BatchInputs& b, const std::vector<std::string>& extensions);
+
 // Expands {stem}, {name}, {ext}, {dir}, {reldir} in `pattern` for `in`
 // ({{ and }} are literal braces). Throws Error{bad_arguments} for an
 // unknown placeholder.

@@ -1,4 +1,5 @@
 // texproc info: what a file holds, for people and (with --json) for scripts.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -6,6 +7,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "batch.h"
 #include "common.h"
 #include "texproc/container.h"
 #include "texproc/error.h"
@@ -18,7 +20,7 @@ namespace texproc::cli {
 namespace {
 
 struct InfoArgs {
-  std::vector<std::string> files;
+  BatchInputs io;
   bool json = false;
 };
 
@@ -114,15 +116,21 @@ void describe(const std::string& path, std::ostringstream& json, std::ostringstr
   text << "\n";
 }
 
-int run_info(const InfoArgs& a) {
+int run_info(const InfoArgs& args) {
+  std::vector<std::string> files;
+  std::vector<std::string> extensions = image_extensions();
+  for (const auto& e : texture_extensions())
+    if (std::find(extensions.begin(), extensions.end(), e) == extensions.end()) extensions.push_back(e);
+  extensions.push_back(".sat");
+  for (const InputFile& f : expand_inputs(args.io, extensions)) files.push_back(f.path);
   std::ostringstream json, text;
   json << "[";
   int failures = 0;
   ErrorCode last = ErrorCode::success;
-  for (std::size_t k = 0; k < a.files.size(); ++k) {
+  for (std::size_t k = 0; k < files.size(); ++k) {
     try {
       std::ostringstream j;
-      describe(a.files[k], j, text);
+      describe(files[k], j, text);
       json << (k && json.str().size() > 1 ? ", " : "") << j.str();
     } catch (const Error& e) {
       std::cerr << "texproc info: error: " << e.what() << "\n";
@@ -131,7 +139,7 @@ int run_info(const InfoArgs& a) {
     }
   }
   json << "]\n";
-  std::cout << (a.json ? json.str() : text.str());
+  std::cout << (args.json ? json.str() : text.str());
   return failures ? int(last) : 0;
 }
 
@@ -140,7 +148,10 @@ int run_info(const InfoArgs& a) {
 void add_info_command(CLI::App& app) {
   auto args = std::make_shared<InfoArgs>();
   CLI::App* cmd = app.add_subcommand("info", "Describe images, MIP chains, DDS/KTX2/KTX1/PKM textures and .sat tables.");
-  cmd->add_option("files", args->files, "Files to describe")->required();
+  cmd->add_option("files", args->io.inputs, "Files to describe, or folders (their images, textures and tables)")
+      ->required();
+  cmd->add_flag("-r,--recursive", args->io.recursive, "Folders: their subfolders too");
+  cmd->add_option("--file-list", args->io.file_list, "Read more files from FILE, one a line");
   cmd->add_flag("--json", args->json, "Print a JSON array, one object per file (schema in docs/cli.md)");
   set_runner(*cmd, [args] { return run_info(*args); });
 }

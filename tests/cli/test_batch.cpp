@@ -262,3 +262,15 @@ TEST(Compare, ExitCodesAndFigures) {
   EXPECT_NE(r.err.find("images of different sizes"), std::string::npos) << r.err;
   fs::remove_all(dir);
 }
+
+TEST(Batch, InfoDescribesFolders) {
+  const std::string dir = make_tree("batch_info");
+  RunResult r = run_texproc("info a -r --json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Json::Value j = parse_json(r.out);
+  ASSERT_EQ(j.size(), 4u);  // notes.txt is not an image
+  EXPECT_EQ(j[0]["file"].asString(), "a/b.png");
+  EXPECT_EQ(j[3]["file"].asString(), "a/sub/deeper/e.tga");
+  EXPECT_EQ(j[3]["height"].asInt(), 20);
+  fs::remove_all(dir);
+}
