@@ -9,7 +9,7 @@ packages=(
   libtiff-dev libdeflate-dev libcli11-dev googletest libgtest-dev libbenchmark-dev libtbb-dev libhwy-dev
   libjsoncpp-dev libtomlplusplus-dev
   # independent checks and peers used by tests and benchmarks
-  libnvtt-bin libsquish-dev python3-pil
+  libnvtt-bin libsquish-dev android-libetc1-dev python3-pil
 )
 missing=()
 for p in "${packages[@]}"; do

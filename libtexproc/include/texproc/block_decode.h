@@ -1,6 +1,6 @@
-// texproc/block_decode.h: decoding BC1-BC5 blocks and block-compressed
-// textures, to the Khronos Data Format Specification (S3TC and RGTC
-// chapters).
+// texproc/block_decode.h: decoding BC1-BC5, ETC1, ETC2 and EAC blocks and
+// block-compressed textures, to the Khronos Data Format Specification 1.3
+// (S3TC, RGTC, ETC1 and ETC2 chapters).
 #pragma once
 
 #include <cstdint>
@@ -10,7 +10,7 @@
 
 namespace texproc {
 
-// Decodes one 4x4 block of `format` (a BC format) into texels[16][4], RGBA,
+// Decodes one 4x4 block of `format` (a BC, ETC or EAC format) into texels[16][4], RGBA,
 // row by row. UNORM results are in [0, 1], SNORM in [-1, 1]; channels the
 // format lacks are 0 (green, blue) and 1 (alpha).
 //
@@ -26,7 +26,7 @@ void decode_bc_block(TexelFormat format, const std::uint8_t* block, float texels
 // reads: block formats through decode_bc_block, uncompressed ones converted.
 // `type` u8 or u16 stores UNORM values rounded, SNORM values biased as
 // (v + 1) / 2; f32 stores the values. Channels: the format's (1, 2 or 4; 3
-// for BC1 RGB). Throws Error{unsupported} for ETC formats (not decoded yet).
+// for BC1 RGB and ETC1/ETC2 RGB).
 Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t layer, std::uint32_t face,
                            PixelType type);
 

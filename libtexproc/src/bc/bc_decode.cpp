@@ -5,6 +5,8 @@
 #include <cstring>
 
 #include "texproc/block_decode.h"
+
+#include "etc/etc_tables.h"
 #include "texproc/error.h"
 
 namespace texproc {
@@ -119,6 +121,43 @@ void decode_bc_block(TexelFormat f, const std::uint8_t* b, float out[16][4]) {
       decode_rgtc(b, true, 0, out);
       decode_rgtc(b + 8, true, 1, out);
       break;
+    case F::etc1_rgb:
+    case F::etc2_rgb_unorm:
+    case F::etc2_rgb_srgb:
+    case F::etc2_rgba1_unorm:
+    case F::etc2_rgba1_srgb:
+    case F::etc2_rgba8_unorm:
+    case F::etc2_rgba8_srgb: {
+      const bool rgba8 = f == F::etc2_rgba8_unorm || f == F::etc2_rgba8_srgb;
+      const std::uint8_t* color = rgba8 ? b + 8 : b;
+      std::uint8_t px[16][4];
+      if (f == F::etc1_rgb) {
+        etc::decode_etc1(color, px);
+      } else {
+        etc::decode_etc2(color, f == F::etc2_rgba1_unorm || f == F::etc2_rgba1_srgb, px);
+      }
+      std::uint8_t alpha[16];
+      if (rgba8) etc::decode_eac8(b, alpha);
+      for (int i = 0; i < 16; ++i) {
+        for (int c = 0; c < 3; ++c) out[i][c] = px[i][c] / 255.0f;
+        out[i][3] = (rgba8 ? alpha[i] : px[i][3]) / 255.0f;
+      }
+      break;
+    }
+    case F::eac_r11_unorm:
+    case F::eac_r11_snorm:
+    case F::eac_rg11_unorm:
+    case F::eac_rg11_snorm: {
+      const bool snorm = f == F::eac_r11_snorm || f == F::eac_rg11_snorm;
+      const int channels = f == F::eac_rg11_unorm || f == F::eac_rg11_snorm ? 2 : 1;
+      for (int i = 0; i < 16; ++i) out[i][0] = out[i][1] = out[i][2] = 0.0f, out[i][3] = 1.0f;
+      for (int c = 0; c < channels; ++c) {
+        int v[16];
+        etc::decode_eac11(b + 8 * c, snorm, v);
+        for (int i = 0; i < 16; ++i) out[i][c] = float(v[i]) / (snorm ? 1023.0f : 2047.0f);
+      }
+      break;
+    }
     default:
       throw Error(ErrorCode::unsupported, std::string("decoding ") + format_info(f).name + " is not supported yet");
   }
@@ -136,8 +175,8 @@ Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t 
         for (int c = 0; c < raw.channels(); ++c) out.set(x, y, c, raw.get(x, y, c));
     return out;
   }
-  if (info.block_width != 4 || t.format >= TexelFormat::etc1_rgb) {
-    throw Error(ErrorCode::unsupported, std::string("decoding ") + info.name + " is not supported yet (ETC comes next)");
+  if (info.block_width != 4) {
+    throw Error(ErrorCode::unsupported, std::string("decoding ") + info.name + " is not supported");
   }
   const int w = int(t.level_width(level)), h = int(t.level_height(level));
   const int C = info.channels;

@@ -1,0 +1,184 @@
+// ETC1, ETC2 and EAC block decoding, to the Khronos Data Format
+// Specification 1.3 (chapters "ETC1 compressed texture image formats" and
+// "ETC2 compressed texture image formats"). Bit numbers are those of the
+// specification: the block is a big-endian 64-bit number.
+#include <cstdint>
+
+#include "etc/etc_tables.h"
+
+namespace texproc::etc {
+namespace {
+
+// The 2-bit index of texel (x, y): its most significant bit at bit
+// x * 4 + y + 16, its least significant bit at bit x * 4 + y.
+int pixel_index(std::uint64_t v, int x, int y) {
+  const int k = x * 4 + y;
+  return int(v >> (k + 16) & 1) << 1 | int(v >> k & 1);
+}
+
+void set(std::uint8_t* px, int r, int g, int b) {
+  px[0] = std::uint8_t(clamp255(r));
+  px[1] = std::uint8_t(clamp255(g));
+  px[2] = std::uint8_t(clamp255(b));
+  px[3] = 255;
+}
+
+// Individual and differential modes: two sub-blocks (2x4 side by side, or
+// 4x2 stacked when flipped), each a base colour plus an intensity modifier.
+// `non_opaque`: punch-through with the opaque bit clear: modifiers +-a are 0
+// and index 2 is transparent black.
+void decode_sub_blocks(std::uint64_t v, const int c1[3], const int c2[3], bool non_opaque, Rgba8Block out) {
+  const int table[2] = {bits(v, 39, 3), bits(v, 36, 3)};
+  const bool flip = bits(v, 32, 1) != 0;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) {
+      const int sub = flip ? (y >= 2) : (x >= 2);
+      const int* c = sub ? c2 : c1;
+      const int idx = pixel_index(v, x, y);
+      std::uint8_t* px = out[y * 4 + x];
+      if (non_opaque && idx == 2) {
+        px[0] = px[1] = px[2] = px[3] = 0;
+        continue;
+      }
+      const int m = non_opaque && idx == 0 ? 0 : kModifiers[table[sub]][idx];
+      set(px, c[0] + m, c[1] + m, c[2] + m);
+    }
+}
+
+// T and H modes: four paint colours chosen per texel.
+void decode_paint(std::uint64_t v, const int paint[4][3], bool non_opaque, Rgba8Block out) {
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) {
+      const int idx = pixel_index(v, x, y);
+      std::uint8_t* px = out[y * 4 + x];
+      if (non_opaque && idx == 2) {
+        px[0] = px[1] = px[2] = px[3] = 0;
+      } else {
+        set(px, paint[idx][0], paint[idx][1], paint[idx][2]);
+      }
+    }
+}
+
+void decode_t(std::uint64_t v, bool non_opaque, Rgba8Block out) {
+  const int c1[3] = {extend4(bits(v, 60, 2) << 2 | bits(v, 57, 2)), extend4(bits(v, 55, 4)), extend4(bits(v, 51, 4))};
+  const int c2[3] = {extend4(bits(v, 47, 4)), extend4(bits(v, 43, 4)), extend4(bits(v, 39, 4))};
+  const int d = kDistances[bits(v, 35, 2) << 1 | bits(v, 32, 1)];
+  const int paint[4][3] = {{c1[0], c1[1], c1[2]},
+                           {c2[0] + d, c2[1] + d, c2[2] + d},
+                           {c2[0], c2[1], c2[2]},
+                           {c2[0] - d, c2[1] - d, c2[2] - d}};
+  decode_paint(v, paint, non_opaque, out);
+}
+
+void decode_h(std::uint64_t v, bool non_opaque, Rgba8Block out) {
+  const int r1 = bits(v, 62, 4), g1 = bits(v, 58, 3) << 1 | bits(v, 52, 1);
+  const int b1 = bits(v, 51, 1) << 3 | bits(v, 49, 2) << 1 | bits(v, 47, 1);
+  const int r2 = bits(v, 46, 4), g2 = bits(v, 42, 3) << 1 | bits(v, 39, 1), b2 = bits(v, 38, 4);
+  // The distance index's lowest bit is implied by the order of the colours.
+  const int order = (r1 << 8 | g1 << 4 | b1) >= (r2 << 8 | g2 << 4 | b2) ? 1 : 0;
+  const int d = kDistances[bits(v, 34, 1) << 2 | bits(v, 32, 1) << 1 | order];
+  const int c1[3] = {extend4(r1), extend4(g1), extend4(b1)}, c2[3] = {extend4(r2), extend4(g2), extend4(b2)};
+  const int paint[4][3] = {{c1[0] + d, c1[1] + d, c1[2] + d},
+                           {c1[0] - d, c1[1] - d, c1[2] - d},
+                           {c2[0] + d, c2[1] + d, c2[2] + d},
+                           {c2[0] - d, c2[1] - d, c2[2] - d}};
+  decode_paint(v, paint, non_opaque, out);
+}
+
+void decode_planar(std::uint64_t v, Rgba8Block out) {
+  const int o[3] = {extend6(bits(v, 62, 6)), extend7(bits(v, 56, 1) << 6 | bits(v, 54, 6)),
+                    extend6(bits(v, 48, 1) << 5 | bits(v, 44, 2) << 3 | bits(v, 41, 2) << 1 | bits(v, 39, 1))};
+  const int h[3] = {extend6(bits(v, 38, 5) << 1 | bits(v, 32, 1)), extend7(bits(v, 31, 7)),
+                    extend6(bits(v, 24, 1) << 5 | bits(v, 23, 5))};
+  const int w[3] = {extend6(bits(v, 18, 3) << 3 | bits(v, 15, 3)), extend7(bits(v, 12, 5) << 2 | bits(v, 7, 2)),
+                    extend6(bits(v, 5, 6))};
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) {
+      int c[3];
+      for (int k = 0; k < 3; ++k) c[k] = (x * (h[k] - o[k]) + y * (w[k] - o[k]) + 4 * o[k] + 2) >> 2;
+      set(out[y * 4 + x], c[0], c[1], c[2]);
+    }
+}
+
+int signed3(int v) { return v >= 4 ? v - 8 : v; }
+
+}  // namespace
+
+void decode_etc1(const std::uint8_t* block, Rgba8Block out) {
+  const std::uint64_t v = load_be64(block);
+  int c1[3], c2[3];
+  if (bits(v, 33, 1)) {
+    for (int k = 0; k < 3; ++k) {
+      const int base = bits(v, 63 - 8 * k, 5);
+      c1[k] = extend5(base);
+      c2[k] = extend5((base + signed3(bits(v, 58 - 8 * k, 3))) & 31);
+    }
+  } else {
+    for (int k = 0; k < 3; ++k) {
+      c1[k] = extend4(bits(v, 63 - 8 * k, 4));
+      c2[k] = extend4(bits(v, 59 - 8 * k, 4));
+    }
+  }
+  decode_sub_blocks(v, c1, c2, false, out);
+}
+
+void decode_etc2(const std::uint8_t* block, bool punchthrough, Rgba8Block out) {
+  const std::uint64_t v = load_be64(block);
+  const bool differential = punchthrough || bits(v, 33, 1);
+  const bool non_opaque = punchthrough && !bits(v, 33, 1);
+  int c1[3], c2[3];
+  if (!differential) {
+    for (int k = 0; k < 3; ++k) {
+      c1[k] = extend4(bits(v, 63 - 8 * k, 4));
+      c2[k] = extend4(bits(v, 59 - 8 * k, 4));
+    }
+    decode_sub_blocks(v, c1, c2, false, out);
+    return;
+  }
+  int base[3], second[3];
+  for (int k = 0; k < 3; ++k) {
+    base[k] = bits(v, 63 - 8 * k, 5);
+    second[k] = base[k] + signed3(bits(v, 58 - 8 * k, 3));
+  }
+  // A second colour outside 0..31 selects the modes ETC2 added.
+  if (second[0] < 0 || second[0] > 31) return decode_t(v, non_opaque, out);
+  if (second[1] < 0 || second[1] > 31) return decode_h(v, non_opaque, out);
+  if (second[2] < 0 || second[2] > 31) return decode_planar(v, out);
+  for (int k = 0; k < 3; ++k) {
+    c1[k] = extend5(base[k]);
+    c2[k] = extend5(second[k]);
+  }
+  decode_sub_blocks(v, c1, c2, non_opaque, out);
+}
+
+void decode_eac11(const std::uint8_t* block, bool snorm, int out[16]) {
+  const std::uint64_t v = load_be64(block);
+  const int mult = bits(v, 55, 4);
+  const int* mods = kEacModifiers[bits(v, 51, 4)];
+  int base = bits(v, 63, 8);
+  if (snorm) {
+    base = base >= 128 ? base - 256 : base;
+    if (base == -128) base = -127;
+  }
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) {
+      const int m = mods[bits(v, 47 - 3 * (x * 4 + y), 3)];
+      const int step = mult ? m * mult * 8 : m;
+      int value = snorm ? base * 8 + step : base * 8 + 4 + step;
+      const int lo = snorm ? -1023 : 0, hi = snorm ? 1023 : 2047;
+      value = value < lo ? lo : value > hi ? hi : value;
+      out[y * 4 + x] = value;
+    }
+}
+
+void decode_eac8(const std::uint8_t* block, std::uint8_t out[16]) {
+  const std::uint64_t v = load_be64(block);
+  const int base = bits(v, 63, 8), mult = bits(v, 55, 4);
+  const int* mods = kEacModifiers[bits(v, 51, 4)];
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) {
+      out[y * 4 + x] = std::uint8_t(clamp255(base + mods[bits(v, 47 - 3 * (x * 4 + y), 3)] * mult));
+    }
+}
+
+}  // namespace texproc::etc
