@@ -44,14 +44,18 @@ TexelFormat format_for(const std::string& f, bool srgb) {
       {"bc1", {F::bc1_rgb_unorm, F::bc1_rgb_srgb}},   {"bc1a", {F::bc1_rgba_unorm, F::bc1_rgba_srgb}},
       {"bc2", {F::bc2_unorm, F::bc2_srgb}},           {"bc3", {F::bc3_unorm, F::bc3_srgb}},
       {"bc4", {F::bc4_unorm, F::bc4_unorm}},          {"bc4s", {F::bc4_snorm, F::bc4_snorm}},
-      {"bc5", {F::bc5_unorm, F::bc5_unorm}},          {"bc5s", {F::bc5_snorm, F::bc5_snorm}}};
+      {"bc5", {F::bc5_unorm, F::bc5_unorm}},          {"bc5s", {F::bc5_snorm, F::bc5_snorm}},
+      {"etc1", {F::etc1_rgb, F::etc1_rgb}},           {"etc2", {F::etc2_rgb_unorm, F::etc2_rgb_srgb}},
+      {"etc2a1", {F::etc2_rgba1_unorm, F::etc2_rgba1_srgb}},
+      {"etc2a", {F::etc2_rgba8_unorm, F::etc2_rgba8_srgb}},
+      {"eac-r11", {F::eac_r11_unorm, F::eac_r11_unorm}}, {"eac-r11s", {F::eac_r11_snorm, F::eac_r11_snorm}},
+      {"eac-rg11", {F::eac_rg11_unorm, F::eac_rg11_unorm}},
+      {"eac-rg11s", {F::eac_rg11_snorm, F::eac_rg11_snorm}}};
   auto it = k.find(f);
   if (it != k.end()) return srgb ? it->second.second : it->second.first;
-  for (const char* later : {"etc1", "etc2", "etc2a1", "etc2a", "eac-r11", "eac-r11s", "eac-rg11", "eac-rg11s"}) {
-    if (f == later) throw Error(ErrorCode::unsupported, "--format " + f + " is not implemented yet (so far: bc1-bc5)");
-  }
-  throw Error(ErrorCode::bad_arguments,
-              "unknown --format '" + f + "' (valid: bc1, bc1a, bc2, bc3, bc4, bc4s, bc5, bc5s)");
+  throw Error(ErrorCode::bad_arguments, "unknown --format '" + f +
+                                            "' (valid: bc1, bc1a, bc2, bc3, bc4, bc4s, bc5, bc5s, etc1, etc2, etc2a1, "
+                                            "etc2a, eac-r11, eac-r11s, eac-rg11, eac-rg11s)");
 }
 
 void validate(CompressArgs& a) {
@@ -164,14 +168,18 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
 
 void add_compress_command(CLI::App& app) {
   auto args = std::make_shared<CompressArgs>();
-  CLI::App* cmd = app.add_subcommand("compress", "Block-compress an image into DDS, KTX2 or KTX1 (BC1-BC5 so far).");
+  CLI::App* cmd = app.add_subcommand("compress", "Block-compress images (BC1-BC5, ETC1, ETC2, EAC) into DDS, KTX2, KTX1 or PKM.");
   cmd->footer(
-      "BC4 stores one channel, BC5 two (the red and green of the input; for a normal map its X and Y, the\n"
-      "shader rebuilds Z). SNORM variants map the stored [0, 1] to [-1, 1]. Values are data: no transfer\n"
-      "function. ETC is in progress. See docs/compression.md.");
+      "BC4 and EAC R11 store one channel, BC5 and EAC RG11 two (the red and green of the input; for a normal\n"
+      "map its X and Y, the shader rebuilds Z). SNORM variants map the stored [0, 1] to [-1, 1]. Values are\n"
+      "data: no transfer function. ETC and EAC go to .ktx2 (the default for -o DIR/), .ktx, or .pkm (ETC1 and\n"
+      "ETC2 RGB, one level). See docs/compression.md.");
   add_batch_inputs(*cmd, args->io, "Input images",
                    "Output texture (.dds, .ktx2, .ktx), folder (DIR/: {stem}.dds each) or template ('out/{stem}.ktx2')");
-  cmd->add_option("--format", args->format, "bc1, bc1a (1-bit alpha), bc2, bc3, bc4, bc4s, bc5, bc5s")->required();
+  cmd->add_option("--format", args->format,
+                 "bc1, bc1a (1-bit alpha), bc2, bc3, bc4, bc4s, bc5, bc5s; etc1, etc2, etc2a1 (punch-through alpha), "
+                 "etc2a (EAC alpha), eac-r11, eac-r11s, eac-rg11, eac-rg11s")
+      ->required();
   cmd->add_flag("--srgb", args->srgb, "BC1-BC3: write the sRGB format (the default for 8/16-bit colour input)");
   cmd->add_flag("--linear", args->linear, "The input is data: UNORM formats, linear mip filtering");
   cmd->add_option("--quality", args->quality, "fast, normal, high, max (exhaustive)")->capture_default_str();
@@ -188,7 +196,8 @@ void add_compress_command(CLI::App& app) {
   set_runner(*cmd, [args] {
     BatchCommand c;
     c.name = "compress";
-    c.default_extension = ".dds";
+    const bool etc = args->format.rfind("etc", 0) == 0 || args->format.rfind("eac", 0) == 0;
+    c.default_extension = etc ? ".ktx2" : ".dds";  // DDS has no ETC formats
     c.input_extensions = image_extensions();
     c.validate = [args] { validate(*args); };
     c.plan = [](const InputFile&, const std::string& out) {

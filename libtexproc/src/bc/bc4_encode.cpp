@@ -7,6 +7,8 @@
 #include <cstring>
 
 #include "bc/bc1_encode.h"
+#include "bc/block_gather.h"
+#include "etc/etc_encode.h"
 #include "texproc/block_decode.h"
 #include "texproc/block_encode.h"
 #include "texproc/error.h"
@@ -202,22 +204,6 @@ double bc4_block_error(const std::uint8_t block[8], const float values[16], bool
 }
 
 namespace {
-// The stored value of channel c as 8 bits (gray fills RGB; no alpha is 255).
-std::uint8_t texel8(const ImageView& img, int x, int y, int c) {
-  const int C = img.channels;
-  int src = c;
-  if (C <= 2 && c < 3) src = 0;
-  if (c == 3) src = (C == 2 || C == 4) ? C - 1 : -1;
-  if (src < 0) return 255;
-  switch (img.type) {
-    case PixelType::u8: return img.row<const std::uint8_t>(y)[x * C + src];
-    case PixelType::u16: return std::uint8_t((img.row<const std::uint16_t>(y)[x * C + src] * 255 + 32767) / 65535);
-    case PixelType::f32:
-      return std::uint8_t(std::lround(std::clamp(img.row<const float>(y)[x * C + src], 0.0f, 1.0f) * 255.0f));
-  }
-  return 0;
-}
-
 std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat format, Quality q) {
   using F = TexelFormat;
   const bool bc1 = format == F::bc1_rgb_unorm || format == F::bc1_rgb_srgb;
@@ -258,11 +244,12 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
 
 std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat format, Quality q) {
   if (format >= TexelFormat::bc1_rgb_unorm && format <= TexelFormat::bc3_srgb) return compress_color(img, format, q);
+  if (format >= TexelFormat::etc1_rgb && format <= TexelFormat::eac_rg11_snorm) return etc::compress_etc(img, format, q);
   const bool bc5 = format == TexelFormat::bc5_unorm || format == TexelFormat::bc5_snorm;
   const bool snorm = format == TexelFormat::bc4_snorm || format == TexelFormat::bc5_snorm;
   if (!bc5 && format != TexelFormat::bc4_unorm && format != TexelFormat::bc4_snorm) {
     throw Error(ErrorCode::unsupported, std::string("encoding ") + format_info(format).name +
-                                            " is not implemented yet (so far: BC1-BC5)");
+                                            " is not supported");
   }
   const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
   const int block_bytes = bc5 ? 16 : 8;

@@ -12,10 +12,14 @@
 #include <random>
 #include <vector>
 
+#include "support/images.h"
 #include "texproc/block_decode.h"
+#include "texproc/block_encode.h"
+#include "texproc/runtime.h"
 #include "texproc/texture.h"
 
 using namespace texproc;
+using namespace texproc::test;
 
 namespace {
 
@@ -427,4 +431,210 @@ TEST(EtcDecode, Etc1MatchesLibEtc1) {
     ++compared;
   }
   EXPECT_GT(compared, 10000);
+}
+
+// ---------------------------------------------------------------------------
+// Encoding.
+
+namespace {
+
+// A 4x4 RGBA8 image of decoded texels.
+Image image_of(const float t[16][4], int channels) {
+  Image img = Image::uninitialized(4, 4, channels, PixelType::u8);
+  for (int i = 0; i < 16; ++i)
+    for (int c = 0; c < channels; ++c) img.row<std::uint8_t>(i / 4)[(i % 4) * channels + c] = std::uint8_t(std::lround(t[i][c] * 255));
+  return img;
+}
+
+// Encodes the decoded texels of `block` at `high` and checks that they
+// decode back exactly.
+void expect_exact_round_trip(TexelFormat f, const std::vector<std::uint8_t>& block, const char* what, int n) {
+  float want[16][4], got[16][4];
+  decode_bc_block(f, block.data(), want);
+  const Image img = image_of(want, 4);
+  const std::vector<std::uint8_t> enc = compress_image(img.view(), f, Quality::high);
+  decode_bc_block(f, enc.data(), got);
+  for (int i = 0; i < 16; ++i)
+    for (int c = 0; c < 4; ++c) {
+      ASSERT_EQ(got[i][c], want[i][c]) << what << " block " << n << " texel " << i << " channel " << c << ": "
+                                       << std::hex << Bits::of(block.data()).v << " encoded as " << Bits::of(enc.data()).v;
+    }
+}
+
+// Indices 0..3, four of each, shuffled.
+void balanced_indices(Bits& b, std::mt19937& rng) {
+  int idx[16];
+  for (int i = 0; i < 16; ++i) idx[i] = i % 4;
+  std::shuffle(idx, idx + 16, rng);
+  for (int k = 0; k < 16; ++k) b.put(k + 16, 1, idx[k] >> 1), b.put(k, 1, idx[k] & 1);
+}
+
+int pick(std::mt19937& rng, int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
+
+// 61x37 RGBA: smooth gradients on the left, noise on the right, alpha both.
+Image random_smooth_or_noise() {
+  const Image noise = random_image(61, 37, 4, PixelType::u8, 3);
+  Image img = noise;
+  for (int y = 0; y < 37; ++y)
+    for (int x = 0; x < 30; ++x) {
+      std::uint8_t* p = img.row<std::uint8_t>(y) + x * 4;
+      p[0] = std::uint8_t(x * 8), p[1] = std::uint8_t(y * 6), p[2] = std::uint8_t(128 + (x - y)), p[3] = std::uint8_t(x * 8);
+    }
+  return img;
+}
+
+}  // namespace
+
+// Blocks built to be exactly representable in one mode (no clamping, every
+// index used) come back exactly after encoding at `high`.
+TEST(EtcEncode, EachModeRoundTripsExactly) {
+  std::mt19937 rng(11);
+  for (int n = 0; n < 40; ++n) {
+    // Individual: 4-bit colours 4..11, tables 0..3.
+    Bits ind;
+    for (int c = 0; c < 3; ++c) ind.put(63 - 8 * c, 4, pick(rng, 4, 11)), ind.put(59 - 8 * c, 4, pick(rng, 4, 11));
+    ind.put(39, 3, pick(rng, 0, 3)), ind.put(36, 3, pick(rng, 0, 3)), ind.put(33, 1, 0), ind.put(32, 1, pick(rng, 0, 1));
+    balanced_indices(ind, rng);
+    expect_exact_round_trip(TexelFormat::etc1_rgb, ind.bytes(), "individual", n);
+    // Differential: 5-bit bases 8..23, deltas -2..2.
+    Bits dif;
+    for (int c = 0; c < 3; ++c) dif.put(63 - 8 * c, 5, pick(rng, 8, 23)), dif.put(58 - 8 * c, 3, pick(rng, -2, 2) & 7);
+    dif.put(39, 3, pick(rng, 0, 3)), dif.put(36, 3, pick(rng, 0, 3)), dif.put(33, 1, 1), dif.put(32, 1, pick(rng, 0, 1));
+    balanced_indices(dif, rng);
+    expect_exact_round_trip(TexelFormat::etc1_rgb, dif.bytes(), "differential", n);
+    expect_exact_round_trip(TexelFormat::etc2_rgb_unorm, dif.bytes(), "differential (ETC2)", n);
+    // T: C1 dark, C2 bright, distances 3..11.
+    Bits t;
+    const int r1 = pick(rng, 2, 4);
+    t.put(60, 2, r1 >> 2), t.put(57, 2, r1 & 3), t.put(55, 4, pick(rng, 2, 4)), t.put(51, 4, pick(rng, 2, 4));
+    t.put(47, 4, pick(rng, 11, 12)), t.put(43, 4, pick(rng, 11, 12)), t.put(39, 4, pick(rng, 11, 12));
+    const int td = pick(rng, 0, 2);
+    t.put(35, 2, td >> 1), t.put(32, 1, td & 1), t.put(33, 1, 1);
+    if ((r1 >> 2) + (r1 & 3) > 3) {
+      t.put(63, 3, 7), t.put(58, 1, 0);
+    } else {
+      t.put(63, 3, 0), t.put(58, 1, 1);
+    }
+    balanced_indices(t, rng);
+    ASSERT_EQ(plain_etc2(t, false)[0].a, 255);
+    expect_exact_round_trip(TexelFormat::etc2_rgb_unorm, t.bytes(), "T", n);
+    // H: two colour pairs C1 +- d and C2 +- d.
+    Bits h;
+    const int hr1 = pick(rng, 2, 4), hg1 = pick(rng, 2, 4), hb1 = pick(rng, 2, 4);
+    h.put(62, 4, hr1), h.put(58, 3, hg1 >> 1), h.put(52, 1, hg1 & 1), h.put(51, 1, hb1 >> 3), h.put(49, 2, hb1 >> 1 & 3),
+        h.put(47, 1, hb1 & 1);
+    const int hg2 = pick(rng, 11, 12);
+    h.put(46, 4, pick(rng, 11, 12)), h.put(42, 3, hg2 >> 1), h.put(39, 1, hg2 & 1), h.put(38, 4, pick(rng, 11, 12));
+    h.put(34, 1, 0), h.put(32, 1, pick(rng, 0, 1)), h.put(33, 1, 1);
+    {
+      const int s = hr1 + sext3(hg1 >> 1);
+      h.put(63, 1, s < 0 ? 1 : 0);
+      const int g = (hg1 & 1) * 2 + (hb1 >> 3), bb = hb1 >> 1 & 3;
+      if (g + bb > 3) {
+        h.put(55, 3, 7), h.put(50, 1, 0);
+      } else {
+        h.put(55, 3, 0), h.put(50, 1, 1);
+      }
+    }
+    balanced_indices(h, rng);
+    expect_exact_round_trip(TexelFormat::etc2_rgb_unorm, h.bytes(), "H", n);
+    // Planar: O, H, V near each other (no clamping).
+    Bits p;
+    const int ro = pick(rng, 24, 40), go = pick(rng, 48, 80), bo = pick(rng, 24, 40);
+    const int rh = pick(rng, 24, 40), gh = pick(rng, 48, 80), bh = pick(rng, 24, 40);
+    const int rv = pick(rng, 24, 40), gv = pick(rng, 48, 80), bv = pick(rng, 24, 40);
+    p.put(62, 6, ro), p.put(56, 1, go >> 6), p.put(54, 6, go & 63);
+    p.put(48, 1, bo >> 5), p.put(44, 2, bo >> 3 & 3), p.put(41, 2, bo >> 1 & 3), p.put(39, 1, bo & 1);
+    p.put(38, 5, rh >> 1), p.put(32, 1, rh & 1), p.put(31, 7, gh), p.put(24, 1, bh >> 5), p.put(23, 5, bh & 31);
+    p.put(18, 6, rv), p.put(12, 7, gv), p.put(5, 6, bv), p.put(33, 1, 1);
+    if ((bo >> 3 & 3) + (bo >> 1 & 3) > 3) {
+      p.put(47, 3, 7), p.put(42, 1, 0);
+    } else {
+      p.put(47, 3, 0), p.put(42, 1, 1);
+    }
+    for (int hi : {63, 55}) {
+      const int lo3 = hi - 5;
+      if (int(p.range(hi, hi - 4)) + sext3(p.range(lo3, lo3 - 2)) > 31 || int(p.range(hi, hi - 4)) + sext3(p.range(lo3, lo3 - 2)) < 0) {
+        p.put(hi, 1, 1 - p.get({hi}));
+      }
+    }
+    expect_exact_round_trip(TexelFormat::etc2_rgb_unorm, p.bytes(), "planar", n);
+    // EAC: base mid-range, multiplier 1..4, every index twice.
+    Bits e;
+    e.put(63, 8, pick(rng, 60, 190)), e.put(55, 4, pick(rng, 1, 4)), e.put(51, 4, pick(rng, 0, 15));
+    int ix[16];
+    for (int i = 0; i < 16; ++i) ix[i] = i % 8;
+    std::shuffle(ix, ix + 16, rng);
+    for (int k = 0; k < 16; ++k) e.put(47 - 3 * k, 3, ix[k]);
+    float want[16][4], got[16][4];
+    for (TexelFormat f : {TexelFormat::eac_r11_unorm, TexelFormat::eac_r11_snorm}) {
+      const bool s = f == TexelFormat::eac_r11_snorm;
+      Bits eb = e;
+      if (s) eb.put(63, 8, pick(rng, -60, 60) & 255);
+      decode_bc_block(f, eb.bytes().data(), want);
+      // The targets as 16-bit data: EAC's 11 bits survive the trip.
+      Image img = Image::uninitialized(4, 4, 1, PixelType::f32);
+      for (int i = 0; i < 16; ++i) img.row<float>(i / 4)[i % 4] = s ? (want[i][0] + 1.0f) * 0.5f : want[i][0];
+      const auto enc = compress_image(img.view(), f, Quality::high);
+      decode_bc_block(f, enc.data(), got);
+      for (int i = 0; i < 16; ++i) ASSERT_NEAR(got[i][0], want[i][0], 1e-6) << "EAC block " << n << " texel " << i;
+    }
+    // EAC alpha in ETC2 RGBA8 (with an exact colour block).
+    std::vector<std::uint8_t> rgba = e.bytes();
+    const auto color = dif.bytes();
+    rgba.insert(rgba.end(), color.begin(), color.end());
+    expect_exact_round_trip(TexelFormat::etc2_rgba8_unorm, rgba, "ETC2 RGBA8 alpha", n);
+  }
+}
+
+// Punch-through: texels with alpha < 128 decode transparent, the others opaque.
+TEST(EtcEncode, PunchThroughKeepsTheCutout) {
+  std::mt19937 rng(5);
+  Image img = Image::uninitialized(16, 16, 4, PixelType::u8);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      std::uint8_t* p = img.row<std::uint8_t>(y) + x * 4;
+      p[0] = std::uint8_t(x * 16), p[1] = std::uint8_t(y * 16), p[2] = 128;
+      p[3] = (x + y) % 3 == 0 ? 0 : (x * y) % 5 == 0 ? 100 : 255;
+    }
+  Texture t;
+  t.format = TexelFormat::etc2_rgba1_unorm;
+  t.width = t.height = 16;
+  t.images.push_back(compress_image(img.view(), t.format, Quality::normal));
+  const Image d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) {
+      const bool visible = img.row<std::uint8_t>(y)[x * 4 + 3] >= 128;
+      EXPECT_EQ(d.row<std::uint8_t>(y)[x * 4 + 3], visible ? 255 : 0) << x << "," << y;
+    }
+}
+
+// An ETC1 stream is an ETC2 stream: the ETC2 decoder reads every block the
+// ETC1 encoder writes as the ETC1 decoder does; and bytes do not depend on
+// the thread count.
+TEST(EtcEncode, Etc1StreamsAreEtc2AndThreadsDoNotMatter) {
+  const Image img = random_smooth_or_noise();
+  for (Quality q : {Quality::fast, Quality::normal, Quality::high}) {
+    const auto etc1 = compress_image(img.view(), TexelFormat::etc1_rgb, q);
+    for (std::size_t b = 0; b < etc1.size(); b += 8) {
+      float a[16][4], c[16][4];
+      decode_bc_block(TexelFormat::etc1_rgb, etc1.data() + b, a);
+      decode_bc_block(TexelFormat::etc2_rgb_unorm, etc1.data() + b, c);
+      for (int i = 0; i < 16; ++i)
+        for (int k = 0; k < 4; ++k) ASSERT_EQ(a[i][k], c[i][k]) << "block " << b / 8;
+    }
+  }
+  for (TexelFormat f : {TexelFormat::etc2_rgb_unorm, TexelFormat::etc2_rgba8_unorm, TexelFormat::etc2_rgba1_unorm,
+                        TexelFormat::eac_rg11_snorm}) {
+    std::vector<std::uint8_t> one, two;
+    {
+      ThreadLimit t(1);
+      one = compress_image(img.view(), f, Quality::normal);
+    }
+    {
+      ThreadLimit t(2);
+      two = compress_image(img.view(), f, Quality::normal);
+    }
+    EXPECT_EQ(one, two) << format_info(f).name;
+  }
 }

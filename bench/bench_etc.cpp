@@ -1,0 +1,148 @@
+// ETC benchmark: texproc's ETC1 and ETC2 RGB encoders at each quality
+// against Android's libetc1 (Debian's android-libetc1-dev, the encoder
+// behind etc1tool; scalar, single thread) and beside texproc's BC1 of the
+// same class, on the corpus colour textures of bench_bc1, single thread, in
+// one run. PSNR over RGB, decoded with texproc's decoders (which match
+// libetc1's decoder bit for bit: test EtcDecode.Etc1MatchesLibEtc1).
+// EAC R11 against BC4 on the corpus heightmaps: PSNR on the [0, 1] scale.
+#include <benchmark/benchmark.h>
+#include <etc1.h>
+
+#include <cmath>
+#include <string>
+
+#include "texproc/block_decode.h"
+#include "texproc/block_encode.h"
+#include "texproc/image_io.h"
+#include "texproc/metrics.h"
+#include "texproc/runtime.h"
+
+using namespace texproc;
+
+namespace {
+
+Image crop_rgba8(const Image& src) {
+  const int w = src.width() / 4 * 4, h = src.height() / 4 * 4;
+  Image img(w, h, 4, PixelType::u8);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 4; ++c) img.set(x, y, c, c == 3 ? 1.0f : src.get(x, y, std::min(c, src.channels() - 1)));
+  return img;
+}
+
+const std::vector<Image>& textures() {
+  static const std::vector<Image> t = [] {
+    std::vector<Image> out;
+    for (const char* f : {"albedo_srgb/colobot_desert4.png", "albedo_srgb/ufoai_rock017.png", "photo/skimage_astronaut_512.png",
+                          "albedo_srgb/wz2100_terrain_tile10_128_palette.png", "photo/skimage_coffee_600x400.png",
+                          "albedo_srgb/stellarium_stein_mauerwerk_512_rgba_opaque.png"}) {
+      out.push_back(crop_rgba8(read_image(std::string(TEXPROC_CORPUS_DIR) + "/" + f)));
+    }
+    return out;
+  }();
+  return t;
+}
+
+double psnr_rgb(const Image& src, TexelFormat f, const std::vector<std::uint8_t>& blocks) {
+  Texture t;
+  t.format = f;
+  t.width = std::uint32_t(src.width());
+  t.height = std::uint32_t(src.height());
+  t.images.push_back(blocks);
+  const Image d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
+  double se = 0;
+  for (int y = 0; y < src.height(); ++y)
+    for (int x = 0; x < src.width(); ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double e = double(d.row<std::uint8_t>(y)[d.channels() * x + c]) - src.row<std::uint8_t>(y)[4 * x + c];
+        se += e * e;
+      }
+  return 10 * std::log10(255.0 * 255.0 / (se / (3.0 * src.width() * src.height())));
+}
+
+std::vector<std::uint8_t> libetc1(const Image& img) {
+  std::vector<std::uint8_t> rgb(std::size_t(img.width()) * img.height() * 3);
+  for (int y = 0; y < img.height(); ++y)
+    for (int x = 0; x < img.width(); ++x)
+      for (int c = 0; c < 3; ++c) rgb[(std::size_t(y) * img.width() + x) * 3 + c] = img.row<std::uint8_t>(y)[4 * x + c];
+  std::vector<std::uint8_t> out(etc1_get_encoded_data_size(etc1_uint32(img.width()), etc1_uint32(img.height())));
+  etc1_encode_image(rgb.data(), etc1_uint32(img.width()), etc1_uint32(img.height()), 3, etc1_uint32(img.width() * 3),
+                    out.data());
+  return out;
+}
+
+void color(benchmark::State& state, bool use_libetc1, TexelFormat f, Quality q) {
+  ThreadLimit one(1);
+  double psnr_sum = 0, pixels = 0;
+  for (auto _ : state) {
+    psnr_sum = 0;
+    for (const Image& img : textures()) {
+      const std::vector<std::uint8_t> blocks = use_libetc1 ? libetc1(img) : compress_image(img.view(), f, q);
+      state.PauseTiming();
+      psnr_sum += psnr_rgb(img, f, blocks);
+      state.ResumeTiming();
+    }
+  }
+  for (const Image& img : textures()) pixels += double(img.width()) * img.height();
+  state.counters["MPix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["PSNR"] = psnr_sum / double(textures().size());
+}
+
+const std::vector<Image>& heightmaps() {
+  static const std::vector<Image> t = [] {
+    std::vector<Image> out;
+    for (const char* f : {"height/povray_mount1_250.png", "height/stellarium_stein_mauerwerk_height_256.png",
+                          "height/mpl_jacksboro_fault_dem_403x344_u16.png", "height/trigger_swiss_h_1024.png"}) {
+      const Image src = read_image(std::string(TEXPROC_CORPUS_DIR) + "/" + f);
+      Image one(src.width() / 4 * 4, src.height() / 4 * 4, 1, PixelType::u16);
+      for (int y = 0; y < one.height(); ++y)
+        for (int x = 0; x < one.width(); ++x) one.set(x, y, 0, src.get(x, y, 0));
+      out.push_back(std::move(one));
+    }
+    return out;
+  }();
+  return t;
+}
+
+void height(benchmark::State& state, TexelFormat f, Quality q) {
+  ThreadLimit one(1);
+  double psnr_sum = 0, pixels = 0;
+  for (auto _ : state) {
+    psnr_sum = 0;
+    for (const Image& img : heightmaps()) {
+      Texture t;
+      t.format = f;
+      t.width = std::uint32_t(img.width());
+      t.height = std::uint32_t(img.height());
+      t.images.push_back(compress_image(img.view(), f, q));
+      state.PauseTiming();
+      const Image d = decode_texture_image(t, 0, 0, 0, PixelType::f32);
+      Image src(img.width(), img.height(), 1, PixelType::f32);
+      for (int y = 0; y < img.height(); ++y)
+        for (int x = 0; x < img.width(); ++x) src.set(x, y, 0, img.get(x, y, 0));
+      psnr_sum += compare_images(src.view(), d.view()).psnr();
+      state.ResumeTiming();
+    }
+  }
+  for (const Image& img : heightmaps()) pixels += double(img.width()) * img.height();
+  state.counters["MPix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["PSNR"] = psnr_sum / double(heightmaps().size());
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(color, libetc1, true, TexelFormat::etc1_rgb, Quality::fast)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(color, etc1_fast, false, TexelFormat::etc1_rgb, Quality::fast)->Unit(benchmark::kMillisecond)->MinTime(0.5);
+BENCHMARK_CAPTURE(color, etc1_normal, false, TexelFormat::etc1_rgb, Quality::normal)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(color, etc1_high, false, TexelFormat::etc1_rgb, Quality::high)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(color, etc2_fast, false, TexelFormat::etc2_rgb_unorm, Quality::fast)->Unit(benchmark::kMillisecond)->MinTime(0.5);
+BENCHMARK_CAPTURE(color, etc2_normal, false, TexelFormat::etc2_rgb_unorm, Quality::normal)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(color, etc2_high, false, TexelFormat::etc2_rgb_unorm, Quality::high)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(color, bc1_normal, false, TexelFormat::bc1_rgb_unorm, Quality::normal)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(color, bc1_high, false, TexelFormat::bc1_rgb_unorm, Quality::high)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(height, eac_r11_normal, TexelFormat::eac_r11_unorm, Quality::normal)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(height, eac_r11_high, TexelFormat::eac_r11_unorm, Quality::high)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(height, bc4_normal, TexelFormat::bc4_unorm, Quality::normal)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(height, bc4_high, TexelFormat::bc4_unorm, Quality::high)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+BENCHMARK_MAIN();

@@ -1,0 +1,668 @@
+// ETC1, ETC2 and EAC block encoding. Every candidate is scored with the
+// decoder's own arithmetic (clamping included), so the error the search
+// minimizes is the error a GPU shows.
+//
+// ETC1 modes: the four half blocks (left, right, top, bottom) are fitted
+// once at 4 bits (individual mode) and at 5 bits (differential mode): for
+// each of the 8 intensity tables the base colour starts at the half's mean,
+// each texel takes its best modifier, the base is re-centred on the texels
+// minus their modifiers (least squares), and at `high` a +-1 neighbourhood
+// of the quantized base is searched. Flips and modes then combine the
+// halves; a differential pair whose bases are too far apart is brought
+// within the 3-bit delta and the moved half is refitted.
+// ETC2 adds planar (a least-squares plane per channel, quantized, with a
+// +-1 search per value: channels are independent) and the T and H modes (two
+// clusters split along the principal axis, their centres quantized to 4
+// bits, every distance tried).
+#include "etc/etc_encode.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "bc/block_gather.h"
+#include "etc/etc_tables.h"
+#include "texproc/error.h"
+#include "texproc/runtime.h"
+
+namespace texproc::etc {
+namespace {
+
+constexpr long kNone = std::numeric_limits<long>::max() / 4;
+
+// The texels of each half block, as (x, y): 0 left, 1 right, 2 top, 3 bottom.
+struct HalfLayout {
+  int x[8], y[8];
+};
+const std::array<HalfLayout, 4>& halves() {
+  static const std::array<HalfLayout, 4> h = [] {
+    std::array<HalfLayout, 4> r{};
+    for (int k = 0; k < 4; ++k) {
+      int n = 0;
+      for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x) {
+          const bool in = k == 0 ? x < 2 : k == 1 ? x >= 2 : k == 2 ? y < 2 : y >= 2;
+          if (in) r[k].x[n] = x, r[k].y[n] = y, ++n;
+        }
+    }
+    return r;
+  }();
+  return h;
+}
+
+struct Texels {
+  int rgb[16][3];
+  bool transparent[16];  // punch-through: alpha < 128
+  bool any_transparent = false;
+};
+
+struct HalfFit {
+  long err = kNone;
+  int q[3] = {0, 0, 0};  // base colour at 4 or 5 bits
+  int table = 0;
+  std::uint8_t idx[8] = {};
+};
+
+int expand(int q, int bits) { return bits == 4 ? extend4(q) : extend5(q); }
+int quantize(double v, int bits) {
+  const int top = (1 << bits) - 1;
+  return std::clamp(int(std::lround(v * top / 255.0)), 0, top);
+}
+
+// Error of the half's texels against base colour `col` (8-bit) and table
+// `t`; the best index of each texel into idx. `non_opaque`: punch-through
+// with transparent texels (index 2 is transparent, modifiers +-a are 0).
+long eval_half(const Texels& tx, int h, const int col[3], int t, bool non_opaque, std::uint8_t idx[8], long bound) {
+  int pal[4][3];
+  for (int k = 0; k < 4; ++k) {
+    const int m = non_opaque && (k == 0 || k == 2) ? 0 : kModifiers[t][k];
+    for (int c = 0; c < 3; ++c) pal[k][c] = clamp255(col[c] + m);
+  }
+  const HalfLayout& L = halves()[std::size_t(h)];
+  long err = 0;
+  for (int i = 0; i < 8; ++i) {
+    const int p = L.y[i] * 4 + L.x[i];
+    if (non_opaque && tx.transparent[p]) {
+      idx[i] = 2;
+      continue;
+    }
+    const int* px = tx.rgb[p];
+    long best = kNone;
+    int bk = 0;
+    for (int k = 0; k < 4; ++k) {
+      if (non_opaque && k == 2) continue;
+      const long dr = pal[k][0] - px[0], dg = pal[k][1] - px[1], db = pal[k][2] - px[2];
+      const long e = dr * dr + dg * dg + db * db;
+      if (e < best) best = e, bk = k;
+    }
+    idx[i] = std::uint8_t(bk);
+    err += best;
+    if (err >= bound) return err;
+  }
+  return err;
+}
+
+void try_base(const Texels& tx, int h, const int q[3], int bits, int t, bool non_opaque, HalfFit& best) {
+  const int col[3] = {expand(q[0], bits), expand(q[1], bits), expand(q[2], bits)};
+  std::uint8_t idx[8];
+  const long e = eval_half(tx, h, col, t, non_opaque, idx, best.err);
+  if (e < best.err) {
+    best.err = e;
+    std::memcpy(best.q, q, sizeof best.q);
+    best.table = t;
+    std::memcpy(best.idx, idx, 8);
+  }
+}
+
+// The best base and table for half h at `bits` (4 or 5).
+HalfFit fit_half(const Texels& tx, int h, int bits, Quality q, bool non_opaque) {
+  const HalfLayout& L = halves()[std::size_t(h)];
+  double mean[3] = {0, 0, 0};
+  int visible = 0;
+  for (int i = 0; i < 8; ++i) {
+    const int p = L.y[i] * 4 + L.x[i];
+    if (non_opaque && tx.transparent[p]) continue;
+    for (int c = 0; c < 3; ++c) mean[c] += tx.rgb[p][c];
+    ++visible;
+  }
+  HalfFit best;
+  if (visible == 0) {  // every texel transparent: any colour
+    best.err = 0;
+    std::fill(best.idx, best.idx + 8, std::uint8_t(2));
+    return best;
+  }
+  for (double& m : mean) m /= visible;
+  // The brightest and darkest visible texels (by R + G + B): in an exact
+  // fit they carry the largest and smallest modifiers, so base = texel -
+  // modifier seeds the search where the mean alone would lock the indices
+  // one step off.
+  int bright = -1, dark = -1;
+  for (int i = 0; i < 8; ++i) {
+    const int p = L.y[i] * 4 + L.x[i];
+    if (non_opaque && tx.transparent[p]) continue;
+    const int sum = tx.rgb[p][0] + tx.rgb[p][1] + tx.rgb[p][2];
+    if (bright < 0 || sum > tx.rgb[bright][0] + tx.rgb[bright][1] + tx.rgb[bright][2]) bright = p;
+    if (dark < 0 || sum < tx.rgb[dark][0] + tx.rgb[dark][1] + tx.rgb[dark][2]) dark = p;
+  }
+  const int q0[3] = {quantize(mean[0], bits), quantize(mean[1], bits), quantize(mean[2], bits)};
+  for (int t = 0; t < 8; ++t) {
+    HalfFit fit;
+    try_base(tx, h, q0, bits, t, non_opaque, fit);
+    if (q != Quality::fast) {
+      // Seeds: the extremes minus the extreme modifiers (+-b; at high also +-a).
+      const int big = kModifiers[t][1], small = kModifiers[t][0];
+      const int offsets[4][2] = {{bright, big}, {dark, -big}, {bright, small}, {dark, -small}};
+      const int seeds = q == Quality::normal ? 2 : 4;
+      for (int k = 0; k < seeds; ++k) {
+        if (non_opaque && k >= 2) break;  // +-a are 0 with punch-through
+        const int* p = tx.rgb[offsets[k][0]];
+        const int qs[3] = {quantize(p[0] - offsets[k][1], bits), quantize(p[1] - offsets[k][1], bits),
+                           quantize(p[2] - offsets[k][1], bits)};
+        try_base(tx, h, qs, bits, t, non_opaque, fit);
+      }
+      // Re-centre: the base that minimizes the error for these indices is
+      // the mean of the texels minus their modifiers.
+      for (int pass = 0; pass < 3; ++pass) {
+        double centre[3] = {0, 0, 0};
+        int n = 0;
+        for (int i = 0; i < 8; ++i) {
+          const int p = L.y[i] * 4 + L.x[i];
+          if (non_opaque && tx.transparent[p]) continue;
+          const int m = non_opaque && (fit.idx[i] == 0) ? 0 : kModifiers[t][fit.idx[i]];
+          for (int c = 0; c < 3; ++c) centre[c] += tx.rgb[p][c] - m;
+          ++n;
+        }
+        const int q1[3] = {quantize(centre[0] / n, bits), quantize(centre[1] / n, bits), quantize(centre[2] / n, bits)};
+        if (std::equal(q1, q1 + 3, fit.q)) break;
+        const long before = fit.err;
+        try_base(tx, h, q1, bits, t, non_opaque, fit);
+        if (fit.err >= before) break;
+      }
+    }
+    if (q == Quality::high || q == Quality::max) {
+      const int r = q == Quality::max ? 2 : 1, top = (1 << bits) - 1;
+      const int c0[3] = {fit.q[0], fit.q[1], fit.q[2]};
+      for (int dr = -r; dr <= r; ++dr)
+        for (int dg = -r; dg <= r; ++dg)
+          for (int db = -r; db <= r; ++db) {
+            const int c[3] = {c0[0] + dr, c0[1] + dg, c0[2] + db};
+            if (std::min({c[0], c[1], c[2]}) < 0 || std::max({c[0], c[1], c[2]}) > top) continue;
+            try_base(tx, h, c, bits, t, non_opaque, fit);
+          }
+    }
+    if (fit.err < best.err) best = fit;
+  }
+  return best;
+}
+
+// Half h refitted with its base fixed at q (5 bits): the best table.
+HalfFit fit_fixed(const Texels& tx, int h, const int q[3], bool non_opaque) {
+  HalfFit best;
+  for (int t = 0; t < 8; ++t) try_base(tx, h, q, 5, t, non_opaque, best);
+  return best;
+}
+
+void put(std::uint64_t& v, int high, int count, int value) {
+  const int low = high - count + 1;
+  const std::uint64_t mask = ((std::uint64_t(1) << count) - 1) << low;
+  v = (v & ~mask) | ((std::uint64_t(unsigned(value)) << low) & mask);
+}
+
+void put_index(std::uint64_t& v, int x, int y, int idx) {
+  const int k = x * 4 + y;
+  put(v, k + 16, 1, idx >> 1);
+  put(v, k, 1, idx & 1);
+}
+
+struct Candidate {
+  long err = kNone;
+  std::uint64_t bits = 0;
+};
+
+void keep(Candidate& best, long err, std::uint64_t bits) {
+  if (err < best.err) best.err = err, best.bits = bits;
+}
+
+std::uint64_t pack_halves(const HalfFit& a, const HalfFit& b, bool flip, bool differential, int bit33) {
+  std::uint64_t v = 0;
+  for (int c = 0; c < 3; ++c) {
+    if (differential) {
+      put(v, 63 - 8 * c, 5, a.q[c]);
+      put(v, 58 - 8 * c, 3, (b.q[c] - a.q[c]) & 7);
+    } else {
+      put(v, 63 - 8 * c, 4, a.q[c]);
+      put(v, 59 - 8 * c, 4, b.q[c]);
+    }
+  }
+  put(v, 39, 3, a.table);
+  put(v, 36, 3, b.table);
+  put(v, 33, 1, bit33);
+  put(v, 32, 1, flip ? 1 : 0);
+  const HalfLayout& la = halves()[flip ? 2 : 0];
+  const HalfLayout& lb = halves()[flip ? 3 : 1];
+  for (int i = 0; i < 8; ++i) {
+    put_index(v, la.x[i], la.y[i], a.idx[i]);
+    put_index(v, lb.x[i], lb.y[i], b.idx[i]);
+  }
+  return v;
+}
+
+bool delta_fits(const int a[3], const int b[3]) {
+  for (int c = 0; c < 3; ++c)
+    if (b[c] - a[c] < -4 || b[c] - a[c] > 3) return false;
+  return true;
+}
+
+// Individual and differential modes, both flips.
+void search_etc1_modes(const Texels& tx, Quality q, bool allow_individual, bool non_opaque, int bit33_diff,
+                       Candidate& best) {
+  HalfFit h4[4], h5[4];
+  for (int h = 0; h < 4; ++h) {
+    if (allow_individual) h4[h] = fit_half(tx, h, 4, q, non_opaque);
+    h5[h] = fit_half(tx, h, 5, q, non_opaque);
+  }
+  for (int flip = 0; flip < 2; ++flip) {
+    const int a = flip ? 2 : 0, b = flip ? 3 : 1;
+    if (allow_individual) keep(best, h4[a].err + h4[b].err, pack_halves(h4[a], h4[b], flip, false, 0));
+    if (delta_fits(h5[a].q, h5[b].q)) {
+      keep(best, h5[a].err + h5[b].err, pack_halves(h5[a], h5[b], flip, true, bit33_diff));
+      continue;
+    }
+    // Too far apart for the 3-bit delta: pull one base towards the other and
+    // refit the moved half's table and indices.
+    for (int moved = 0; moved < 2; ++moved) {
+      const HalfFit& fixed = moved ? h5[a] : h5[b];
+      const int mh = moved ? b : a;
+      int qm[3];
+      for (int c = 0; c < 3; ++c) {
+        const int other = (moved ? h5[b] : h5[a]).q[c];
+        qm[c] = moved ? std::clamp(other, fixed.q[c] - 4, fixed.q[c] + 3) : std::clamp(other, fixed.q[c] - 3, fixed.q[c] + 4);
+      }
+      const HalfFit refit = fit_fixed(tx, mh, qm, non_opaque);
+      const HalfFit& first = moved ? fixed : refit;
+      const HalfFit& second = moved ? refit : fixed;
+      keep(best, first.err + second.err, pack_halves(first, second, flip, true, bit33_diff));
+    }
+  }
+}
+
+// Planar: per channel a least-squares plane, quantized (6/7/6 bits), with a
+// +-1 search of each of O, H, V (channels are scored independently).
+void search_planar(const Texels& tx, Quality q, Candidate& best) {
+  int o[3], hq[3], vq[3];
+  long total = 0;
+  for (int c = 0; c < 3; ++c) {
+    const int bits = c == 1 ? 7 : 6;
+    double mean = 0, sx = 0, sy = 0;
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x) {
+        const double v = tx.rgb[y * 4 + x][c];
+        mean += v / 16;
+        sx += (x - 1.5) * v;
+        sy += (y - 1.5) * v;
+      }
+    const double a = sx / 20.0, b = sy / 20.0, O = mean - 1.5 * a - 1.5 * b;
+    const int top = (1 << bits) - 1;
+    auto qz = [&](double v) { return std::clamp(int(std::lround(v * top / 255.0)), 0, top); };
+    auto ex = [&](int v) { return bits == 7 ? extend7(v) : extend6(v); };
+    const int c0[3] = {qz(O), qz(O + 4 * a), qz(O + 4 * b)};
+    long be = kNone;
+    int bo = c0[0], bh = c0[1], bv = c0[2];
+    const int r = q == Quality::fast ? 0 : 1;
+    for (int d0 = -r; d0 <= r; ++d0)
+      for (int d1 = -r; d1 <= r; ++d1)
+        for (int d2 = -r; d2 <= r; ++d2) {
+          const int vo = c0[0] + d0, vh = c0[1] + d1, vv = c0[2] + d2;
+          if (std::min({vo, vh, vv}) < 0 || std::max({vo, vh, vv}) > top) continue;
+          const int eo = ex(vo), eh = ex(vh), ev = ex(vv);
+          long e = 0;
+          for (int y = 0; y < 4; ++y)
+            for (int x = 0; x < 4; ++x) {
+              const long d = clamp255((x * (eh - eo) + y * (ev - eo) + 4 * eo + 2) >> 2) - tx.rgb[y * 4 + x][c];
+              e += d * d;
+            }
+          if (e < be) be = e, bo = vo, bh = vh, bv = vv;
+        }
+    o[c] = bo, hq[c] = bh, vq[c] = bv;
+    total += be;
+  }
+  if (total >= best.err) return;
+  std::uint64_t v = 0;
+  put(v, 62, 6, o[0]);
+  put(v, 56, 1, o[1] >> 6), put(v, 54, 6, o[1] & 63);
+  put(v, 48, 1, o[2] >> 5), put(v, 44, 2, o[2] >> 3 & 3), put(v, 41, 2, o[2] >> 1 & 3), put(v, 39, 1, o[2] & 1);
+  put(v, 38, 5, hq[0] >> 1), put(v, 32, 1, hq[0] & 1), put(v, 31, 7, hq[1]);
+  put(v, 24, 1, hq[2] >> 5), put(v, 23, 5, hq[2] & 31);
+  put(v, 18, 6, vq[0]), put(v, 12, 7, vq[1]), put(v, 5, 6, vq[2]);
+  put(v, 33, 1, 1);
+  // The mode is read from overflows: red and green must stay in range, blue
+  // must leave it. Each has a free bit (63, 55; 47-45 and 42) that decides.
+  auto in_range = [&](int high5, int high3) {
+    const int base = int(v >> (high5 - 4) & 31), d3 = int(v >> (high3 - 2) & 7);
+    const int s = base + (d3 >= 4 ? d3 - 8 : d3);
+    return s >= 0 && s <= 31;
+  };
+  if (!in_range(63, 58)) put(v, 63, 1, 1);
+  if (!in_range(55, 50)) put(v, 55, 1, 1);
+  if ((o[2] >> 3 & 3) + (o[2] >> 1 & 3) > 3) {
+    put(v, 47, 3, 7), put(v, 42, 1, 0);
+  } else {
+    put(v, 47, 3, 0), put(v, 42, 1, 1);
+  }
+  keep(best, total, v);
+}
+
+// T and H modes: two clusters along the principal axis.
+void search_t_h(const Texels& tx, bool non_opaque, Candidate& best) {
+  int n = 0;
+  double mean[3] = {0, 0, 0};
+  for (int i = 0; i < 16; ++i) {
+    if (non_opaque && tx.transparent[i]) continue;
+    for (int c = 0; c < 3; ++c) mean[c] += tx.rgb[i][c];
+    ++n;
+  }
+  if (n < 2) return;
+  for (double& m : mean) m /= n;
+  double cov[3][3] = {};
+  for (int i = 0; i < 16; ++i) {
+    if (non_opaque && tx.transparent[i]) continue;
+    double d[3];
+    for (int c = 0; c < 3; ++c) d[c] = tx.rgb[i][c] - mean[c];
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) cov[a][b] += d[a] * d[b];
+  }
+  double axis[3] = {1, 1, 1};
+  for (int it = 0; it < 8; ++it) {
+    double nx[3] = {0, 0, 0};
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) nx[a] += cov[a][b] * axis[b];
+    const double len = std::sqrt(nx[0] * nx[0] + nx[1] * nx[1] + nx[2] * nx[2]);
+    if (len < 1e-9) break;
+    for (int a = 0; a < 3; ++a) axis[a] = nx[a] / len;
+  }
+  // Two clusters by the sign of the projection, refined by two k-means steps.
+  bool side[16] = {};
+  double centre[2][3] = {};
+  for (int i = 0; i < 16; ++i) {
+    double p = 0;
+    for (int c = 0; c < 3; ++c) p += (tx.rgb[i][c] - mean[c]) * axis[c];
+    side[i] = p > 0;
+  }
+  for (int it = 0; it < 3; ++it) {
+    int count[2] = {0, 0};
+    std::memset(centre, 0, sizeof centre);
+    for (int i = 0; i < 16; ++i) {
+      if (non_opaque && tx.transparent[i]) continue;
+      for (int c = 0; c < 3; ++c) centre[side[i]][c] += tx.rgb[i][c];
+      ++count[side[i]];
+    }
+    if (count[0] == 0 || count[1] == 0) return;
+    for (int s = 0; s < 2; ++s)
+      for (int c = 0; c < 3; ++c) centre[s][c] /= count[s];
+    for (int i = 0; i < 16; ++i) {
+      double d[2] = {0, 0};
+      for (int s = 0; s < 2; ++s)
+        for (int c = 0; c < 3; ++c) d[s] += (tx.rgb[i][c] - centre[s][c]) * (tx.rgb[i][c] - centre[s][c]);
+      side[i] = d[1] < d[0];
+    }
+  }
+  int q[2][3];
+  for (int s = 0; s < 2; ++s)
+    for (int c = 0; c < 3; ++c) q[s][c] = quantize(centre[s][c], 4);
+
+  // Scores four paint colours; `usable[k]`: index k may be used.
+  auto score = [&](const int paint[4][3], std::uint8_t idx[16]) {
+    long err = 0;
+    for (int i = 0; i < 16; ++i) {
+      if (non_opaque && tx.transparent[i]) {
+        idx[i] = 2;
+        continue;
+      }
+      long be = kNone;
+      int bk = 0;
+      for (int k = 0; k < 4; ++k) {
+        if (non_opaque && k == 2) continue;
+        long e = 0;
+        for (int c = 0; c < 3; ++c) {
+          const long d = clamp255(paint[k][c]) - tx.rgb[i][c];
+          e += d * d;
+        }
+        if (e < be) be = e, bk = k;
+      }
+      idx[i] = std::uint8_t(bk);
+      err += be;
+    }
+    return err;
+  };
+  auto put_indices = [&](std::uint64_t& v, const std::uint8_t idx[16]) {
+    for (int i = 0; i < 16; ++i) put_index(v, i % 4, i / 4, idx[i]);
+  };
+  const int bit33 = 1;  // the differential flag (or, with punch-through, "opaque"; set below)
+  const int opaque_bit = non_opaque ? 0 : 1;
+  (void)bit33;
+  // T: one cluster is the single colour C1, the other C2 +- d.
+  for (int single = 0; single < 2; ++single) {
+    const int* c1 = q[single];
+    const int* c2 = q[1 - single];
+    for (int di = 0; di < 8; ++di) {
+      const int d = kDistances[di];
+      int paint[4][3];
+      for (int c = 0; c < 3; ++c) {
+        paint[0][c] = extend4(c1[c]);
+        paint[1][c] = extend4(c2[c]) + d;
+        paint[2][c] = extend4(c2[c]);
+        paint[3][c] = extend4(c2[c]) - d;
+      }
+      std::uint8_t idx[16];
+      const long e = score(paint, idx);
+      if (e >= best.err) continue;
+      std::uint64_t v = 0;
+      put(v, 60, 2, c1[0] >> 2), put(v, 57, 2, c1[0] & 3), put(v, 55, 4, c1[1]), put(v, 51, 4, c1[2]);
+      put(v, 47, 4, c2[0]), put(v, 43, 4, c2[1]), put(v, 39, 4, c2[2]);
+      put(v, 35, 2, di >> 1), put(v, 32, 1, di & 1), put(v, 33, 1, opaque_bit);
+      if ((c1[0] >> 2) + (c1[0] & 3) > 3) {
+        put(v, 63, 3, 7), put(v, 58, 1, 0);
+      } else {
+        put(v, 63, 3, 0), put(v, 58, 1, 1);
+      }
+      put_indices(v, idx);
+      keep(best, e, v);
+    }
+  }
+  // H: C1 +- d and C2 +- d; the distance index's low bit is the order of
+  // the two colours, so a colour pair in the wrong order is swapped.
+  for (int di = 0; di < 8; ++di) {
+    const int* c1 = q[0];
+    const int* c2 = q[1];
+    const int k1 = c1[0] << 8 | c1[1] << 4 | c1[2], k2 = c2[0] << 8 | c2[1] << 4 | c2[2];
+    if ((k1 >= k2) != bool(di & 1)) std::swap(c1, c2);
+    const int a1 = c1[0] << 8 | c1[1] << 4 | c1[2], a2 = c2[0] << 8 | c2[1] << 4 | c2[2];
+    if ((a1 >= a2) != bool(di & 1)) continue;  // equal colours: only odd indices
+    const int d = kDistances[di];
+    int paint[4][3];
+    for (int c = 0; c < 3; ++c) {
+      paint[0][c] = extend4(c1[c]) + d;
+      paint[1][c] = extend4(c1[c]) - d;
+      paint[2][c] = extend4(c2[c]) + d;
+      paint[3][c] = extend4(c2[c]) - d;
+    }
+    std::uint8_t idx[16];
+    const long e = score(paint, idx);
+    if (e >= best.err) continue;
+    std::uint64_t v = 0;
+    put(v, 62, 4, c1[0]), put(v, 58, 3, c1[1] >> 1), put(v, 52, 1, c1[1] & 1);
+    put(v, 51, 1, c1[2] >> 3), put(v, 49, 2, c1[2] >> 1 & 3), put(v, 47, 1, c1[2] & 1);
+    put(v, 46, 4, c2[0]), put(v, 42, 3, c2[1] >> 1), put(v, 39, 1, c2[1] & 1), put(v, 38, 4, c2[2]);
+    put(v, 34, 1, di >> 2), put(v, 32, 1, di >> 1 & 1), put(v, 33, 1, opaque_bit);
+    // Red in range (bit 63), green out of range (bits 55-53 and 50).
+    {
+      const int s = c1[0] + ((c1[1] >> 1) >= 4 ? (c1[1] >> 1) - 8 : (c1[1] >> 1));
+      put(v, 63, 1, s < 0 ? 1 : 0);
+    }
+    const int g = (c1[1] & 1) * 2 + (c1[2] >> 3), bb = c1[2] >> 1 & 3;
+    if (g + bb > 3) {
+      put(v, 55, 3, 7), put(v, 50, 1, 0);
+    } else {
+      put(v, 55, 3, 0), put(v, 50, 1, 1);
+    }
+    put_indices(v, idx);
+    keep(best, e, v);
+  }
+}
+
+}  // namespace
+
+long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
+  Texels tx;
+  for (int i = 0; i < 16; ++i) {
+    for (int c = 0; c < 3; ++c) tx.rgb[i][c] = rgba[i][c];
+    tx.transparent[i] = mode == ColorMode::etc2_punch && rgba[i][3] < 128;
+    tx.any_transparent |= tx.transparent[i];
+  }
+  Candidate best;
+  const bool punch = mode == ColorMode::etc2_punch;
+  const bool non_opaque = punch && tx.any_transparent;
+  // Bit 33: the differential flag, or with punch-through the opaque flag.
+  const int bit33 = punch ? (non_opaque ? 0 : 1) : 1;
+  search_etc1_modes(tx, q, !punch, non_opaque, bit33, best);
+  if (mode != ColorMode::etc1 && q != Quality::fast) {
+    if (!non_opaque) search_planar(tx, q, best);
+    search_t_h(tx, non_opaque, best);
+  }
+  store_be64(best.bits, out);
+  return best.err;
+}
+
+namespace {
+
+int eac_value(EacKind kind, int base, int mult, int m) {
+  switch (kind) {
+    case EacKind::alpha8: return clamp255(base + m * mult);
+    case EacKind::r11: return std::clamp(base * 8 + 4 + (mult ? m * mult * 8 : m), 0, 2047);
+    case EacKind::r11_signed: return std::clamp(base * 8 + (mult ? m * mult * 8 : m), -1023, 1023);
+  }
+  return 0;
+}
+
+struct EacCandidate {
+  double err = std::numeric_limits<double>::max();
+  int base = 0, mult = 0, table = 0;
+  std::uint8_t idx[16] = {};
+};
+
+void eac_try(const double t[16], EacKind kind, int base, int mult, int table, EacCandidate& best) {
+  int vals[8];
+  for (int k = 0; k < 8; ++k) vals[k] = eac_value(kind, base, mult, kEacModifiers[table][k]);
+  double err = 0;
+  std::uint8_t idx[16];
+  for (int i = 0; i < 16; ++i) {
+    double be = std::numeric_limits<double>::max();
+    int bk = 0;
+    for (int k = 0; k < 8; ++k) {
+      const double d = vals[k] - t[i];
+      if (d * d < be) be = d * d, bk = k;
+    }
+    idx[i] = std::uint8_t(bk);
+    err += be;
+    if (err >= best.err) return;
+  }
+  best.err = err;
+  best.base = base, best.mult = mult, best.table = table;
+  std::memcpy(best.idx, idx, 16);
+}
+
+}  // namespace
+
+double encode_eac_block(const float targets[16], EacKind kind, Quality q, std::uint8_t out[8]) {
+  const double lo_end = kind == EacKind::r11_signed ? -1023 : 0, hi_end = kind == EacKind::alpha8 ? 255 : kind == EacKind::r11 ? 2047 : 1023;
+  double t[16], lo = hi_end, hi = lo_end;
+  for (int i = 0; i < 16; ++i) {
+    t[i] = std::clamp(double(targets[i]), lo_end, hi_end);
+    lo = std::min(lo, t[i]);
+    hi = std::max(hi, t[i]);
+  }
+  const int base_lo = kind == EacKind::r11_signed ? -127 : 0, base_hi = kind == EacKind::r11_signed ? 127 : 255;
+  const double unit = kind == EacKind::alpha8 ? 1.0 : 8.0, offset = kind == EacKind::r11 ? 4.0 : 0.0;
+  const int base_r = q == Quality::fast ? 0 : q == Quality::normal ? 1 : q == Quality::high ? 2 : 8;
+  const int mult_r = q == Quality::fast ? 0 : q == Quality::normal ? 1 : q == Quality::high ? 2 : 15;
+  EacCandidate best;
+  const double centre = (lo + hi) / 2;
+  for (int table = 0; table < 16; ++table) {
+    const int mn = kEacModifiers[table][3], mx = kEacModifiers[table][7];
+    const double mf = (hi - lo) / ((mx - mn) * unit);
+    const int m0 = int(std::lround(mf));
+    for (int mult = std::max(0, m0 - mult_r); mult <= std::min(15, m0 + mult_r + (q == Quality::fast ? 0 : 1)); ++mult) {
+      // Multiplier 0 steps by the modifiers themselves (R11: 1/8 of the
+      // multiplier-1 step); for 8-bit alpha it is a constant block.
+      const double step = mult == 0 ? (kind == EacKind::alpha8 ? 0.0 : 1.0) : mult * unit;
+      const double bf = (centre - offset - (mn + mx) / 2.0 * step) / unit;
+      const int b0 = std::clamp(int(std::lround(bf)), base_lo, base_hi);
+      for (int base = std::max(base_lo, b0 - base_r); base <= std::min(base_hi, b0 + base_r); ++base) {
+        eac_try(t, kind, base, mult, table, best);
+      }
+    }
+  }
+  std::uint64_t v = 0;
+  put(v, 63, 8, best.base & 255);
+  put(v, 55, 4, best.mult);
+  put(v, 51, 4, best.table);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) put(v, 47 - 3 * (x * 4 + y), 3, best.idx[y * 4 + x]);
+  store_be64(v, out);
+  return best.err;
+}
+
+std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format, Quality q) {
+  using F = TexelFormat;
+  const FormatInfo& info = format_info(format);
+  const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
+  std::vector<std::uint8_t> out(std::size_t(bw) * bh * std::size_t(info.block_bytes));
+  const bool eac = format >= F::eac_r11_unorm;
+  const bool snorm = format == F::eac_r11_snorm || format == F::eac_rg11_snorm;
+  const int eac_channels = format == F::eac_rg11_unorm || format == F::eac_rg11_snorm ? 2 : 1;
+  const bool rgba8 = format == F::etc2_rgba8_unorm || format == F::etc2_rgba8_srgb;
+  const ColorMode mode = format == F::etc1_rgb                                           ? ColorMode::etc1
+                         : format == F::etc2_rgba1_unorm || format == F::etc2_rgba1_srgb ? ColorMode::etc2_punch
+                                                                                         : ColorMode::etc2;
+  for_each_row_block(bh, 4, [&](int by0, int by1) {
+    std::uint8_t rgba[16][4];
+    float values[16];
+    for (int by = by0; by < by1; ++by)
+      for (int bx = 0; bx < bw; ++bx) {
+        std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx) * std::size_t(info.block_bytes);
+        // Partial blocks: the edge texels repeat into the missing ones.
+        auto at = [&](int i, int& x, int& y) {
+          x = std::min(bx * 4 + i % 4, img.width - 1);
+          y = std::min(by * 4 + i / 4, img.height - 1);
+        };
+        if (eac) {
+          for (int c = 0; c < eac_channels; ++c) {
+            for (int i = 0; i < 16; ++i) {
+              int x, y;
+              at(i, x, y);
+              const float u = texel_unit(img, x, y, c);
+              values[i] = snorm ? (u * 2.0f - 1.0f) * 1023.0f : u * 2047.0f;
+            }
+            encode_eac_block(values, snorm ? EacKind::r11_signed : EacKind::r11, q, dst + 8 * c);
+          }
+          continue;
+        }
+        for (int i = 0; i < 16; ++i) {
+          int x, y;
+          at(i, x, y);
+          for (int c = 0; c < 4; ++c) rgba[i][c] = texel8(img, x, y, c);
+        }
+        if (rgba8) {
+          for (int i = 0; i < 16; ++i) values[i] = rgba[i][3];
+          encode_eac_block(values, EacKind::alpha8, q, dst);
+          dst += 8;
+        }
+        encode_color_block(rgba, mode, q, dst);
+      }
+  });
+  return out;
+}
+
+}  // namespace texproc::etc
