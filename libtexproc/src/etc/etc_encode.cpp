@@ -76,11 +76,21 @@ int quantize(double v, int bits) {
 // with transparent texels (index 2 is transparent, modifiers +-a are 0).
 long eval_half(const Texels& tx, int h, const int col[3], int t, bool non_opaque, std::uint8_t idx[8], long bound) {
   int pal[4][3];
+  bool clamps = false;
   for (int k = 0; k < 4; ++k) {
     const int m = non_opaque && (k == 0 || k == 2) ? 0 : kModifiers[t][k];
-    for (int c = 0; c < 3; ++c) pal[k][c] = clamp255(col[c] + m);
+    for (int c = 0; c < 3; ++c) {
+      pal[k][c] = clamp255(col[c] + m);
+      clamps |= pal[k][c] != col[c] + m;
+    }
   }
   const HalfLayout& L = halves()[std::size_t(h)];
+  // Without clamping, a texel's best modifier is the one nearest to
+  // (sum of its channels - sum of the base's) / 3: the squared error
+  // sum_c (e_c - m)^2 = sum_c e_c^2 - 2 m sum_c e_c + 3 m^2 is a parabola in m.
+  // So three threshold tests pick the index; with clamping every index is tried.
+  const int a = kModifiers[t][0], b = kModifiers[t][1];
+  const int base_sum = col[0] + col[1] + col[2];
   long err = 0;
   for (int i = 0; i < 8; ++i) {
     const int p = L.y[i] * 4 + L.x[i];
@@ -89,13 +99,26 @@ long eval_half(const Texels& tx, int h, const int col[3], int t, bool non_opaque
       continue;
     }
     const int* px = tx.rgb[p];
-    long best = kNone;
-    int bk = 0;
-    for (int k = 0; k < 4; ++k) {
-      if (non_opaque && k == 2) continue;
-      const long dr = pal[k][0] - px[0], dg = pal[k][1] - px[1], db = pal[k][2] - px[2];
-      const long e = dr * dr + dg * dg + db * db;
-      if (e < best) best = e, bk = k;
+    int bk;
+    long best;
+    if (!clamps) {
+      const int d2 = 2 * (px[0] + px[1] + px[2] - base_sum);
+      if (non_opaque) {
+        bk = d2 < -3 * b ? 3 : d2 < 3 * b ? 0 : 1;
+      } else {
+        bk = d2 < -3 * (a + b) ? 3 : d2 < 0 ? 2 : d2 < 3 * (a + b) ? 0 : 1;
+      }
+      const long dr = pal[bk][0] - px[0], dg = pal[bk][1] - px[1], db = pal[bk][2] - px[2];
+      best = dr * dr + dg * dg + db * db;
+    } else {
+      best = kNone;
+      bk = 0;
+      for (int k = 0; k < 4; ++k) {
+        if (non_opaque && k == 2) continue;
+        const long dr = pal[k][0] - px[0], dg = pal[k][1] - px[1], db = pal[k][2] - px[2];
+        const long e = dr * dr + dg * dg + db * db;
+        if (e < best) best = e, bk = k;
+      }
     }
     idx[i] = std::uint8_t(bk);
     err += best;
@@ -147,19 +170,46 @@ HalfFit fit_half(const Texels& tx, int h, int bits, Quality q, bool non_opaque) 
     if (dark < 0 || sum < tx.rgb[dark][0] + tx.rgb[dark][1] + tx.rgb[dark][2]) dark = p;
   }
   const int q0[3] = {quantize(mean[0], bits), quantize(mean[1], bits), quantize(mean[2], bits)};
-  for (int t = 0; t < 8; ++t) {
-    HalfFit fit;
-    try_base(tx, h, q0, bits, t, non_opaque, fit);
-    if (q != Quality::fast) {
+  // Tables worth refining: every table is scored at the mean first (at
+  // `fast`, only the three whose modifiers are nearest the texels' spread
+  // around the mean); `normal` refines the best three, `high` all.
+  HalfFit at_mean[8];
+  int order[8], tables = 0;
+  if (q == Quality::fast) {
+    double spread = 0;
+    const double mean_sum = mean[0] + mean[1] + mean[2];
+    for (int i = 0; i < 8; ++i) {
+      const int p = L.y[i] * 4 + L.x[i];
+      if (non_opaque && tx.transparent[p]) continue;
+      spread += std::fabs(tx.rgb[p][0] + tx.rgb[p][1] + tx.rgb[p][2] - mean_sum) / 3.0;
+    }
+    spread /= visible;
+    int t0 = 0;
+    for (int t = 1; t < 8; ++t) {
+      const double mid = (kModifiers[t][0] + kModifiers[t][1]) / 2.0, best_mid = (kModifiers[t0][0] + kModifiers[t0][1]) / 2.0;
+      if (std::fabs(mid - spread) < std::fabs(best_mid - spread)) t0 = t;
+    }
+    for (int t = std::max(0, t0 - 1); t <= std::min(7, t0 + 1); ++t) order[tables++] = t;
+  } else {
+    for (int t = 0; t < 8; ++t) order[tables++] = t;
+  }
+  for (int k = 0; k < tables; ++k) try_base(tx, h, q0, bits, order[k], non_opaque, at_mean[order[k]]);
+  std::stable_sort(order, order + tables, [&](int x, int y) { return at_mean[x].err < at_mean[y].err; });
+  const int refine = q == Quality::fast ? 0 : q == Quality::normal ? std::min(tables, 3) : tables;
+  HalfFit refined[8];
+  for (int k = 0; k < tables; ++k) {
+    const int t = order[k];
+    HalfFit fit = at_mean[t];
+    if (k < refine) {
       // Seeds: the extremes minus the extreme modifiers (+-b; at high also +-a).
       const int big = kModifiers[t][1], small = kModifiers[t][0];
       const int offsets[4][2] = {{bright, big}, {dark, -big}, {bright, small}, {dark, -small}};
       const int seeds = q == Quality::normal ? 2 : 4;
-      for (int k = 0; k < seeds; ++k) {
-        if (non_opaque && k >= 2) break;  // +-a are 0 with punch-through
-        const int* p = tx.rgb[offsets[k][0]];
-        const int qs[3] = {quantize(p[0] - offsets[k][1], bits), quantize(p[1] - offsets[k][1], bits),
-                           quantize(p[2] - offsets[k][1], bits)};
+      for (int sd = 0; sd < seeds; ++sd) {
+        if (non_opaque && sd >= 2) break;  // +-a are 0 with punch-through
+        const int* p = tx.rgb[offsets[sd][0]];
+        const int qs[3] = {quantize(p[0] - offsets[sd][1], bits), quantize(p[1] - offsets[sd][1], bits),
+                           quantize(p[2] - offsets[sd][1], bits)};
         try_base(tx, h, qs, bits, t, non_opaque, fit);
       }
       // Re-centre: the base that minimizes the error for these indices is
@@ -181,8 +231,18 @@ HalfFit fit_half(const Texels& tx, int h, int bits, Quality q, bool non_opaque) 
         if (fit.err >= before) break;
       }
     }
-    if (q == Quality::high || q == Quality::max) {
-      const int r = q == Quality::max ? 2 : 1, top = (1 << bits) - 1;
+    refined[t] = fit;
+    if (fit.err < best.err) best = fit;
+  }
+  if (q == Quality::high || q == Quality::max) {
+    // The neighbourhood of the quantized base, for the best two tables
+    // after refinement (`max`: every table, +-2).
+    std::stable_sort(order, order + tables, [&](int x, int y) { return refined[x].err < refined[y].err; });
+    const int r = q == Quality::max ? 2 : 1, top = (1 << bits) - 1;
+    const int searched = q == Quality::max ? tables : std::min(tables, 2);
+    for (int k = 0; k < searched; ++k) {
+      const int t = order[k];
+      HalfFit fit = refined[t];
       const int c0[3] = {fit.q[0], fit.q[1], fit.q[2]};
       for (int dr = -r; dr <= r; ++dr)
         for (int dg = -r; dg <= r; ++dg)
@@ -191,8 +251,8 @@ HalfFit fit_half(const Texels& tx, int h, int bits, Quality q, bool non_opaque) 
             if (std::min({c[0], c[1], c[2]}) < 0 || std::max({c[0], c[1], c[2]}) > top) continue;
             try_base(tx, h, c, bits, t, non_opaque, fit);
           }
+      if (fit.err < best.err) best = fit;
     }
-    if (fit.err < best.err) best = fit;
   }
   return best;
 }
