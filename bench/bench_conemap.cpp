@@ -76,6 +76,23 @@ void cones(benchmark::State& state, const std::string& kind, int n, int threads,
   }
 }
 
+// Relaxed cones: time, and the mean of relaxed / conservative over the texels.
+void relaxed_cones(benchmark::State& state, const std::string& kind, int n, int threads) {
+  const std::vector<float>& f = field(kind, n);
+  ThreadLimit limit(threads);
+  ConeMapOptions o;
+  o.mode = ConeMode::relaxed;
+  std::vector<float> r;
+  for (auto _ : state) {
+    r = cone_ratios(f, n, n, o);
+    benchmark::DoNotOptimize(r.data());
+  }
+  const std::vector<float> c = cone_ratios(f, n, n, ConeMapOptions{});
+  double sum = 0;
+  for (std::size_t i = 0; i < r.size(); ++i) sum += c[i] > 0 ? double(r[i]) / c[i] : 1.0;
+  state.counters["mean_relaxed_over_conservative"] = sum / double(r.size());
+}
+
 // --fast: time, and the mean of fast / exact ratio over the texels (the
 // exact map computed once per field, outside the timing).
 void fast_cones(benchmark::State& state, const std::string& kind, int n, int threads, int reach) {
@@ -131,6 +148,11 @@ void register_all() {
                                    [kind, t](benchmark::State& s) { cones(s, kind, 1024, t, false); })
           ->Unit(benchmark::kMillisecond)->Iterations(2)->UseRealTime();
     }
+  }
+  for (const char* kind : {"terrain", "hemisphere", "fractal", "spikes"}) {
+    benchmark::RegisterBenchmark((std::string("relaxed/") + kind + "/1024/threads:2").c_str(),
+                                 [kind](benchmark::State& s) { relaxed_cones(s, kind, 1024, 2); })
+        ->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
   }
   for (int n : {128, 256}) {
     benchmark::RegisterBenchmark(("brute_force/terrain/" + std::to_string(n) + "/threads:2").c_str(),

@@ -47,9 +47,10 @@ void validate(ConeArgs& a) {
   if (a.fast && a.brute_force) throw Error(ErrorCode::bad_arguments, "--fast and --brute-force exclude each other");
   o.fast_reach = a.fast ? a.fast_reach : 0;
   a.channel = parse_height_channel(a.height_channel);
-  if (a.mode != "conservative") {
-    throw Error(ErrorCode::unsupported, "--mode " + a.mode + ": only conservative cones are implemented so far (valid: conservative)");
+  if (a.mode != "conservative" && a.mode != "relaxed") {
+    throw Error(ErrorCode::bad_arguments, "unknown --mode '" + a.mode + "' (valid: conservative, relaxed)");
   }
+  o.mode = a.mode == "relaxed" ? ConeMode::relaxed : ConeMode::conservative;
   if (a.preview_size < 8 || a.preview_size > 4096) throw Error(ErrorCode::bad_arguments, "--preview-size must be 8 to 4096");
   if (!(a.view_angle >= 0.0f && a.view_angle < 89.0f)) {
     throw Error(ErrorCode::bad_arguments, "--view-angle must be in [0, 89) degrees from the normal");
@@ -74,10 +75,17 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
   write_image(output, cone_map_image(h, ratios, img.width(), img.height(), o, out_type).view(), w);
   const std::string preview = r.outputs.size() > 1 ? r.outputs[1] : "";
   if (!preview.empty()) {
-    write_image(preview, render_preview(h, ratios, img.width(), img.height(), o, a.preview_size, a.view_angle).view());
+    // The preview shows both kinds side by side: the other map is computed too.
+    ConeMapOptions other = o;
+    other.mode = o.mode == ConeMode::relaxed ? ConeMode::conservative : ConeMode::relaxed;
+    const std::vector<float> second = cone_ratios(h, img.width(), img.height(), other);
+    const bool relaxed = o.mode == ConeMode::relaxed;
+    write_image(preview, render_preview(h, relaxed ? second : ratios, img.width(), img.height(), o, a.preview_size,
+                                        a.view_angle, relaxed ? ratios : second)
+                             .view());
   }
   std::ostringstream line;
-  line << input << " -> " << output << ": " << img.width() << "x" << img.height() << " conservative cones ("
+  line << input << " -> " << output << ": " << img.width() << "x" << img.height() << " " << a.mode << " cones ("
        << (a.brute_force ? "brute force"
            : a.fast      ? "fast, never wider than exact"
                          : "exact, max-mip branch and bound")
@@ -89,6 +97,7 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
   r.details["height"] = img.height();
   r.details["cone_seconds"] = seconds;
   r.details["mean_ratio"] = ratios.empty() ? 0.0 : mean / double(ratios.size());
+  r.details["mode"] = a.mode;
 }
 
 }  // namespace
@@ -107,7 +116,10 @@ void add_conemap_command(CLI::App& app) {
   cmd->add_option("--depth", args->depth, "Relief depth in texture widths (> 0)")->capture_default_str();
   cmd->add_option("--max-ratio", args->max_ratio, "Cap on the cone ratio (> 0)")->capture_default_str();
   cmd->add_option("--wrap", args->wrap, "repeat (tiling reliefs see across edges) or clamp")->capture_default_str();
-  cmd->add_option("--mode", args->mode, "conservative (relaxed cones are not implemented yet)")->capture_default_str();
+  cmd->add_option("--mode", args->mode,
+                 "conservative (no relief inside a cone) or relaxed (a ray entering the relief inside a cone does not "
+                 "leave it there: wider cones, then a binary search)")
+      ->capture_default_str();
   cmd->add_option("--type", args->type, "Output element type: u8, u16, f16, f32 (default: u8 for 8-bit input, else u16)");
   cmd->add_flag("--fast", args->fast,
                 "Faster, never wider cones: pyramid blocks >= --fast-reach block sizes away count as one obstacle");
@@ -116,7 +128,7 @@ void add_conemap_command(CLI::App& app) {
       ->check(CLI::Range(1, 64));
   cmd->add_flag("--brute-force", args->brute_force, "Use the O(N^2)-per-texel definition (slow; for checking)");
   cmd->add_option("--preview", args->preview,
-                  "Also render a preview PNG: linear search vs cone stepping, with lookups-per-pixel heat maps "
+                  "Also render a preview PNG: linear search, cone stepping and relaxed cone stepping, with lookups-per-pixel heat maps "
                   "(a template such as 'previews/{stem}.png' for several inputs)");
   cmd->add_option("--preview-size", args->preview_size, "Preview panel size in pixels")->capture_default_str();
   cmd->add_option("--view-angle", args->view_angle, "Preview view angle from the normal, degrees")->capture_default_str();

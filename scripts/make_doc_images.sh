@@ -50,7 +50,7 @@ $T sat blur samples/albedo_desert_512.png -o "$W/blurred.png" --radius 16 --radi
 oiiotool "$W/rmap.png" --ch 0,0,0 -o "$W/rmap3.png" >/dev/null
 oiiotool samples/albedo_desert_512.png "$W/rmap3.png" "$W/blurred.png" --mosaic:pad=8 3x1 --resize 50% -d uint8 \
          -o $IMG/sat_blur_radius_map.jpg >/dev/null
-# 6. Cone map preview: linear search (64 steps) vs cone stepping, and their lookup heat maps.
+# 6. Cone map preview: linear search (64 steps), cone stepping and relaxed cone stepping, and their lookup heat maps.
 $T conemap samples/height_stein_256.png --height-channel r --depth 0.08 -o "$W/cone.png" \
    --preview "$W/cone_preview.png" --preview-size 256 --view-angle 50 -q --force
 oiiotool "$W/cone_preview.png" -d uint8 -o $IMG/conemap_preview.jpg >/dev/null

@@ -252,7 +252,8 @@ TEST(Cli, ConemapWritesMapAndPreview) {
   const Image c = read_image(dir + "/c.png");
   EXPECT_EQ(c.channels(), 3);
   EXPECT_EQ(c.get(3, 3, 0), h.get(3, 3, 0));  // R is the height
-  EXPECT_EQ(read_image(dir + "/p.png").width(), 64);
+  EXPECT_EQ(read_image(dir + "/p.png").width(), 96);  // linear, cones, relaxed cones
+  EXPECT_EQ(read_image(dir + "/p.png").height(), 64);  // renders over heat maps
   // The fast generator and the brute force write the same bytes.
   r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/b.png --brute-force -q");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -265,8 +266,15 @@ TEST(Cli, ConemapWritesMapAndPreview) {
     for (int x = 0; x < 24; ++x) EXPECT_LE(f.get(x, y, 1), c.get(x, y, 1)) << x << "," << y;
   r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/x.png --fast --brute-force");
   EXPECT_EQ(r.exit_code, 1);
-  r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/x.png --mode relaxed");
-  EXPECT_EQ(r.exit_code, 5);
+  // Relaxed cones: never narrower than conservative ones; an unknown mode is refused.
+  r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/r.png --mode relaxed -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image rx = read_image(dir + "/r.png");
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 24; ++x) EXPECT_GE(rx.get(x, y, 1), c.get(x, y, 1)) << x << "," << y;
+  r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/x.png --mode loose");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("unknown --mode 'loose' (valid: conservative, relaxed)"), std::string::npos) << r.err;
   r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/x.png --depth 0");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("--depth must be > 0"), std::string::npos) << r.err;

@@ -15,6 +15,16 @@
 
 namespace texproc {
 
+// Conservative: no texel enters the cone (Dummer 2006). Relaxed (Policarpo
+// and Oliveira, GPU Gems 3 chapter 18): the cone may contain relief, but a
+// ray that enters the relief inside the cone cannot leave it there. Leaving
+// needs a descent: a higher texel q with a lower 4-neighbour behind it, as
+// seen from p (farther from p along that axis). The relaxed cone of p is the
+// smallest ratio over those texels only, so it is never narrower than the
+// conservative cone, and a relaxed step past the surface crosses it once:
+// a binary search then finds the first hit.
+enum class ConeMode { conservative, relaxed };
+
 struct ConeMapOptions {
   float depth = 1.0f;       // relief depth in texture widths (> 0)
   float max_ratio = 1.0f;   // cap on the ratio (> 0); the map stores sqrt(ratio / max_ratio)
@@ -25,9 +35,10 @@ struct ConeMapOptions {
   // ratio of every texel in the block, so the cone is never wider than the
   // exact one, only narrower by the block's extent. 0 = exact.
   int fast_reach = 0;
+  ConeMode mode = ConeMode::conservative;
 };
 
-// Exact conservative cone ratios of a width x height field of heights in
+// Exact cone ratios (conservative or relaxed, o.mode) of a width x height field of heights in
 // [0, 1] (row-major), by branch and bound over a maximum mip pyramid: a
 // block is skipped when even its highest texel at its nearest point cannot
 // narrow the cone found so far, and blocks are visited nearest first, so the
@@ -68,11 +79,21 @@ ReliefHit trace_linear(const std::vector<float>& heights, int width, int height,
 ReliefHit trace_cones(const std::vector<float>& heights, const std::vector<float>& ratios, int width, int height,
                       const ConeMapOptions& o, float u, float v, float du, float dv, int binary_steps = 8);
 
+// Relaxed cone stepping (GPU Gems 3, chapter 18) with relaxed `ratios`: cone
+// steps until a step ends below the surface, then `binary_steps` of binary
+// search between the last point above and the first below. Relaxed cones
+// let a step cross the surface once, so the search finds the first hit.
+ReliefHit trace_relaxed(const std::vector<float>& heights, const std::vector<float>& ratios, int width, int height,
+                        const ConeMapOptions& o, float u, float v, float du, float dv, int binary_steps = 16);
+
 // A side-by-side preview: the relief lit and rendered at `view_angle_deg`
-// from the normal by linear search (64 steps) + binary refinement and by cone stepping,
-// each with a heat map of its height-map lookups per pixel (blue few, red
-// many), as an RGB8 image of 2 x 2 panels of `size` x `size`.
+// from the normal by linear search (64 steps) + binary refinement, by cone
+// stepping (conservative `ratios`) and, when `relaxed` is not empty, by
+// relaxed cone stepping, each with a heat map of its height-map lookups per
+// pixel below it (blue few, red many): an RGB8 image of 2 (or 3) x 2 panels
+// of `size` x `size`.
 Image render_preview(const std::vector<float>& heights, const std::vector<float>& ratios, int width, int height,
-                     const ConeMapOptions& o, int size, float view_angle_deg);
+                     const ConeMapOptions& o, int size, float view_angle_deg,
+                     const std::vector<float>& relaxed = {});
 
 }  // namespace texproc

@@ -87,6 +87,44 @@ struct Node {
   double bound;
 };
 
+// Relaxed cones count a higher texel q only if a 4-neighbour behind it, as
+// seen from p (one step farther from p along x or y; both ways when p and q
+// share that coordinate), is lower: the ray can leave the relief there.
+// With clamp, no neighbour exists past the edge (a ray leaves the texture).
+struct Behind {
+  const std::vector<float>& h;
+  int W, H;
+  bool repeat;
+  bool lower(int qx, int qy, float hq, int sx, int sy) const {
+    int nx = qx + sx, ny = qy + sy;
+    if (repeat) {
+      nx = (nx + W) % W;
+      ny = (ny + H) % H;
+    } else if (nx < 0 || ny < 0 || nx >= W || ny >= H) {
+      return false;
+    }
+    return h[std::size_t(ny) * W + nx] < hq;
+  }
+  // dx, dy: q - p, the shortest way round with repeat (ties: both ways).
+  bool exits(int px, int py, int qx, int qy, float hq) const {
+    const int ox = signed_offset(px, qx, W), oy = signed_offset(py, qy, H);
+    const bool both_x = repeat && 2 * std::abs(ox) == W, both_y = repeat && 2 * std::abs(oy) == H;
+    if ((ox >= 0 || both_x) && lower(qx, qy, hq, 1, 0)) return true;
+    if ((ox <= 0 || both_x) && lower(qx, qy, hq, -1, 0)) return true;
+    if ((oy >= 0 || both_y) && lower(qx, qy, hq, 0, 1)) return true;
+    if ((oy <= 0 || both_y) && lower(qx, qy, hq, 0, -1)) return true;
+    return false;
+  }
+  int signed_offset(int p, int q, int n) const {
+    int d = q - p;
+    if (repeat) {
+      if (d > n / 2) d -= n;
+      if (d < -n / 2) d += n;
+    }
+    return d;
+  }
+};
+
 }  // namespace
 
 std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, const ConeMapOptions& o) {
@@ -94,9 +132,44 @@ std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, 
   const bool repeat = o.wrap == WrapMode::repeat;
   const Metric m{1.0 / (double(W) * W), 1.0 / (double(H) * H), double(o.depth) * o.depth};
   const Pyramid pyr = build_pyramid(heights, W, H);
+  // Relaxed cones: four more pyramids, of the heights of the texels whose
+  // +x, -x, +y or -y neighbour is lower (-1 elsewhere). A block wholly on
+  // one side of p along an axis can only hold exits that way, so its bound
+  // takes the maximum of the matching pyramids.
+  std::vector<Pyramid> exit_pyr;
+  if (o.mode == ConeMode::relaxed) {
+    const Behind b{heights, W, H, repeat};
+    const int sx[4] = {1, -1, 0, 0}, sy[4] = {0, 0, 1, -1};
+    for (int f = 0; f < 4; ++f) {
+      std::vector<float> v(heights.size());
+      for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+          const float hq = heights[std::size_t(y) * W + x];
+          v[std::size_t(y) * W + x] = b.lower(x, y, hq, sx[f], sy[f]) ? hq : -1.0f;
+        }
+      exit_pyr.push_back(build_pyramid(v, W, H));
+    }
+  }
+  // Which side of p a block [lo, hi] lies on along an axis: +1, -1, or 0
+  // (both: it holds p's row or column, or straddles the far seam).
+  auto side = [&](int p, int lo, int hi, int n) {
+    if (!repeat) return lo > p ? 1 : hi < p ? -1 : 0;
+    if (2 * (hi - lo + 1) >= n) return 0;
+    auto off = [&](int q) {
+      int d = q - p;
+      if (d > n / 2) d -= n;
+      if (d < -n / 2) d += n;
+      return d;
+    };
+    const int a = off(lo), b = off(hi);
+    if (b < a || 2 * std::abs(a) == n || 2 * std::abs(b) == n) return 0;  // across the seam, or a tie
+    return a > 0 ? 1 : b < 0 ? -1 : 0;
+  };
   const int top = int(pyr.max.size()) - 1;
   const double cap2 = double(o.max_ratio) * o.max_ratio;
   const int reach = o.fast_reach;
+  const bool relaxed = o.mode == ConeMode::relaxed;
+  const Behind behind{heights, W, H, repeat};
   std::vector<float> out(heights.size());
 
   for_each_row_block(H, 4, [&](int y0, int y1) {
@@ -111,7 +184,7 @@ std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, 
         double best = cap2;
         if (wx >= 0) {
           const float hq = heights[std::size_t(wy) * W + wx];
-          if (hq > hp) {
+          if (hq > hp && (!relaxed || behind.exits(px, py, wx, wy, hq))) {
             const double r2 =
                 m.ratio2(texel_distance(px, wx, W, repeat), texel_distance(py, wy, H, repeat), double(hq) - hp);
             best = r2 < best ? r2 : best;
@@ -134,7 +207,7 @@ std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, 
                 const float hq = row[qx];
                 if (hq <= hp) continue;
                 const double r2 = m.ratio2(texel_distance(px, qx, W, repeat), dy, double(hq) - hp);
-                if (r2 < best) {
+                if (r2 < best && (!relaxed || behind.exits(px, py, qx, qy, hq))) {
                   best = r2;
                   wx = qx;
                   wy = qy;
@@ -151,8 +224,21 @@ std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, 
             for (int i = 0; i < 2; ++i) {
               const int cx = 2 * n.x + i, cy = 2 * n.y + j;
               if (cx >= cw || cy >= ch) continue;
-              const float M = pyr.max[k - 1][std::size_t(cy) * cw + cx];
+              float M = pyr.max[k - 1][std::size_t(cy) * cw + cx];
               if (M <= hp) continue;
+              if (relaxed) {
+                const int s1 = k - 1;
+                const int xs = side(px, cx << s1, std::min((cx + 1) << s1, W) - 1, W);
+                const int ys = side(py, cy << s1, std::min((cy + 1) << s1, H) - 1, H);
+                const std::size_t at = std::size_t(cy) * cw + cx;
+                float e = -1.0f;
+                if (xs >= 0) e = std::max(e, exit_pyr[0].max[k - 1][at]);
+                if (xs <= 0) e = std::max(e, exit_pyr[1].max[k - 1][at]);
+                if (ys >= 0) e = std::max(e, exit_pyr[2].max[k - 1][at]);
+                if (ys <= 0) e = std::max(e, exit_pyr[3].max[k - 1][at]);
+                M = e;
+                if (M <= hp) continue;
+              }
               const int s = k - 1;
               const int dx = axis_distance(px, cx << s, std::min((cx + 1) << s, W) - 1, W, repeat);
               const int dy = axis_distance(py, cy << s, std::min((cy + 1) << s, H) - 1, H, repeat);
@@ -180,6 +266,8 @@ std::vector<float> cone_ratios_brute_force(const std::vector<float>& heights, in
   check(heights, W, H, o);
   const bool repeat = o.wrap == WrapMode::repeat;
   const Metric m{1.0 / (double(W) * W), 1.0 / (double(H) * H), double(o.depth) * o.depth};
+  const bool relaxed = o.mode == ConeMode::relaxed;
+  const Behind behind{heights, W, H, repeat};
   std::vector<float> out(heights.size());
   for_each_row_block(H, 1, [&](int y0, int y1) {
     for (int py = y0; py < y1; ++py)
@@ -190,6 +278,7 @@ std::vector<float> cone_ratios_brute_force(const std::vector<float>& heights, in
           for (int qx = 0; qx < W; ++qx) {
             const float hq = heights[std::size_t(qy) * W + qx];
             if (hq <= hp) continue;
+            if (relaxed && !behind.exits(px, py, qx, qy, hq)) continue;
             const double r2 =
                 m.ratio2(texel_distance(px, qx, W, repeat), texel_distance(py, qy, H, repeat), double(hq) - hp);
             best = r2 < best ? r2 : best;

@@ -157,9 +157,48 @@ ReliefHit trace_cones(const std::vector<float>& heights, const std::vector<float
   return traverse(heights, W, H, f.repeat, u, v, du, dv, 1.0 - double(z), steps);
 }
 
+ReliefHit trace_relaxed(const std::vector<float>& heights, const std::vector<float>& ratios, int W, int H,
+                        const ConeMapOptions& o, float u, float v, float du, float dv, int binary_steps) {
+  const Field f{heights, &ratios, W, H, o.wrap == WrapMode::repeat};
+  const float s = std::sqrt(du * du + dv * dv);
+  // The same margin as conservative stepping: the current point may sit half
+  // a texel diagonal off the centre its cone stands on.
+  const float margin = std::sqrt(1.0f / (float(W) * W) + 1.0f / (float(H) * H));
+  const float texel_uv = std::min(1.0f / W, 1.0f / H);
+  const float min_dz = s > 0 ? 0.1f * texel_uv / s : 1.0f / 4096.0f;
+  float z = 1.0f;
+  int steps = 0;
+  for (int i = 0; i < 4096; ++i) {
+    int x, y;
+    ++steps;
+    if (!f.texel(u + (1.0f - z) * du, v + (1.0f - z) * dv, x, y)) return {0, 0, 0, steps, false};
+    const std::size_t t = std::size_t(y) * W + x;
+    const float h = heights[t];
+    if (z <= h) break;  // only at the start: the ray begins inside the relief
+    const float c = ratios[t] * o.depth;
+    // Step to the cone's side, less the margin: past the surface is allowed,
+    // a relaxed cone holds one crossing. Steps below a tenth of a texel end
+    // in the exact traversal, as for conservative cones.
+    const float dz = (c * (z - h) - margin) / (s + c);
+    if (!(dz > min_dz)) break;
+    const float z_next = std::max(0.0f, z - dz);
+    int nx, ny;
+    ++steps;
+    if (!f.texel(u + (1.0f - z_next) * du, v + (1.0f - z_next) * dv, nx, ny)) {
+      // Leaving a clamped texture: the exact traversal decides the rest.
+      return traverse(heights, W, H, f.repeat, u, v, du, dv, 1.0 - double(z), steps);
+    }
+    if (z_next <= heights[std::size_t(ny) * W + nx]) return refine(f, u, v, du, dv, z, z_next, steps, binary_steps);
+    if (z_next <= 0.0f) break;
+    z = z_next;
+  }
+  return traverse(heights, W, H, f.repeat, u, v, du, dv, 1.0 - double(z), steps);
+}
+
 Image render_preview(const std::vector<float>& heights, const std::vector<float>& ratios, int W, int H,
-                     const ConeMapOptions& o, int size, float view_angle_deg) {
-  Image img(2 * size, 2 * size, 3, PixelType::u8);
+                     const ConeMapOptions& o, int size, float view_angle_deg, const std::vector<float>& relaxed) {
+  const int columns = relaxed.empty() ? 2 : 3;
+  Image img(columns * size, 2 * size, 3, PixelType::u8);
   const float theta = view_angle_deg * 3.14159265f / 180.0f, phi = 0.6f;
   // Horizontal texture-space travel per unit of height: depth * tan(theta).
   const float du = o.depth * std::tan(theta) * std::cos(phi), dv = o.depth * std::tan(theta) * std::sin(phi);
@@ -196,6 +235,11 @@ Image render_preview(const std::vector<float>& heights, const std::vector<float>
         shade(b, img.row<std::uint8_t>(j) + 3 * (size + i));
         heat(a.steps, img.row<std::uint8_t>(size + j) + 3 * i);
         heat(b.steps, img.row<std::uint8_t>(size + j) + 3 * (size + i));
+        if (columns == 3) {
+          const ReliefHit c = trace_relaxed(heights, relaxed, W, H, o, u, v, du, dv);
+          shade(c, img.row<std::uint8_t>(j) + 3 * (2 * size + i));
+          heat(c.steps, img.row<std::uint8_t>(size + j) + 3 * (2 * size + i));
+        }
       }
   });
   return img;
