@@ -119,6 +119,23 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   } else {
     levels.push_back(std::move(img));
   }
+  // BC3 normal maps take the DXT5nm layout for platforms without BC5: X in
+  // alpha (coded by the 8-value alpha block), Y in green (the colour block's
+  // 6-bit channel), red 1 and blue 0 constant so the colour endpoints spend
+  // their precision on Y. Shaders read (a, g) and rebuild Z.
+  if (a.normal_map && (format == TexelFormat::bc3_unorm || format == TexelFormat::bc3_srgb)) {
+    for (Image& l : levels) {
+      Image nm = Image::uninitialized(l.width(), l.height(), 4, l.type());
+      for (int y = 0; y < l.height(); ++y)
+        for (int x = 0; x < l.width(); ++x) {
+          nm.set(x, y, 0, 1.0f);
+          nm.set(x, y, 1, l.channels() > 1 ? l.get(x, y, 1) : 0.5f);
+          nm.set(x, y, 2, 0.0f);
+          nm.set(x, y, 3, l.get(x, y, 0));
+        }
+      l = std::move(nm);
+    }
+  }
   Texture t;
   t.format = format;
   t.width = std::uint32_t(levels[0].width());
@@ -129,7 +146,7 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
     // The policy applies to each stored level (the chain itself was filtered
     // premultiplied, so it has no fringes; the GPU's filtering of straight
     // alpha would add them back from the colour under alpha 0).
-    if (format_info(format).channels == 4) apply_transparent_color(l, a.transparent);
+    if (format_info(format).channels == 4 && !a.normal_map) apply_transparent_color(l, a.transparent);
     t.images.push_back(compress_image(l.view(), format, a.q));
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -184,7 +201,9 @@ void add_compress_command(CLI::App& app) {
   cmd->add_flag("--linear", args->linear, "The input is data: UNORM formats, linear mip filtering");
   cmd->add_option("--quality", args->quality, "fast, normal, high, max (exhaustive)")->capture_default_str();
   cmd->add_flag("--mips", args->mips, "Compress a whole mip chain (mip options below)");
-  cmd->add_flag("--normal-map", args->normal_map, "With --mips: the input is a normal map (renormalized per level)");
+  cmd->add_flag("--normal-map", args->normal_map,
+                "The input is a normal map: linear, renormalized mips; bc5/eac-rg11 store X and Y, bc3 the DXT5nm "
+                "layout (X in alpha, Y in green, red 1, blue 0)");
   cmd->add_option("--wrap", args->wrap, "Mip filter taps past the edges: clamp, repeat, mirror")->capture_default_str();
   add_chain_options(*cmd, args->chain);
   cmd->add_option("--dds-header", args->dds_header, "auto, dx9, dx10")->capture_default_str();

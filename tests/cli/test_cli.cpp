@@ -13,6 +13,7 @@
 
 #include "support/images.h"
 #include "support/run.h"
+#include "texproc/block_decode.h"
 #include "texproc/container.h"
 #include "texproc/image_io.h"
 #include "texproc/mip.h"
@@ -617,5 +618,32 @@ TEST(Cli, KilledRunLeavesNoPartialOutput) {
     }
   }
   EXPECT_GT(killed_before, 0) << "no kill landed before the output was in place";
+  fs::remove_all(dir);
+}
+
+// --normal-map with bc3: the DXT5nm layout (X in alpha, Y in green, red 1,
+// blue 0), for platforms without BC5.
+TEST(Cli, CompressBc3NormalMapIsDxt5nm) {
+  const std::string dir = temp_dir("cli_dxt5nm");
+  Image n(32, 32, 3, PixelType::u8);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      const float nx = 0.6f * std::sin(x * 0.3f), ny = 0.5f * std::cos(y * 0.2f);
+      const float nz = std::sqrt(std::max(0.0f, 1.0f - nx * nx - ny * ny));
+      n.set(x, y, 0, nx * 0.5f + 0.5f), n.set(x, y, 1, ny * 0.5f + 0.5f), n.set(x, y, 2, nz * 0.5f + 0.5f);
+    }
+  write_image(dir + "/n.png", n.view());
+  RunResult r = run_texproc("compress " + dir + "/n.png -o " + dir + "/n.dds --format bc3 --normal-map -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Texture t = read_texture(dir + "/n.dds");
+  EXPECT_EQ(t.format, TexelFormat::bc3_unorm);  // normals are data: never sRGB
+  const Image d = decode_texture_image(t, 0, 0, 0, PixelType::f32);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      ASSERT_NEAR(d.get(x, y, 3), n.get(x, y, 0), 4.5 / 255) << x << "," << y;  // X from alpha
+      ASSERT_NEAR(d.get(x, y, 1), n.get(x, y, 1), 6.0 / 255) << x << "," << y;  // Y from green
+      ASSERT_EQ(d.get(x, y, 0), 1.0f);
+      ASSERT_EQ(d.get(x, y, 2), 0.0f);
+    }
   fs::remove_all(dir);
 }
