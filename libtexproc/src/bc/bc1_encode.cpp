@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <vector>
 
 #include "bc/bc1_encode.h"
 
@@ -172,6 +173,118 @@ void write(const Result& r, std::uint8_t out[8]) {
   for (int b = 0; b < 4; ++b) out[4 + b] = std::uint8_t(bits >> (8 * b));
 }
 
+// Cluster fit (as libsquish's, with every candidate scored exactly): the
+// opaque texels ordered along `axis` are split into consecutive clusters,
+// one per palette entry (four: a, 2/3 a + 1/3 b, 1/3 a + 2/3 b, b; three: a,
+// (a + b) / 2, b); each split's least-squares endpoints come in closed form
+// from prefix sums. The `keep_best` splits with the least unquantized error
+// are quantized and scored under the exact decoding.
+void cluster_fit(const std::uint8_t rgb[16][3], const bool transparent[16], const double axis[3], bool four,
+                 int keep_best, std::vector<Endpoints>& out) {
+  int order[16], n = 0;
+  double proj[16];
+  for (int i = 0; i < 16; ++i) {
+    if (transparent[i]) continue;
+    proj[i] = rgb[i][0] * axis[0] + rgb[i][1] * axis[1] + rgb[i][2] * axis[2];
+    order[n++] = i;
+  }
+  std::stable_sort(order, order + n, [&](int x, int y) { return proj[x] < proj[y]; });
+  // Prefix sums of the colours in that order.
+  double pre[17][3] = {};
+  double total_sq = 0;
+  for (int k = 0; k < n; ++k) {
+    for (int c = 0; c < 3; ++c) pre[k + 1][c] = pre[k][c] + rgb[order[k]][c];
+    for (int c = 0; c < 3; ++c) total_sq += double(rgb[order[k]][c]) * rgb[order[k]][c];
+  }
+  struct Split {
+    double err;
+    float a[3], b[3];
+  };
+  Split best[8];
+  int kept = 0;
+  keep_best = std::min(keep_best, 8);
+  double worst_err = 1e300;  // the error a split must beat once `keep_best` are kept
+  auto insert = [&](const Split& sp) {
+    if (kept < keep_best) {
+      best[kept++] = sp;
+    } else if (sp.err < worst_err) {
+      int w = 0;
+      for (int m = 1; m < kept; ++m)
+        if (best[m].err > best[w].err) w = m;
+      best[w] = sp;
+    } else {
+      return;
+    }
+    if (kept == keep_best) {
+      worst_err = best[0].err;
+      for (int m = 1; m < kept; ++m) worst_err = std::max(worst_err, best[m].err);
+    }
+  };
+  auto consider = [&](const double w_a[4], const double w_b[4], const int bounds[5], int clusters) {
+    double aa = 0, ab = 0, bb = 0, xa[3] = {}, xb[3] = {};
+    for (int k = 0; k < clusters; ++k) {
+      const int cnt = bounds[k + 1] - bounds[k];
+      if (cnt == 0) continue;
+      aa += cnt * w_a[k] * w_a[k], ab += cnt * w_a[k] * w_b[k], bb += cnt * w_b[k] * w_b[k];
+      for (int c = 0; c < 3; ++c) {
+        const double sum = pre[bounds[k + 1]][c] - pre[bounds[k]][c];
+        xa[c] += w_a[k] * sum, xb[c] += w_b[k] * sum;
+      }
+    }
+    const double det = aa * bb - ab * ab;
+    if (std::abs(det) < 1e-9) return;
+    Split sp;
+    double err = total_sq;
+    for (int c = 0; c < 3; ++c) {
+      const double a = std::clamp((xa[c] * bb - xb[c] * ab) / det, 0.0, 255.0);
+      const double b = std::clamp((xb[c] * aa - xa[c] * ab) / det, 0.0, 255.0);
+      sp.a[c] = float(a), sp.b[c] = float(b);
+      err += -2 * (a * xa[c] + b * xb[c]) + a * a * aa + 2 * a * b * ab + b * b * bb;
+    }
+    sp.err = err;
+    insert(sp);
+  };
+  if (four) {
+    // The four-cluster case unrolled: it runs (n + 3 choose 3) times.
+    for (int i = 0; i <= n; ++i)
+      for (int j = i; j <= n; ++j)
+        for (int k = j; k <= n; ++k) {
+          const double s0 = i, s1 = j - i, s2 = k - j, s3 = n - k;
+          const double aa = s0 + (4.0 / 9.0) * s1 + (1.0 / 9.0) * s2;
+          const double bb = s3 + (1.0 / 9.0) * s1 + (4.0 / 9.0) * s2;
+          const double ab = (2.0 / 9.0) * (s1 + s2);
+          const double det = aa * bb - ab * ab;
+          if (det < 1e-9) continue;
+          const double inv = 1.0 / det;
+          Split sp;
+          double err = total_sq;
+          for (int c = 0; c < 3; ++c) {
+            const double x1 = pre[j][c] - pre[i][c], x2 = pre[k][c] - pre[j][c];
+            const double xa = pre[i][c] + (2.0 / 3.0) * x1 + (1.0 / 3.0) * x2;
+            const double xb = (pre[n][c] - pre[k][c]) + (1.0 / 3.0) * x1 + (2.0 / 3.0) * x2;
+            const double a = std::clamp((xa * bb - xb * ab) * inv, 0.0, 255.0);
+            const double b = std::clamp((xb * aa - xa * ab) * inv, 0.0, 255.0);
+            sp.a[c] = float(a), sp.b[c] = float(b);
+            err += -2 * (a * xa + b * xb) + a * a * aa + 2 * a * b * ab + b * b * bb;
+          }
+          if (kept == keep_best && err >= worst_err) continue;
+          sp.err = err;
+          insert(sp);
+        }
+  } else {
+    static constexpr double wa[3] = {1.0, 0.5, 0.0}, wb[3] = {0.0, 0.5, 1.0};
+    for (int i = 0; i <= n; ++i)
+      for (int j = i; j <= n; ++j) {
+        const int bounds[5] = {0, i, j, n, n};
+        consider(wa, wb, bounds, 3);
+      }
+  }
+  // Least error first (insertion sort: at most eight).
+  for (int a = 1; a < kept; ++a)
+    for (int b = a; b > 0 && best[b].err < best[b - 1].err; --b) std::swap(best[b], best[b - 1]);
+  for (int k = 0; k < kept; ++k) out.push_back(quantize(best[k].a, best[k].b));
+}
+
 }  // namespace
 
 void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
@@ -269,6 +382,26 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q,
       r = n2;
     }
     if (q == Quality::high || q == Quality::max) {
+      // Cluster fit along the principal axis (and, iterated, along the best
+      // endpoints' axis): its best splits compete under the exact decoding.
+      double fit_axis[3] = {axis[0], axis[1], axis[2]};
+      for (int round = 0; round < (q == Quality::max ? 3 : 1); ++round) {
+        std::vector<Endpoints> cands;
+        cluster_fit(rgb, transparent, fit_axis, four, q == Quality::max ? 8 : 3, cands);
+        for (const Endpoints& e : cands) {
+          Result n2;
+          assign(rgb, transparent, e, four, false, n2);
+          if (n2.error < r.error) r = n2;
+        }
+        double d[3], len = 0;
+        for (int c = 0; c < 3; ++c) {
+          const int hi_ch = c == 1 ? expand6(r.e.c[1][c]) : expand5(r.e.c[1][c]);
+          const int lo_ch = c == 1 ? expand6(r.e.c[0][c]) : expand5(r.e.c[0][c]);
+          d[c] = hi_ch - lo_ch, len += d[c] * d[c];
+        }
+        if (len < 1e-9) break;
+        for (int c = 0; c < 3; ++c) fit_axis[c] = d[c] / std::sqrt(len);
+      }
       // Nudge each quantized endpoint channel by one step while it helps.
       bool improved = true;
       for (int pass = 0; improved && pass < 4; ++pass) {
