@@ -11,6 +11,7 @@
 #include <cmath>
 #include <string>
 
+#include "bench_common.h"
 #include "texproc/block_decode.h"
 #include "texproc/block_encode.h"
 #include "texproc/image_io.h"
@@ -21,44 +22,8 @@ using namespace texproc;
 
 namespace {
 
-Image crop_rgba8(const Image& src) {
-  const int w = src.width() / 4 * 4, h = src.height() / 4 * 4;
-  Image img(w, h, 4, PixelType::u8);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 4; ++c) img.set(x, y, c, c == 3 ? 1.0f : src.get(x, y, std::min(c, src.channels() - 1)));
-  return img;
-}
 
-const std::vector<Image>& textures() {
-  static const std::vector<Image> t = [] {
-    std::vector<Image> out;
-    for (const char* f : {"albedo_srgb/colobot_desert4.png", "albedo_srgb/ufoai_rock017.png", "photo/skimage_astronaut_512.png",
-                          "albedo_srgb/wz2100_terrain_tile10_128_palette.png", "photo/skimage_coffee_600x400.png",
-                          "albedo_srgb/stellarium_stein_mauerwerk_512_rgba_opaque.png"}) {
-      out.push_back(crop_rgba8(read_image(std::string(TEXPROC_CORPUS_DIR) + "/" + f)));
-    }
-    return out;
-  }();
-  return t;
-}
 
-double psnr_rgb(const Image& src, TexelFormat f, const std::vector<std::uint8_t>& blocks) {
-  Texture t;
-  t.format = f;
-  t.width = std::uint32_t(src.width());
-  t.height = std::uint32_t(src.height());
-  t.images.push_back(blocks);
-  const Image d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
-  double se = 0;
-  for (int y = 0; y < src.height(); ++y)
-    for (int x = 0; x < src.width(); ++x)
-      for (int c = 0; c < 3; ++c) {
-        const double e = double(d.row<std::uint8_t>(y)[d.channels() * x + c]) - src.row<std::uint8_t>(y)[4 * x + c];
-        se += e * e;
-      }
-  return 10 * std::log10(255.0 * 255.0 / (se / (3.0 * src.width() * src.height())));
-}
 
 std::vector<std::uint8_t> libetc1(const Image& img) {
   std::vector<std::uint8_t> rgb(std::size_t(img.width()) * img.height() * 3);
@@ -76,16 +41,16 @@ void color(benchmark::State& state, bool use_libetc1, TexelFormat f, Quality q) 
   double psnr_sum = 0, pixels = 0;
   for (auto _ : state) {
     psnr_sum = 0;
-    for (const Image& img : textures()) {
+    for (const Image& img : bench::color_textures()) {
       const std::vector<std::uint8_t> blocks = use_libetc1 ? libetc1(img) : compress_image(img.view(), f, q);
       state.PauseTiming();
-      psnr_sum += psnr_rgb(img, f, blocks);
+      psnr_sum += bench::psnr_rgb(img, f, blocks);
       state.ResumeTiming();
     }
   }
-  for (const Image& img : textures()) pixels += double(img.width()) * img.height();
+  for (const Image& img : bench::color_textures()) pixels += double(img.width()) * img.height();
   state.counters["MPix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsIterationInvariantRate);
-  state.counters["PSNR"] = psnr_sum / double(textures().size());
+  state.counters["PSNR"] = psnr_sum / double(bench::color_textures().size());
 }
 
 const std::vector<Image>& heightmaps() {

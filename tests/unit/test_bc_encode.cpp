@@ -7,6 +7,7 @@
 #include <random>
 
 #include "support/images.h"
+#include "support/threads.h"
 #include "texproc/block_decode.h"
 #include "texproc/block_encode.h"
 #include "texproc/error.h"
@@ -232,16 +233,8 @@ TEST(Bc1Encode, PunchThroughAndBc3Alpha) {
 TEST(Bc1Encode, SameBytesForAnyThreadCount) {
   const Image img = random_image(61, 45, 4, PixelType::u8, 12);
   for (TexelFormat f : {TexelFormat::bc1_rgb_unorm, TexelFormat::bc3_srgb}) {
-    std::vector<std::uint8_t> one, two;
-    {
-      ThreadLimit t(1);
-      one = compress_image(img.view(), f, Quality::high);
-    }
-    {
-      ThreadLimit t(2);
-      two = compress_image(img.view(), f, Quality::high);
-    }
-    EXPECT_EQ(one, two) << format_info(f).name;
+    auto encode = [&] { return compress_image(img.view(), f, Quality::high); };
+    EXPECT_EQ(with_threads(1, encode), with_threads(2, encode)) << format_info(f).name;
   }
 }
 

@@ -4,6 +4,9 @@
 #include <cmath>
 
 #include "support/images.h"
+#include "support/threads.h"
+
+#include <tuple>
 #include "texproc/error.h"
 #include "texproc/metrics.h"
 #include "texproc/runtime.h"
@@ -68,19 +71,9 @@ TEST(Metrics, PerChannelFiguresAndTypes) {
 
 TEST(Metrics, SameFiguresForAnyThreadCount) {
   const Image a = random_image(300, 211, 4, PixelType::u16, 1), b = random_image(300, 211, 4, PixelType::u16, 2);
-  ImageDifference one, two;
-  std::vector<double> s1, s2;
-  {
-    ThreadLimit t(1);
-    one = compare_images(a.view(), b.view());
-    s1 = ssim_per_channel(a.view(), b.view());
-  }
-  {
-    ThreadLimit t(2);
-    two = compare_images(a.view(), b.view());
-    s2 = ssim_per_channel(a.view(), b.view());
-  }
-  EXPECT_EQ(one.mse, two.mse);
-  EXPECT_EQ(one.max_abs, two.max_abs);
-  EXPECT_EQ(s1, s2);
+  auto figures = [&] {
+    const ImageDifference d = compare_images(a.view(), b.view());
+    return std::make_tuple(d.mse, d.max_abs, ssim_per_channel(a.view(), b.view()));
+  };
+  EXPECT_EQ(with_threads(1, figures), with_threads(2, figures));
 }

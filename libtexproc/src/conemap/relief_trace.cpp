@@ -122,8 +122,10 @@ ReliefHit trace_linear(const std::vector<float>& heights, int W, int H, const Co
   return {0, 0, 0, steps, false};
 }
 
-ReliefHit trace_cones(const std::vector<float>& heights, const std::vector<float>& ratios, int W, int H,
-                      const ConeMapOptions& o, float u, float v, float du, float dv, int binary_steps) {
+namespace {
+// Cone stepping, conservative or relaxed (GPU Gems 3, chapter 18).
+ReliefHit step_cones(const std::vector<float>& heights, const std::vector<float>& ratios, int W, int H,
+                     const ConeMapOptions& o, float u, float v, float du, float dv, bool relaxed, int binary_steps) {
   const Field f{heights, &ratios, W, H, o.wrap == WrapMode::repeat};
   // Horizontal speed in texture widths per unit of height descended, and the
   // cone's horizontal reach per unit height: ratio * depth.
@@ -151,48 +153,29 @@ ReliefHit trace_cones(const std::vector<float>& heights, const std::vector<float
     const float c = ratios[t] * o.depth;
     const float dz = (c * (z - h) - margin) / (s + c);
     if (z <= h || !(dz > min_dz)) break;
-    z = std::max(0.0f, z - dz);
+    const float z_next = std::max(0.0f, z - dz);
+    if (relaxed) {
+      // A relaxed step may end past the surface (its cone holds one
+      // crossing): then the binary search between the two points finds it.
+      int nx, ny;
+      ++steps;
+      if (!f.texel(u + (1.0f - z_next) * du, v + (1.0f - z_next) * dv, nx, ny)) break;  // leaving a clamped texture
+      if (z_next <= heights[std::size_t(ny) * W + nx]) return refine(f, u, v, du, dv, z, z_next, steps, binary_steps);
+    }
+    z = z_next;
   }
-  (void)binary_steps;
   return traverse(heights, W, H, f.repeat, u, v, du, dv, 1.0 - double(z), steps);
+}
+}  // namespace
+
+ReliefHit trace_cones(const std::vector<float>& heights, const std::vector<float>& ratios, int W, int H,
+                      const ConeMapOptions& o, float u, float v, float du, float dv, int binary_steps) {
+  return step_cones(heights, ratios, W, H, o, u, v, du, dv, false, binary_steps);
 }
 
 ReliefHit trace_relaxed(const std::vector<float>& heights, const std::vector<float>& ratios, int W, int H,
                         const ConeMapOptions& o, float u, float v, float du, float dv, int binary_steps) {
-  const Field f{heights, &ratios, W, H, o.wrap == WrapMode::repeat};
-  const float s = std::sqrt(du * du + dv * dv);
-  // The same margin as conservative stepping: the current point may sit half
-  // a texel diagonal off the centre its cone stands on.
-  const float margin = std::sqrt(1.0f / (float(W) * W) + 1.0f / (float(H) * H));
-  const float texel_uv = std::min(1.0f / W, 1.0f / H);
-  const float min_dz = s > 0 ? 0.1f * texel_uv / s : 1.0f / 4096.0f;
-  float z = 1.0f;
-  int steps = 0;
-  for (int i = 0; i < 4096; ++i) {
-    int x, y;
-    ++steps;
-    if (!f.texel(u + (1.0f - z) * du, v + (1.0f - z) * dv, x, y)) return {0, 0, 0, steps, false};
-    const std::size_t t = std::size_t(y) * W + x;
-    const float h = heights[t];
-    if (z <= h) break;  // only at the start: the ray begins inside the relief
-    const float c = ratios[t] * o.depth;
-    // Step to the cone's side, less the margin: past the surface is allowed,
-    // a relaxed cone holds one crossing. Steps below a tenth of a texel end
-    // in the exact traversal, as for conservative cones.
-    const float dz = (c * (z - h) - margin) / (s + c);
-    if (!(dz > min_dz)) break;
-    const float z_next = std::max(0.0f, z - dz);
-    int nx, ny;
-    ++steps;
-    if (!f.texel(u + (1.0f - z_next) * du, v + (1.0f - z_next) * dv, nx, ny)) {
-      // Leaving a clamped texture: the exact traversal decides the rest.
-      return traverse(heights, W, H, f.repeat, u, v, du, dv, 1.0 - double(z), steps);
-    }
-    if (z_next <= heights[std::size_t(ny) * W + nx]) return refine(f, u, v, du, dv, z, z_next, steps, binary_steps);
-    if (z_next <= 0.0f) break;
-    z = z_next;
-  }
-  return traverse(heights, W, H, f.repeat, u, v, du, dv, 1.0 - double(z), steps);
+  return step_cones(heights, ratios, W, H, o, u, v, du, dv, true, binary_steps);
 }
 
 Image render_preview(const std::vector<float>& heights, const std::vector<float>& ratios, int W, int H,

@@ -141,29 +141,24 @@ std::vector<double> gaussian_blur(const std::vector<double>& in, int w, int h) {
   double k[2 * kRadius + 1], sum = 0;
   for (int i = -kRadius; i <= kRadius; ++i) sum += k[i + kRadius] = std::exp(-(i * i) / (2.0 * 1.5 * 1.5));
   for (double& v : k) v /= sum;
+  // One pass along x (step 1, n = w) or y (step w, n = h), edges repeated.
+  auto pass = [&](const std::vector<double>& src, std::vector<double>& dst, bool along_x) {
+    const std::size_t step = along_x ? 1 : std::size_t(w);
+    const int n = along_x ? w : h;
+    for_each_row_block(h, 32, [&](int y0, int y1) {
+      for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < w; ++x) {
+          const int at = along_x ? x : y;
+          const std::size_t base = std::size_t(y) * w + x - std::size_t(at) * step;
+          double acc = 0;
+          for (int i = -kRadius; i <= kRadius; ++i) acc += k[i + kRadius] * src[base + std::size_t(std::clamp(at + i, 0, n - 1)) * step];
+          dst[std::size_t(y) * w + x] = acc;
+        }
+    });
+  };
   std::vector<double> tmp(in.size()), out(in.size());
-  for_each_row_block(h, 32, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y)
-      for (int x = 0; x < w; ++x) {
-        double acc = 0;
-        for (int i = -kRadius; i <= kRadius; ++i) {
-          const int xx = std::clamp(x + i, 0, w - 1);
-          acc += k[i + kRadius] * in[std::size_t(y) * w + xx];
-        }
-        tmp[std::size_t(y) * w + x] = acc;
-      }
-  });
-  for_each_row_block(h, 32, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y)
-      for (int x = 0; x < w; ++x) {
-        double acc = 0;
-        for (int i = -kRadius; i <= kRadius; ++i) {
-          const int yy = std::clamp(y + i, 0, h - 1);
-          acc += k[i + kRadius] * tmp[std::size_t(yy) * w + x];
-        }
-        out[std::size_t(y) * w + x] = acc;
-      }
-  });
+  pass(in, tmp, true);
+  pass(tmp, out, false);
   return out;
 }
 

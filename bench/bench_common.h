@@ -1,0 +1,52 @@
+// What the block-compression benchmarks share: the corpus colour textures
+// they encode, and RGB PSNR under texproc's decoders.
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "texproc/block_decode.h"
+#include "texproc/image_io.h"
+
+namespace texproc::bench {
+
+// RGBA8 crops (multiples of 4) of six corpus colour textures (1.4 MPix).
+inline const std::vector<Image>& color_textures() {
+  static const std::vector<Image> t = [] {
+    std::vector<Image> out;
+    for (const char* f : {"albedo_srgb/colobot_desert4.png", "albedo_srgb/ufoai_rock017.png", "photo/skimage_astronaut_512.png",
+                          "albedo_srgb/wz2100_terrain_tile10_128_palette.png", "photo/skimage_coffee_600x400.png",
+                          "albedo_srgb/stellarium_stein_mauerwerk_512_rgba_opaque.png"}) {
+      const Image src = read_image(std::string(TEXPROC_CORPUS_DIR) + "/" + f);
+      const int w = src.width() / 4 * 4, h = src.height() / 4 * 4;
+      Image img(w, h, 4, PixelType::u8);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          for (int c = 0; c < 4; ++c) img.set(x, y, c, c == 3 ? 1.0f : src.get(x, y, std::min(c, src.channels() - 1)));
+      out.push_back(std::move(img));
+    }
+    return out;
+  }();
+  return t;
+}
+
+// PSNR over RGB of `blocks` (format f) against the RGBA8 source.
+inline double psnr_rgb(const Image& src, TexelFormat f, const std::vector<std::uint8_t>& blocks) {
+  Texture t;
+  t.format = f;
+  t.width = std::uint32_t(src.width());
+  t.height = std::uint32_t(src.height());
+  t.images.push_back(blocks);
+  const Image d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
+  double se = 0;
+  for (int y = 0; y < src.height(); ++y)
+    for (int x = 0; x < src.width(); ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double e = double(d.row<std::uint8_t>(y)[d.channels() * x + c]) - src.row<std::uint8_t>(y)[4 * x + c];
+        se += e * e;
+      }
+  return 10 * std::log10(255.0 * 255.0 / (se / (3.0 * src.width() * src.height())));
+}
+
+}  // namespace texproc::bench
