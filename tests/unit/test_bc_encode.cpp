@@ -1,6 +1,7 @@
 // BC4/BC5 encoding: known answers, against exhaustive search, and through
 // the containers and the decoder.
 #include <gtest/gtest.h>
+#include <hwy/targets.h>
 
 #include <cmath>
 #include <cstring>
@@ -267,4 +268,23 @@ TEST(TransparentColor, ZeroAndBleed) {
   apply_transparent_color(k, TransparentColor::keep);
   EXPECT_EQ(0, std::memcmp(k.data(), img.data(), img.byte_size()));
   EXPECT_THROW(parse_transparent_color("black"), Error);
+}
+
+// The cluster fit's SIMD twin gives the scalar reference's bytes on every
+// target this CPU supports (the BC1 `high` and `max` paths run it).
+TEST(Bc1Encode, ClusterFitSimdMatchesScalarOnEveryTarget) {
+  Image img = random_image(64, 48, 4, PixelType::u8, 21);
+  for (int y = 0; y < 24; ++y)  // smooth gradients in the top half, noise below
+    for (int x = 0; x < 64; ++x)
+      for (int c = 0; c < 3; ++c) img.row<std::uint8_t>(y)[x * 4 + c] = std::uint8_t((x * (c + 1) * 3 + y * 5) & 255);
+  for (Quality q : {Quality::high, Quality::max}) {
+    set_force_scalar(true);
+    const auto scalar = compress_image(img.view(), TexelFormat::bc1_rgb_unorm, q);
+    set_force_scalar(false);
+    for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
+      hwy::SetSupportedTargetsForTest(target);
+      EXPECT_EQ(compress_image(img.view(), TexelFormat::bc1_rgb_unorm, q), scalar) << hwy::TargetName(target);
+    }
+    hwy::SetSupportedTargetsForTest(0);
+  }
 }

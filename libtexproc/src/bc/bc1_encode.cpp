@@ -8,9 +8,11 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "bc/bc1_encode.h"
+#include "bc/bc1_cluster.h"
 
 namespace texproc {
 namespace {
@@ -245,32 +247,21 @@ void cluster_fit(const std::uint8_t rgb[16][3], const bool transparent[16], cons
     insert(sp);
   };
   if (four) {
-    // The four-cluster case unrolled: it runs (n + 3 choose 3) times.
+    // The four-cluster splits, a row of k at a time (SIMD twins).
+    ClusterRow row;
     for (int i = 0; i <= n; ++i)
-      for (int j = i; j <= n; ++j)
+      for (int j = i; j <= n; ++j) {
+        cluster_splits(pre, total_sq, n, i, j, row);
         for (int k = j; k <= n; ++k) {
-          const double s0 = i, s1 = j - i, s2 = k - j, s3 = n - k;
-          const double aa = s0 + (4.0 / 9.0) * s1 + (1.0 / 9.0) * s2;
-          const double bb = s3 + (1.0 / 9.0) * s1 + (4.0 / 9.0) * s2;
-          const double ab = (2.0 / 9.0) * (s1 + s2);
-          const double det = aa * bb - ab * ab;
-          if (det < 1e-9) continue;
-          const double inv = 1.0 / det;
-          Split sp;
-          double err = total_sq;
-          for (int c = 0; c < 3; ++c) {
-            const double x1 = pre[j][c] - pre[i][c], x2 = pre[k][c] - pre[j][c];
-            const double xa = pre[i][c] + (2.0 / 3.0) * x1 + (1.0 / 3.0) * x2;
-            const double xb = (pre[n][c] - pre[k][c]) + (1.0 / 3.0) * x1 + (2.0 / 3.0) * x2;
-            const double a = std::clamp((xa * bb - xb * ab) * inv, 0.0, 255.0);
-            const double b = std::clamp((xb * aa - xa * ab) * inv, 0.0, 255.0);
-            sp.a[c] = float(a), sp.b[c] = float(b);
-            err += -2 * (a * xa + b * xb) + a * a * aa + 2 * a * b * ab + b * b * bb;
-          }
+          const double err = row.err[k - j];
+          if (err == std::numeric_limits<double>::infinity()) continue;
           if (kept == keep_best && err >= worst_err) continue;
+          Split sp;
           sp.err = err;
+          for (int c = 0; c < 3; ++c) sp.a[c] = float(row.a[k - j][c]), sp.b[c] = float(row.b[k - j][c]);
           insert(sp);
         }
+      }
   } else {
     static constexpr double wa[3] = {1.0, 0.5, 0.0}, wb[3] = {0.0, 0.5, 1.0};
     for (int i = 0; i <= n; ++i)
