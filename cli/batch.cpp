@@ -203,7 +203,13 @@ std::vector<InputFile> expand_inputs(const BatchInputs& b, const std::vector<std
 int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& common) {
   const SessionOptions& s = session_options();
   ThreadLimit threads(common.threads);
+  // Files the options name (an OpenColorIO config, a radius map) are inputs
+  // of every output.
+  const std::size_t recorded_before = recorded_inputs().size();
   if (c.validate) c.validate();
+  const std::vector<std::string> all_recorded = recorded_inputs();
+  const std::vector<std::string> shared_inputs(all_recorded.begin() + std::ptrdiff_t(recorded_before),
+                                               all_recorded.end());
   const std::vector<InputFile> files = expand_inputs(b, c.input_extensions);
   const std::vector<std::string> outputs = name_outputs(c, b, files);
   if (s.check_only) return 0;
@@ -215,6 +221,8 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
   for (std::size_t i = 0; i < files.size(); ++i) {
     FileReport& r = reports[i];
     r.input = files[i].path;
+    r.inputs.push_back(r.input);
+    r.inputs.insert(r.inputs.end(), shared_inputs.begin(), shared_inputs.end());
     try {
       if (!fs::is_regular_file(r.input, ec)) {
         throw Error(ErrorCode::io, r.input + (fs::exists(r.input, ec) ? ": not a file" : ": no such file"));
@@ -345,6 +353,9 @@ void print_json_summary(const std::string& command, int exit_code, const std::st
   for (const auto& r : session_reports()) {
     Json::Value f(Json::objectValue);
     f["input"] = r.input;
+    Json::Value ins(Json::arrayValue);
+    for (const auto& in : r.inputs) ins.append(in);
+    f["inputs"] = ins;
     Json::Value outs(Json::arrayValue);
     for (const auto& o : r.outputs) outs.append(o);
     f["outputs"] = outs;

@@ -54,6 +54,7 @@ bool is_template(const std::string& output);
 // What a run produced for one input.
 struct FileReport {
   std::string input;
+  std::vector<std::string> inputs;   // every file the outputs depend on: input, OCIO config, radius map...
   std::vector<std::string> outputs;  // the files written (or, with --dry-run, to be written)
   std::string status = "ok";         // ok, failed, skipped (--skip-existing), not_run (--fail-fast)
   std::string error;                 // the message, when failed

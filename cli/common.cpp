@@ -75,6 +75,11 @@ void add_common_options(CLI::App& cmd, CommonOptions& o) {
 bool write_if_changed() { return build_state().write_if_changed; }
 bool dry_run() { return build_state().dry_run; }
 
+std::vector<std::string> recorded_inputs() {
+  std::lock_guard lock(build_state().mutex);
+  return build_state().inputs;
+}
+
 void record_input(const std::string& path) {
   std::lock_guard lock(build_state().mutex);
   auto& v = build_state().inputs;

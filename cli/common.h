@@ -31,6 +31,8 @@ void add_common_options(CLI::App& cmd, CommonOptions& o);
 // writes them as a Make rule, "outputs: inputs", as gcc -MD does; Make and
 // Ninja (depfile = ..., deps = gcc) read it.
 void record_input(const std::string& path);
+// Every input recorded so far, in order.
+std::vector<std::string> recorded_inputs();
 // --write-if-changed was given: existing outputs may be replaced, and are
 // kept (bytes and time stamp) when the new bytes are the same.
 bool write_if_changed();

@@ -194,6 +194,8 @@ TEST(Batch, JsonSummaryWithReport) {
   ASSERT_EQ(j["files"].size(), 2u);
   const Json::Value& c = j["files"][1];
   EXPECT_EQ(c["input"].asString(), "a/c.png");
+  ASSERT_EQ(c["inputs"].size(), 1u);  // no config or map named by the options
+  EXPECT_EQ(c["inputs"][0].asString(), "a/c.png");
   EXPECT_EQ(c["format"].asString(), "bc3_srgb");
   EXPECT_EQ(c["width"].asInt(), 13);
   EXPECT_EQ(c["height"].asInt(), 9);
