@@ -67,8 +67,18 @@ struct HalfFit {
 
 int expand(int q, int bits) { return bits == 4 ? extend4(q) : extend5(q); }
 int quantize(double v, int bits) {
+  // Rounded to nearest (halves up) and clamped, without a libm call.
   const int top = (1 << bits) - 1;
-  return std::clamp(int(std::lround(v * top / 255.0)), 0, top);
+  const double x = v * top / 255.0;
+  if (!(x > 0.0)) return 0;
+  return std::min(int(x + 0.5), top);
+}
+
+// Sorts up to eight table numbers by a key, stably (insertion sort).
+template <typename Key>
+void sort_tables(int* order, int count, Key key) {
+  for (int a = 1; a < count; ++a)
+    for (int b = a; b > 0 && key(order[b]) < key(order[b - 1]); --b) std::swap(order[b], order[b - 1]);
 }
 
 // Error of the half's texels against base colour `col` (8-bit) and table
@@ -194,7 +204,7 @@ HalfFit fit_half(const Texels& tx, int h, int bits, Quality q, bool non_opaque) 
     for (int t = 0; t < 8; ++t) order[tables++] = t;
   }
   for (int k = 0; k < tables; ++k) try_base(tx, h, q0, bits, order[k], non_opaque, at_mean[order[k]]);
-  std::stable_sort(order, order + tables, [&](int x, int y) { return at_mean[x].err < at_mean[y].err; });
+  sort_tables(order, tables, [&](int t) { return at_mean[t].err; });
   const int refine = q == Quality::fast ? 0 : q == Quality::normal ? std::min(tables, 3) : tables;
   HalfFit refined[8];
   for (int k = 0; k < tables; ++k) {
@@ -237,7 +247,7 @@ HalfFit fit_half(const Texels& tx, int h, int bits, Quality q, bool non_opaque) 
   if (q == Quality::high || q == Quality::max) {
     // The neighbourhood of the quantized base, for the best two tables
     // after refinement (`max`: every table, +-2).
-    std::stable_sort(order, order + tables, [&](int x, int y) { return refined[x].err < refined[y].err; });
+    sort_tables(order, tables, [&](int t) { return refined[t].err; });
     const int r = q == Quality::max ? 2 : 1, top = (1 << bits) - 1;
     const int searched = q == Quality::max ? tables : std::min(tables, 2);
     for (int k = 0; k < searched; ++k) {
@@ -319,13 +329,17 @@ bool delta_fits(const int a[3], const int b[3]) {
 void search_etc1_modes(const Texels& tx, Quality q, bool allow_individual, bool non_opaque, int bit33_diff,
                        Candidate& best) {
   HalfFit h4[4], h5[4];
-  for (int h = 0; h < 4; ++h) {
-    if (allow_individual) h4[h] = fit_half(tx, h, 4, q, non_opaque);
-    h5[h] = fit_half(tx, h, 5, q, non_opaque);
-  }
+  for (int h = 0; h < 4; ++h) h5[h] = fit_half(tx, h, 5, q, non_opaque);
   for (int flip = 0; flip < 2; ++flip) {
     const int a = flip ? 2 : 0, b = flip ? 3 : 1;
-    if (allow_individual) keep(best, h4[a].err + h4[b].err, pack_halves(h4[a], h4[b], flip, false, 0));
+    // Individual mode (4-bit bases) can only win when the halves are too far
+    // apart for the differential delta, or at `high` and above, where it is
+    // always tried.
+    if (allow_individual && (q == Quality::high || q == Quality::max || !delta_fits(h5[a].q, h5[b].q))) {
+      for (int hh : {a, b})
+        if (h4[hh].err == kNone) h4[hh] = fit_half(tx, hh, 4, q, non_opaque);
+      keep(best, h4[a].err + h4[b].err, pack_halves(h4[a], h4[b], flip, false, 0));
+    }
     if (delta_fits(h5[a].q, h5[b].q)) {
       keep(best, h5[a].err + h5[b].err, pack_halves(h5[a], h5[b], flip, true, bit33_diff));
       continue;
@@ -370,7 +384,7 @@ void search_planar(const Texels& tx, Quality q, Candidate& best) {
     const int c0[3] = {qz(O), qz(O + 4 * a), qz(O + 4 * b)};
     long be = kNone;
     int bo = c0[0], bh = c0[1], bv = c0[2];
-    const int r = q == Quality::fast ? 0 : 1;
+    const int r = q == Quality::high || q == Quality::max ? 1 : 0;
     for (int d0 = -r; d0 <= r; ++d0)
       for (int d1 = -r; d1 <= r; ++d1)
         for (int d2 = -r; d2 <= r; ++d2) {
@@ -415,7 +429,7 @@ void search_planar(const Texels& tx, Quality q, Candidate& best) {
 }
 
 // T and H modes: two clusters along the principal axis.
-void search_t_h(const Texels& tx, bool non_opaque, Candidate& best) {
+void search_t_h(const Texels& tx, bool non_opaque, Quality q_level, Candidate& best) {
   int n = 0;
   double mean[3] = {0, 0, 0};
   for (int i = 0; i < 16; ++i) {
@@ -471,6 +485,24 @@ void search_t_h(const Texels& tx, bool non_opaque, Candidate& best) {
   int q[2][3];
   for (int s = 0; s < 2; ++s)
     for (int c = 0; c < 3; ++c) q[s][c] = quantize(centre[s][c], 4);
+  // Distances worth trying: at `normal`, the three nearest to the clusters'
+  // spread about their centres (the mean absolute deviation along the
+  // channels); `high` tries all eight.
+  int d_lo = 0, d_hi = 7;
+  if (q_level != Quality::high && q_level != Quality::max) {
+    double spread = 0;
+    int cnt = 0;
+    for (int i = 0; i < 16; ++i) {
+      if (non_opaque && tx.transparent[i]) continue;
+      for (int c = 0; c < 3; ++c) spread += std::fabs(tx.rgb[i][c] - centre[side[i]][c]) / 3.0;
+      ++cnt;
+    }
+    spread /= cnt;
+    int nearest = 0;
+    for (int di = 1; di < 8; ++di)
+      if (std::fabs(kDistances[di] - spread) < std::fabs(kDistances[nearest] - spread)) nearest = di;
+    d_lo = std::max(0, nearest - 1), d_hi = std::min(7, nearest + 1);
+  }
 
   // Scores four paint colours; `usable[k]`: index k may be used.
   auto score = [&](const int paint[4][3], std::uint8_t idx[16]) {
@@ -506,7 +538,7 @@ void search_t_h(const Texels& tx, bool non_opaque, Candidate& best) {
   for (int single = 0; single < 2; ++single) {
     const int* c1 = q[single];
     const int* c2 = q[1 - single];
-    for (int di = 0; di < 8; ++di) {
+    for (int di = d_lo; di <= d_hi; ++di) {
       const int d = kDistances[di];
       int paint[4][3];
       for (int c = 0; c < 3; ++c) {
@@ -533,7 +565,7 @@ void search_t_h(const Texels& tx, bool non_opaque, Candidate& best) {
   }
   // H: C1 +- d and C2 +- d; the distance index's low bit is the order of
   // the two colours, so a colour pair in the wrong order is swapped.
-  for (int di = 0; di < 8; ++di) {
+  for (int di = d_lo; di <= d_hi; ++di) {
     const int* c1 = q[0];
     const int* c2 = q[1];
     const int k1 = c1[0] << 8 | c1[1] << 4 | c1[2], k2 = c2[0] << 8 | c2[1] << 4 | c2[2];
@@ -589,7 +621,7 @@ long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality 
   search_etc1_modes(tx, q, !punch, non_opaque, bit33, best);
   if (mode != ColorMode::etc1 && q != Quality::fast) {
     if (!non_opaque) search_planar(tx, q, best);
-    search_t_h(tx, non_opaque, best);
+    search_t_h(tx, non_opaque, q, best);
   }
   store_be64(best.bits, out);
   return best.err;
