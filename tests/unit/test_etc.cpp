@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <etc1.h>
+#include <hwy/targets.h>
 
 #include <algorithm>
 #include <cmath>
@@ -629,5 +630,24 @@ TEST(EtcEncode, Etc1StreamsAreEtc2AndThreadsDoNotMatter) {
                         TexelFormat::eac_rg11_snorm}) {
     auto encode = [&] { return compress_image(img.view(), f, Quality::normal); };
     EXPECT_EQ(with_threads(1, encode), with_threads(2, encode)) << format_info(f).name;
+  }
+}
+
+// The half-block scoring's SIMD twin gives the scalar reference's bytes on
+// every target this CPU supports, for every colour format and quality.
+TEST(EtcEncode, SimdMatchesScalarOnEveryTarget) {
+  const Image img = random_smooth_or_noise();
+  for (TexelFormat f : {TexelFormat::etc1_rgb, TexelFormat::etc2_rgb_unorm, TexelFormat::etc2_rgba1_unorm}) {
+    for (Quality q : {Quality::fast, Quality::normal, Quality::high}) {
+      set_force_scalar(true);
+      const auto scalar = compress_image(img.view(), f, q);
+      set_force_scalar(false);
+      for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
+        hwy::SetSupportedTargetsForTest(target);
+        EXPECT_EQ(compress_image(img.view(), f, q), scalar) << format_info(f).name << " " << to_string(q) << " "
+                                                            << hwy::TargetName(target);
+      }
+      hwy::SetSupportedTargetsForTest(0);
+    }
   }
 }

@@ -15,6 +15,7 @@
 // clusters split along the principal axis, their centres quantized to 4
 // bits, every distance tried).
 #include "etc/etc_encode.h"
+#include "etc/etc_eval.h"
 
 #include <algorithm>
 #include <array>
@@ -56,6 +57,7 @@ struct Texels {
   int rgb[16][3];
   bool transparent[16];  // punch-through: alpha < 128
   bool any_transparent = false;
+  HalfTexels half[4];    // the texels of each half block, as planes (for eval_half)
 };
 
 struct HalfFit {
@@ -81,66 +83,10 @@ void sort_tables(int* order, int count, Key key) {
     for (int b = a; b > 0 && key(order[b]) < key(order[b - 1]); --b) std::swap(order[b], order[b - 1]);
 }
 
-// Error of the half's texels against base colour `col` (8-bit) and table
-// `t`; the best index of each texel into idx. `non_opaque`: punch-through
-// with transparent texels (index 2 is transparent, modifiers +-a are 0).
-long eval_half(const Texels& tx, int h, const int col[3], int t, bool non_opaque, std::uint8_t idx[8], long bound) {
-  int pal[4][3];
-  bool clamps = false;
-  for (int k = 0; k < 4; ++k) {
-    const int m = non_opaque && (k == 0 || k == 2) ? 0 : kModifiers[t][k];
-    for (int c = 0; c < 3; ++c) {
-      pal[k][c] = clamp255(col[c] + m);
-      clamps |= pal[k][c] != col[c] + m;
-    }
-  }
-  const HalfLayout& L = halves()[std::size_t(h)];
-  // Without clamping, a texel's best modifier is the one nearest to
-  // (sum of its channels - sum of the base's) / 3: the squared error
-  // sum_c (e_c - m)^2 = sum_c e_c^2 - 2 m sum_c e_c + 3 m^2 is a parabola in m.
-  // So three threshold tests pick the index; with clamping every index is tried.
-  const int a = kModifiers[t][0], b = kModifiers[t][1];
-  const int base_sum = col[0] + col[1] + col[2];
-  long err = 0;
-  for (int i = 0; i < 8; ++i) {
-    const int p = L.y[i] * 4 + L.x[i];
-    if (non_opaque && tx.transparent[p]) {
-      idx[i] = 2;
-      continue;
-    }
-    const int* px = tx.rgb[p];
-    int bk;
-    long best;
-    if (!clamps) {
-      const int d2 = 2 * (px[0] + px[1] + px[2] - base_sum);
-      if (non_opaque) {
-        bk = d2 < -3 * b ? 3 : d2 < 3 * b ? 0 : 1;
-      } else {
-        bk = d2 < -3 * (a + b) ? 3 : d2 < 0 ? 2 : d2 < 3 * (a + b) ? 0 : 1;
-      }
-      const long dr = pal[bk][0] - px[0], dg = pal[bk][1] - px[1], db = pal[bk][2] - px[2];
-      best = dr * dr + dg * dg + db * db;
-    } else {
-      best = kNone;
-      bk = 0;
-      for (int k = 0; k < 4; ++k) {
-        if (non_opaque && k == 2) continue;
-        const long dr = pal[k][0] - px[0], dg = pal[k][1] - px[1], db = pal[k][2] - px[2];
-        const long e = dr * dr + dg * dg + db * db;
-        if (e < best) best = e, bk = k;
-      }
-    }
-    idx[i] = std::uint8_t(bk);
-    err += best;
-    if (err >= bound) return err;
-  }
-  return err;
-}
-
 void try_base(const Texels& tx, int h, const int q[3], int bits, int t, bool non_opaque, HalfFit& best) {
   const int col[3] = {expand(q[0], bits), expand(q[1], bits), expand(q[2], bits)};
   std::uint8_t idx[8];
-  const long e = eval_half(tx, h, col, t, non_opaque, idx, best.err);
+  const long e = eval_half(tx.half[h], col, t, non_opaque, idx);
   if (e < best.err) {
     best.err = e;
     std::memcpy(best.q, q, sizeof best.q);
@@ -612,6 +558,15 @@ long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality 
     for (int c = 0; c < 3; ++c) tx.rgb[i][c] = rgba[i][c];
     tx.transparent[i] = mode == ColorMode::etc2_punch && rgba[i][3] < 128;
     tx.any_transparent |= tx.transparent[i];
+  }
+  for (int h = 0; h < 4; ++h) {
+    const HalfLayout& L = halves()[std::size_t(h)];
+    for (int i = 0; i < 8; ++i) {
+      const int p = L.y[i] * 4 + L.x[i];
+      tx.half[h].r[i] = tx.rgb[p][0], tx.half[h].g[i] = tx.rgb[p][1], tx.half[h].b[i] = tx.rgb[p][2];
+      tx.half[h].sum[i] = tx.rgb[p][0] + tx.rgb[p][1] + tx.rgb[p][2];
+      tx.half[h].transparent[i] = tx.transparent[p] ? 1 : 0;
+    }
   }
   Candidate best;
   const bool punch = mode == ColorMode::etc2_punch;
