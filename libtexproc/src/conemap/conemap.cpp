@@ -125,6 +125,147 @@ struct Behind {
   }
 };
 
+// --fast, conservative: the texture is cut into cells of kCell x kCell
+// texels. Obstacles farther than `near` texels from a cell (Chebyshev, from
+// the cell's texel rectangle) are folded into one bound per cell, computed
+// once: min over them of dist(cell, q) / (depth (h_q - min height of the
+// cell)); every texel of the cell is at least that far and no lower, so the
+// bound is <= its true ratio for those obstacles. Each texel then searches
+// only the obstacles within `near` of its cell, exactly, starting from the
+// cell's bound. The cone is min(exact near, cell bound): never wider.
+constexpr int kCell = 8;
+
+// Gap between texel ranges [a0, a1] and [b0, b1] along an axis of n texels
+// (with repeat, the nearest periodic copy of b), and the shift used.
+int range_gap(int a0, int a1, int b0, int b1, int n, bool repeat, int* shift = nullptr) {
+  auto gap = [&](int s) { return std::max({0, b0 + s - a1, a0 - (b1 + s)}); };
+  int best = gap(0), bs = 0;
+  if (repeat) {
+    for (int s : {-n, n}) {
+      const int g = gap(s);
+      if (g < best) best = g, bs = s;
+    }
+  }
+  if (shift) *shift = bs;
+  return best;
+}
+
+// The farthest point of [b0, b1] from [a0, a1] (in the copy `shift`).
+int range_reach(int a0, int a1, int b0, int b1, int shift) {
+  return std::max({0, b1 + shift - a1, a0 - (b0 + shift)});
+}
+
+// Pushes the children of node n that may hold a candidate below `best`
+// (bound(child) is the squared ratio at its nearest point), nearest first.
+template <typename Bound>
+void push_children(const Pyramid& pyr, const Node& n, float floor_height, double best, Bound bound,
+                   std::vector<Node>& stack) {
+  const int k = n.level;
+  Node kids[4];
+  int count = 0;
+  const int kw = pyr.w[std::size_t(k - 1)], kh = pyr.h[std::size_t(k - 1)];
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int ux = 2 * n.x + i, uy = 2 * n.y + j;
+      if (ux >= kw || uy >= kh) continue;
+      const float M = pyr.max[std::size_t(k - 1)][std::size_t(uy) * kw + ux];
+      if (M <= floor_height) continue;
+      const double b = bound(k - 1, ux, uy, double(M) - floor_height);
+      if (b > best * kPruneSlack) continue;
+      kids[count++] = {k - 1, ux, uy, b / kPruneSlack};
+    }
+  for (int a = 1; a < count; ++a)
+    for (int b = a; b > 0 && kids[b - 1].bound < kids[b].bound; --b) std::swap(kids[b - 1], kids[b]);
+  for (int c = 0; c < count; ++c) stack.push_back(kids[c]);
+}
+
+std::vector<float> cone_ratios_tiled(const std::vector<float>& heights, int W, int H, const ConeMapOptions& o,
+                                     const Pyramid& pyr, const Metric& m, bool repeat) {
+  const int top = int(pyr.max.size()) - 1;
+  const double cap2 = double(o.max_ratio) * o.max_ratio;
+  const int near = o.fast_reach * kCell;
+  const int cw = (W + kCell - 1) / kCell, ch = (H + kCell - 1) / kCell;
+  std::vector<double> far2(std::size_t(cw) * ch, cap2);
+  // 1. The far bound of every cell.
+  for_each_row_block(ch, 1, [&](int r0, int r1) {
+    std::vector<Node> stack;
+    for (int cy = r0; cy < r1; ++cy)
+      for (int cx = 0; cx < cw; ++cx) {
+        const int x0 = cx * kCell, x1 = std::min(W, x0 + kCell) - 1, y0 = cy * kCell, y1 = std::min(H, y0 + kCell) - 1;
+        float lo = 2.0f;
+        for (int y = y0; y <= y1; ++y)
+          for (int x = x0; x <= x1; ++x) lo = std::min(lo, heights[std::size_t(y) * W + x]);
+        double best = cap2;
+        stack.clear();
+        stack.push_back({top, 0, 0, 0.0});
+        while (!stack.empty()) {
+          const Node n = stack.back();
+          stack.pop_back();
+          if (n.bound > best) continue;
+          const int k = n.level;
+          const int bx0 = n.x << k, bx1 = std::min((n.x + 1) << k, W) - 1;
+          const int by0 = n.y << k, by1 = std::min((n.y + 1) << k, H) - 1;
+          int sx, sy;
+          const int gx = range_gap(x0, x1, bx0, bx1, W, repeat, &sx), gy = range_gap(y0, y1, by0, by1, H, repeat, &sy);
+          if (range_reach(x0, x1, bx0, bx1, sx) <= near && range_reach(y0, y1, by0, by1, sy) <= near) continue;  // all near
+          if (k == 0) {
+            if (gx <= near && gy <= near) continue;  // a near texel: the texels' own searches see it
+            best = std::min(best, m.ratio2(gx, gy, double(pyr.max[0][std::size_t(by0) * W + bx0]) - lo));
+            continue;
+          }
+          push_children(pyr, n, lo, best, [&](int s, int ux, int uy, double dh) {
+            return m.ratio2(range_gap(x0, x1, ux << s, std::min((ux + 1) << s, W) - 1, W, repeat),
+                            range_gap(y0, y1, uy << s, std::min((uy + 1) << s, H) - 1, H, repeat), dh);
+          }, stack);
+        }
+        far2[std::size_t(cy) * cw + cx] = best;
+      }
+  });
+  // 2. Every texel: the obstacles near its cell, exactly, from the cell's bound.
+  std::vector<float> out(heights.size());
+  for_each_row_block(H, 4, [&](int r0, int r1) {
+    std::vector<Node> stack;
+    for (int py = r0; py < r1; ++py)
+      for (int px = 0; px < W; ++px) {
+        const int cx = px / kCell, cy = py / kCell;
+        const int x0 = cx * kCell, x1 = std::min(W, x0 + kCell) - 1, y0 = cy * kCell, y1 = std::min(H, y0 + kCell) - 1;
+        const float hp = heights[std::size_t(py) * W + px];
+        double best = far2[std::size_t(cy) * cw + cx];
+        stack.clear();
+        stack.push_back({top, 0, 0, 0.0});
+        while (!stack.empty()) {
+          const Node n = stack.back();
+          stack.pop_back();
+          if (n.bound > best) continue;
+          const int k = n.level;
+          const int bx0 = n.x << k, bx1 = std::min((n.x + 1) << k, W) - 1;
+          const int by0 = n.y << k, by1 = std::min((n.y + 1) << k, H) - 1;
+          if (range_gap(x0, x1, bx0, bx1, W, repeat) > near || range_gap(y0, y1, by0, by1, H, repeat) > near) {
+            continue;  // wholly far: in the cell's bound
+          }
+          if (k <= kLeafLevel) {
+            for (int qy = by0; qy <= by1; ++qy) {
+              if (range_gap(y0, y1, qy, qy, H, repeat) > near) continue;
+              const int dy = texel_distance(py, qy, H, repeat);
+              for (int qx = bx0; qx <= bx1; ++qx) {
+                const float hq = heights[std::size_t(qy) * W + qx];
+                if (hq <= hp || range_gap(x0, x1, qx, qx, W, repeat) > near) continue;
+                best = std::min(best, m.ratio2(texel_distance(px, qx, W, repeat), dy, double(hq) - hp));
+              }
+            }
+            continue;
+          }
+          push_children(pyr, n, hp, best, [&](int s, int ux, int uy, double dh) {
+            return m.ratio2(axis_distance(px, ux << s, std::min((ux + 1) << s, W) - 1, W, repeat),
+                            axis_distance(py, uy << s, std::min((uy + 1) << s, H) - 1, H, repeat), dh);
+          }, stack);
+        }
+        out[std::size_t(py) * W + px] = float(std::sqrt(best));
+      }
+  });
+  return out;
+}
+
 }  // namespace
 
 std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, const ConeMapOptions& o) {
@@ -132,6 +273,7 @@ std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, 
   const bool repeat = o.wrap == WrapMode::repeat;
   const Metric m{1.0 / (double(W) * W), 1.0 / (double(H) * H), double(o.depth) * o.depth};
   const Pyramid pyr = build_pyramid(heights, W, H);
+  if (o.fast_reach > 0 && o.mode == ConeMode::conservative) return cone_ratios_tiled(heights, W, H, o, pyr, m, repeat);
   // Relaxed cones: four more pyramids, of the heights of the texels whose
   // +x, -x, +y or -y neighbour is lower (-1 elsewhere). A block wholly on
   // one side of p along an axis can only hold exits that way, so its bound
