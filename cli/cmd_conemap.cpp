@@ -122,8 +122,8 @@ void add_conemap_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--type", args->type, "Output element type: u8, u16, f16, f32 (default: u8 for 8-bit input, else u16)");
   cmd->add_flag("--fast", args->fast,
-                "Faster, never wider cones: pyramid blocks >= --fast-reach block sizes away count as one obstacle");
-  cmd->add_option("--fast-reach", args->fast_reach, "With --fast: distance, in block sizes, at which blocks stay closed (>= 1)")
+                "Faster, never wider cones: obstacles beyond --fast-reach 8x8 cells of a texel's cell share one bound per cell");
+  cmd->add_option("--fast-reach", args->fast_reach, "With --fast: the near field searched per texel, in 8-texel cells around its cell (>= 1)")
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
   cmd->add_flag("--brute-force", args->brute_force, "Use the O(N^2)-per-texel definition (slow; for checking)");

@@ -29,11 +29,13 @@ struct ConeMapOptions {
   float depth = 1.0f;       // relief depth in texture widths (> 0)
   float max_ratio = 1.0f;   // cap on the ratio (> 0); the map stores sqrt(ratio / max_ratio)
   WrapMode wrap = WrapMode::repeat;  // repeat: tiling reliefs see across the edges; clamp: they do not
-  // Fast conservative cones: a pyramid block at least `fast_reach` block
-  // sizes away (Chebyshev, in texels) is not opened; its highest texel is
-  // taken at the block's nearest point instead. Every such candidate is <= the
-  // ratio of every texel in the block, so the cone is never wider than the
-  // exact one, only narrower by the block's extent. 0 = exact.
+  // Fast cones, never wider than exact, 0 = exact. Conservative: the map is
+  // cut into 8x8-texel cells; obstacles more than fast_reach cells (8
+  // texels each, Chebyshev) from a texel's cell share one bound per cell
+  // (their distance to the cell over their height above the cell's lowest
+  // texel), the rest are searched per texel exactly. Relaxed: a pyramid
+  // block at least fast_reach block sizes away is not opened; its highest
+  // texel counts at the block's nearest point.
   int fast_reach = 0;
   ConeMode mode = ConeMode::conservative;
 };
