@@ -1,25 +1,28 @@
 // BC1 benchmark: texproc's colour encoder at each quality against libsquish
 // (Debian's libsquish-dev 1.15, a scalar build: range fit, cluster fit,
 // iterative cluster fit) on corpus textures, single thread, in one run. PSNR
-// over RGB, decoded with texproc's decoder (the Khronos rounding).
+// over RGB, decoded with texproc's decoder (the Khronos rounding). And whole
+// processes, TGA in, DDS out: NVIDIA Texture Tools' nvcompress (Debian's
+// libnvtt-bin 2.0, -nocuda) beside `texproc compress --threads 1`.
 #include <benchmark/benchmark.h>
 #include <squish.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include "bench_common.h"
 #include "texproc/block_decode.h"
 #include "texproc/block_encode.h"
+#include "texproc/container.h"
 #include "texproc/image_io.h"
 #include "texproc/runtime.h"
 
 using namespace texproc;
 
 namespace {
-
-// RGBA8 crops (multiples of 4) of corpus colour textures.
-
 
 void run(benchmark::State& state, int squish_flags, Quality q) {
   ThreadLimit one(1);
@@ -44,8 +47,55 @@ void run(benchmark::State& state, int squish_flags, Quality q) {
   state.counters["PSNR"] = psnr_sum / double(bench::color_textures().size());
 }
 
+// The textures as TGA files (what nvcompress reads), written once.
+const std::vector<std::string>& tga_files() {
+  static const std::vector<std::string> files = [] {
+    const std::string dir = (std::filesystem::temp_directory_path() / "texproc_bench_bc1").string();
+    std::filesystem::create_directories(dir);
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < bench::color_textures().size(); ++i) {
+      out.push_back(dir + "/t" + std::to_string(i) + ".tga");
+      WriteOptions w;
+      w.color_space = "linear";
+      write_image(out.back(), bench::color_textures()[i].view(), w);
+    }
+    return out;
+  }();
+  return files;
+}
+
+// One whole process per texture (`command` gets the input and output
+// names); its DDS is decoded with texproc for the PSNR.
+void process(benchmark::State& state, const std::string& tool) {
+  double psnr_sum = 0, pixels = 0;
+  for (auto _ : state) {
+    double seconds = 0;
+    psnr_sum = 0;
+    for (std::size_t i = 0; i < tga_files().size(); ++i) {
+      const std::string in = tga_files()[i], out = in + "." + tool + ".dds";
+      const std::string cmd = tool == "nvcompress" ? "nvcompress -bc1 -nomips -nocuda -color " + in + " " + out
+                                                   : std::string(TEXPROC_CLI_PATH) + " compress " + in + " -o " + out +
+                                                         " --format bc1 --linear --threads 1 -f -q";
+      const auto t0 = std::chrono::steady_clock::now();
+      if (std::system((cmd + " >/dev/null 2>&1").c_str()) != 0) {
+        state.SkipWithError(("failed: " + cmd).c_str());
+        return;
+      }
+      seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const Texture t = read_texture(out);
+      psnr_sum += bench::psnr_rgb(bench::color_textures()[i], TexelFormat::bc1_rgb_unorm, t.image(0));
+    }
+    state.SetIterationTime(seconds);
+  }
+  for (const Image& img : bench::color_textures()) pixels += double(img.width()) * img.height();
+  state.counters["MPix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["PSNR"] = psnr_sum / double(bench::color_textures().size());
+}
+
 }  // namespace
 
+BENCHMARK_CAPTURE(process, nvcompress_process, std::string("nvcompress"))->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(3);
+BENCHMARK_CAPTURE(process, texproc_process, std::string("texproc"))->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(3);
 BENCHMARK_CAPTURE(run, libsquish_range_fit, squish::kColourRangeFit, Quality::fast)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(run, libsquish_cluster_fit, squish::kColourClusterFit, Quality::fast)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_CAPTURE(run, libsquish_iterative_cluster_fit, squish::kColourIterativeClusterFit, Quality::fast)
