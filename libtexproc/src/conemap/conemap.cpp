@@ -240,16 +240,20 @@ std::vector<float> cone_ratios_tiled(const std::vector<float>& heights, int W, i
           const int k = n.level;
           const int bx0 = n.x << k, bx1 = std::min((n.x + 1) << k, W) - 1;
           const int by0 = n.y << k, by1 = std::min((n.y + 1) << k, H) - 1;
-          if (range_gap(x0, x1, bx0, bx1, W, repeat) > near || range_gap(y0, y1, by0, by1, H, repeat) > near) {
+          int sx, sy;
+          if (range_gap(x0, x1, bx0, bx1, W, repeat, &sx) > near || range_gap(y0, y1, by0, by1, H, repeat, &sy) > near) {
             continue;  // wholly far: in the cell's bound
           }
           if (k <= kLeafLevel) {
+            // Usually the whole block is near: no per-texel test then.
+            const bool all_near = range_reach(x0, x1, bx0, bx1, sx) <= near && range_reach(y0, y1, by0, by1, sy) <= near;
             for (int qy = by0; qy <= by1; ++qy) {
-              if (range_gap(y0, y1, qy, qy, H, repeat) > near) continue;
+              if (!all_near && range_gap(y0, y1, qy, qy, H, repeat) > near) continue;
               const int dy = texel_distance(py, qy, H, repeat);
+              const float* row = heights.data() + std::size_t(qy) * W;
               for (int qx = bx0; qx <= bx1; ++qx) {
-                const float hq = heights[std::size_t(qy) * W + qx];
-                if (hq <= hp || range_gap(x0, x1, qx, qx, W, repeat) > near) continue;
+                const float hq = row[qx];
+                if (hq <= hp || (!all_near && range_gap(x0, x1, qx, qx, W, repeat) > near)) continue;
                 best = std::min(best, m.ratio2(texel_distance(px, qx, W, repeat), dy, double(hq) - hp));
               }
             }
