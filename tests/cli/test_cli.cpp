@@ -647,3 +647,32 @@ TEST(Cli, CompressBc3NormalMapIsDxt5nm) {
     }
   fs::remove_all(dir);
 }
+
+// NVIDIA Texture Tools' nvdecompress (Debian's libnvtt-bin 2.0) decodes
+// texproc's legacy-header BC1-BC5 files to the texels texproc's decoder gives,
+// within one 8-bit level (BC1's interpolation rounding; NVTT rounds RGTC to
+// 8 bits, texproc returns the exact values). NVTT 2.0 predates the DX10
+// header and SNORM formats, so those are checked with OpenImageIO, Pillow
+// and nvddsinfo elsewhere.
+TEST(Cli, NvdecompressAgreesOnLegacyDds) {
+  if (std::system("command -v nvdecompress >/dev/null 2>&1") != 0) GTEST_SKIP() << "nvdecompress not installed";
+  const std::string dir = temp_dir("cli_nvdecompress");
+  write_image(dir + "/in.png", random_image(64, 48, 4, PixelType::u8, 31).view());
+  for (const char* f : {"bc1", "bc1a", "bc2", "bc3", "bc4", "bc5"}) {
+    const std::string dds = dir + "/" + f + ".dds";
+    RunResult r = run_texproc("compress " + dir + "/in.png -o " + dds + " --format " + f + " --linear --dds-header dx9 -q");
+    ASSERT_EQ(r.exit_code, 0) << f << r.err;
+    ASSERT_EQ(std::system(("cd '" + dir + "' && nvdecompress " + std::string(f) + ".dds >/dev/null 2>&1").c_str()), 0) << f;
+    const Image nv = read_image(dir + "/" + f + ".tga");
+    const Image ours = decode_texture_image(read_texture(dds), 0, 0, 0, PixelType::f32);
+    const int channels = ours.channels();
+    ASSERT_EQ(nv.width(), 64);
+    for (int y = 0; y < 48; ++y)
+      for (int x = 0; x < 64; ++x)
+        for (int c = 0; c < std::min(channels, 3); ++c) {
+          // One-channel BC4 comes back from NVTT as gray in R, G and B.
+          ASSERT_NEAR(nv.get(x, y, c), ours.get(x, y, c), 1.0 / 255 + 1e-6) << f << " " << x << "," << y << " c" << c;
+        }
+  }
+  fs::remove_all(dir);
+}
