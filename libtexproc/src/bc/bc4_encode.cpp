@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "bc/bc1_encode.h"
+#include "bc/bc4_eval.h"
 #include "bc/block_gather.h"
 #include "etc/etc_encode.h"
 #include "texproc/block_decode.h"
@@ -61,20 +62,12 @@ void palette(int r0, int r1, bool snorm, double pal[8]) {
 
 void evaluate(const float v[16], int r0, int r1, bool snorm, Candidate& c) {
   const double lo_end = snorm ? -127.0 : 0.0, hi_end = snorm ? 127.0 : 255.0;
-  double pal[8];
+  double pal[8], t[16], errors[16];
   palette(r0, r1, snorm, pal);
+  for (int i = 0; i < 16; ++i) t[i] = std::min(std::max(double(v[i]), lo_end), hi_end);
+  bc4_nearest(t, pal, c.indices, errors);  // SIMD twins
   double err = 0.0;
-  for (int i = 0; i < 16; ++i) {
-    const double t = std::clamp(double(v[i]), lo_end, hi_end);
-    int best = 0;
-    double be = (t - pal[0]) * (t - pal[0]);
-    for (int k = 1; k < 8; ++k) {
-      const double e = (t - pal[k]) * (t - pal[k]);
-      if (e < be) be = e, best = k;
-    }
-    c.indices[i] = std::uint8_t(best);
-    err += be;
-  }
+  for (int i = 0; i < 16; ++i) err += errors[i];  // in order: the same sum on every target
   c.r0 = r0;
   c.r1 = r1;
   c.error = err;

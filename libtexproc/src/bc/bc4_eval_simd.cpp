@@ -1,0 +1,69 @@
+// BC4 palette scoring: the scalar reference and its Highway twin (lanes over
+// the 16 values). Same operations, no FMA: identical results.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "bc/bc4_eval_simd.cpp"
+#include <hwy/foreach_target.h>  // must come before highway.h
+#include <hwy/highway.h>
+
+#include "bc/bc4_eval.h"
+#include "texproc/runtime.h"
+
+#ifndef TEXPROC_BC4_EVAL_REF
+#define TEXPROC_BC4_EVAL_REF
+namespace texproc::ref {
+void bc4_nearest(const double t[16], const double pal[8], std::uint8_t codes[16], double errors[16]) {
+  for (int i = 0; i < 16; ++i) {
+    int best = 0;
+    double be = (t[i] - pal[0]) * (t[i] - pal[0]);
+    for (int k = 1; k < 8; ++k) {
+      const double e = (t[i] - pal[k]) * (t[i] - pal[k]);
+      if (e < be) be = e, best = k;
+    }
+    codes[i] = std::uint8_t(best);
+    errors[i] = be;
+  }
+}
+}  // namespace texproc::ref
+#endif
+
+HWY_BEFORE_NAMESPACE();
+namespace texproc {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+void Bc4Nearest(const double t[16], const double pal[8], std::uint8_t codes[16], double errors[16]) {
+  const hn::CappedTag<double, 16> d;
+  const int lanes = int(hn::Lanes(d));
+  HWY_ALIGN double code_out[16];
+  for (int i = 0; i < 16; i += lanes) {
+    const auto v = hn::LoadU(d, t + i);
+    auto diff = hn::Sub(v, hn::Set(d, pal[0]));
+    auto be = hn::Mul(diff, diff);
+    auto best = hn::Zero(d);
+    for (int k = 1; k < 8; ++k) {
+      diff = hn::Sub(v, hn::Set(d, pal[k]));
+      const auto e = hn::Mul(diff, diff);
+      const auto better = hn::Lt(e, be);
+      be = hn::IfThenElse(better, e, be);
+      best = hn::IfThenElse(better, hn::Set(d, double(k)), best);
+    }
+    hn::StoreU(be, d, errors + i);
+    hn::StoreU(best, d, code_out + i);
+  }
+  for (int i = 0; i < 16; ++i) codes[i] = std::uint8_t(code_out[i]);
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace texproc
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace texproc {
+HWY_EXPORT(Bc4Nearest);
+
+void bc4_nearest(const double t[16], const double pal[8], std::uint8_t codes[16], double errors[16]) {
+  if (force_scalar()) return ref::bc4_nearest(t, pal, codes, errors);
+  HWY_DYNAMIC_DISPATCH(Bc4Nearest)(t, pal, codes, errors);
+}
+}  // namespace texproc
+#endif
