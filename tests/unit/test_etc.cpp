@@ -633,11 +633,13 @@ TEST(EtcEncode, Etc1StreamsAreEtc2AndThreadsDoNotMatter) {
   }
 }
 
-// The half-block scoring's SIMD twin gives the scalar reference's bytes on
-// every target this CPU supports, for every colour format and quality.
+// The SIMD twins (half-block scoring; EAC's nearest-of-8) give the scalar
+// reference's bytes on every target this CPU supports, for every format and
+// quality.
 TEST(EtcEncode, SimdMatchesScalarOnEveryTarget) {
   const Image img = random_smooth_or_noise();
-  for (TexelFormat f : {TexelFormat::etc1_rgb, TexelFormat::etc2_rgb_unorm, TexelFormat::etc2_rgba1_unorm}) {
+  for (TexelFormat f : {TexelFormat::etc1_rgb, TexelFormat::etc2_rgb_unorm, TexelFormat::etc2_rgba1_unorm,
+                        TexelFormat::etc2_rgba8_unorm, TexelFormat::eac_r11_unorm, TexelFormat::eac_rg11_snorm}) {
     for (Quality q : {Quality::fast, Quality::normal, Quality::high}) {
       set_force_scalar(true);
       const auto scalar = compress_image(img.view(), f, q);

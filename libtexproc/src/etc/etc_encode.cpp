@@ -23,6 +23,7 @@
 #include <cstring>
 #include <limits>
 
+#include "bc/bc4_eval.h"
 #include "bc/block_gather.h"
 #include "etc/etc_tables.h"
 #include "texproc/error.h"
@@ -600,21 +601,13 @@ struct EacCandidate {
 };
 
 void eac_try(const double t[16], EacKind kind, int base, int mult, int table, EacCandidate& best) {
-  int vals[8];
+  double vals[8], errors[16];
   for (int k = 0; k < 8; ++k) vals[k] = eac_value(kind, base, mult, kEacModifiers[table][k]);
-  double err = 0;
   std::uint8_t idx[16];
-  for (int i = 0; i < 16; ++i) {
-    double be = std::numeric_limits<double>::max();
-    int bk = 0;
-    for (int k = 0; k < 8; ++k) {
-      const double d = vals[k] - t[i];
-      if (d * d < be) be = d * d, bk = k;
-    }
-    idx[i] = std::uint8_t(bk);
-    err += be;
-    if (err >= best.err) return;
-  }
+  bc4_nearest(t, vals, idx, errors);  // each value's nearest of the 8 (SIMD twins, as for BC4)
+  double err = 0;
+  for (int i = 0; i < 16; ++i) err += errors[i];
+  if (err >= best.err) return;
   best.err = err;
   best.base = base, best.mult = mult, best.table = table;
   std::memcpy(best.idx, idx, 16);
