@@ -270,22 +270,29 @@ TEST(TransparentColor, ZeroAndBleed) {
   EXPECT_THROW(parse_transparent_color("black"), Error);
 }
 
-// The cluster fit's SIMD twin gives the scalar reference's bytes on every
-// target this CPU supports (the BC1 `high` and `max` paths run it).
-TEST(Bc1Encode, ClusterFitSimdMatchesScalarOnEveryTarget) {
+// The SIMD twins of BC1 (index assignment at every quality, the cluster fit
+// at `high` and `max`) give the scalar reference's bytes on every target
+// this CPU supports, with and without punch-through alpha.
+TEST(Bc1Encode, SimdMatchesScalarOnEveryTarget) {
   Image img = random_image(64, 48, 4, PixelType::u8, 21);
   for (int y = 0; y < 24; ++y)  // smooth gradients in the top half, noise below
     for (int x = 0; x < 64; ++x)
       for (int c = 0; c < 3; ++c) img.row<std::uint8_t>(y)[x * 4 + c] = std::uint8_t((x * (c + 1) * 3 + y * 5) & 255);
-  for (Quality q : {Quality::high, Quality::max}) {
-    set_force_scalar(true);
-    const auto scalar = compress_image(img.view(), TexelFormat::bc1_rgb_unorm, q);
-    set_force_scalar(false);
-    for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
-      hwy::SetSupportedTargetsForTest(target);
-      EXPECT_EQ(compress_image(img.view(), TexelFormat::bc1_rgb_unorm, q), scalar) << hwy::TargetName(target);
+  for (int y = 30; y < 48; ++y)  // some transparent texels for bc1a
+    for (int x = 0; x < 64; x += 3) img.row<std::uint8_t>(y)[x * 4 + 3] = 0;
+  for (TexelFormat f : {TexelFormat::bc1_rgb_unorm, TexelFormat::bc1_rgba_unorm, TexelFormat::bc3_unorm}) {
+    for (Quality q : {Quality::fast, Quality::normal, Quality::high, Quality::max}) {
+      if (q == Quality::max && f != TexelFormat::bc1_rgb_unorm) continue;  // slow; one format is enough
+      set_force_scalar(true);
+      const auto scalar = compress_image(img.view(), f, q);
+      set_force_scalar(false);
+      for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
+        hwy::SetSupportedTargetsForTest(target);
+        EXPECT_EQ(compress_image(img.view(), f, q), scalar) << format_info(f).name << " " << to_string(q) << " "
+                                                            << hwy::TargetName(target);
+      }
+      hwy::SetSupportedTargetsForTest(0);
     }
-    hwy::SetSupportedTargetsForTest(0);
   }
 }
 

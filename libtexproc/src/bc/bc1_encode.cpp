@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bc/bc1_encode.h"
+#include "bc/bc1_assign.h"
 #include "bc/bc1_cluster.h"
 
 namespace texproc {
@@ -52,32 +53,15 @@ struct Result {
 
 // Best index per texel for endpoints in a mode; `transparent[i]` texels take
 // index 3 of the three-colour mode; `allow_black`: opaque texels may use it.
-void assign(const std::uint8_t rgb[16][3], const bool transparent[16], const Endpoints& e, bool four, bool allow_black,
-            Result& r) {
+void assign(const Bc1Texels& tx, const Endpoints& e, bool four, bool allow_black, Result& r) {
   int pal[4][3];
   palette(e, four, pal);
   r.e = e;
   r.four = four;
+  std::int32_t errors[16];
+  bc1_nearest(tx, pal, four ? 4 : (allow_black ? 4 : 3), r.idx, errors);  // SIMD twins
   r.error = 0;
-  const int candidates = four ? 4 : (allow_black ? 4 : 3);
-  for (int i = 0; i < 16; ++i) {
-    if (transparent[i]) {
-      r.idx[i] = 3;
-      continue;
-    }
-    int best = 0;
-    long long be = -1;
-    for (int k = 0; k < candidates; ++k) {
-      long long d = 0;
-      for (int ch = 0; ch < 3; ++ch) {
-        const int t = rgb[i][ch] - pal[k][ch];
-        d += t * t;
-      }
-      if (be < 0 || d < be) be = d, best = k;
-    }
-    r.idx[i] = std::uint8_t(best);
-    r.error += be;
-  }
+  for (int i = 0; i < 16; ++i) r.error += errors[i];
 }
 
 int quantize(float v, int bits) {
@@ -287,6 +271,11 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q,
     transparent[i] = mode == ColorMode::bc1_punch_through && rgba[i][3] < 128;
     any_transparent |= transparent[i];
   }
+  Bc1Texels tx;
+  for (int i = 0; i < 16; ++i) {
+    tx.r[i] = rgb[i][0], tx.g[i] = rgb[i][1], tx.b[i] = rgb[i][2];
+    tx.transparent[i] = transparent[i] ? 1 : 0;
+  }
   const bool three_allowed = mode != ColorMode::four_only;
   Result best;
   best.error = -1;
@@ -325,7 +314,7 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q,
         e.c[k][2] = s.five[m][rgb[0][2]][k];
       }
       Result r;
-      assign(rgb, transparent, e, m == 0, false, r);
+      assign(tx, e, m == 0, false, r);
       keep(r);
     }
   }
@@ -363,12 +352,12 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q,
     if (!four && !three_allowed) continue;
     if (four && any_transparent) continue;  // transparent texels need the three-colour mode
     Result r;
-    assign(rgb, transparent, quantize(a, b), four, false, r);
+    assign(tx, quantize(a, b), four, false, r);
     for (int it = 0; it < refinements; ++it) {
       float ra[3], rb[3];
       if (!refit(rgb, transparent, r, ra, rb)) break;
       Result n2;
-      assign(rgb, transparent, quantize(ra, rb), four, false, n2);
+      assign(tx, quantize(ra, rb), four, false, n2);
       if (n2.error >= r.error) break;
       r = n2;
     }
@@ -381,7 +370,7 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q,
         cluster_fit(rgb, transparent, fit_axis, four, q == Quality::max ? 8 : 3, cands);
         for (const Endpoints& e : cands) {
           Result n2;
-          assign(rgb, transparent, e, four, false, n2);
+          assign(tx, e, four, false, n2);
           if (n2.error < r.error) r = n2;
         }
         double d[3], len = 0;
@@ -404,7 +393,7 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q,
               e.c[k][ch] += d;
               if (e.c[k][ch] < 0 || e.c[k][ch] > (ch == 1 ? 63 : 31)) continue;
               Result n2;
-              assign(rgb, transparent, e, four, false, n2);
+              assign(tx, e, four, false, n2);
               if (n2.error < r.error) r = n2, improved = true;
             }
       }
