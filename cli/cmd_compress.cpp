@@ -192,14 +192,15 @@ void add_compress_command(CLI::App& app) {
       "data: no transfer function. ETC and EAC go to .ktx2 (the default for -o DIR/), .ktx, or .pkm (ETC1 and\n"
       "ETC2 RGB, one level). See docs/compression.md.");
   add_batch_inputs(*cmd, args->io, "Input images",
-                   "Output texture (.dds, .ktx2, .ktx), folder (DIR/: {stem}.dds each) or template ('out/{stem}.ktx2')");
+                   "Output texture (.dds, .ktx2, .ktx, .pkm), folder (DIR/: {stem}.dds each; .ktx2 for ETC/EAC) or "
+                   "template ('out/{stem}.ktx2')");
   cmd->add_option("--format", args->format,
                  "bc1, bc1a (1-bit alpha), bc2, bc3, bc4, bc4s, bc5, bc5s; etc1, etc2, etc2a1 (punch-through alpha), "
                  "etc2a (EAC alpha), eac-r11, eac-r11s, eac-rg11, eac-rg11s")
       ->required();
   cmd->add_flag("--srgb", args->srgb, "BC1-BC3: write the sRGB format (the default for 8/16-bit colour input)");
   cmd->add_flag("--linear", args->linear, "The input is data: UNORM formats, linear mip filtering");
-  cmd->add_option("--quality", args->quality, "fast, normal, high, max (exhaustive)")->capture_default_str();
+  cmd->add_option("--quality", args->quality, "fast, normal, high, max (widest search; slow)")->capture_default_str();
   cmd->add_flag("--mips", args->mips, "Compress a whole mip chain (mip options below)");
   cmd->add_flag("--normal-map", args->normal_map,
                 "The input is a normal map: linear, renormalized mips; bc5/eac-rg11 store X and Y, bc3 the DXT5nm "
@@ -208,7 +209,7 @@ void add_compress_command(CLI::App& app) {
   add_chain_options(*cmd, args->chain);
   cmd->add_option("--dds-header", args->dds_header, "auto, dx9, dx10")->capture_default_str();
   cmd->add_option("--transparent-color", args->transparent_color,
-                  "Colour under alpha 0 (bc1a, bc2, bc3): keep, bleed (from the visible texels), zero")
+                  "Colour under alpha 0 (bc1a, bc2, bc3, etc2a1, etc2a): keep, bleed (from the visible texels), zero")
       ->capture_default_str();
   cmd->add_flag("--report", args->report, "Decode level 0 again and report its PSNR (all channels, RGB, each channel)");
   add_common_options(*cmd, args->common);
