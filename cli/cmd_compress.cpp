@@ -1,5 +1,5 @@
-// texproc compress: block compression into DDS, KTX2 or KTX1, optionally
-// with a mip chain. So far the RGTC formats (BC4, BC5).
+// texproc compress: block compression (BC1-BC5, ETC1, ETC2, EAC) into DDS,
+// KTX2, KTX1 or PKM, optionally with a mip chain.
 #include <chrono>
 #include <cmath>
 #include <cstdio>

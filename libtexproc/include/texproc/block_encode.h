@@ -1,5 +1,5 @@
-// texproc/block_encode.h: block compression: BC1-BC5 so far (the ETC family
-// is in progress; see the open compression issues and docs/compression.md).
+// texproc/block_encode.h: block compression: BC1-BC5, ETC1, ETC2 and EAC
+// (docs/compression.md describes the encoders and their quality levels).
 #pragma once
 
 #include <cstdint>
@@ -10,12 +10,14 @@
 
 namespace texproc {
 
-enum class Quality {
-  fast,    // BC4: min/max endpoints, 8-value mode
-  normal,  // + both modes, least-squares endpoint refinement, +-1 window
-  high,    // + +-3 around the refined endpoints and +-8 around min/max
-  max      // exhaustive endpoint pairs (slow; for reference)
-};
+// How hard the encoders search (per format in docs/compression.md). BC4/BC5:
+// fast = min/max endpoints; normal = + both modes, least-squares refinement,
+// +-1 window; high = +-3 and +-8 windows; max = every endpoint pair. BC1:
+// fast = principal axis; normal = + least squares; high = + cluster fit and
+// endpoint nudging; max = iterated cluster fit. ETC: fast = three tables at
+// the mean; normal = + seeds and re-centring, planar, T/H; high = every
+// table refined, +-1 base search, every T/H distance; max = +-2.
+enum class Quality { fast, normal, high, max };
 Quality parse_quality(std::string_view name);  // throws Error{bad_arguments}
 const char* to_string(Quality q);
 
@@ -28,13 +30,14 @@ void encode_bc4_block(const float values[16], bool snorm, Quality q, std::uint8_
 // Squared error of a BC4 block against the targets, decoded exactly.
 double bc4_block_error(const std::uint8_t block[8], const float values[16], bool snorm);
 
-// Compresses a whole image to a BC format. BC1-BC3 take the stored values
-// as RGBA8 (gray fills RGB, missing alpha is opaque; 16-bit and float are
-// rounded to 8 bits). BC4 takes the first channel, BC5 the first two (for
-// one-channel input BC5's green is 0), as data: integers scaled to [0, 1],
-// SNORM formats map [0, 1] to [-1, 1] (so a normal map's stored
-// x * 0.5 + 0.5 becomes x). Partial blocks replicate the edge texels. Bytes
-// are identical for any thread count. Throws Error{unsupported} for ETC.
+// Compresses a whole image to a block format. BC1-BC3 and ETC1/ETC2 take the
+// stored values as RGBA8 (gray fills RGB, missing alpha is opaque; 16-bit and
+// float are rounded to 8 bits). BC4 and EAC R11 take the first channel, BC5
+// and EAC RG11 the first two (for one-channel input the second is 0), as
+// data: integers scaled to [0, 1], SNORM formats map [0, 1] to [-1, 1] (so a
+// normal map's stored x * 0.5 + 0.5 becomes x). Partial blocks replicate the
+// edge texels. Bytes are identical for any thread count and SIMD target.
+// Throws Error{unsupported} for formats that are not block formats.
 std::vector<std::uint8_t> compress_image(const ImageView& image, TexelFormat format, Quality q);
 
 }  // namespace texproc
