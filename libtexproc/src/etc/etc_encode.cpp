@@ -119,7 +119,7 @@ HalfFit fit_half(const Texels& tx, int h, int bits, Quality q, bool non_opaque) 
   // modifier seeds the search where the mean alone would lock the indices
   // one step off.
   int bright = -1, dark = -1;
-  for (int i = 0; i < 8; ++i) {
+  for (int i = 0; i < 8 && q != Quality::fast; ++i) {  // seeds are not used at `fast`
     const int p = L.y[i] * 4 + L.x[i];
     if (non_opaque && tx.transparent[p]) continue;
     const int sum = tx.rgb[p][0] + tx.rgb[p][1] + tx.rgb[p][2];
@@ -266,6 +266,12 @@ std::uint64_t pack_halves(const HalfFit& a, const HalfFit& b, bool flip, bool di
   return v;
 }
 
+// Keeps a pair of halves if it beats the best so far (packed only then).
+void keep_pair(Candidate& best, const HalfFit& a, const HalfFit& b, bool flip, bool differential, int bit33) {
+  const long err = a.err + b.err;
+  if (err < best.err) keep(best, err, pack_halves(a, b, flip, differential, bit33));
+}
+
 bool delta_fits(const int a[3], const int b[3]) {
   for (int c = 0; c < 3; ++c)
     if (b[c] - a[c] < -4 || b[c] - a[c] > 3) return false;
@@ -285,10 +291,10 @@ void search_etc1_modes(const Texels& tx, Quality q, bool allow_individual, bool 
     if (allow_individual && (q == Quality::high || q == Quality::max || !delta_fits(h5[a].q, h5[b].q))) {
       for (int hh : {a, b})
         if (h4[hh].err == kNone) h4[hh] = fit_half(tx, hh, 4, q, non_opaque);
-      keep(best, h4[a].err + h4[b].err, pack_halves(h4[a], h4[b], flip, false, 0));
+      keep_pair(best, h4[a], h4[b], flip, false, 0);
     }
     if (delta_fits(h5[a].q, h5[b].q)) {
-      keep(best, h5[a].err + h5[b].err, pack_halves(h5[a], h5[b], flip, true, bit33_diff));
+      keep_pair(best, h5[a], h5[b], flip, true, bit33_diff);
       continue;
     }
     // Too far apart for the 3-bit delta: pull one base towards the other and
@@ -304,7 +310,7 @@ void search_etc1_modes(const Texels& tx, Quality q, bool allow_individual, bool 
       const HalfFit refit = fit_fixed(tx, mh, qm, non_opaque);
       const HalfFit& first = moved ? fixed : refit;
       const HalfFit& second = moved ? refit : fixed;
-      keep(best, first.err + second.err, pack_halves(first, second, flip, true, bit33_diff));
+      keep_pair(best, first, second, flip, true, bit33_diff);
     }
   }
 }
