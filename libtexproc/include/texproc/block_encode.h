@@ -13,8 +13,8 @@ namespace texproc {
 // How hard the encoders search (per format in docs/compression.md). BC4/BC5:
 // fast = min/max endpoints; normal = + both modes, least-squares refinement,
 // +-1 window; high = +-3 and +-8 windows; max = every endpoint pair. BC1:
-// fast = principal axis; normal = + least squares; high = + cluster fit and
-// endpoint nudging; max = iterated cluster fit. ETC: fast = three tables at
+// fast = principal axis; normal = + least squares and a local cluster fit;
+// high = + full cluster fit and endpoint nudging; max = iterated cluster fit. ETC: fast = three tables at
 // the mean; normal = + seeds and re-centring, planar, T/H; high = every
 // table refined, +-1 base search, every T/H distance; max = +-2.
 enum class Quality { fast, normal, high, max };

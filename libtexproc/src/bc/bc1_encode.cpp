@@ -165,8 +165,11 @@ void write(const Result& r, std::uint8_t out[8]) {
 // (a + b) / 2, b); each split's least-squares endpoints come in closed form
 // from prefix sums. The `keep_best` splits with the least unquantized error
 // are quantized and scored under the exact decoding.
+// window > 0: only the four-cluster splits whose first two boundaries lie
+// within `window` of the range fit's (the texels cut at 1/6 and 1/2 of the
+// extent along the axis): a local cluster fit.
 void cluster_fit(const std::uint8_t rgb[16][3], const bool transparent[16], const double axis[3], bool four,
-                 int keep_best, std::vector<Endpoints>& out) {
+                 int keep_best, std::vector<Endpoints>& out, int window = 0) {
   int order[16], n = 0;
   double proj[16];
   for (int i = 0; i < 16; ++i) {
@@ -233,8 +236,20 @@ void cluster_fit(const std::uint8_t rgb[16][3], const bool transparent[16], cons
   if (four) {
     // The four-cluster splits, a row of k at a time (SIMD twins).
     ClusterRow row;
-    for (int i = 0; i <= n; ++i)
-      for (int j = i; j <= n; ++j) {
+    int i_lo = 0, i_hi = n, j_lo = 0, j_hi = n;
+    if (window > 0 && n > 0) {
+      const double lo = proj[order[0]], span = proj[order[n - 1]] - lo;
+      int i0 = 0, j0 = 0;
+      for (int m = 0; m < n; ++m) {
+        const double t = span > 0 ? (proj[order[m]] - lo) / span : 0.0;
+        i0 += t < 1.0 / 6.0;
+        j0 += t < 0.5;
+      }
+      i_lo = std::max(0, i0 - window), i_hi = std::min(n, i0 + window);
+      j_lo = std::max(0, j0 - window), j_hi = std::min(n, j0 + window);
+    }
+    for (int i = i_lo; i <= i_hi; ++i)
+      for (int j = std::max(i, j_lo); j <= j_hi; ++j) {
         cluster_splits(pre, total_sq, n, i, j, row);
         for (int k = j; k <= n; ++k) {
           const double err = row.err[k - j];
@@ -360,6 +375,16 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q,
       assign(tx, quantize(ra, rb), four, false, n2);
       if (n2.error >= r.error) break;
       r = n2;
+    }
+    if (q == Quality::normal && four) {
+      // A local cluster fit: splits near the range fit's, its best two scored exactly.
+      std::vector<Endpoints> cands;
+      cluster_fit(rgb, transparent, axis, four, 2, cands, 1);
+      for (const Endpoints& e : cands) {
+        Result n2;
+        assign(tx, e, four, false, n2);
+        if (n2.error < r.error) r = n2;
+      }
     }
     if (q == Quality::high || q == Quality::max) {
       // Cluster fit along the principal axis (and, iterated, along the best
