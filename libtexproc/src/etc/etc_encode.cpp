@@ -487,73 +487,98 @@ void search_t_h(const Texels& tx, bool non_opaque, Quality q_level, Candidate& b
   const int bit33 = 1;  // the differential flag (or, with punch-through, "opaque"; set below)
   const int opaque_bit = non_opaque ? 0 : 1;
   (void)bit33;
-  // T: one cluster is the single colour C1, the other C2 +- d.
-  for (int single = 0; single < 2; ++single) {
-    const int* c1 = q[single];
-    const int* c2 = q[1 - single];
+  // Scores T and H for one pair of 4-bit cluster colours.
+  long th_min = kNone;  // the least T or H error seen
+  const long before = best.err;  // the best of the other modes
+  auto try_colours = [&](const int (&qc)[2][3]) {
+    // T: one cluster is the single colour C1, the other C2 +- d.
+    for (int single = 0; single < 2; ++single) {
+      const int* c1 = qc[single];
+      const int* c2 = qc[1 - single];
+      for (int di = d_lo; di <= d_hi; ++di) {
+        const int d = kDistances[di];
+        int paint[4][3];
+        for (int c = 0; c < 3; ++c) {
+          paint[0][c] = extend4(c1[c]);
+          paint[1][c] = extend4(c2[c]) + d;
+          paint[2][c] = extend4(c2[c]);
+          paint[3][c] = extend4(c2[c]) - d;
+        }
+        std::uint8_t idx[16];
+        const long e = score(paint, idx);
+        th_min = std::min(th_min, e);
+        if (e >= best.err) continue;
+        std::uint64_t v = 0;
+        put(v, 60, 2, c1[0] >> 2), put(v, 57, 2, c1[0] & 3), put(v, 55, 4, c1[1]), put(v, 51, 4, c1[2]);
+        put(v, 47, 4, c2[0]), put(v, 43, 4, c2[1]), put(v, 39, 4, c2[2]);
+        put(v, 35, 2, di >> 1), put(v, 32, 1, di & 1), put(v, 33, 1, opaque_bit);
+        if ((c1[0] >> 2) + (c1[0] & 3) > 3) {
+          put(v, 63, 3, 7), put(v, 58, 1, 0);
+        } else {
+          put(v, 63, 3, 0), put(v, 58, 1, 1);
+        }
+        put_indices(v, idx);
+        keep(best, e, v);
+      }
+    }
+    // H: C1 +- d and C2 +- d; the distance index's low bit is the order of
+    // the two colours, so a colour pair in the wrong order is swapped.
     for (int di = d_lo; di <= d_hi; ++di) {
+      const int* c1 = qc[0];
+      const int* c2 = qc[1];
+      const int k1 = c1[0] << 8 | c1[1] << 4 | c1[2], k2 = c2[0] << 8 | c2[1] << 4 | c2[2];
+      if ((k1 >= k2) != bool(di & 1)) std::swap(c1, c2);
+      const int a1 = c1[0] << 8 | c1[1] << 4 | c1[2], a2 = c2[0] << 8 | c2[1] << 4 | c2[2];
+      if ((a1 >= a2) != bool(di & 1)) continue;  // equal colours: only odd indices
       const int d = kDistances[di];
       int paint[4][3];
       for (int c = 0; c < 3; ++c) {
-        paint[0][c] = extend4(c1[c]);
-        paint[1][c] = extend4(c2[c]) + d;
-        paint[2][c] = extend4(c2[c]);
+        paint[0][c] = extend4(c1[c]) + d;
+        paint[1][c] = extend4(c1[c]) - d;
+        paint[2][c] = extend4(c2[c]) + d;
         paint[3][c] = extend4(c2[c]) - d;
       }
       std::uint8_t idx[16];
       const long e = score(paint, idx);
+      th_min = std::min(th_min, e);
       if (e >= best.err) continue;
       std::uint64_t v = 0;
-      put(v, 60, 2, c1[0] >> 2), put(v, 57, 2, c1[0] & 3), put(v, 55, 4, c1[1]), put(v, 51, 4, c1[2]);
-      put(v, 47, 4, c2[0]), put(v, 43, 4, c2[1]), put(v, 39, 4, c2[2]);
-      put(v, 35, 2, di >> 1), put(v, 32, 1, di & 1), put(v, 33, 1, opaque_bit);
-      if ((c1[0] >> 2) + (c1[0] & 3) > 3) {
-        put(v, 63, 3, 7), put(v, 58, 1, 0);
+      put(v, 62, 4, c1[0]), put(v, 58, 3, c1[1] >> 1), put(v, 52, 1, c1[1] & 1);
+      put(v, 51, 1, c1[2] >> 3), put(v, 49, 2, c1[2] >> 1 & 3), put(v, 47, 1, c1[2] & 1);
+      put(v, 46, 4, c2[0]), put(v, 42, 3, c2[1] >> 1), put(v, 39, 1, c2[1] & 1), put(v, 38, 4, c2[2]);
+      put(v, 34, 1, di >> 2), put(v, 32, 1, di >> 1 & 1), put(v, 33, 1, opaque_bit);
+      // Red in range (bit 63), green out of range (bits 55-53 and 50).
+      {
+        const int s = c1[0] + ((c1[1] >> 1) >= 4 ? (c1[1] >> 1) - 8 : (c1[1] >> 1));
+        put(v, 63, 1, s < 0 ? 1 : 0);
+      }
+      const int g = (c1[1] & 1) * 2 + (c1[2] >> 3), bb = c1[2] >> 1 & 3;
+      if (g + bb > 3) {
+        put(v, 55, 3, 7), put(v, 50, 1, 0);
       } else {
-        put(v, 63, 3, 0), put(v, 58, 1, 1);
+        put(v, 55, 3, 0), put(v, 50, 1, 1);
       }
       put_indices(v, idx);
       keep(best, e, v);
     }
-  }
-  // H: C1 +- d and C2 +- d; the distance index's low bit is the order of
-  // the two colours, so a colour pair in the wrong order is swapped.
-  for (int di = d_lo; di <= d_hi; ++di) {
-    const int* c1 = q[0];
-    const int* c2 = q[1];
-    const int k1 = c1[0] << 8 | c1[1] << 4 | c1[2], k2 = c2[0] << 8 | c2[1] << 4 | c2[2];
-    if ((k1 >= k2) != bool(di & 1)) std::swap(c1, c2);
-    const int a1 = c1[0] << 8 | c1[1] << 4 | c1[2], a2 = c2[0] << 8 | c2[1] << 4 | c2[2];
-    if ((a1 >= a2) != bool(di & 1)) continue;  // equal colours: only odd indices
-    const int d = kDistances[di];
-    int paint[4][3];
-    for (int c = 0; c < 3; ++c) {
-      paint[0][c] = extend4(c1[c]) + d;
-      paint[1][c] = extend4(c1[c]) - d;
-      paint[2][c] = extend4(c2[c]) + d;
-      paint[3][c] = extend4(c2[c]) - d;
-    }
-    std::uint8_t idx[16];
-    const long e = score(paint, idx);
-    if (e >= best.err) continue;
-    std::uint64_t v = 0;
-    put(v, 62, 4, c1[0]), put(v, 58, 3, c1[1] >> 1), put(v, 52, 1, c1[1] & 1);
-    put(v, 51, 1, c1[2] >> 3), put(v, 49, 2, c1[2] >> 1 & 3), put(v, 47, 1, c1[2] & 1);
-    put(v, 46, 4, c2[0]), put(v, 42, 3, c2[1] >> 1), put(v, 39, 1, c2[1] & 1), put(v, 38, 4, c2[2]);
-    put(v, 34, 1, di >> 2), put(v, 32, 1, di >> 1 & 1), put(v, 33, 1, opaque_bit);
-    // Red in range (bit 63), green out of range (bits 55-53 and 50).
-    {
-      const int s = c1[0] + ((c1[1] >> 1) >= 4 ? (c1[1] >> 1) - 8 : (c1[1] >> 1));
-      put(v, 63, 1, s < 0 ? 1 : 0);
-    }
-    const int g = (c1[1] & 1) * 2 + (c1[2] >> 3), bb = c1[2] >> 1 & 3;
-    if (g + bb > 3) {
-      put(v, 55, 3, 7), put(v, 50, 1, 0);
-    } else {
-      put(v, 55, 3, 0), put(v, 50, 1, 1);
-    }
-    put_indices(v, idx);
-    keep(best, e, v);
+  };
+  try_colours(q);
+  // Where T or H came close to the other modes (within a quarter), at
+  // `high`: the quantization's other neighbours too.
+  if ((q_level == Quality::high || q_level == Quality::max) && th_min < before + before / 4) {
+    // Each centre rounded down or up instead of to nearest (the clamps keep
+    // 0..15): the quantization's other neighbours.
+    for (int va = 0; va < 3; ++va)
+      for (int vb = 0; vb < 3; ++vb) {
+        if (va == 0 && vb == 0) continue;
+        int alt[2][3];
+        for (int c = 0; c < 3; ++c) {
+          const double ca = centre[0][c] * 15.0 / 255.0, cb = centre[1][c] * 15.0 / 255.0;
+          alt[0][c] = std::clamp(va == 0 ? q[0][c] : va == 1 ? int(std::floor(ca)) : int(std::ceil(ca)), 0, 15);
+          alt[1][c] = std::clamp(vb == 0 ? q[1][c] : vb == 1 ? int(std::floor(cb)) : int(std::ceil(cb)), 0, 15);
+        }
+        try_colours(alt);
+      }
   }
 }
 
