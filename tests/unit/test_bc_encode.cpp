@@ -8,6 +8,7 @@
 #include <random>
 
 #include "support/images.h"
+#include "support/targets.h"
 #include "support/threads.h"
 #include "texproc/block_decode.h"
 #include "texproc/block_encode.h"
@@ -283,15 +284,8 @@ TEST(Bc1Encode, SimdMatchesScalarOnEveryTarget) {
   for (TexelFormat f : {TexelFormat::bc1_rgb_unorm, TexelFormat::bc1_rgba_unorm, TexelFormat::bc3_unorm}) {
     for (Quality q : {Quality::fast, Quality::normal, Quality::high, Quality::max}) {
       if (q == Quality::max && f != TexelFormat::bc1_rgb_unorm) continue;  // slow; one format is enough
-      set_force_scalar(true);
-      const auto scalar = compress_image(img.view(), f, q);
-      set_force_scalar(false);
-      for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
-        hwy::SetSupportedTargetsForTest(target);
-        EXPECT_EQ(compress_image(img.view(), f, q), scalar) << format_info(f).name << " " << to_string(q) << " "
-                                                            << hwy::TargetName(target);
-      }
-      hwy::SetSupportedTargetsForTest(0);
+      expect_same_on_every_target([&] { return compress_image(img.view(), f, q); },
+                                  std::string(format_info(f).name) + " " + to_string(q));
     }
   }
 }
@@ -305,15 +299,8 @@ TEST(Bc4Encode, SimdMatchesScalarOnEveryTarget) {
       for (int c = 0; c < 4; ++c) img.row<std::uint16_t>(y)[x * 4 + c] = std::uint16_t((x * 900 + y * 500 + c * 7000) & 0xFFFF);
   for (TexelFormat f : {TexelFormat::bc4_unorm, TexelFormat::bc4_snorm, TexelFormat::bc5_unorm, TexelFormat::bc3_unorm}) {
     for (Quality q : {Quality::fast, Quality::normal, Quality::high}) {
-      set_force_scalar(true);
-      const auto scalar = compress_image(img.view(), f, q);
-      set_force_scalar(false);
-      for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
-        hwy::SetSupportedTargetsForTest(target);
-        EXPECT_EQ(compress_image(img.view(), f, q), scalar) << format_info(f).name << " " << to_string(q) << " "
-                                                            << hwy::TargetName(target);
-      }
-      hwy::SetSupportedTargetsForTest(0);
+      expect_same_on_every_target([&] { return compress_image(img.view(), f, q); },
+                                  std::string(format_info(f).name) + " " + to_string(q));
     }
   }
 }

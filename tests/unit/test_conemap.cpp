@@ -33,6 +33,15 @@ std::vector<float> field(int w, int h, const char* kind, unsigned seed) {
     }
   return f;
 }
+// How many texels apart two texture coordinates are along an axis of n
+// texels, on the torus: hits within one texel count as the same hit (a hit
+// on a wall between two texels may land on either side).
+int texel_gap(float a_uv, float b_uv, int n) {
+  const int ia = wrap_index(int(std::floor(a_uv * n)), n, WrapMode::repeat);
+  const int ib = wrap_index(int(std::floor(b_uv * n)), n, WrapMode::repeat);
+  const int d = std::abs(ia - ib);
+  return std::min(d, n - d);
+}
 }  // namespace
 
 // The branch and bound visits far fewer texels but must find the same
@@ -217,12 +226,6 @@ TEST(ConeMap, ConeSteppingFindsTheFirstHitOnCorpusHeightmaps) {
         if (!a.hit) continue;
         // Within one texel: the hit texels are the same or neighbours (on the
         // torus); a hit on a wall between two texels may land on either side.
-        auto texel_gap = [](float a_uv, float b_uv, int n) {
-          const int ia = wrap_index(int(std::floor(a_uv * n)), n, WrapMode::repeat);
-          const int ib = wrap_index(int(std::floor(b_uv * n)), n, WrapMode::repeat);
-          const int d = std::abs(ia - ib);
-          return std::min(d, n - d);
-        };
         ASSERT_LE(texel_gap(a.u, b.u, W), 1) << file << " ray " << i;
         ASSERT_LE(texel_gap(a.v, b.v, H), 1) << file << " ray " << i;
         // The --fast map is as safe (its cones are never wider).
@@ -283,12 +286,6 @@ TEST(ConeMap, RelaxedSteppingFindsTheFirstHitOnCorpusHeightmaps) {
       std::mt19937 rng(23);
       std::uniform_real_distribution<float> u(0.0f, 1.0f);
       int rays = 0, relaxed_steps = 0, cone_steps = 0;
-      auto texel_gap = [](float a_uv, float b_uv, int n) {
-        const int ia = wrap_index(int(std::floor(a_uv * n)), n, WrapMode::repeat);
-        const int ib = wrap_index(int(std::floor(b_uv * n)), n, WrapMode::repeat);
-        const int d = std::abs(ia - ib);
-        return std::min(d, n - d);
-      };
       for (int i = 0; i < 1500; ++i) {
         const float angle = u(rng) * 6.2831853f, tilt = 0.2f + 1.2f * u(rng);
         const float du = depth * std::tan(tilt) * std::cos(angle), dv = depth * std::tan(tilt) * std::sin(angle);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "support/images.h"
+#include "support/targets.h"
 #include "support/threads.h"
 #include "texproc/block_decode.h"
 #include "texproc/block_encode.h"
@@ -641,15 +642,8 @@ TEST(EtcEncode, SimdMatchesScalarOnEveryTarget) {
   for (TexelFormat f : {TexelFormat::etc1_rgb, TexelFormat::etc2_rgb_unorm, TexelFormat::etc2_rgba1_unorm,
                         TexelFormat::etc2_rgba8_unorm, TexelFormat::eac_r11_unorm, TexelFormat::eac_rg11_snorm}) {
     for (Quality q : {Quality::fast, Quality::normal, Quality::high}) {
-      set_force_scalar(true);
-      const auto scalar = compress_image(img.view(), f, q);
-      set_force_scalar(false);
-      for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
-        hwy::SetSupportedTargetsForTest(target);
-        EXPECT_EQ(compress_image(img.view(), f, q), scalar) << format_info(f).name << " " << to_string(q) << " "
-                                                            << hwy::TargetName(target);
-      }
-      hwy::SetSupportedTargetsForTest(0);
+      expect_same_on_every_target([&] { return compress_image(img.view(), f, q); },
+                                  std::string(format_info(f).name) + " " + to_string(q));
     }
   }
 }
