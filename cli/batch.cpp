@@ -154,14 +154,6 @@ std::vector<std::string> name_outputs(const BatchCommand& c, const BatchInputs& 
       outs.push_back(o);
     }
   }
-  std::map<std::string, std::size_t> seen;
-  for (std::size_t i = 0; i < outs.size(); ++i) {
-    auto [it, fresh] = seen.emplace(outs[i], i);
-    if (!fresh) {
-      throw Error(ErrorCode::bad_arguments, outs[i] + ": both " + files[it->second].path + " and " + files[i].path +
-                                                " would write this output; use a template with {name} or {dir}");
-    }
-  }
   return outs;
 }
 
@@ -216,7 +208,6 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
 
   // Plan every file (names, existence, overwrites) before any work.
   std::vector<FileReport> reports(files.size());
-  std::vector<std::size_t> todo;
   std::error_code ec;
   for (std::size_t i = 0; i < files.size(); ++i) {
     FileReport& r = reports[i];
@@ -228,28 +219,38 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
         throw Error(ErrorCode::io, r.input + (fs::exists(r.input, ec) ? ": not a file" : ": no such file"));
       }
       r.outputs = c.plan(files[i], outputs[i]);
-      if (s.skip_existing && std::all_of(r.outputs.begin(), r.outputs.end(),
-                                         [&](const std::string& f) { return fs::exists(f, ec); })) {
-        r.status = "skipped";
-        r.line = r.input + ": skipped, outputs exist";
-        continue;
-      }
-      for (const auto& out : r.outputs) check_output(out, {r.input}, common.force);
-      todo.push_back(i);
     } catch (const Error& e) {
       fail(r, e.code(), e.what());
     }
   }
-  // Two files must not write one output (an extra output such as a preview
-  // named without a template).
+  // One writer per output (extra outputs such as a preview included),
+  // before any folder is made.
   std::map<std::string, std::size_t> writer;
   for (std::size_t i = 0; i < reports.size(); ++i) {
-    for (const auto& o : reports[i].outputs) {
+    const std::vector<std::string> claimed = reports[i].outputs.empty() ? std::vector{outputs[i]} : reports[i].outputs;
+    for (const auto& o : claimed) {
       auto [it, fresh] = writer.emplace(fs::path(o).lexically_normal().string(), i);
       if (!fresh && it->second != i) {
         throw Error(ErrorCode::bad_arguments, o + ": both " + reports[it->second].input + " and " + reports[i].input +
-                                                  " would write this output; name it with a template ({stem})");
+                                                  " would write this output; name outputs with a template ({stem}, "
+                                                  "{name}, {dir})");
       }
+    }
+  }
+  std::vector<std::size_t> todo;
+  for (std::size_t i = 0; i < reports.size(); ++i) {
+    FileReport& r = reports[i];
+    if (r.status == "failed") continue;
+    if (s.skip_existing && std::all_of(r.outputs.begin(), r.outputs.end(),
+                                       [&](const std::string& f) { return fs::exists(f, ec); })) {
+      r.status = "skipped";
+      continue;
+    }
+    try {
+      for (const auto& out : r.outputs) check_output(out, {r.input}, common.force);
+      todo.push_back(i);
+    } catch (const Error& e) {
+      fail(r, e.code(), e.what());
     }
   }
   auto finish = [&]() {

@@ -34,6 +34,7 @@ struct CompressArgs {
   Quality q = Quality::normal;
   DdsHeader header = DdsHeader::automatic;
   TransparentColor transparent = TransparentColor::keep;
+  MipOptions mip;  // with --mips; the colour space is set per file
 };
 
 // --format and the colour space: BC1-BC3 take the sRGB variant for colour
@@ -64,8 +65,12 @@ void validate(CompressArgs& a) {
   a.header = parse_dds_header(a.dds_header);
   a.transparent = parse_transparent_color(a.transparent_color);
   format_for(a.format, false);  // a known format, or an error now
-  parse_filter_kind(a.chain.filter);
-  parse_wrap_mode(a.wrap);
+  a.mip.filter.kind = parse_filter_kind(a.chain.filter);
+  a.mip.filter.sigma = a.chain.sigma;
+  a.mip.wrap = parse_wrap_mode(a.wrap);
+  a.mip.max_levels = a.chain.levels;
+  a.mip.min_size = a.chain.min_size;
+  a.mip.normal_map = a.normal_map;
 }
 
 // The encoded level and its decoding as f32 images with the format's
@@ -106,13 +111,7 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   const TexelFormat format = format_for(a.format, srgb);
   std::vector<Image> levels;
   if (a.mips) {
-    MipOptions m;
-    m.filter.kind = parse_filter_kind(a.chain.filter);
-    m.filter.sigma = a.chain.sigma;
-    m.wrap = parse_wrap_mode(a.wrap);
-    m.max_levels = a.chain.levels;
-    m.min_size = a.chain.min_size;
-    m.normal_map = a.normal_map;
+    MipOptions m = a.mip;
     m.color_space = format_info(format).srgb ? "srgb" : "linear";
     MipChain c = generate_mips(std::move(img), m);
     levels = std::move(c.levels);

@@ -37,6 +37,7 @@ struct ConeArgs {
   ConeMapOptions options;
   HeightChannel channel = HeightChannel::automatic;
   std::optional<PixelType> type_choice;
+  WriteOptions write;
 };
 
 void validate(ConeArgs& a) {
@@ -55,15 +56,13 @@ void validate(ConeArgs& a) {
   if (!(a.view_angle >= 0.0f && a.view_angle < 89.0f)) {
     throw Error(ErrorCode::bad_arguments, "--view-angle must be in [0, 89) degrees from the normal");
   }
-  WriteOptions w;
-  a.type_choice = parse_output_type(a.type, w);
+  a.write.color_space = "linear";
+  a.type_choice = parse_output_type(a.type, a.write);
 }
 
 void run_conemap(const ConeArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   const ConeMapOptions& o = a.options;
-  WriteOptions w;
-  w.color_space = "linear";
-  parse_output_type(a.type, w);
+  const WriteOptions& w = a.write;
   ImageFileInfo info;
   const Image img = read_image(input, &info);
   const std::vector<float> h = extract_height(img.view(), a.channel, a.invert);

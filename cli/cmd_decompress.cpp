@@ -23,6 +23,9 @@ struct DecompressArgs {
   std::string type;
   int level = 0, layer = 0, face = 0;
   bool all_levels = false;
+  // From the options, once (validate):
+  std::optional<PixelType> type_choice;
+  WriteOptions write;
 };
 
 void check_index(const std::string& input, const char* what, int value, std::uint32_t count) {
@@ -43,9 +46,9 @@ std::vector<std::string> plan(const DecompressArgs& a, const std::string& input,
 }
 
 void run_decompress(const DecompressArgs& a, const std::string& input, const std::string& output, FileReport& r) {
-  WriteOptions w;
+  WriteOptions w = a.write;
   const bool exr = fs::path(output).extension() == ".exr";
-  std::optional<PixelType> type = parse_output_type(a.type, w);
+  std::optional<PixelType> type = a.type_choice;
   if (!type) {
     type = exr ? PixelType::f32 : PixelType::u8;
     w.half = exr;
@@ -89,10 +92,7 @@ void add_decompress_command(CLI::App& app) {
     c.name = "decompress";
     c.default_extension = ".png";
     c.input_extensions = texture_extensions();
-    c.validate = [args] {
-      WriteOptions w;
-      parse_output_type(args->type, w);
-    };
+    c.validate = [args] { args->type_choice = parse_output_type(args->type, args->write); };
     c.plan = [args](const InputFile& in, const std::string& out) { return plan(*args, in.path, out); };
     c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_decompress(*args, in, out, r); };
     return run_batch(c, args->io, args->common);

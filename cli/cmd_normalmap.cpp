@@ -36,6 +36,10 @@ struct NormalMapArgs {
   std::string dds_header = "auto";
   // From the options, once (validate):
   NormalMapOptions options;
+  std::optional<PixelType> type_choice;  // --type (empty: from the input)
+  WriteOptions write;                    // half, compression, linear
+  DdsHeader header = DdsHeader::automatic;
+  FilterKind filter = FilterKind::gaussian;
 };
 
 void validate(NormalMapArgs& a) {
@@ -52,10 +56,11 @@ void validate(NormalMapArgs& a) {
   o.y_up = a.y == "up";
   o.channels = parse_normal_channels(a.channels);
   o.multiscale_weights = a.multiscale_weights;
-  WriteOptions w;
-  parse_output_type(a.type, w);
-  parse_dds_header(a.dds_header);
-  parse_filter_kind(a.chain.filter);
+  a.write.compression = a.compression;
+  a.write.color_space = "linear";
+  a.type_choice = parse_output_type(a.type, a.write);
+  a.header = parse_dds_header(a.dds_header);
+  a.filter = parse_filter_kind(a.chain.filter);
 }
 
 std::vector<std::string> plan(const NormalMapArgs& a, const std::string& input, const std::string& output) {
@@ -66,12 +71,10 @@ std::vector<std::string> plan(const NormalMapArgs& a, const std::string& input, 
 
 void run_normalmap(const NormalMapArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   const NormalMapOptions& o = a.options;
-  WriteOptions w;
-  w.compression = a.compression;
-  w.color_space = "linear";
+  WriteOptions w = a.write;
   ImageFileInfo info;
   const Image heights = read_image(input, &info);
-  std::optional<PixelType> type = parse_output_type(a.type, w);
+  std::optional<PixelType> type = a.type_choice;
   if (!type) type = info.type == PixelType::u8 ? PixelType::u8 : PixelType::u16;
   if (a.type.empty() && std::filesystem::path(output).extension() == ".exr") {
     type = PixelType::f32;
@@ -89,7 +92,7 @@ void run_normalmap(const NormalMapArgs& a, const std::string& input, const std::
     Image level0 = normal_map(heights.view(), full, PixelType::f32);
     MipOptions m;
     m.normal_map = true;
-    m.filter.kind = parse_filter_kind(a.chain.filter);
+    m.filter.kind = a.filter;
     m.filter.sigma = a.chain.sigma;
     m.wrap = o.wrap;
     m.max_levels = a.chain.levels;
@@ -112,7 +115,7 @@ void run_normalmap(const NormalMapArgs& a, const std::string& input, const std::
   if (container) {
     // Uncompressed rg8/rgba8/16-bit/half/float (block compression in the same
     // call comes with `compress`); normals are data: linear formats.
-    write_texture(output, texture_from_levels(chain, false, w.half), parse_dds_header(a.dds_header));
+    write_texture(output, texture_from_levels(chain, false, w.half), a.header);
   } else if (a.mips) {
     write_levels(output, chain, w);
   } else {

@@ -190,9 +190,8 @@ Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t 
       for (int i = 0; i < 16; ++i) {
         const int x = bx * 4 + i % 4, y = by * 4 + i / 4;
         if (x >= w || y >= h) continue;
-        for (int c = 0; c < C; ++c) {
-          const int src = C == 4 ? c : c;  // 1: R, 2: RG, 3: RGB, 4: RGBA
-          float v = texels[i][src];
+        for (int c = 0; c < C; ++c) {  // 1: R, 2: RG, 3: RGB, 4: RGBA
+          float v = texels[i][c];
           if (type != PixelType::f32 && info.snorm) v = (v + 1.0f) * 0.5f;  // the usual biased storage
           out.set(x, y, c, v);
         }

@@ -484,9 +484,7 @@ void search_t_h(const Texels& tx, bool non_opaque, Quality q_level, Candidate& b
   auto put_indices = [&](std::uint64_t& v, const std::uint8_t idx[16]) {
     for (int i = 0; i < 16; ++i) put_index(v, i % 4, i / 4, idx[i]);
   };
-  const int bit33 = 1;  // the differential flag (or, with punch-through, "opaque"; set below)
-  const int opaque_bit = non_opaque ? 0 : 1;
-  (void)bit33;
+  const int opaque_bit = non_opaque ? 0 : 1;  // bit 33: the differential flag, or punch-through's opaque flag
   // Scores T and H for one pair of 4-bit cluster colours.
   long th_min = kNone;  // the least T or H error seen
   const long before = best.err;  // the best of the other modes
