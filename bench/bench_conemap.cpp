@@ -126,7 +126,7 @@ void register_all() {
   for (const char* kind : {"terrain", "hemisphere", "fractal", "spikes"}) {
     for (int n : {1024, 4096}) {
       for (int reach : {1, 2, 4}) {
-        if (n == 4096 && reach != 2) continue;
+        if (n == 4096 && reach == 4) continue;
         benchmark::RegisterBenchmark((std::string("fast/") + kind + "/" + std::to_string(n) + "/reach:" +
                                       std::to_string(reach) + "/threads:2").c_str(),
                                      [kind, n, reach](benchmark::State& s) { fast_cones(s, kind, n, 2, reach); })

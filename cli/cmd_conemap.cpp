@@ -30,6 +30,7 @@ struct ConeArgs {
   std::string mode = "conservative";
   bool brute_force = false;
   bool fast = false;
+  bool bilinear_safe = false;
   int fast_reach = 2;
   int preview_size = 256;
   float view_angle = 60.0f;
@@ -52,6 +53,10 @@ void validate(ConeArgs& a) {
     throw Error(ErrorCode::bad_arguments, "unknown --mode '" + a.mode + "' (valid: conservative, relaxed)");
   }
   o.mode = a.mode == "relaxed" ? ConeMode::relaxed : ConeMode::conservative;
+  o.bilinear_safe = a.bilinear_safe;
+  if (a.bilinear_safe && o.mode == ConeMode::relaxed) {
+    throw Error(ErrorCode::bad_arguments, "--bilinear-safe makes conservative cones; it does not combine with --mode relaxed");
+  }
   if (a.preview_size < 8 || a.preview_size > 4096) throw Error(ErrorCode::bad_arguments, "--preview-size must be 8 to 4096");
   if (!(a.view_angle >= 0.0f && a.view_angle < 89.0f)) {
     throw Error(ErrorCode::bad_arguments, "--view-angle must be in [0, 89) degrees from the normal");
@@ -77,6 +82,7 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
     // The preview shows both kinds side by side: the other map is computed too.
     ConeMapOptions other = o;
     other.mode = o.mode == ConeMode::relaxed ? ConeMode::conservative : ConeMode::relaxed;
+    other.bilinear_safe = false;  // relaxed cones are texel-centre cones
     const std::vector<float> second = cone_ratios(h, img.width(), img.height(), other);
     const bool relaxed = o.mode == ConeMode::relaxed;
     write_image(preview, render_preview(h, relaxed ? second : ratios, img.width(), img.height(), o, a.preview_size,
@@ -84,7 +90,8 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
                              .view());
   }
   std::ostringstream line;
-  line << input << " -> " << output << ": " << img.width() << "x" << img.height() << " " << a.mode << " cones ("
+  line << input << " -> " << output << ": " << img.width() << "x" << img.height() << " " << a.mode
+       << (a.bilinear_safe ? " bilinear-safe" : "") << " cones ("
        << (a.brute_force ? "brute force"
            : a.fast      ? "fast, never wider than exact"
                          : "exact, max-mip branch and bound")
@@ -97,6 +104,7 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
   r.details["cone_seconds"] = seconds;
   r.details["mean_ratio"] = ratios.empty() ? 0.0 : mean / double(ratios.size());
   r.details["mode"] = a.mode;
+  r.details["bilinear_safe"] = a.bilinear_safe;
 }
 
 }  // namespace
@@ -120,9 +128,13 @@ void add_conemap_command(CLI::App& app) {
                  "leave it there: wider cones, then a binary search)")
       ->capture_default_str();
   cmd->add_option("--type", args->type, "Output element type: u8, u16, f16, f32 (default: u8 for 8-bit input, else u16)");
+  cmd->add_flag("--bilinear-safe", args->bilinear_safe,
+                "Conservative cones that stay safe when the renderer samples height and ratio with bilinear filtering "
+                "(narrower than the texel-centre cones; see docs/conemap.md)");
   cmd->add_flag("--fast", args->fast,
-                "Faster, never wider cones: obstacles beyond --fast-reach 8x8 cells of a texel's cell share one bound per cell");
-  cmd->add_option("--fast-reach", args->fast_reach, "With --fast: the near field searched per texel, in 8-texel cells around its cell (>= 1)")
+                "Faster, never wider cones: a pyramid block at least --fast-reach of its own sizes from a texel's 8x8 cell "
+                "counts as one obstacle (its highest texel at its nearest point)");
+  cmd->add_option("--fast-reach", args->fast_reach, "With --fast: how many of its own sizes a block must be away to count as one obstacle (>= 1)")
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
   cmd->add_flag("--brute-force", args->brute_force, "Use the O(N^2)-per-texel definition (slow; for checking)");

@@ -273,6 +273,22 @@ TEST(Cli, ConemapWritesMapAndPreview) {
   const Image rx = read_image(dir + "/r.png");
   for (int y = 0; y < 24; ++y)
     for (int x = 0; x < 24; ++x) EXPECT_GE(rx.get(x, y, 1), c.get(x, y, 1)) << x << "," << y;
+  // --bilinear-safe: never wider than the classic cones, and with the
+  // preview (whose relaxed panel uses texel-centre cones); not with relaxed.
+  r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/s.png --bilinear-safe --preview " + dir + "/sp.png --preview-size 16 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image sb = read_image(dir + "/s.png");
+  int narrower = 0;
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 24; ++x) {
+      EXPECT_LE(sb.get(x, y, 1), c.get(x, y, 1)) << x << "," << y;
+      narrower += sb.get(x, y, 1) < c.get(x, y, 1);
+    }
+  EXPECT_GT(narrower, 0);
+  r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/x.png --bilinear-safe --mode relaxed");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("--bilinear-safe makes conservative cones"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/x.png"));
   r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/x.png --mode loose");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("unknown --mode 'loose' (valid: conservative, relaxed)"), std::string::npos) << r.err;

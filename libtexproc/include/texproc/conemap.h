@@ -29,24 +29,39 @@ struct ConeMapOptions {
   float depth = 1.0f;       // relief depth in texture widths (> 0)
   float max_ratio = 1.0f;   // cap on the ratio (> 0); the map stores sqrt(ratio / max_ratio)
   WrapMode wrap = WrapMode::repeat;  // repeat: tiling reliefs see across the edges; clamp: they do not
-  // Fast cones, never wider than exact, 0 = exact. Conservative: the map is
-  // cut into 8x8-texel cells; obstacles more than fast_reach cells (8
-  // texels each, Chebyshev) from a texel's cell share one bound per cell
-  // (their distance to the cell over their height above the cell's lowest
-  // texel), the rest are searched per texel exactly. Relaxed: a pyramid
-  // block at least fast_reach block sizes away is not opened; its highest
-  // texel counts at the block's nearest point.
+  // Fast cones, never wider than exact, 0 = exact: a pyramid block whose gap
+  // to the texel (conservative: to the texel's 8x8 cell) is at least
+  // fast_reach of the block's own sizes is not opened; its highest texel
+  // counts at the block's nearest texel. Larger reaches: wider cones, slower.
   int fast_reach = 0;
   ConeMode mode = ConeMode::conservative;
+  // Conservative cones that stay safe when a renderer interpolates the
+  // heights and the ratios bilinearly (see cone_ratios). Not with relaxed.
+  bool bilinear_safe = false;
 };
 
-// Exact cone ratios (conservative or relaxed, o.mode) of a width x height field of heights in
-// [0, 1] (row-major), by branch and bound over a maximum mip pyramid: a
-// block is skipped when even its highest texel at its nearest point cannot
-// narrow the cone found so far, and blocks are visited nearest first, so the
-// bound tightens early. The result equals brute force bit for bit (tested).
-// Identical for any thread count. Throws Error{bad_arguments} for invalid
-// options (mirror wrap is not supported).
+// Exact cone ratios (conservative or relaxed, o.mode) of a width x height
+// field of heights in [0, 1] (row-major), by branch and bound over a maximum
+// mip pyramid: a block is skipped when even its highest texel at its nearest
+// point cannot narrow the cone found so far, and blocks are visited nearest
+// first, so the bound tightens early. Conservative cones are searched a cell
+// of 8x8 texels at a time, SIMD across the cell's rows. The result equals
+// brute force bit for bit (tested), for any thread count and SIMD target.
+//
+// bilinear_safe: a renderer that samples the height and the ratio with
+// bilinear filtering puts the apex between texel centres, on the bilinear
+// surface, with a ratio mixed from four texels, and classic cones can then
+// contain surface points. The ratio at p is made safe for every apex within
+// one texel of p (each of the four texels mixed is safe there, so their mix
+// is): surface within 3 texels of p is bounded by the largest height step
+// between 4-neighbours there (a Lipschitz bound, ratio <= 1 / (depth * L));
+// farther surface by its cell's highest corner, counted from the lowest of
+// p's 3x3 texels at the texel distance less 2 texels per axis. Never wider
+// than the classic cone (tested, with the safety itself, on the continuous
+// bilinear surface).
+//
+// Throws Error{bad_arguments} for invalid options (mirror wrap is not
+// supported; bilinear_safe is conservative only).
 std::vector<float> cone_ratios(const std::vector<float>& heights, int width, int height, const ConeMapOptions& o);
 
 // The O(N^2)-per-texel definition, for tests and small maps.

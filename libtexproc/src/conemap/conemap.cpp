@@ -1,13 +1,17 @@
-// Exact conservative cone maps by branch and bound over a maximum mip
-// pyramid (the approach of Valasek and Ban, "Quick Cone Map Generation on
-// the GPU", EGS 2022, made exact): for texel p, blocks of the pyramid are
-// visited nearest first; a block whose maximum height M at its nearest
-// distance d cannot give a ratio below the best so far,
-// d / (depth * (M - h_p)) >= best, is skipped with everything in it.
+// Cone maps by branch and bound over a maximum mip pyramid (the approach of
+// Valasek and Ban, "Quick Cone Map Generation on the GPU", EGS 2022, made
+// exact): blocks of the pyramid are visited nearest first; a block whose
+// maximum height M at its nearest distance d cannot give a ratio below the
+// best so far, d / (depth * (M - h_p)) >= best, is skipped with everything
+// in it. Conservative cones walk the pyramid once per 8x8 cell of apex
+// texels and scan the surviving 8x8 blocks with SIMD (cone_cells.h);
+// relaxed cones walk it per texel.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
+#include "conemap/cone_cells.h"
 #include "texproc/conemap.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
@@ -23,6 +27,9 @@ void check(const std::vector<float>& heights, int width, int height, const ConeM
   if (!(o.max_ratio > 0.0f) || !std::isfinite(o.max_ratio)) throw Error(ErrorCode::bad_arguments, "--max-ratio must be > 0");
   if (o.wrap == WrapMode::mirror) throw Error(ErrorCode::bad_arguments, "--wrap for conemap: valid: repeat, clamp");
   if (o.fast_reach < 0) throw Error(ErrorCode::bad_arguments, "--fast-reach must be >= 1 (0: exact cones)");
+  if (o.bilinear_safe && o.mode == ConeMode::relaxed) {
+    throw Error(ErrorCode::bad_arguments, "--bilinear-safe makes conservative cones (use it without --mode relaxed)");
+  }
 }
 
 // Squared ratio of a candidate: (dx^2 / W^2 + dy^2 / H^2) / (D^2 dh^2), in
@@ -76,11 +83,11 @@ Pyramid build_pyramid(const std::vector<float>& heights, int W, int H) {
   return p;
 }
 
-constexpr int kLeafLevel = 2;  // blocks of 4x4 texels are scanned directly
+constexpr int kLeafLevel = 2;  // relaxed: blocks of 4x4 texels are scanned directly
 // Prune only when the bound exceeds the best by more than rounding could
-// explain: candidates are >= the true bound, which the computed one matches
-// to ~1e-15 relative.
-constexpr double kPruneSlack = 1.0 + 1e-9;
+// explain: bounds are in double, candidates in float (within a few float
+// ulps, 1e-7 relative, of the real quotient).
+constexpr double kPruneSlack = 1.0 + 1e-5;
 
 struct Node {
   int level, x, y;
@@ -125,34 +132,13 @@ struct Behind {
   }
 };
 
-// --fast, conservative: the texture is cut into cells of kCell x kCell
-// texels. Obstacles farther than `near` texels from a cell (Chebyshev, from
-// the cell's texel rectangle) are folded into one bound per cell, computed
-// once: min over them of dist(cell, q) / (depth (h_q - min height of the
-// cell)); every texel of the cell is at least that far and no lower, so the
-// bound is <= its true ratio for those obstacles. Each texel then searches
-// only the obstacles within `near` of its cell, exactly, starting from the
-// cell's bound. The cone is min(exact near, cell bound): never wider.
-constexpr int kCell = 8;
-
-// Gap between texel ranges [a0, a1] and [b0, b1] along an axis of n texels
-// (with repeat, the nearest periodic copy of b), and the shift used.
-int range_gap(int a0, int a1, int b0, int b1, int n, bool repeat, int* shift = nullptr) {
+// Gap in texels between texel ranges [a0, a1] and [b0, b1] along an axis of
+// n texels (with repeat, to the nearest periodic copy of b).
+int range_gap(int a0, int a1, int b0, int b1, int n, bool repeat) {
   auto gap = [&](int s) { return std::max({0, b0 + s - a1, a0 - (b1 + s)}); };
-  int best = gap(0), bs = 0;
-  if (repeat) {
-    for (int s : {-n, n}) {
-      const int g = gap(s);
-      if (g < best) best = g, bs = s;
-    }
-  }
-  if (shift) *shift = bs;
+  int best = gap(0);
+  if (repeat) best = std::min({best, gap(-n), gap(n)});
   return best;
-}
-
-// The farthest point of [b0, b1] from [a0, a1] (in the copy `shift`).
-int range_reach(int a0, int a1, int b0, int b1, int shift) {
-  return std::max({0, b1 + shift - a1, a0 - (b0 + shift)});
 }
 
 // Pushes the children of node n that may hold a candidate below `best`
@@ -179,122 +165,225 @@ void push_children(const Pyramid& pyr, const Node& n, float floor_height, double
   for (int c = 0; c < count; ++c) stack.push_back(kids[c]);
 }
 
-std::vector<float> cone_ratios_tiled(const std::vector<float>& heights, int W, int H, const ConeMapOptions& o,
-                                     const Pyramid& pyr, const Metric& m, bool repeat) {
+detail::ConeGeometry geometry(int W, int H, const ConeMapOptions& o, int shrink) {
+  detail::ConeGeometry g;
+  g.W = W;
+  g.H = H;
+  g.repeat = o.wrap == WrapMode::repeat;
+  g.sx = float(1.0 / (double(W) * W));
+  g.sy = float(1.0 / (double(H) * H));
+  g.dd = o.depth * o.depth;
+  g.shrink = shrink;
+  return g;
+}
+
+// Conservative cones, a cell of 8x8 apex texels at a time: one walk of the
+// pyramid per cell, nearest block first, a block skipped when even the
+// cell's lowest apex at the cell's nearest point could not narrow the widest
+// cone in the cell; the blocks of 8x8 texels that survive are scanned
+// against every apex row that a row-wise bound cannot rule out, SIMD across
+// the row (cone_cells.h). With o.fast_reach, a block whose gap to the cell
+// is at least fast_reach of its own sizes counts as one obstacle.
+std::vector<float> conservative_cells(const std::vector<float>& heights, const std::vector<float>& apex, int W, int H,
+                                      const ConeMapOptions& o, const Pyramid& pyr, int shrink) {
+  using detail::kConeCell;
+  constexpr int kScanLevel = 3;  // 8x8-texel blocks are scanned
+  const detail::ConeGeometry g = geometry(W, H, o, shrink);
+  const Metric m{1.0 / (double(W) * W), 1.0 / (double(H) * H), double(o.depth) * o.depth};
+  const bool repeat = g.repeat;
   const int top = int(pyr.max.size()) - 1;
-  const double cap2 = double(o.max_ratio) * o.max_ratio;
-  const int near = o.fast_reach * kCell;
-  const int cw = (W + kCell - 1) / kCell, ch = (H + kCell - 1) / kCell;
-  std::vector<double> far2(std::size_t(cw) * ch, cap2);
-  // 1. The far bound of every cell.
+  const float cap2 = o.max_ratio * o.max_ratio;
+  const int cw = (W + kConeCell - 1) / kConeCell, ch = (H + kConeCell - 1) / kConeCell;
+  const int reach = o.fast_reach;
+  auto shrunk = [&](int gap) { return gap > shrink ? gap - shrink : 0; };
+  std::vector<float> out(heights.size());
   for_each_row_block(ch, 1, [&](int r0, int r1) {
     std::vector<Node> stack;
+    detail::ConeCell c;
     for (int cy = r0; cy < r1; ++cy)
       for (int cx = 0; cx < cw; ++cx) {
-        const int x0 = cx * kCell, x1 = std::min(W, x0 + kCell) - 1, y0 = cy * kCell, y1 = std::min(H, y0 + kCell) - 1;
-        float lo = 2.0f;
-        for (int y = y0; y <= y1; ++y)
-          for (int x = x0; x <= x1; ++x) lo = std::min(lo, heights[std::size_t(y) * W + x]);
-        double best = cap2;
-        stack.clear();
-        stack.push_back({top, 0, 0, 0.0});
-        while (!stack.empty()) {
-          const Node n = stack.back();
-          stack.pop_back();
-          if (n.bound > best) continue;
-          const int k = n.level;
-          const int bx0 = n.x << k, bx1 = std::min((n.x + 1) << k, W) - 1;
-          const int by0 = n.y << k, by1 = std::min((n.y + 1) << k, H) - 1;
-          int sx, sy;
-          const int gx = range_gap(x0, x1, bx0, bx1, W, repeat, &sx), gy = range_gap(y0, y1, by0, by1, H, repeat, &sy);
-          if (range_reach(x0, x1, bx0, bx1, sx) <= near && range_reach(y0, y1, by0, by1, sy) <= near) continue;  // all near
-          if (k == 0) {
-            if (gx <= near && gy <= near) continue;  // a near texel: the texels' own searches see it
-            best = std::min(best, m.ratio2(gx, gy, double(pyr.max[0][std::size_t(by0) * W + bx0]) - lo));
-            continue;
+        c.x0 = cx * kConeCell;
+        c.y0 = cy * kConeCell;
+        const int w = std::min(kConeCell, W - c.x0), h = std::min(kConeCell, H - c.y0);
+        const int x1 = c.x0 + w - 1, y1 = c.y0 + h - 1;
+        float row_min[kConeCell], row_max[kConeCell];
+        float cell_min = std::numeric_limits<float>::infinity();
+        for (int r = 0; r < kConeCell; ++r) {
+          row_min[r] = std::numeric_limits<float>::infinity();
+          row_max[r] = r < h ? cap2 : 0.0f;
+          for (int l = 0; l < kConeCell; ++l) {
+            const bool real = r < h && l < w;
+            c.apex[r][l] = real ? apex[std::size_t(c.y0 + r) * W + c.x0 + l] : std::numeric_limits<float>::infinity();
+            c.best[r][l] = cap2;
+            row_min[r] = std::min(row_min[r], c.apex[r][l]);
           }
-          push_children(pyr, n, lo, best, [&](int s, int ux, int uy, double dh) {
-            return m.ratio2(range_gap(x0, x1, ux << s, std::min((ux + 1) << s, W) - 1, W, repeat),
-                            range_gap(y0, y1, uy << s, std::min((uy + 1) << s, H) - 1, H, repeat), dh);
-          }, stack);
+          cell_min = std::min(cell_min, row_min[r]);
         }
-        far2[std::size_t(cy) * cw + cx] = best;
-      }
-  });
-  // 2. Every texel: the obstacles near its cell, exactly, from the cell's bound.
-  std::vector<float> out(heights.size());
-  for_each_row_block(H, 4, [&](int r0, int r1) {
-    std::vector<Node> stack;
-    for (int py = r0; py < r1; ++py)
-      for (int px = 0; px < W; ++px) {
-        const int cx = px / kCell, cy = py / kCell;
-        const int x0 = cx * kCell, x1 = std::min(W, x0 + kCell) - 1, y0 = cy * kCell, y1 = std::min(H, y0 + kCell) - 1;
-        const float hp = heights[std::size_t(py) * W + px];
-        double best = far2[std::size_t(cy) * cw + cx];
+        double cell_max = cap2;
+        // Which apex rows the block [bx0, bx1] x [by0, by1] of height M may narrow.
+        bool rows[kConeCell];
+        auto select_rows = [&](int bx0, int bx1, int by0, int by1, float M) {
+          const double gx = shrunk(range_gap(c.x0, x1, bx0, bx1, W, repeat));
+          bool any = false;
+          for (int r = 0; r < kConeCell; ++r) {
+            rows[r] = false;
+            if (r >= h || !(M > row_min[r])) continue;
+            const double gy = shrunk(detail::cone_axis_distance(c.y0 + r, by0, by1, H, repeat));
+            rows[r] = m.ratio2(gx, gy, double(M) - row_min[r]) <= row_max[r] * kPruneSlack;
+            any = any || rows[r];
+          }
+          return any;
+        };
+        auto refresh = [&] {
+          cell_max = 0;
+          for (int r = 0; r < h; ++r) {
+            if (!rows[r]) {
+              cell_max = std::max(cell_max, double(row_max[r]));
+              continue;
+            }
+            float mx = 0;
+            for (int l = 0; l < w; ++l) mx = std::max(mx, c.best[r][l]);
+            row_max[r] = mx;
+            cell_max = std::max(cell_max, double(mx));
+          }
+        };
         stack.clear();
         stack.push_back({top, 0, 0, 0.0});
         while (!stack.empty()) {
           const Node n = stack.back();
           stack.pop_back();
-          if (n.bound > best) continue;
+          if (n.bound > cell_max) continue;  // the cones narrowed since it was pushed
           const int k = n.level;
           const int bx0 = n.x << k, bx1 = std::min((n.x + 1) << k, W) - 1;
           const int by0 = n.y << k, by1 = std::min((n.y + 1) << k, H) - 1;
-          int sx, sy;
-          if (range_gap(x0, x1, bx0, bx1, W, repeat, &sx) > near || range_gap(y0, y1, by0, by1, H, repeat, &sy) > near) {
-            continue;  // wholly far: in the cell's bound
-          }
-          if (k <= kLeafLevel) {
-            // Usually the whole block is near: no per-texel test then.
-            const bool all_near = range_reach(x0, x1, bx0, bx1, sx) <= near && range_reach(y0, y1, by0, by1, sy) <= near;
-            for (int qy = by0; qy <= by1; ++qy) {
-              if (!all_near && range_gap(y0, y1, qy, qy, H, repeat) > near) continue;
-              const int dy = texel_distance(py, qy, H, repeat);
-              const float* row = heights.data() + std::size_t(qy) * W;
-              for (int qx = bx0; qx <= bx1; ++qx) {
-                const float hq = row[qx];
-                if (hq <= hp || (!all_near && range_gap(x0, x1, qx, qx, W, repeat) > near)) continue;
-                best = std::min(best, m.ratio2(texel_distance(px, qx, W, repeat), dy, double(hq) - hp));
-              }
+          const float M = pyr.max[std::size_t(k)][std::size_t(n.y) * pyr.w[std::size_t(k)] + n.x];
+          if (reach > 0 && std::max(range_gap(c.x0, x1, bx0, bx1, W, repeat), range_gap(c.y0, y1, by0, by1, H, repeat)) >=
+                               std::max(reach << k, shrink + 1)) {
+            if (select_rows(bx0, bx1, by0, by1, M)) {
+              detail::cone_cell_block(g, c, bx0, bx1, by0, by1, M, rows);
+              refresh();
             }
             continue;
           }
-          push_children(pyr, n, hp, best, [&](int s, int ux, int uy, double dh) {
-            return m.ratio2(axis_distance(px, ux << s, std::min((ux + 1) << s, W) - 1, W, repeat),
-                            axis_distance(py, uy << s, std::min((uy + 1) << s, H) - 1, H, repeat), dh);
+          if (k <= kScanLevel) {
+            if (select_rows(bx0, bx1, by0, by1, M)) {
+              detail::cone_cell_texels(g, heights.data(), c, bx0, bx1, by0, by1, rows);
+              refresh();
+            }
+            continue;
+          }
+          push_children(pyr, n, cell_min, cell_max, [&](int s, int ux, int uy, double dh) {
+            return m.ratio2(shrunk(range_gap(c.x0, x1, ux << s, std::min((ux + 1) << s, W) - 1, W, repeat)),
+                            shrunk(range_gap(c.y0, y1, uy << s, std::min((uy + 1) << s, H) - 1, H, repeat)), dh);
           }, stack);
         }
-        out[std::size_t(py) * W + px] = float(std::sqrt(best));
+        for (int r = 0; r < h; ++r)
+          for (int l = 0; l < w; ++l) out[std::size_t(c.y0 + r) * W + c.x0 + l] = c.best[r][l];
       }
   });
   return out;
 }
 
-}  // namespace
+// --bilinear-safe. A renderer samples height and ratio bilinearly, so the
+// apex of a cone sits anywhere between texel centres, on the bilinear
+// surface, with the ratio interpolated from the four texels around it. The
+// ratio stored at p is therefore made safe for every apex x in the square
+// S_p = p +- 1 texel (the four bilinear cells that p weighs in): then the
+// interpolated ratio, a mix of four such values, is safe at x too. For x in
+// S_p and a surface point y:
+//  - y within Q_p = p +- 3 texels: the bilinear surface is Lipschitz there,
+//    H(y) - H(x) <= L |y - x| with L from the largest height step between
+//    4-neighbours in Q_p's 7x7 texels, so a ratio of 1 / (depth L) is safe;
+//  - y outside Q_p: y lies in a bilinear cell whose corners are all at least
+//    3 texels from p along some axis; H(y) is at most its highest corner q,
+//    H(x) at least the lowest of p's 3x3 texels, m_p, and |y - x| at least
+//    the distance from p to q with 2 texels taken off each axis: the
+//    classic search from apex height m_p with distances shrunk by 2, where
+//    the texels within 2 of p (shrunk distance 0) are left to the first case.
+// The ratio is the smaller of the two.
+constexpr int kBilinearShrink = 2;
 
-std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, const ConeMapOptions& o) {
-  check(heights, W, H, o);
-  const bool repeat = o.wrap == WrapMode::repeat;
-  const Metric m{1.0 / (double(W) * W), 1.0 / (double(H) * H), double(o.depth) * o.depth};
-  const Pyramid pyr = build_pyramid(heights, W, H);
-  if (o.fast_reach > 0 && o.mode == ConeMode::conservative) return cone_ratios_tiled(heights, W, H, o, pyr, m, repeat);
-  // Relaxed cones: four more pyramids, of the heights of the texels whose
-  // +x, -x, +y or -y neighbour is lower (-1 elsewhere). A block wholly on
-  // one side of p along an axis can only hold exits that way, so its bound
-  // takes the maximum of the matching pyramids.
-  std::vector<Pyramid> exit_pyr;
-  if (o.mode == ConeMode::relaxed) {
-    const Behind b{heights, W, H, repeat};
-    const int sx[4] = {1, -1, 0, 0}, sy[4] = {0, 0, 1, -1};
-    for (int f = 0; f < 4; ++f) {
-      std::vector<float> v(heights.size());
-      for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x) {
-          const float hq = heights[std::size_t(y) * W + x];
-          v[std::size_t(y) * W + x] = b.lower(x, y, hq, sx[f], sy[f]) ? hq : -1.0f;
-        }
-      exit_pyr.push_back(build_pyramid(v, W, H));
+// out(p) = op over the texels p + [x_lo, x_hi] x [y_lo, y_hi] (wrapped, or
+// clipped to the map), separably.
+template <typename Op>
+std::vector<float> window_reduce(const std::vector<float>& v, int W, int H, bool repeat, int x_lo, int x_hi, int y_lo,
+                                 int y_hi, float init, Op op) {
+  std::vector<float> rows(v.size()), out(v.size());
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      float a = init;
+      for (int i = x + x_lo; i <= x + x_hi; ++i) {
+        if (!repeat && (i < 0 || i >= W)) continue;
+        a = op(a, v[std::size_t(y) * W + std::size_t((i % W + W) % W)]);
+      }
+      rows[std::size_t(y) * W + x] = a;
     }
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      float a = init;
+      for (int j = y + y_lo; j <= y + y_hi; ++j) {
+        if (!repeat && (j < 0 || j >= H)) continue;
+        a = op(a, rows[std::size_t((j % H + H) % H) * W + x]);
+      }
+      out[std::size_t(y) * W + x] = a;
+    }
+  return out;
+}
+
+std::vector<float> bilinear_apex(const std::vector<float>& heights, int W, int H, bool repeat) {
+  return window_reduce(heights, W, H, repeat, -1, 1, -1, 1, std::numeric_limits<float>::infinity(),
+                       [](float a, float b) { return std::min(a, b); });
+}
+
+// Narrows the shrunk-distance cones (squared, in `r2`) to the local
+// Lipschitz bound where a point of Q_p may rise above the apex.
+void bilinear_local(const std::vector<float>& heights, const std::vector<float>& apex, int W, int H,
+                    const ConeMapOptions& o, std::vector<float>& r2) {
+  const bool repeat = o.wrap == WrapMode::repeat;
+  const auto mx = [](float a, float b) { return std::max(a, b); };
+  std::vector<float> ex(heights.size(), 0.0f), ey(heights.size(), 0.0f);  // steps to the +x and +y neighbours
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const float h = heights[std::size_t(y) * W + x];
+      if (repeat || x + 1 < W) ex[std::size_t(y) * W + x] = std::abs(heights[std::size_t(y) * W + (x + 1) % W] - h);
+      if (repeat || y + 1 < H) ey[std::size_t(y) * W + x] = std::abs(heights[std::size_t((y + 1) % H) * W + x] - h);
+    }
+  const int R = kBilinearShrink + 1;
+  const std::vector<float> gx = window_reduce(ex, W, H, repeat, -R, R - 1, -R, R, 0.0f, mx);
+  const std::vector<float> gy = window_reduce(ey, W, H, repeat, -R, R, -R, R - 1, 0.0f, mx);
+  const std::vector<float> top = window_reduce(heights, W, H, repeat, -R, R, -R, R, 0.0f, mx);
+  for (std::size_t i = 0; i < r2.size(); ++i) {
+    if (!(top[i] > apex[i])) continue;
+    const double lx = double(gx[i]) * W, ly = double(gy[i]) * H;
+    const double bound = 1.0 / (double(o.depth) * o.depth * (lx * lx + ly * ly));
+    float b = float(bound);
+    if (double(b) > bound) b = std::nextafter(b, 0.0f);
+    r2[i] = std::min(r2[i], b);
+  }
+}
+// Relaxed cones, a texel at a time (which texels count depends on where p
+// is): four more pyramids, of the heights of the texels whose +x, -x, +y or
+// -y neighbour is lower (-1 elsewhere). A block wholly on one side of p
+// along an axis can only hold exits that way, so its bound takes the
+// maximum of the matching pyramids. With fast_reach, a block at least
+// fast_reach of its sizes away is not opened: its highest exit counts at its
+// nearest point.
+std::vector<float> relaxed_texels(const std::vector<float>& heights, int W, int H, const ConeMapOptions& o,
+                                  const Pyramid& pyr) {
+  const bool repeat = o.wrap == WrapMode::repeat;
+  const detail::ConeGeometry g = geometry(W, H, o, 0);
+  const Metric m{1.0 / (double(W) * W), 1.0 / (double(H) * H), double(o.depth) * o.depth};
+  const Behind behind{heights, W, H, repeat};
+  std::vector<Pyramid> exit_pyr;
+  const int sx[4] = {1, -1, 0, 0}, sy[4] = {0, 0, 1, -1};
+  for (int f = 0; f < 4; ++f) {
+    std::vector<float> v(heights.size());
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) {
+        const float hq = heights[std::size_t(y) * W + x];
+        v[std::size_t(y) * W + x] = behind.lower(x, y, hq, sx[f], sy[f]) ? hq : -1.0f;
+      }
+    exit_pyr.push_back(build_pyramid(v, W, H));
   }
   // Which side of p a block [lo, hi] lies on along an axis: +1, -1, or 0
   // (both: it holds p's row or column, or straddles the far seam).
@@ -312,11 +401,13 @@ std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, 
     return a > 0 ? 1 : b < 0 ? -1 : 0;
   };
   const int top = int(pyr.max.size()) - 1;
-  const double cap2 = double(o.max_ratio) * o.max_ratio;
+  const float cap2 = o.max_ratio * o.max_ratio;
   const int reach = o.fast_reach;
-  const bool relaxed = o.mode == ConeMode::relaxed;
-  const Behind behind{heights, W, H, repeat};
   std::vector<float> out(heights.size());
+  auto candidate = [&](int px, int py, int qx, int qy, float hq, float hp) {
+    return detail::cone_r2(g, detail::cone_d2(g, texel_distance(px, qx, W, repeat), texel_distance(py, qy, H, repeat)),
+                           hq - hp);
+  };
 
   for_each_row_block(H, 4, [&](int y0, int y1) {
     thread_local std::vector<Node> stack;
@@ -327,33 +418,28 @@ std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, 
       int wx = -1, wy = -1;
       for (int px = 0; px < W; ++px) {
         const float hp = heights[std::size_t(py) * W + px];
-        double best = cap2;
+        float best = cap2;
         if (wx >= 0) {
           const float hq = heights[std::size_t(wy) * W + wx];
-          if (hq > hp && (!relaxed || behind.exits(px, py, wx, wy, hq))) {
-            const double r2 =
-                m.ratio2(texel_distance(px, wx, W, repeat), texel_distance(py, wy, H, repeat), double(hq) - hp);
-            best = r2 < best ? r2 : best;
-          }
+          if (hq > hp && behind.exits(px, py, wx, wy, hq)) best = std::min(best, candidate(px, py, wx, wy, hq, hp));
         }
         stack.clear();
         stack.push_back({top, 0, 0, 0.0});
         while (!stack.empty()) {
           const Node n = stack.back();
           stack.pop_back();
-          if (n.bound * 1.0 > best) continue;  // the best improved since it was pushed
+          if (n.bound > best) continue;  // the best improved since it was pushed
           const int k = n.level;
           const int x_lo = n.x << k, x_hi = std::min((n.x + 1) << k, W) - 1;
           const int y_lo = n.y << k, y_hi = std::min((n.y + 1) << k, H) - 1;
           if (k <= kLeafLevel) {
             for (int qy = y_lo; qy <= y_hi; ++qy) {
               const float* row = heights.data() + std::size_t(qy) * W;
-              const int dy = texel_distance(py, qy, H, repeat);
               for (int qx = x_lo; qx <= x_hi; ++qx) {
                 const float hq = row[qx];
                 if (hq <= hp) continue;
-                const double r2 = m.ratio2(texel_distance(px, qx, W, repeat), dy, double(hq) - hp);
-                if (r2 < best && (!relaxed || behind.exits(px, py, qx, qy, hq))) {
+                const float r2 = candidate(px, py, qx, qy, hq, hp);
+                if (r2 < best && behind.exits(px, py, qx, qy, hq)) {
                   best = r2;
                   wx = qx;
                   wy = qy;
@@ -365,33 +451,27 @@ std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, 
           // Children, farthest pushed first so the nearest is searched first.
           Node kids[4];
           int count = 0;
-          const int cw = pyr.w[k - 1], ch = pyr.h[k - 1];
+          const int s = k - 1;
+          const int cw = pyr.w[std::size_t(s)], ch = pyr.h[std::size_t(s)];
           for (int j = 0; j < 2; ++j)
             for (int i = 0; i < 2; ++i) {
               const int cx = 2 * n.x + i, cy = 2 * n.y + j;
               if (cx >= cw || cy >= ch) continue;
-              float M = pyr.max[k - 1][std::size_t(cy) * cw + cx];
+              const int bx0 = cx << s, bx1 = std::min((cx + 1) << s, W) - 1;
+              const int by0 = cy << s, by1 = std::min((cy + 1) << s, H) - 1;
+              const int xs = side(px, bx0, bx1, W), ys = side(py, by0, by1, H);
+              const std::size_t at = std::size_t(cy) * cw + cx;
+              float M = -1.0f;
+              if (xs >= 0) M = std::max(M, exit_pyr[0].max[std::size_t(s)][at]);
+              if (xs <= 0) M = std::max(M, exit_pyr[1].max[std::size_t(s)][at]);
+              if (ys >= 0) M = std::max(M, exit_pyr[2].max[std::size_t(s)][at]);
+              if (ys <= 0) M = std::max(M, exit_pyr[3].max[std::size_t(s)][at]);
               if (M <= hp) continue;
-              if (relaxed) {
-                const int s1 = k - 1;
-                const int xs = side(px, cx << s1, std::min((cx + 1) << s1, W) - 1, W);
-                const int ys = side(py, cy << s1, std::min((cy + 1) << s1, H) - 1, H);
-                const std::size_t at = std::size_t(cy) * cw + cx;
-                float e = -1.0f;
-                if (xs >= 0) e = std::max(e, exit_pyr[0].max[k - 1][at]);
-                if (xs <= 0) e = std::max(e, exit_pyr[1].max[k - 1][at]);
-                if (ys >= 0) e = std::max(e, exit_pyr[2].max[k - 1][at]);
-                if (ys <= 0) e = std::max(e, exit_pyr[3].max[k - 1][at]);
-                M = e;
-                if (M <= hp) continue;
-              }
-              const int s = k - 1;
-              const int dx = axis_distance(px, cx << s, std::min((cx + 1) << s, W) - 1, W, repeat);
-              const int dy = axis_distance(py, cy << s, std::min((cy + 1) << s, H) - 1, H, repeat);
+              const int dx = axis_distance(px, bx0, bx1, W, repeat), dy = axis_distance(py, by0, by1, H, repeat);
               const double bound = m.ratio2(dx, dy, double(M) - hp);
               if (bound > best * kPruneSlack) continue;
               if (reach > 0 && std::max(dx, dy) >= (reach << s)) {  // --fast: the block as one obstacle
-                best = bound < best ? bound : best;
+                best = std::min(best, detail::cone_r2(g, detail::cone_d2(g, dx, dy), M - hp));
                 continue;
               }
               kids[count++] = {s, cx, cy, bound / kPruneSlack};
@@ -401,38 +481,57 @@ std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, 
             for (int b = a; b > 0 && kids[b - 1].bound < kids[b].bound; --b) std::swap(kids[b - 1], kids[b]);
           for (int c = 0; c < count; ++c) stack.push_back(kids[c]);
         }
-        out[std::size_t(py) * W + px] = float(std::sqrt(best));
+        out[std::size_t(py) * W + px] = best;
       }
     }
   });
   return out;
 }
 
+std::vector<float> square_roots(std::vector<float> r2) {
+  for (float& v : r2) v = std::sqrt(v);
+  return r2;
+}
+
+}  // namespace
+
+std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, const ConeMapOptions& o) {
+  check(heights, W, H, o);
+  const Pyramid pyr = build_pyramid(heights, W, H);
+  if (o.mode == ConeMode::relaxed) return square_roots(relaxed_texels(heights, W, H, o, pyr));
+  if (!o.bilinear_safe) return square_roots(conservative_cells(heights, heights, W, H, o, pyr, 0));
+  const std::vector<float> apex = bilinear_apex(heights, W, H, o.wrap == WrapMode::repeat);
+  std::vector<float> r2 = conservative_cells(heights, apex, W, H, o, pyr, kBilinearShrink);
+  bilinear_local(heights, apex, W, H, o, r2);
+  return square_roots(std::move(r2));
+}
+
 std::vector<float> cone_ratios_brute_force(const std::vector<float>& heights, int W, int H, const ConeMapOptions& o) {
   check(heights, W, H, o);
   const bool repeat = o.wrap == WrapMode::repeat;
-  const Metric m{1.0 / (double(W) * W), 1.0 / (double(H) * H), double(o.depth) * o.depth};
   const bool relaxed = o.mode == ConeMode::relaxed;
+  const std::vector<float> apex = o.bilinear_safe ? bilinear_apex(heights, W, H, repeat) : heights;
+  const detail::ConeGeometry g = geometry(W, H, o, o.bilinear_safe ? kBilinearShrink : 0);
   const Behind behind{heights, W, H, repeat};
-  std::vector<float> out(heights.size());
+  std::vector<float> r2(heights.size());
   for_each_row_block(H, 1, [&](int y0, int y1) {
     for (int py = y0; py < y1; ++py)
       for (int px = 0; px < W; ++px) {
-        const float hp = heights[std::size_t(py) * W + px];
-        double best = double(o.max_ratio) * o.max_ratio;
+        const float hp = apex[std::size_t(py) * W + px];
+        float best = o.max_ratio * o.max_ratio;
         for (int qy = 0; qy < H; ++qy)
           for (int qx = 0; qx < W; ++qx) {
             const float hq = heights[std::size_t(qy) * W + qx];
-            if (hq <= hp) continue;
+            const float d2 = detail::cone_d2(g, texel_distance(px, qx, W, repeat), texel_distance(py, qy, H, repeat));
+            if (!(hq > hp && d2 > 0.0f)) continue;
             if (relaxed && !behind.exits(px, py, qx, qy, hq)) continue;
-            const double r2 =
-                m.ratio2(texel_distance(px, qx, W, repeat), texel_distance(py, qy, H, repeat), double(hq) - hp);
-            best = r2 < best ? r2 : best;
+            best = std::min(best, detail::cone_r2(g, d2, hq - hp));
           }
-        out[std::size_t(py) * W + px] = float(std::sqrt(best));
+        r2[std::size_t(py) * W + px] = best;
       }
   });
-  return out;
+  if (o.bilinear_safe) bilinear_local(heights, apex, W, H, o, r2);
+  return square_roots(std::move(r2));
 }
 
 Image cone_map_image(const std::vector<float>& heights, const std::vector<float>& ratios, int W, int H,

@@ -1,0 +1,69 @@
+// The inner loops of the cone-map search: a cell of up to 8x8 apex texels
+// against obstacles, SIMD across the 8 texels of a cell row (Highway) with a
+// plain scalar reference beside it; both give identical ratios.
+//
+// One candidate, the same float operations everywhere (brute force included):
+//   dx, dy  = texel distances along each axis (the nearest periodic copy with
+//             repeat; for a block, to its nearest texel), minus `shrink`,
+//             never below 0
+//   d2      = float(dx * dx) * sx + float(dy * dy) * sy
+//   counted when hq > hp and d2 > 0, as r2 = d2 / (dd * ((hq - hp) * (hq - hp)))
+// and a texel's squared ratio is the smallest r2 (or the cap it starts from).
+#pragma once
+
+namespace texproc::detail {
+
+constexpr int kConeCell = 8;
+
+struct ConeGeometry {
+  int W = 0, H = 0;
+  bool repeat = true;
+  float sx = 0, sy = 0, dd = 0;  // 1 / W^2, 1 / H^2, depth^2
+  int shrink = 0;                // texels taken off each axis distance (0: the classic cones)
+};
+
+struct ConeCell {
+  int x0 = 0, y0 = 0;                       // apex texel of lane 0, row 0
+  alignas(32) float apex[kConeCell][kConeCell];  // apex heights; +inf where no texel is
+  alignas(32) float best[kConeCell][kConeCell];  // squared ratios so far
+};
+
+// Every texel of columns [bx0, bx1] and rows [by0, by1] (at most 8 of each,
+// inside the map) as an obstacle to the apex rows r with rows[r].
+void cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
+                      const bool rows[kConeCell]);
+// The block [bx0, bx1] x [by0, by1] as one obstacle of height M at its
+// nearest texel to each apex (--fast: a bound for everything in it).
+void cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M,
+                     const bool rows[kConeCell]);
+
+// Distance along one axis from texel p to the nearest texel of [lo, hi]
+// (0 inside), with repeat the nearest periodic copy.
+inline int cone_axis_distance(int p, int lo, int hi, int n, bool repeat) {
+  int d = p < lo ? lo - p : p > hi ? p - hi : 0;
+  if (repeat && d > 0) {
+    const int a = lo + n - p, b = p - hi + n;
+    d = d < a ? d : a;
+    d = d < b ? d : b;
+  }
+  return d;
+}
+
+// One candidate's squared ratio term, as defined above (d2 from the two
+// axis distances after shrinking).
+inline float cone_d2(const ConeGeometry& g, int dx, int dy) {
+  dx = dx > g.shrink ? dx - g.shrink : 0;
+  dy = dy > g.shrink ? dy - g.shrink : 0;
+  return float(dx * dx) * g.sx + float(dy * dy) * g.sy;
+}
+
+inline float cone_r2(const ConeGeometry& g, float d2, float dh) { return d2 / (g.dd * (dh * dh)); }
+
+namespace ref {
+void cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
+                      const bool rows[kConeCell]);
+void cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M,
+                     const bool rows[kConeCell]);
+}  // namespace ref
+
+}  // namespace texproc::detail
