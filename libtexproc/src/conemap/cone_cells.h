@@ -24,8 +24,8 @@ struct ConeGeometry {
 
 struct ConeCell {
   int x0 = 0, y0 = 0;                       // apex texel of lane 0, row 0
-  alignas(32) float apex[kConeCell][kConeCell];  // apex heights; +inf where no texel is
-  alignas(32) float best[kConeCell][kConeCell];  // squared ratios so far
+  alignas(64) float apex[kConeCell][kConeCell];  // apex heights; +inf where no texel is
+  alignas(64) float best[kConeCell][kConeCell];  // squared ratios so far
 };
 
 // Every texel of columns [bx0, bx1] and rows [by0, by1] (at most 8 of each,

@@ -1,8 +1,8 @@
 // The cone-map inner loops: the scalar reference and its Highway twin (lanes
-// over the apex texels of a cell row). The twin tests a candidate without a
-// division first (d2 < best * den, with a margin far above rounding) and
-// divides only where a lane may improve; the stored ratio is the same
-// quotient the reference computes, so both give identical results.
+// over the apex texels of a cell, in row order). The twin tests a candidate
+// without a division first (d2 < best * dd * dh^2, with a margin far above
+// rounding) and divides only where a lane may improve; the stored ratio is
+// the same quotient the reference computes, so both give identical results.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "conemap/cone_cells_simd.cpp"
 #include <hwy/foreach_target.h>  // must come before highway.h
@@ -61,80 +61,116 @@ namespace texproc::detail {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-using DF = hn::CappedTag<float, kConeCell>;
+// Lanes run over the cell's texels in row order: a vector holds part of a
+// row (4 lanes), a row (8) or two rows (16).
+using DF = hn::CappedTag<float, 2 * kConeCell>;
 using DI = hn::RebindToSigned<DF>;
 using VF = hn::Vec<DF>;
 using VI = hn::Vec<DI>;
 
-// dx * dx * sx per lane, after shrinking (the lanes' own distances vi).
-HWY_INLINE VF DxTerm(const ConeGeometry& g, VI dx) {
+// Axis distance term d * d * s per lane, after shrinking.
+HWY_INLINE VF AxisTerm(const ConeGeometry& g, VI dist, float s) {
   const DF d;
   const DI di;
-  dx = hn::Max(hn::Sub(dx, hn::Set(di, g.shrink)), hn::Zero(di));
-  return hn::Mul(hn::ConvertTo(d, hn::Mul(dx, dx)), hn::Set(d, g.sx));
+  dist = hn::Max(hn::Sub(dist, hn::Set(di, g.shrink)), hn::Zero(di));
+  return hn::Mul(hn::ConvertTo(d, hn::Mul(dist, dist)), hn::Set(d, s));
 }
 
-// One obstacle of height hq for the lanes: best = min(best, r2) where counted.
-HWY_INLINE VF Update(VF best, VF hp, VF d2, float hq_s, VF dd, VF slack) {
+// Distance from each lane's p to q along an axis of n texels.
+HWY_INLINE VI TexelDistance(VI p, int q, int n, bool repeat) {
+  const DI di;
+  VI dist = hn::Abs(hn::Sub(p, hn::Set(di, q)));
+  if (repeat) dist = hn::Min(dist, hn::Sub(hn::Set(di, n), dist));
+  return dist;
+}
+
+// Distance from each lane's p to the nearest texel of [lo, hi].
+HWY_INLINE VI RangeDistance(VI p, int lo, int hi, int n, bool repeat) {
+  const DI di;
+  VI dist = hn::Max(hn::Max(hn::Sub(hn::Set(di, lo), p), hn::Sub(p, hn::Set(di, hi))), hn::Zero(di));
+  if (repeat) dist = hn::Min(dist, hn::Min(hn::Sub(hn::Set(di, lo + n), p), hn::Add(p, hn::Set(di, n - hi))));
+  return dist;
+}
+
+// The apex texels of vector v: columns and rows.
+struct LanePos {
+  VI px, py;
+};
+HWY_INLINE LanePos Positions(const ConeCell& c, int v) {
   const DF d;
-  const VF hq = hn::Set(d, hq_s);
+  const DI di;
+  const VI flat = hn::Add(hn::Iota(di, 0), hn::Set(di, v * int(hn::Lanes(d))));
+  return {hn::Add(hn::And(flat, hn::Set(di, kConeCell - 1)), hn::Set(di, c.x0)),
+          hn::Add(hn::ShiftRight<3>(flat), hn::Set(di, c.y0))};
+}
+
+// Whether vector v covers a row marked in rows.
+HWY_INLINE bool AnyRow(const bool* rows, int v, int lanes) {
+  const int r0 = v * lanes / kConeCell, r1 = ((v + 1) * lanes - 1) / kConeCell;
+  for (int r = r0; r <= r1; ++r)
+    if (rows[r]) return true;
+  return false;
+}
+
+// One obstacle of height hq for the lanes: best = min(best, r2) where it
+// counts. bdd = best * dd * slack tests a candidate without dividing.
+template <bool kCheckZero>
+HWY_INLINE void Update(VF& best, VF& bdd, VF hp, VF d2, VF hq, VF dd, VF slack) {
+  const DF d;
   const VF dh = hn::Sub(hq, hp);
-  const VF den = hn::Mul(dd, hn::Mul(dh, dh));
-  const auto counted = hn::And(hn::Gt(hq, hp), hn::Gt(d2, hn::Zero(d)));
-  const auto may_improve = hn::And(counted, hn::Lt(d2, hn::Mul(hn::Mul(best, den), slack)));
-  if (hn::AllFalse(d, may_improve)) return best;
-  return hn::IfThenElse(may_improve, hn::Min(best, hn::Div(d2, den)), best);
+  const VF dh2 = hn::Mul(dh, dh);
+  auto may_improve = hn::And(hn::Gt(dh, hn::Zero(d)), hn::Lt(d2, hn::Mul(bdd, dh2)));
+  if (kCheckZero) may_improve = hn::And(may_improve, hn::Gt(d2, hn::Zero(d)));
+  if (HWY_LIKELY(hn::AllFalse(d, may_improve))) return;
+  best = hn::IfThenElse(may_improve, hn::Min(best, hn::Div(d2, hn::Mul(dd, dh2))), best);
+  bdd = hn::Mul(hn::Mul(best, dd), slack);
+}
+
+template <bool kCheckZero>
+void Texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
+            const bool* rows) {
+  const DF d;
+  const int N = int(hn::Lanes(d));
+  const int nq = bx1 - bx0 + 1;
+  const VF dd = hn::Set(d, g.dd), slack = hn::Set(d, 1.0f + 1.0f / 65536);
+  float* apex = &c.apex[0][0];
+  float* best_all = &c.best[0][0];
+  for (int v = 0; v < kConeCell * kConeCell / N; ++v) {
+    if (!AnyRow(rows, v, N)) continue;
+    const LanePos pos = Positions(c, v);
+    VF dxt[kConeCell];
+    for (int j = 0; j < nq; ++j) dxt[j] = AxisTerm(g, TexelDistance(pos.px, bx0 + j, g.W, g.repeat), g.sx);
+    const VF hp = hn::Load(d, apex + v * N);
+    VF best = hn::Load(d, best_all + v * N);
+    VF bdd = hn::Mul(hn::Mul(best, dd), slack);
+    for (int qy = by0; qy <= by1; ++qy) {
+      const VF dyt = AxisTerm(g, TexelDistance(pos.py, qy, g.H, g.repeat), g.sy);
+      const float* hrow = heights + std::size_t(qy) * g.W + bx0;
+      for (int j = 0; j < nq; ++j) Update<kCheckZero>(best, bdd, hp, hn::Add(dxt[j], dyt), hn::Set(d, hrow[j]), dd, slack);
+    }
+    hn::Store(best, d, best_all + v * N);
+  }
 }
 
 void ConeCellTexels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
                     const bool* rows) {
-  const DF d;
-  const DI di;
-  const int N = int(hn::Lanes(d));
-  const int nq = bx1 - bx0 + 1;
-  const VF dd = hn::Set(d, g.dd), slack = hn::Set(d, 1.0f + 1.0f / 65536);
-  for (int l0 = 0; l0 < kConeCell; l0 += N) {
-    const VI px = hn::Add(hn::Iota(di, 0), hn::Set(di, c.x0 + l0));
-    VF dxt[kConeCell];
-    for (int j = 0; j < nq; ++j) {
-      VI dx = hn::Abs(hn::Sub(px, hn::Set(di, bx0 + j)));
-      if (g.repeat) dx = hn::Min(dx, hn::Sub(hn::Set(di, g.W), dx));
-      dxt[j] = DxTerm(g, dx);
-    }
-    for (int r = 0; r < kConeCell; ++r) {
-      if (!rows[r]) continue;
-      const int py = c.y0 + r;
-      const VF hp = hn::Load(d, &c.apex[r][l0]);
-      VF best = hn::Load(d, &c.best[r][l0]);
-      for (int qy = by0; qy <= by1; ++qy) {
-        const VF d2y = hn::Set(d, cone_d2(g, 0, cone_axis_distance(py, qy, qy, g.H, g.repeat)));
-        const float* hrow = heights + std::size_t(qy) * g.W + bx0;
-        for (int j = 0; j < nq; ++j) best = Update(best, hp, hn::Add(dxt[j], d2y), hrow[j], dd, slack);
-      }
-      hn::Store(best, d, &c.best[r][l0]);
-    }
-  }
+  if (g.shrink > 0) return Texels<true>(g, heights, c, bx0, bx1, by0, by1, rows);
+  Texels<false>(g, heights, c, bx0, bx1, by0, by1, rows);
 }
 
 void ConeCellBlock(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M, const bool* rows) {
   const DF d;
-  const DI di;
   const int N = int(hn::Lanes(d));
-  const VF dd = hn::Set(d, g.dd), slack = hn::Set(d, 1.0f + 1.0f / 65536);
-  for (int l0 = 0; l0 < kConeCell; l0 += N) {
-    const VI px = hn::Add(hn::Iota(di, 0), hn::Set(di, c.x0 + l0));
-    const VI zero = hn::Zero(di);
-    VI dx = hn::Max(hn::Max(hn::Sub(hn::Set(di, bx0), px), hn::Sub(px, hn::Set(di, bx1))), zero);
-    if (g.repeat) {
-      dx = hn::Min(dx, hn::Min(hn::Sub(hn::Set(di, bx0 + g.W), px), hn::Add(px, hn::Set(di, g.W - bx1))));
-    }
-    const VF dxt = DxTerm(g, dx);
-    for (int r = 0; r < kConeCell; ++r) {
-      if (!rows[r]) continue;
-      const VF d2y = hn::Set(d, cone_d2(g, 0, cone_axis_distance(c.y0 + r, by0, by1, g.H, g.repeat)));
-      const VF best = Update(hn::Load(d, &c.best[r][l0]), hn::Load(d, &c.apex[r][l0]), hn::Add(dxt, d2y), M, dd, slack);
-      hn::Store(best, d, &c.best[r][l0]);
-    }
+  const VF dd = hn::Set(d, g.dd), slack = hn::Set(d, 1.0f + 1.0f / 65536), hq = hn::Set(d, M);
+  for (int v = 0; v < kConeCell * kConeCell / N; ++v) {
+    if (!AnyRow(rows, v, N)) continue;
+    const LanePos pos = Positions(c, v);
+    const VF d2 = hn::Add(AxisTerm(g, RangeDistance(pos.px, bx0, bx1, g.W, g.repeat), g.sx),
+                          AxisTerm(g, RangeDistance(pos.py, by0, by1, g.H, g.repeat), g.sy));
+    VF best = hn::Load(d, &c.best[0][0] + v * N);
+    VF bdd = hn::Mul(hn::Mul(best, dd), slack);
+    Update<true>(best, bdd, hn::Load(d, &c.apex[0][0] + v * N), d2, hq, dd, slack);
+    hn::Store(best, d, &c.best[0][0] + v * N);
   }
 }
 
