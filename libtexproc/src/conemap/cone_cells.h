@@ -20,6 +20,9 @@ struct ConeGeometry {
   bool repeat = true;
   float sx = 0, sy = 0, dd = 0;  // 1 / W^2, 1 / H^2, depth^2
   int shrink = 0;                // texels taken off each axis distance (0: the classic cones)
+  // Optional: the highest of each run of 8 texels in a row (x / 8, y), with
+  // (W + 7) / 8 per row: lets a scan skip obstacle rows no higher than the apexes.
+  const float* row_max8 = nullptr;
 };
 
 struct ConeCell {
@@ -29,12 +32,14 @@ struct ConeCell {
 };
 
 // Every texel of columns [bx0, bx1] and rows [by0, by1] (at most 8 of each,
-// inside the map) as an obstacle to the apex rows r with rows[r].
-void cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
+// inside the map, bx0 a multiple of 8) as an obstacle to the apex rows r
+// with rows[r] (others may be scanned too: they cannot change). Returns
+// whether any ratio narrowed.
+bool cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
                       const bool rows[kConeCell]);
 // The block [bx0, bx1] x [by0, by1] as one obstacle of height M at its
 // nearest texel to each apex (--fast: a bound for everything in it).
-void cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M,
+bool cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M,
                      const bool rows[kConeCell]);
 
 // Distance along one axis from texel p to the nearest texel of [lo, hi]
@@ -60,9 +65,9 @@ inline float cone_d2(const ConeGeometry& g, int dx, int dy) {
 inline float cone_r2(const ConeGeometry& g, float d2, float dh) { return d2 / (g.dd * (dh * dh)); }
 
 namespace ref {
-void cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
+bool cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
                       const bool rows[kConeCell]);
-void cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M,
+bool cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M,
                      const bool rows[kConeCell]);
 }  // namespace ref
 

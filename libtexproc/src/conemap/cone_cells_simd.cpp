@@ -8,6 +8,8 @@
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
 
+#include <limits>
+
 #include "conemap/cone_cells.h"
 #include "texproc/runtime.h"
 
@@ -16,16 +18,21 @@
 namespace texproc::detail::ref {
 
 namespace {
-void update(const ConeGeometry& g, float hq, float d2, float hp, float& best) {
+bool update(const ConeGeometry& g, float hq, float d2, float hp, float& best) {
   if (hq > hp && d2 > 0.0f) {
     const float r2 = cone_r2(g, d2, hq - hp);
-    if (r2 < best) best = r2;
+    if (r2 < best) {
+      best = r2;
+      return true;
+    }
   }
+  return false;
 }
 }  // namespace
 
-void cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
+bool cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
                       const bool rows[kConeCell]) {
+  bool improved = false;
   for (int r = 0; r < kConeCell; ++r) {
     if (!rows[r]) continue;
     const int py = c.y0 + r;
@@ -35,22 +42,25 @@ void cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, 
       for (int qx = bx0; qx <= bx1; ++qx)
         for (int l = 0; l < kConeCell; ++l) {
           const float d2 = cone_d2(g, cone_axis_distance(c.x0 + l, qx, qx, g.W, g.repeat), dy);
-          update(g, hrow[qx], d2, c.apex[r][l], c.best[r][l]);
+          improved |= update(g, hrow[qx], d2, c.apex[r][l], c.best[r][l]);
         }
     }
   }
+  return improved;
 }
 
-void cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M,
+bool cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M,
                      const bool rows[kConeCell]) {
+  bool improved = false;
   for (int r = 0; r < kConeCell; ++r) {
     if (!rows[r]) continue;
     const int dy = cone_axis_distance(c.y0 + r, by0, by1, g.H, g.repeat);
     for (int l = 0; l < kConeCell; ++l) {
       const float d2 = cone_d2(g, cone_axis_distance(c.x0 + l, bx0, bx1, g.W, g.repeat), dy);
-      update(g, M, d2, c.apex[r][l], c.best[r][l]);
+      improved |= update(g, M, d2, c.apex[r][l], c.best[r][l]);
     }
   }
+  return improved;
 }
 
 }  // namespace texproc::detail::ref
@@ -115,19 +125,20 @@ HWY_INLINE bool AnyRow(const bool* rows, int v, int lanes) {
 // One obstacle of height hq for the lanes: best = min(best, r2) where it
 // counts. bdd = best * dd * slack tests a candidate without dividing.
 template <bool kCheckZero>
-HWY_INLINE void Update(VF& best, VF& bdd, VF hp, VF d2, VF hq, VF dd, VF slack) {
+HWY_INLINE bool Update(VF& best, VF& bdd, VF hp, VF d2, VF hq, VF dd, VF slack) {
   const DF d;
   const VF dh = hn::Sub(hq, hp);
   const VF dh2 = hn::Mul(dh, dh);
   auto may_improve = hn::And(hn::Gt(dh, hn::Zero(d)), hn::Lt(d2, hn::Mul(bdd, dh2)));
   if (kCheckZero) may_improve = hn::And(may_improve, hn::Gt(d2, hn::Zero(d)));
-  if (HWY_LIKELY(hn::AllFalse(d, may_improve))) return;
+  if (HWY_LIKELY(hn::AllFalse(d, may_improve))) return false;
   best = hn::IfThenElse(may_improve, hn::Min(best, hn::Div(d2, hn::Mul(dd, dh2))), best);
   bdd = hn::Mul(hn::Mul(best, dd), slack);
+  return true;  // (or nearly: a lane within the margin may keep its value)
 }
 
 template <bool kCheckZero>
-void Texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
+bool Texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
             const bool* rows) {
   const DF d;
   const int N = int(hn::Lanes(d));
@@ -135,6 +146,7 @@ void Texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, i
   const VF dd = hn::Set(d, g.dd), slack = hn::Set(d, 1.0f + 1.0f / 65536);
   float* apex = &c.apex[0][0];
   float* best_all = &c.best[0][0];
+  bool improved = false;
   for (int v = 0; v < kConeCell * kConeCell / N; ++v) {
     if (!AnyRow(rows, v, N)) continue;
     const LanePos pos = Positions(c, v);
@@ -143,23 +155,40 @@ void Texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, i
     const VF hp = hn::Load(d, apex + v * N);
     VF best = hn::Load(d, best_all + v * N);
     VF bdd = hn::Mul(hn::Mul(best, dd), slack);
+    // An obstacle row is skipped when even its highest texel (row_max8), at
+    // the nearest column for the lowest apex, cannot narrow the widest cone.
+    const float lowest = hn::GetLane(hn::MinOfLanes(d, hp));
+    VF dx_min = hn::Set(d, std::numeric_limits<float>::infinity());
+    for (int j = 0; j < nq; ++j) dx_min = hn::Min(dx_min, dxt[j]);
+    const std::size_t run_stride = std::size_t(g.W + 7) / 8;
     for (int qy = by0; qy <= by1; ++qy) {
       const VF dyt = AxisTerm(g, TexelDistance(pos.py, qy, g.H, g.repeat), g.sy);
+      if (g.row_max8) {
+        const float dh = g.row_max8[std::size_t(qy) * run_stride + std::size_t(bx0 / 8)] - lowest;
+        if (!(dh > 0.0f)) continue;
+        const float d2 = hn::GetLane(hn::MinOfLanes(d, hn::Add(dx_min, dyt)));
+        const float widest = hn::GetLane(hn::MaxOfLanes(d, best));
+        if (d2 > widest * g.dd * (dh * dh) * (1.0f + 1.0f / 65536)) continue;
+      }
       const float* hrow = heights + std::size_t(qy) * g.W + bx0;
-      for (int j = 0; j < nq; ++j) Update<kCheckZero>(best, bdd, hp, hn::Add(dxt[j], dyt), hn::Set(d, hrow[j]), dd, slack);
+      for (int j = 0; j < nq; ++j) {
+        improved |= Update<kCheckZero>(best, bdd, hp, hn::Add(dxt[j], dyt), hn::Set(d, hrow[j]), dd, slack);
+      }
     }
     hn::Store(best, d, best_all + v * N);
   }
+  return improved;
 }
 
-void ConeCellTexels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
+bool ConeCellTexels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
                     const bool* rows) {
   if (g.shrink > 0) return Texels<true>(g, heights, c, bx0, bx1, by0, by1, rows);
-  Texels<false>(g, heights, c, bx0, bx1, by0, by1, rows);
+  return Texels<false>(g, heights, c, bx0, bx1, by0, by1, rows);
 }
 
-void ConeCellBlock(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M, const bool* rows) {
+bool ConeCellBlock(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M, const bool* rows) {
   const DF d;
+  bool improved = false;
   const int N = int(hn::Lanes(d));
   const VF dd = hn::Set(d, g.dd), slack = hn::Set(d, 1.0f + 1.0f / 65536), hq = hn::Set(d, M);
   for (int v = 0; v < kConeCell * kConeCell / N; ++v) {
@@ -169,9 +198,10 @@ void ConeCellBlock(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0
                           AxisTerm(g, RangeDistance(pos.py, by0, by1, g.H, g.repeat), g.sy));
     VF best = hn::Load(d, &c.best[0][0] + v * N);
     VF bdd = hn::Mul(hn::Mul(best, dd), slack);
-    Update<true>(best, bdd, hn::Load(d, &c.apex[0][0] + v * N), d2, hq, dd, slack);
+    improved |= Update<true>(best, bdd, hn::Load(d, &c.apex[0][0] + v * N), d2, hq, dd, slack);
     hn::Store(best, d, &c.best[0][0] + v * N);
   }
+  return improved;
 }
 
 }  // namespace HWY_NAMESPACE
@@ -183,16 +213,16 @@ namespace texproc::detail {
 HWY_EXPORT(ConeCellTexels);
 HWY_EXPORT(ConeCellBlock);
 
-void cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
+bool cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
                       const bool rows[kConeCell]) {
   if (force_scalar()) return ref::cone_cell_texels(g, heights, c, bx0, bx1, by0, by1, rows);
-  HWY_DYNAMIC_DISPATCH(ConeCellTexels)(g, heights, c, bx0, bx1, by0, by1, rows);
+  return HWY_DYNAMIC_DISPATCH(ConeCellTexels)(g, heights, c, bx0, bx1, by0, by1, rows);
 }
 
-void cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M,
+bool cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M,
                      const bool rows[kConeCell]) {
   if (force_scalar()) return ref::cone_cell_block(g, c, bx0, bx1, by0, by1, M, rows);
-  HWY_DYNAMIC_DISPATCH(ConeCellBlock)(g, c, bx0, bx1, by0, by1, M, rows);
+  return HWY_DYNAMIC_DISPATCH(ConeCellBlock)(g, c, bx0, bx1, by0, by1, M, rows);
 }
 }  // namespace texproc::detail
 #endif

@@ -92,6 +92,7 @@ constexpr double kPruneSlack = 1.0 + 1e-5;
 struct Node {
   int level, x, y;
   double bound;
+  int gx = 0, gy = 0;  // conservative cells: the block's gap to the cell along x and y
 };
 
 // Relaxed cones count a higher texel q only if a 4-neighbour behind it, as
@@ -135,34 +136,12 @@ struct Behind {
 // Gap in texels between texel ranges [a0, a1] and [b0, b1] along an axis of
 // n texels (with repeat, to the nearest periodic copy of b).
 int range_gap(int a0, int a1, int b0, int b1, int n, bool repeat) {
-  auto gap = [&](int s) { return std::max({0, b0 + s - a1, a0 - (b1 + s)}); };
-  int best = gap(0);
-  if (repeat) best = std::min({best, gap(-n), gap(n)});
-  return best;
-}
-
-// Pushes the children of node n that may hold a candidate below `best`
-// (bound(child) is the squared ratio at its nearest point), nearest first.
-template <typename Bound>
-void push_children(const Pyramid& pyr, const Node& n, float floor_height, double best, Bound bound,
-                   std::vector<Node>& stack) {
-  const int k = n.level;
-  Node kids[4];
-  int count = 0;
-  const int kw = pyr.w[std::size_t(k - 1)], kh = pyr.h[std::size_t(k - 1)];
-  for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < 2; ++i) {
-      const int ux = 2 * n.x + i, uy = 2 * n.y + j;
-      if (ux >= kw || uy >= kh) continue;
-      const float M = pyr.max[std::size_t(k - 1)][std::size_t(uy) * kw + ux];
-      if (M <= floor_height) continue;
-      const double b = bound(k - 1, ux, uy, double(M) - floor_height);
-      if (b > best * kPruneSlack) continue;
-      kids[count++] = {k - 1, ux, uy, b / kPruneSlack};
-    }
-  for (int a = 1; a < count; ++a)
-    for (int b = a; b > 0 && kids[b - 1].bound < kids[b].bound; --b) std::swap(kids[b - 1], kids[b]);
-  for (int c = 0; c < count; ++c) stack.push_back(kids[c]);
+  int g = std::max({0, b0 - a1, a0 - b1});
+  if (repeat && g > 0) {
+    g = std::min(g, std::max({0, b0 - n - a1, a0 - b1 + n}));
+    g = std::min(g, std::max({0, b0 + n - a1, a0 - b1 - n}));
+  }
+  return g;
 }
 
 detail::ConeGeometry geometry(int W, int H, const ConeMapOptions& o, int shrink) {
@@ -182,13 +161,22 @@ detail::ConeGeometry geometry(int W, int H, const ConeMapOptions& o, int shrink)
 // cell's lowest apex at the cell's nearest point could not narrow the widest
 // cone in the cell; the blocks of 8x8 texels that survive are scanned
 // against every apex row that a row-wise bound cannot rule out, SIMD across
-// the row (cone_cells.h). With o.fast_reach, a block whose gap to the cell
-// is at least fast_reach of its own sizes counts as one obstacle.
+// the row (cone_cells.h). With o.fast_reach, the blocks next to the cell are
+// still scanned, but a farther block whose gap to the cell is at least
+// fast_reach of its own sizes counts as one obstacle.
 std::vector<float> conservative_cells(const std::vector<float>& heights, const std::vector<float>& apex, int W, int H,
                                       const ConeMapOptions& o, const Pyramid& pyr, int shrink) {
   using detail::kConeCell;
   constexpr int kScanLevel = 3;  // 8x8-texel blocks are scanned
-  const detail::ConeGeometry g = geometry(W, H, o, shrink);
+  detail::ConeGeometry g = geometry(W, H, o, shrink);
+  const int runs = (W + kConeCell - 1) / kConeCell;
+  std::vector<float> row_max8(std::size_t(runs) * H);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      float& v = row_max8[std::size_t(y) * runs + std::size_t(x / kConeCell)];
+      v = x % kConeCell == 0 ? heights[std::size_t(y) * W + x] : std::max(v, heights[std::size_t(y) * W + x]);
+    }
+  g.row_max8 = row_max8.data();
   const Metric m{1.0 / (double(W) * W), 1.0 / (double(H) * H), double(o.depth) * o.depth};
   const bool repeat = g.repeat;
   const int top = int(pyr.max.size()) - 1;
@@ -222,14 +210,15 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
         double cell_max = cap2;
         // Which apex rows the block [bx0, bx1] x [by0, by1] of height M may narrow.
         bool rows[kConeCell];
-        auto select_rows = [&](int bx0, int bx1, int by0, int by1, float M) {
-          const double gx = shrunk(range_gap(c.x0, x1, bx0, bx1, W, repeat));
+        auto select_rows = [&](int gap_x, int by0, int by1, float M) {
+          const double gx = shrunk(gap_x);
           bool any = false;
           for (int r = 0; r < kConeCell; ++r) {
             rows[r] = false;
             if (r >= h || !(M > row_min[r])) continue;
             const double gy = shrunk(detail::cone_axis_distance(c.y0 + r, by0, by1, H, repeat));
-            rows[r] = m.ratio2(gx, gy, double(M) - row_min[r]) <= row_max[r] * kPruneSlack;
+            const double dh = double(M) - row_min[r];
+            rows[r] = gx * gx * m.sx + gy * gy * m.sy <= row_max[r] * kPruneSlack * m.dd * dh * dh;
             any = any || rows[r];
           }
           return any;
@@ -247,6 +236,12 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
             cell_max = std::max(cell_max, double(mx));
           }
         };
+        bool all_rows[kConeCell];
+        for (int r = 0; r < kConeCell; ++r) all_rows[r] = r < h;
+        auto refresh_all = [&] {
+          std::copy(all_rows, all_rows + kConeCell, rows);
+          refresh();
+        };
         stack.clear();
         stack.push_back({top, 0, 0, 0.0});
         while (!stack.empty()) {
@@ -257,25 +252,41 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
           const int bx0 = n.x << k, bx1 = std::min((n.x + 1) << k, W) - 1;
           const int by0 = n.y << k, by1 = std::min((n.y + 1) << k, H) - 1;
           const float M = pyr.max[std::size_t(k)][std::size_t(n.y) * pyr.w[std::size_t(k)] + n.x];
-          if (reach > 0 && std::max(range_gap(c.x0, x1, bx0, bx1, W, repeat), range_gap(c.y0, y1, by0, by1, H, repeat)) >=
-                               std::max(reach << k, shrink + 1)) {
-            if (select_rows(bx0, bx1, by0, by1, M)) {
-              detail::cone_cell_block(g, c, bx0, bx1, by0, by1, M, rows);
+          // --fast: the blocks next to the cell are scanned, farther ones
+          // opened only until they are reach of their sizes away.
+          const int gap = reach > 0 ? std::max(n.gx, n.gy) : 0;
+          if (reach > 0 && gap >= kConeCell && (k == 0 || gap >= std::max(reach << k, shrink + 1))) {
+            // One obstacle costs less than choosing its rows: all rows.
+            if (M > cell_min && detail::cone_cell_block(g, c, bx0, bx1, by0, by1, M, all_rows)) refresh_all();
+            continue;
+          }
+          if (k <= kScanLevel && gap < kConeCell) {
+            if (select_rows(n.gx, by0, by1, M) && detail::cone_cell_texels(g, heights.data(), c, bx0, bx1, by0, by1, rows)) {
               refresh();
             }
             continue;
           }
-          if (k <= kScanLevel) {
-            if (select_rows(bx0, bx1, by0, by1, M)) {
-              detail::cone_cell_texels(g, heights.data(), c, bx0, bx1, by0, by1, rows);
-              refresh();
+          // Children that may narrow a cone, nearest pushed last (searched first).
+          Node kids[4];
+          int count = 0;
+          const int s = k - 1;
+          const int kw = pyr.w[std::size_t(s)], kh = pyr.h[std::size_t(s)];
+          for (int j = 0; j < 2; ++j)
+            for (int i = 0; i < 2; ++i) {
+              const int ux = 2 * n.x + i, uy = 2 * n.y + j;
+              if (ux >= kw || uy >= kh) continue;
+              const float Mc = pyr.max[std::size_t(s)][std::size_t(uy) * kw + ux];
+              if (Mc <= cell_min) continue;
+              const int gx = range_gap(c.x0, x1, ux << s, std::min((ux + 1) << s, W) - 1, W, repeat);
+              const int gy = range_gap(c.y0, y1, uy << s, std::min((uy + 1) << s, H) - 1, H, repeat);
+              const double sgx = shrunk(gx), sgy = shrunk(gy), dh = double(Mc) - cell_min;
+              const double num = sgx * sgx * m.sx + sgy * sgy * m.sy, den = m.dd * dh * dh;
+              if (num > cell_max * kPruneSlack * den) continue;
+              kids[count++] = {s, ux, uy, num / den / kPruneSlack, gx, gy};
             }
-            continue;
-          }
-          push_children(pyr, n, cell_min, cell_max, [&](int s, int ux, int uy, double dh) {
-            return m.ratio2(shrunk(range_gap(c.x0, x1, ux << s, std::min((ux + 1) << s, W) - 1, W, repeat)),
-                            shrunk(range_gap(c.y0, y1, uy << s, std::min((uy + 1) << s, H) - 1, H, repeat)), dh);
-          }, stack);
+          for (int a = 1; a < count; ++a)
+            for (int b = a; b > 0 && kids[b - 1].bound < kids[b].bound; --b) std::swap(kids[b - 1], kids[b]);
+          for (int q = 0; q < count; ++q) stack.push_back(kids[q]);
         }
         for (int r = 0; r < h; ++r)
           for (int l = 0; l < w; ++l) out[std::size_t(c.y0 + r) * W + c.x0 + l] = c.best[r][l];
