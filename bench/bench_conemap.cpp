@@ -93,6 +93,23 @@ void relaxed_cones(benchmark::State& state, const std::string& kind, int n, int 
   state.counters["mean_relaxed_over_conservative"] = sum / double(r.size());
 }
 
+// --bilinear-safe: time, and the mean of safe / classic ratio over the texels.
+void bilinear_cones(benchmark::State& state, const std::string& kind, int n, int threads) {
+  const std::vector<float>& f = field(kind, n);
+  ThreadLimit limit(threads);
+  ConeMapOptions o;
+  o.bilinear_safe = true;
+  std::vector<float> r;
+  for (auto _ : state) {
+    r = cone_ratios(f, n, n, o);
+    benchmark::DoNotOptimize(r.data());
+  }
+  const std::vector<float> c = cone_ratios(f, n, n, ConeMapOptions{});
+  double sum = 0;
+  for (std::size_t i = 0; i < r.size(); ++i) sum += c[i] > 0 ? double(r[i]) / c[i] : 1.0;
+  state.counters["mean_safe_over_classic"] = sum / double(r.size());
+}
+
 // --fast: time, and the mean of fast / exact ratio over the texels (the
 // exact map computed once per field, outside the timing).
 void fast_cones(benchmark::State& state, const std::string& kind, int n, int threads, int reach) {
@@ -148,6 +165,14 @@ void register_all() {
                                    [kind, t](benchmark::State& s) { cones(s, kind, 1024, t, false); })
           ->Unit(benchmark::kMillisecond)->Iterations(2)->UseRealTime();
     }
+    benchmark::RegisterBenchmark((std::string("conemap/") + kind + "/4096/threads:2").c_str(),
+                                 [kind](benchmark::State& s) { cones(s, kind, 4096, 2, false); })
+        ->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+  }
+  for (const char* kind : {"terrain", "hemisphere", "fractal", "spikes"}) {
+    benchmark::RegisterBenchmark((std::string("bilinear/") + kind + "/1024/threads:2").c_str(),
+                                 [kind](benchmark::State& s) { bilinear_cones(s, kind, 1024, 2); })
+        ->Unit(benchmark::kMillisecond)->Iterations(2)->UseRealTime();
   }
   for (const char* kind : {"terrain", "hemisphere", "fractal", "spikes"}) {
     benchmark::RegisterBenchmark((std::string("relaxed/") + kind + "/1024/threads:2").c_str(),

@@ -180,6 +180,7 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
   const Metric m{1.0 / (double(W) * W), 1.0 / (double(H) * H), double(o.depth) * o.depth};
   const bool repeat = g.repeat;
   const int top = int(pyr.max.size()) - 1;
+  const float summit = pyr.max[std::size_t(top)][0];
   const float cap2 = o.max_ratio * o.max_ratio;
   const int cw = (W + kConeCell - 1) / kConeCell, ch = (H + kConeCell - 1) / kConeCell;
   const int reach = o.fast_reach;
@@ -194,20 +195,28 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
         c.y0 = cy * kConeCell;
         const int w = std::min(kConeCell, W - c.x0), h = std::min(kConeCell, H - c.y0);
         const int x1 = c.x0 + w - 1, y1 = c.y0 + h - 1;
+        // Bounds: the lowest apex and the widest cone of each row and of the
+        // cell. An apex at the summit of the map has nothing above it: its
+        // cone stays at the cap and does not count as the widest (a lone
+        // spike would otherwise open the whole pyramid for its cell).
         float row_min[kConeCell], row_max[kConeCell];
+        bool live[kConeCell][kConeCell];
         float cell_min = std::numeric_limits<float>::infinity();
+        double cell_max = 0;
         for (int r = 0; r < kConeCell; ++r) {
           row_min[r] = std::numeric_limits<float>::infinity();
-          row_max[r] = r < h ? cap2 : 0.0f;
+          row_max[r] = 0.0f;
           for (int l = 0; l < kConeCell; ++l) {
             const bool real = r < h && l < w;
             c.apex[r][l] = real ? apex[std::size_t(c.y0 + r) * W + c.x0 + l] : std::numeric_limits<float>::infinity();
             c.best[r][l] = cap2;
+            live[r][l] = real && c.apex[r][l] < summit;
+            if (live[r][l]) row_max[r] = cap2;
             row_min[r] = std::min(row_min[r], c.apex[r][l]);
           }
           cell_min = std::min(cell_min, row_min[r]);
+          cell_max = std::max(cell_max, double(row_max[r]));
         }
-        double cell_max = cap2;
         // Which apex rows the block [bx0, bx1] x [by0, by1] of height M may narrow.
         bool rows[kConeCell];
         auto select_rows = [&](int gap_x, int by0, int by1, float M) {
@@ -231,7 +240,7 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
               continue;
             }
             float mx = 0;
-            for (int l = 0; l < w; ++l) mx = std::max(mx, c.best[r][l]);
+            for (int l = 0; l < w; ++l) mx = live[r][l] ? std::max(mx, c.best[r][l]) : mx;
             row_max[r] = mx;
             cell_max = std::max(cell_max, double(mx));
           }
@@ -243,7 +252,7 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
           refresh();
         };
         stack.clear();
-        stack.push_back({top, 0, 0, 0.0});
+        if (cell_max > 0) stack.push_back({top, 0, 0, 0.0});
         while (!stack.empty()) {
           const Node n = stack.back();
           stack.pop_back();
