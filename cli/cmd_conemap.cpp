@@ -28,6 +28,7 @@ struct ConeArgs {
   std::string wrap = "repeat";
   std::string type;
   std::string mode = "conservative";
+  std::string channels = "rgb";
   bool brute_force = false;
   bool fast = false;
   bool bilinear_safe = false;
@@ -54,6 +55,9 @@ void validate(ConeArgs& a) {
   }
   o.mode = a.mode == "relaxed" ? ConeMode::relaxed : ConeMode::conservative;
   o.bilinear_safe = a.bilinear_safe;
+  if (a.channels != "rg" && a.channels != "rgb" && a.channels != "rgba") {
+    throw Error(ErrorCode::bad_arguments, "unknown --channels '" + a.channels + "' (valid: rg, rgb, rgba)");
+  }
   if (a.bilinear_safe && o.mode == ConeMode::relaxed) {
     throw Error(ErrorCode::bad_arguments, "--bilinear-safe makes conservative cones; it does not combine with --mode relaxed");
   }
@@ -76,7 +80,7 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
                                                   : cone_ratios(h, img.width(), img.height(), o);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const PixelType out_type = a.type_choice ? *a.type_choice : (img.type() == PixelType::u8 ? PixelType::u8 : PixelType::u16);
-  write_image(output, cone_map_image(h, ratios, img.width(), img.height(), o, out_type).view(), w);
+  write_image(output, cone_map_image(h, ratios, img.width(), img.height(), o, out_type, int(a.channels.size())).view(), w);
   const std::string preview = r.outputs.size() > 1 ? r.outputs[1] : "";
   if (!preview.empty()) {
     // The preview shows both kinds side by side: the other map is computed too.
@@ -105,6 +109,7 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
   r.details["mean_ratio"] = ratios.empty() ? 0.0 : mean / double(ratios.size());
   r.details["mode"] = a.mode;
   r.details["bilinear_safe"] = a.bilinear_safe;
+  r.details["channels"] = a.channels;
 }
 
 }  // namespace
@@ -126,6 +131,9 @@ void add_conemap_command(CLI::App& app) {
   cmd->add_option("--mode", args->mode,
                  "conservative (no relief inside a cone) or relaxed (a ray entering the relief inside a cone does not "
                  "leave it there: wider cones, then a binary search)")
+      ->capture_default_str();
+  cmd->add_option("--channels", args->channels,
+                  "rgb (B = 0), rg (two channels, for BC5 / EAC RG11 / RG8 textures) or rgba (B = 0, A = 1)")
       ->capture_default_str();
   cmd->add_option("--type", args->type, "Output element type: u8, u16, f16, f32 (default: u8 for 8-bit input, else u16)");
   cmd->add_flag("--bilinear-safe", args->bilinear_safe,

@@ -285,6 +285,25 @@ TEST(Cli, ConemapWritesMapAndPreview) {
       narrower += sb.get(x, y, 1) < c.get(x, y, 1);
     }
   EXPECT_GT(narrower, 0);
+  // --channels: RG for two-channel textures, RGBA with an opaque alpha; the same cones.
+  r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/rg.tif --channels rg -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/rgba.png --channels rgba -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image rg = read_image(dir + "/rg.tif"), rgba = read_image(dir + "/rgba.png");
+  ASSERT_EQ(rg.channels(), 2);
+  ASSERT_EQ(rgba.channels(), 4);
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 24; ++x)
+      for (int ch = 0; ch < 2; ++ch) {
+        EXPECT_EQ(rg.get(x, y, ch), c.get(x, y, ch));
+        EXPECT_EQ(rgba.get(x, y, ch), c.get(x, y, ch));
+        EXPECT_EQ(rgba.get(x, y, 2), 0.0f);
+        EXPECT_EQ(rgba.get(x, y, 3), 1.0f);
+      }
+  r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/x.png --channels rgb0");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("unknown --channels 'rgb0' (valid: rg, rgb, rgba)"), std::string::npos) << r.err;
   r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/x.png --bilinear-safe --mode relaxed");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("--bilinear-safe makes conservative cones"), std::string::npos) << r.err;

@@ -223,7 +223,9 @@ TEST(ConeMap, FastModeKeepsMostOfTheCone) {
     std::printf("reach %d: mean fast / exact %.4f\n", reach, mean);
     EXPECT_GE(mean, reach == 1 ? 0.6 : 0.75) << "reach " << reach;
     EXPECT_GE(mean, previous) << "a longer reach must not give narrower cones";
-    if (reach == 1) EXPECT_LT(mean, 1.0) << "reach 1 should be approximate here";
+    if (reach == 1) {
+      EXPECT_LT(mean, 1.0) << "reach 1 should be approximate here";
+    }
     previous = mean;
   }
 }

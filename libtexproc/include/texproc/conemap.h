@@ -69,9 +69,10 @@ std::vector<float> cone_ratios_brute_force(const std::vector<float>& heights, in
                                            const ConeMapOptions& o);
 
 // A cone map image: R = height, G = sqrt(ratio / max_ratio), rounded down
-// (so quantization never widens a cone), in `type` (u8, u16 or f32).
+// (so quantization never widens a cone), in `type` (u8, u16 or f32), with
+// 2 (RG), 3 (B = 0) or 4 channels (B = 0, A = 1).
 Image cone_map_image(const std::vector<float>& heights, const std::vector<float>& ratios, int width, int height,
-                     const ConeMapOptions& o, PixelType type);
+                     const ConeMapOptions& o, PixelType type, int channels = 3);
 
 // Ray tracing through the relief, in texture space. A ray starts at (u, v)
 // on the top plane (height 1) and moves by (du, dv) per unit of height

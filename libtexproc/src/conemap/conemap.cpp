@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 
 #include "conemap/cone_cells.h"
 #include "texproc/conemap.h"
@@ -555,34 +556,29 @@ std::vector<float> cone_ratios_brute_force(const std::vector<float>& heights, in
 }
 
 Image cone_map_image(const std::vector<float>& heights, const std::vector<float>& ratios, int W, int H,
-                     const ConeMapOptions& o, PixelType type) {
-  Image img = Image::uninitialized(W, H, 3, type);
+                     const ConeMapOptions& o, PixelType type, int channels) {
+  if (channels < 2 || channels > 4) throw Error(ErrorCode::bad_arguments, "a cone map has 2, 3 or 4 channels");
+  Image img = Image::uninitialized(W, H, channels, type);
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
       const std::size_t i = std::size_t(y) * W + x;
       const double g = std::sqrt(std::min(1.0, double(ratios[i]) / o.max_ratio));
+      const double h = std::clamp(double(heights[i]), 0.0, 1.0);
+      // B = 0, A = 1 where asked for.
+      auto put = [&](auto* p, double scale, bool integer) {
+        using T = std::remove_pointer_t<decltype(p)>;
+        p[0] = T(integer ? std::round(h * scale) : h);
+        // G rounded down: quantization never widens a cone.
+        double gq = integer ? std::floor(g * scale) : g;
+        if (!integer && double(T(gq)) > g) gq = std::nextafter(float(gq), 0.0f);
+        p[1] = T(gq);
+        if (channels > 2) p[2] = T(0);
+        if (channels > 3) p[3] = T(scale);
+      };
       switch (type) {
-        case PixelType::u8: {
-          auto* p = img.row<std::uint8_t>(y) + 3 * x;
-          p[0] = std::uint8_t(std::lround(std::clamp(heights[i], 0.0f, 1.0f) * 255.0f));
-          p[1] = std::uint8_t(std::floor(g * 255.0));  // rounded down: never a wider cone
-          p[2] = 0;
-          break;
-        }
-        case PixelType::u16: {
-          auto* p = img.row<std::uint16_t>(y) + 3 * x;
-          p[0] = std::uint16_t(std::lround(std::clamp(heights[i], 0.0f, 1.0f) * 65535.0f));
-          p[1] = std::uint16_t(std::floor(g * 65535.0));
-          p[2] = 0;
-          break;
-        }
-        case PixelType::f32: {
-          auto* p = img.row<float>(y) + 3 * x;
-          p[0] = heights[i];
-          p[1] = float(g);
-          p[2] = 0.0f;
-          break;
-        }
+        case PixelType::u8: put(img.row<std::uint8_t>(y) + channels * x, 255.0, true); break;
+        case PixelType::u16: put(img.row<std::uint16_t>(y) + channels * x, 65535.0, true); break;
+        case PixelType::f32: put(img.row<float>(y) + channels * x, 1.0, false); break;
       }
     }
   return img;
