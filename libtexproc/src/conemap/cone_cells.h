@@ -42,6 +42,13 @@ bool cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, 
 bool cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M,
                      const bool rows[kConeCell]);
 
+// max over the cell's apexes of best * (M - apex)^2 (0 where M <= apex): a
+// block of height M whose squared distance term d2 exceeds this times
+// depth^2 cannot narrow any cone of the cell (each apex paired with its own
+// cone, where a bound from the lowest apex and the widest cone fails on
+// mixed cells: white noise, a capped cone on a peak beside narrow ones).
+float cone_cell_reach(const ConeCell& c, float M);
+
 // Distance along one axis from texel p to the nearest texel of [lo, hi]
 // (0 inside), with repeat the nearest periodic copy.
 inline int cone_axis_distance(int p, int lo, int hi, int n, bool repeat) {
@@ -69,6 +76,7 @@ bool cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, 
                       const bool rows[kConeCell]);
 bool cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M,
                      const bool rows[kConeCell]);
+float cone_cell_reach(const ConeCell& c, float M);
 }  // namespace ref
 
 }  // namespace texproc::detail

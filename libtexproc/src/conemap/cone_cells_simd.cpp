@@ -8,6 +8,7 @@
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
 
+#include <algorithm>
 #include <limits>
 
 #include "conemap/cone_cells.h"
@@ -61,6 +62,16 @@ bool cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int b
     }
   }
   return improved;
+}
+
+float cone_cell_reach(const ConeCell& c, float M) {
+  float most = 0.0f;
+  for (int r = 0; r < kConeCell; ++r)
+    for (int l = 0; l < kConeCell; ++l) {
+      const float dh = M - c.apex[r][l];
+      if (dh > 0.0f) most = std::max(most, c.best[r][l] * (dh * dh));
+    }
+  return most;
 }
 
 }  // namespace texproc::detail::ref
@@ -204,6 +215,18 @@ bool ConeCellBlock(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0
   return improved;
 }
 
+float ConeCellReach(const ConeCell& c, float M) {
+  const DF d;
+  const int N = int(hn::Lanes(d));
+  const VF m = hn::Set(d, M), zero = hn::Zero(d);
+  VF most = zero;
+  for (int v = 0; v < kConeCell * kConeCell / N; ++v) {
+    const VF dh = hn::Max(hn::Sub(m, hn::Load(d, &c.apex[0][0] + v * N)), zero);
+    most = hn::Max(most, hn::Mul(hn::Load(d, &c.best[0][0] + v * N), hn::Mul(dh, dh)));
+  }
+  return hn::GetLane(hn::MaxOfLanes(d, most));
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace texproc::detail
 HWY_AFTER_NAMESPACE();
@@ -212,6 +235,12 @@ HWY_AFTER_NAMESPACE();
 namespace texproc::detail {
 HWY_EXPORT(ConeCellTexels);
 HWY_EXPORT(ConeCellBlock);
+HWY_EXPORT(ConeCellReach);
+
+float cone_cell_reach(const ConeCell& c, float M) {
+  if (force_scalar()) return ref::cone_cell_reach(c, M);
+  return HWY_DYNAMIC_DISPATCH(ConeCellReach)(c, M);
+}
 
 bool cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
                       const bool rows[kConeCell]) {

@@ -292,6 +292,7 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
               const double sgx = shrunk(gx), sgy = shrunk(gy), dh = double(Mc) - cell_min;
               const double num = sgx * sgx * m.sx + sgy * sgy * m.sy, den = m.dd * dh * dh;
               if (num > cell_max * kPruneSlack * den) continue;
+              if (num > double(detail::cone_cell_reach(c, Mc)) * m.dd * kPruneSlack) continue;  // each apex with its own cone
               kids[count++] = {s, ux, uy, num / (den * kPruneSlack), gx, gy};
             }
           for (int a = 1; a < count; ++a)
