@@ -37,6 +37,11 @@ std::vector<float> hard_case(const std::string& kind, int n) {
       }
   } else if (kind == "spikes") {
     for (auto& v : f) v = u(rng) < 0.001f ? 1.0f : 0.0f;
+  } else if (kind == "white") {  // white noise: neighbours unrelated
+    for (auto& v : f) v = u(rng);
+  } else if (kind == "ramp") {  // two planes (a sawtooth): every uphill texel of a row gives the same ratio, 0.5
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) f[std::size_t(y) * n + x] = float(2 * x % n) / float(n);
   } else {  // fractal: octaves of value noise
     std::vector<float> acc(f.size(), 0.0f);
     float amp = 0.5f;
@@ -140,8 +145,9 @@ void fast_cones(benchmark::State& state, const std::string& kind, int n, int thr
 }
 
 void register_all() {
-  for (const char* kind : {"terrain", "hemisphere", "fractal", "spikes"}) {
+  for (const char* kind : {"terrain", "hemisphere", "fractal", "spikes", "white", "ramp"}) {
     for (int n : {1024, 4096}) {
+      if (n == 4096 && (std::string(kind) == "white" || std::string(kind) == "ramp")) continue;
       for (int reach : {1, 2, 4}) {
         if (n == 4096 && reach == 4) continue;
         benchmark::RegisterBenchmark((std::string("fast/") + kind + "/" + std::to_string(n) + "/reach:" +
@@ -159,12 +165,13 @@ void register_all() {
           ->Unit(benchmark::kMillisecond)->Iterations(n >= 2048 ? 1 : 3)->UseRealTime();
     }
   }
-  for (const char* kind : {"hemisphere", "fractal", "spikes"}) {
+  for (const char* kind : {"hemisphere", "fractal", "spikes", "white", "ramp"}) {
     for (int t : {1, 2}) {
       benchmark::RegisterBenchmark((std::string("conemap/") + kind + "/1024/threads:" + std::to_string(t)).c_str(),
                                    [kind, t](benchmark::State& s) { cones(s, kind, 1024, t, false); })
           ->Unit(benchmark::kMillisecond)->Iterations(2)->UseRealTime();
     }
+    if (std::string(kind) == "white" || std::string(kind) == "ramp") continue;
     benchmark::RegisterBenchmark((std::string("conemap/") + kind + "/4096/threads:2").c_str(),
                                  [kind](benchmark::State& s) { cones(s, kind, 4096, 2, false); })
         ->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();

@@ -32,6 +32,7 @@ std::vector<float> field(int w, int h, const char* kind, unsigned seed) {
       if (k == "peak") v = std::max(0.0f, 1.0f - std::hypot(x - w / 2.0f, y - h / 3.0f) / 10.0f);
       if (k == "flat") v = 0.5f;
       if (k == "quantized") v = std::round(u(rng) * 255.0f) / 255.0f;  // ties in height
+      if (k == "ramp") v = float(x) / float(w);  // every uphill texel of a row ties
     }
   return f;
 }
@@ -52,7 +53,7 @@ int texel_gap(float a_uv, float b_uv, int n) {
 // is never narrower).
 TEST(ConeMap, FastEqualsBruteForceExactly) {
   for (auto [w, h] : {std::pair{32, 32}, {64, 64}, {24, 40}, {1, 7}}) {
-    for (const char* kind : {"random", "steps", "spikes", "peak", "flat", "quantized"}) {
+    for (const char* kind : {"random", "steps", "spikes", "peak", "flat", "quantized", "ramp"}) {
       for (WrapMode wrap : {WrapMode::repeat, WrapMode::clamp}) {
         for (auto [depth, cap] : {std::pair{1.0f, 1.0f}, {0.2f, 4.0f}}) {
           ConeMapOptions o;
