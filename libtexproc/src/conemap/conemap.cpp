@@ -292,7 +292,10 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
               const double sgx = shrunk(gx), sgy = shrunk(gy), dh = double(Mc) - cell_min;
               const double num = sgx * sgx * m.sx + sgy * sgy * m.sy, den = m.dd * dh * dh;
               if (num > cell_max * kPruneSlack * den) continue;
-              if (num > double(detail::cone_cell_reach(c, Mc)) * m.dd * kPruneSlack) continue;  // each apex with its own cone
+              // Each apex with its own cone, where the child would be opened or
+              // scanned (a --fast obstacle costs about as much as this test).
+              const bool obstacle = reach > 0 && std::max(gx, gy) >= kConeCell && std::max(gx, gy) >= std::max(reach << s, shrink + 1);
+              if (!obstacle && num > double(detail::cone_cell_reach(c, Mc)) * m.dd * kPruneSlack) continue;
               kids[count++] = {s, ux, uy, num / (den * kPruneSlack), gx, gy};
             }
           for (int a = 1; a < count; ++a)
