@@ -33,6 +33,10 @@ std::vector<float> field(int w, int h, const char* kind, unsigned seed) {
       if (k == "flat") v = 0.5f;
       if (k == "quantized") v = std::round(u(rng) * 255.0f) / 255.0f;  // ties in height
       if (k == "ramp") v = float(x) / float(w);  // every uphill texel of a row ties
+      if (k == "planes") {  // tilted sawtooth planes: the slope bound's case, across the wrap
+        const float t = 0.37f * float(x) / float(w) + 1.3f * float(y) / float(h);
+        v = t - std::floor(t);
+      }
     }
   return f;
 }
@@ -53,7 +57,7 @@ int texel_gap(float a_uv, float b_uv, int n) {
 // is never narrower).
 TEST(ConeMap, FastEqualsBruteForceExactly) {
   for (auto [w, h] : {std::pair{32, 32}, {64, 64}, {24, 40}, {1, 7}}) {
-    for (const char* kind : {"random", "steps", "spikes", "peak", "flat", "quantized", "ramp"}) {
+    for (const char* kind : {"random", "steps", "spikes", "peak", "flat", "quantized", "ramp", "planes"}) {
       for (WrapMode wrap : {WrapMode::repeat, WrapMode::clamp}) {
         for (auto [depth, cap] : {std::pair{1.0f, 1.0f}, {0.2f, 4.0f}}) {
           ConeMapOptions o;
@@ -77,6 +81,19 @@ TEST(ConeMap, FastEqualsBruteForceExactly) {
       }
     }
   }
+}
+
+// The slope bound across the wrap: a ramp half the texture away is seen by
+// some texels of a cell on one side and by the others on the other, where
+// it climbs towards them. The search must not prune it for those.
+TEST(ConeMap, SlopeBoundHoldsAcrossTheWrap) {
+  const int W = 64, H = 8;
+  std::vector<float> f(std::size_t(W) * H, 0.0f);
+  for (int y = 0; y < H; ++y)
+    for (int x = 32; x < 40; ++x) f[std::size_t(y) * W + x] = float(x - 32) / 7.0f;
+  ConeMapOptions o;
+  o.max_ratio = 0.45f;
+  EXPECT_EQ(cone_ratios(f, W, H, o), cone_ratios_brute_force(f, W, H, o));
 }
 
 // --fast: every cone at most the exact one (texel for texel, against the

@@ -42,12 +42,18 @@ bool cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, 
 bool cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M,
                      const bool rows[kConeCell]);
 
-// max over the cell's apexes of best * (M - apex)^2 (0 where M <= apex): a
-// block of height M whose squared distance term d2 exceeds this times
-// depth^2 cannot narrow any cone of the cell (each apex paired with its own
-// cone, where a bound from the lowest apex and the widest cone fails on
-// mixed cells: white noise, a capped cone on a peak beside narrow ones).
-float cone_cell_reach(const ConeCell& c, float M);
+// Whether the block [bx0, bx1] x [by0, by1] of height M can narrow no cone
+// of the cell, each apex paired with its own cone and its own distance (a
+// bound from the cell's lowest apex and widest cone fails on mixed cells:
+// white noise, a capped cone on a peak beside narrow ones). With rise > 0,
+// the block's heights climb at least `rise` per texel away from the cell
+// along `axis` (0: x, 1: y), `extent` texels deep: a texel at offset a from
+// the near edge is at most M - (extent - a) rise high, and the least ratio
+// over a is at a = 0 or a = extent (the bound is linear-fractional in a,
+// with the apex-to-texel distance taken as its projection on the direction
+// from the apex to the block). Needs shrink == 0 when rise > 0.
+bool cone_cell_clear(const ConeGeometry& g, const ConeCell& c, int bx0, int bx1, int by0, int by1, float M, int axis,
+                     float rise, int extent);
 
 // Distance along one axis from texel p to the nearest texel of [lo, hi]
 // (0 inside), with repeat the nearest periodic copy.
@@ -76,7 +82,8 @@ bool cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, 
                       const bool rows[kConeCell]);
 bool cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0, int by1, float M,
                      const bool rows[kConeCell]);
-float cone_cell_reach(const ConeCell& c, float M);
+bool cone_cell_clear(const ConeGeometry& g, const ConeCell& c, int bx0, int bx1, int by0, int by1, float M, int axis,
+                     float rise, int extent);
 }  // namespace ref
 
 }  // namespace texproc::detail

@@ -9,6 +9,7 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "conemap/cone_cells.h"
@@ -64,14 +65,33 @@ bool cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int b
   return improved;
 }
 
-float cone_cell_reach(const ConeCell& c, float M) {
-  float most = 0.0f;
+bool cone_cell_clear(const ConeGeometry& g, const ConeCell& c, int bx0, int bx1, int by0, int by1, float M, int axis,
+                     float rise, int extent) {
+  const float slack = 1.0f + 1.0f / 65536;
+  const float M0 = rise > 0.0f ? M - float(extent) * rise : M;
   for (int r = 0; r < kConeCell; ++r)
     for (int l = 0; l < kConeCell; ++l) {
-      const float dh = M - c.apex[r][l];
-      if (dh > 0.0f) most = std::max(most, c.best[r][l] * (dh * dh));
+      const float hp = c.apex[r][l];
+      if (!(M > hp)) continue;
+      int dx = cone_axis_distance(c.x0 + l, bx0, bx1, g.W, g.repeat), dy = cone_axis_distance(c.y0 + r, by0, by1, g.H, g.repeat);
+      dx = dx > g.shrink ? dx - g.shrink : 0;
+      dy = dy > g.shrink ? dy - g.shrink : 0;
+      const float vx = float(dx) / float(g.W), vy = float(dy) / float(g.H);
+      const float len2 = vx * vx + vy * vy;
+      const float lim = c.best[r][l] * g.dd * slack;
+      // a = 0: the whole block at M0 (M without a rise), at the nearest distance.
+      const float dh0 = M0 - hp;
+      if (dh0 > 0.0f && !(len2 > lim * (dh0 * dh0))) return false;
+      if (rise > 0.0f) {
+        // a = extent: the far edge at M, at the projected far distance.
+        const float len = std::sqrt(len2);
+        if (!(len > 0.0f)) return false;
+        const float far = len + (axis == 0 ? vx : vy) / len * (float(extent) / float(axis == 0 ? g.W : g.H));
+        const float dh = M - hp;
+        if (!(far * far > lim * (dh * dh))) return false;
+      }
     }
-  return most;
+  return true;
 }
 
 }  // namespace texproc::detail::ref
@@ -215,16 +235,38 @@ bool ConeCellBlock(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0
   return improved;
 }
 
-float ConeCellReach(const ConeCell& c, float M) {
+bool ConeCellClear(const ConeGeometry& g, const ConeCell& c, int bx0, int bx1, int by0, int by1, float M, int axis,
+                   float rise, int extent) {
   const DF d;
   const int N = int(hn::Lanes(d));
   const VF m = hn::Set(d, M), zero = hn::Zero(d);
-  VF most = zero;
+  const VF m0 = hn::Set(d, rise > 0.0f ? M - float(extent) * rise : M);
+  const VF ddslack = hn::Set(d, g.dd * (1.0f + 1.0f / 65536));
+  const VF inv_w = hn::Set(d, 1.0f / float(g.W)), inv_h = hn::Set(d, 1.0f / float(g.H));
+  const VF deep = hn::Set(d, float(extent) / float(axis == 0 ? g.W : g.H));
+  const DI di;
   for (int v = 0; v < kConeCell * kConeCell / N; ++v) {
-    const VF dh = hn::Max(hn::Sub(m, hn::Load(d, &c.apex[0][0] + v * N)), zero);
-    most = hn::Max(most, hn::Mul(hn::Load(d, &c.best[0][0] + v * N), hn::Mul(dh, dh)));
+    const LanePos pos = Positions(c, v);
+    const VF hp = hn::Load(d, &c.apex[0][0] + v * N);
+    const VF lim = hn::Mul(hn::Load(d, &c.best[0][0] + v * N), ddslack);
+    VI dxi = hn::Max(hn::Sub(RangeDistance(pos.px, bx0, bx1, g.W, g.repeat), hn::Set(di, g.shrink)), hn::Zero(di));
+    VI dyi = hn::Max(hn::Sub(RangeDistance(pos.py, by0, by1, g.H, g.repeat), hn::Set(di, g.shrink)), hn::Zero(di));
+    const VF vx = hn::Mul(hn::ConvertTo(d, dxi), inv_w), vy = hn::Mul(hn::ConvertTo(d, dyi), inv_h);
+    const VF len2 = hn::Add(hn::Mul(vx, vx), hn::Mul(vy, vy));
+    const VF dh0 = hn::Sub(m0, hp);
+    // A lane is in the way when its apex is below M and a bound fails.
+    auto bad = hn::And(hn::Gt(dh0, zero), hn::Not(hn::Gt(len2, hn::Mul(lim, hn::Mul(dh0, dh0)))));
+    if (rise > 0.0f) {
+      const VF len = hn::Sqrt(len2);
+      const VF far = hn::Add(len, hn::Mul(hn::Div(axis == 0 ? vx : vy, len), deep));
+      const VF dh = hn::Sub(m, hp);
+      const auto below = hn::Gt(dh, zero);
+      bad = hn::Or(bad, hn::And(below, hn::Not(hn::Gt(len, zero))));
+      bad = hn::Or(bad, hn::And(below, hn::Not(hn::Gt(hn::Mul(far, far), hn::Mul(lim, hn::Mul(dh, dh))))));
+    }
+    if (!hn::AllFalse(d, bad)) return false;
   }
-  return hn::GetLane(hn::MaxOfLanes(d, most));
+  return true;
 }
 
 }  // namespace HWY_NAMESPACE
@@ -235,11 +277,12 @@ HWY_AFTER_NAMESPACE();
 namespace texproc::detail {
 HWY_EXPORT(ConeCellTexels);
 HWY_EXPORT(ConeCellBlock);
-HWY_EXPORT(ConeCellReach);
+HWY_EXPORT(ConeCellClear);
 
-float cone_cell_reach(const ConeCell& c, float M) {
-  if (force_scalar()) return ref::cone_cell_reach(c, M);
-  return HWY_DYNAMIC_DISPATCH(ConeCellReach)(c, M);
+bool cone_cell_clear(const ConeGeometry& g, const ConeCell& c, int bx0, int bx1, int by0, int by1, float M, int axis,
+                     float rise, int extent) {
+  if (force_scalar()) return ref::cone_cell_clear(g, c, bx0, bx1, by0, by1, M, axis, rise, extent);
+  return HWY_DYNAMIC_DISPATCH(ConeCellClear)(g, c, bx0, bx1, by0, by1, M, axis, rise, extent);
 }
 
 bool cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,

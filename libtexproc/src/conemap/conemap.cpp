@@ -136,13 +136,71 @@ struct Behind {
 
 // Gap in texels between texel ranges [a0, a1] and [b0, b1] along an axis of
 // n texels (with repeat, to the nearest periodic copy of b).
-int range_gap(int a0, int a1, int b0, int b1, int n, bool repeat) {
-  int g = std::max({0, b0 - a1, a0 - b1});
+int range_gap(int a0, int a1, int b0, int b1, int n, bool repeat, int* side = nullptr) {
+  auto gap = [&](int shift, int& sd) {
+    sd = b0 + shift > a1 ? 1 : b1 + shift < a0 ? -1 : 0;
+    return std::max({0, b0 + shift - a1, a0 - (b1 + shift)});
+  };
+  int sd = 0, g = gap(0, sd);
   if (repeat && g > 0) {
-    g = std::min(g, std::max({0, b0 - n - a1, a0 - b1 + n}));
-    g = std::min(g, std::max({0, b0 + n - a1, a0 - b1 - n}));
+    for (int shift : {-n, n}) {
+      int s2 = 0;
+      const int g2 = gap(shift, s2);
+      if (g2 < g) g = g2, sd = s2;
+    }
   }
+  if (side) *side = sd;
   return g;
+}
+
+// From pyramid level 3 up: for each block, the smallest height step between
+// 4-neighbours in each direction over the steps that start in the block
+// ([0] h(x+1) - h(x), [1] h(x) - h(x+1), [2] h(y+1) - h(y), [3] h(y) - h(y+1));
+// +inf where a block starts none (clamp, at the far edge). Where the smallest
+// step away from a cell is positive, the heights of the block climb at least
+// that fast away from it: h_q <= M - (extent - offset) * step, a much better
+// bound than M at the near side on slopes (a plane: every block uphill).
+struct SlopePyramid {
+  static constexpr int kBase = 3;
+  std::vector<std::vector<float>> rise[4];  // [direction][level - kBase]
+};
+
+SlopePyramid build_slopes(const std::vector<float>& h, int W, int H, bool repeat, const Pyramid& pyr) {
+  SlopePyramid sp;
+  const int top = int(pyr.max.size()) - 1;
+  if (top < SlopePyramid::kBase) return sp;
+  const float inf = std::numeric_limits<float>::infinity();
+  const int bw = pyr.w[SlopePyramid::kBase], bh = pyr.h[SlopePyramid::kBase];
+  for (auto& r : sp.rise) r.assign(1, std::vector<float>(std::size_t(bw) * bh, inf));
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const std::size_t b = std::size_t(y >> SlopePyramid::kBase) * bw + std::size_t(x >> SlopePyramid::kBase);
+      const float v = h[std::size_t(y) * W + x];
+      if (repeat || x + 1 < W) {
+        const float step = h[std::size_t(y) * W + (x + 1) % W] - v;
+        sp.rise[0][0][b] = std::min(sp.rise[0][0][b], step);
+        sp.rise[1][0][b] = std::min(sp.rise[1][0][b], -step);
+      }
+      if (repeat || y + 1 < H) {
+        const float step = h[std::size_t((y + 1) % H) * W + x] - v;
+        sp.rise[2][0][b] = std::min(sp.rise[2][0][b], step);
+        sp.rise[3][0][b] = std::min(sp.rise[3][0][b], -step);
+      }
+    }
+  for (int k = SlopePyramid::kBase + 1; k <= top; ++k) {
+    const int pw = pyr.w[std::size_t(k - 1)], ph = pyr.h[std::size_t(k - 1)], nw = pyr.w[std::size_t(k)], nh = pyr.h[std::size_t(k)];
+    for (auto& r : sp.rise) {
+      const std::vector<float>& prev = r.back();
+      std::vector<float> next(std::size_t(nw) * nh, inf);
+      for (int y = 0; y < ph; ++y)
+        for (int x = 0; x < pw; ++x) {
+          float& o = next[std::size_t(y / 2) * nw + std::size_t(x / 2)];
+          o = std::min(o, prev[std::size_t(y) * pw + x]);
+        }
+      r.push_back(std::move(next));
+    }
+  }
+  return sp;
 }
 
 detail::ConeGeometry geometry(int W, int H, const ConeMapOptions& o, int shrink) {
@@ -186,6 +244,7 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
   const int cw = (W + kConeCell - 1) / kConeCell, ch = (H + kConeCell - 1) / kConeCell;
   const int reach = o.fast_reach;
   auto shrunk = [&](int gap) { return gap > shrink ? gap - shrink : 0; };
+  const SlopePyramid slopes = shrink > 0 ? SlopePyramid{} : build_slopes(heights, W, H, repeat, pyr);
   std::vector<float> out(heights.size());
   for_each_row_block(ch, 1, [&](int r0, int r1) {
     std::vector<Node> stack;
@@ -252,6 +311,32 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
           std::copy(all_rows, all_rows + kConeCell, rows);
           refresh();
         };
+        // Whether a child block can narrow no cone of the cell: each apex with
+        // its own cone and distance, and where the block climbs away from the
+        // cell along an axis, the slope bound (cone_cells.h; classic cones
+        // only: the shrunk distances of --bilinear-safe do not add up so).
+        auto gx_of = [&](int ux, int s) { return range_gap(c.x0, x1, ux << s, std::min((ux + 1) << s, W) - 1, W, repeat); };
+        auto gy_of = [&](int uy, int s) { return range_gap(c.y0, y1, uy << s, std::min((uy + 1) << s, H) - 1, H, repeat); };
+        auto clear = [&](int s, int ux, int uy, float Mc, int side_x, int side_y) {
+          const int bx0 = ux << s, bx1 = std::min((ux + 1) << s, W) - 1;
+          const int by0 = uy << s, by1 = std::min((uy + 1) << s, H) - 1;
+          if (detail::cone_cell_clear(g, c, bx0, bx1, by0, by1, Mc, 0, 0.0f, 0)) return true;
+          if (shrink > 0 || s < SlopePyramid::kBase) return false;
+          const std::size_t at = std::size_t(uy) * pyr.w[std::size_t(s)] + ux;
+          for (int axis = 0; axis < 2; ++axis) {
+            const int side = axis == 0 ? side_x : side_y;
+            if (side == 0) continue;
+            const float E = slopes.rise[axis * 2 + (side > 0 ? 0 : 1)][std::size_t(s - SlopePyramid::kBase)][at];
+            if (!(E > 0.0f)) continue;
+            const int extent = axis == 0 ? bx1 - bx0 : by1 - by0;
+            // With repeat, every apex must see the block on that side (its
+            // nearest copy), or its distance does not grow with the offset.
+            const int span = axis == 0 ? x1 - c.x0 : y1 - c.y0, n_axis = axis == 0 ? W : H;
+            if (repeat && 2 * ((axis == 0 ? gx_of(ux, s) : gy_of(uy, s)) + span + extent) > n_axis) continue;
+            if (detail::cone_cell_clear(g, c, bx0, bx1, by0, by1, Mc, axis, E, extent)) return true;
+          }
+          return false;
+        };
         stack.clear();
         if (cell_max > 0) stack.push_back({top, 0, 0, 0.0});
         while (!stack.empty()) {
@@ -287,15 +372,16 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
               if (ux >= kw || uy >= kh) continue;
               const float Mc = pyr.max[std::size_t(s)][std::size_t(uy) * kw + ux];
               if (Mc <= cell_min) continue;
-              const int gx = range_gap(c.x0, x1, ux << s, std::min((ux + 1) << s, W) - 1, W, repeat);
-              const int gy = range_gap(c.y0, y1, uy << s, std::min((uy + 1) << s, H) - 1, H, repeat);
+              int side_x = 0, side_y = 0;
+              const int gx = range_gap(c.x0, x1, ux << s, std::min((ux + 1) << s, W) - 1, W, repeat, &side_x);
+              const int gy = range_gap(c.y0, y1, uy << s, std::min((uy + 1) << s, H) - 1, H, repeat, &side_y);
               const double sgx = shrunk(gx), sgy = shrunk(gy), dh = double(Mc) - cell_min;
               const double num = sgx * sgx * m.sx + sgy * sgy * m.sy, den = m.dd * dh * dh;
               if (num > cell_max * kPruneSlack * den) continue;
               // Each apex with its own cone, where the child would be opened or
               // scanned (a --fast obstacle costs about as much as this test).
               const bool obstacle = reach > 0 && std::max(gx, gy) >= kConeCell && std::max(gx, gy) >= std::max(reach << s, shrink + 1);
-              if (!obstacle && num > double(detail::cone_cell_reach(c, Mc)) * m.dd * kPruneSlack) continue;
+              if (!obstacle && clear(s, ux, uy, Mc, side_x, side_y)) continue;
               kids[count++] = {s, ux, uy, num / (den * kPruneSlack), gx, gy};
             }
           for (int a = 1; a < count; ++a)
