@@ -54,6 +54,9 @@ bool cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int b
 // from the apex to the block). Needs shrink == 0 when rise > 0.
 bool cone_cell_clear(const ConeGeometry& g, const ConeCell& c, int bx0, int bx1, int by0, int by1, float M, int axis,
                      float rise, int extent);
+// The cheaper test --fast uses (its blocks are near the cell): max over the
+// apexes of best * (M - apex)^2, to compare with the cell's gap term / depth^2.
+float cone_cell_reach(const ConeCell& c, float M);
 
 // Distance along one axis from texel p to the nearest texel of [lo, hi]
 // (0 inside), with repeat the nearest periodic copy.
@@ -84,6 +87,7 @@ bool cone_cell_block(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int b
                      const bool rows[kConeCell]);
 bool cone_cell_clear(const ConeGeometry& g, const ConeCell& c, int bx0, int bx1, int by0, int by1, float M, int axis,
                      float rise, int extent);
+float cone_cell_reach(const ConeCell& c, float M);
 }  // namespace ref
 
 }  // namespace texproc::detail

@@ -94,6 +94,16 @@ bool cone_cell_clear(const ConeGeometry& g, const ConeCell& c, int bx0, int bx1,
   return true;
 }
 
+float cone_cell_reach(const ConeCell& c, float M) {
+  float most = 0.0f;
+  for (int r = 0; r < kConeCell; ++r)
+    for (int l = 0; l < kConeCell; ++l) {
+      const float dh = M - c.apex[r][l];
+      if (dh > 0.0f) most = std::max(most, c.best[r][l] * (dh * dh));
+    }
+  return most;
+}
+
 }  // namespace texproc::detail::ref
 #endif
 
@@ -269,6 +279,18 @@ bool ConeCellClear(const ConeGeometry& g, const ConeCell& c, int bx0, int bx1, i
   return true;
 }
 
+float ConeCellReach(const ConeCell& c, float M) {
+  const DF d;
+  const int N = int(hn::Lanes(d));
+  const VF m = hn::Set(d, M), zero = hn::Zero(d);
+  VF most = zero;
+  for (int v = 0; v < kConeCell * kConeCell / N; ++v) {
+    const VF dh = hn::Max(hn::Sub(m, hn::Load(d, &c.apex[0][0] + v * N)), zero);
+    most = hn::Max(most, hn::Mul(hn::Load(d, &c.best[0][0] + v * N), hn::Mul(dh, dh)));
+  }
+  return hn::GetLane(hn::MaxOfLanes(d, most));
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace texproc::detail
 HWY_AFTER_NAMESPACE();
@@ -278,6 +300,12 @@ namespace texproc::detail {
 HWY_EXPORT(ConeCellTexels);
 HWY_EXPORT(ConeCellBlock);
 HWY_EXPORT(ConeCellClear);
+HWY_EXPORT(ConeCellReach);
+
+float cone_cell_reach(const ConeCell& c, float M) {
+  if (force_scalar()) return ref::cone_cell_reach(c, M);
+  return HWY_DYNAMIC_DISPATCH(ConeCellReach)(c, M);
+}
 
 bool cone_cell_clear(const ConeGeometry& g, const ConeCell& c, int bx0, int bx1, int by0, int by1, float M, int axis,
                      float rise, int extent) {

@@ -172,21 +172,23 @@ SlopePyramid build_slopes(const std::vector<float>& h, int W, int H, bool repeat
   const float inf = std::numeric_limits<float>::infinity();
   const int bw = pyr.w[SlopePyramid::kBase], bh = pyr.h[SlopePyramid::kBase];
   for (auto& r : sp.rise) r.assign(1, std::vector<float>(std::size_t(bw) * bh, inf));
-  for (int y = 0; y < H; ++y)
-    for (int x = 0; x < W; ++x) {
-      const std::size_t b = std::size_t(y >> SlopePyramid::kBase) * bw + std::size_t(x >> SlopePyramid::kBase);
-      const float v = h[std::size_t(y) * W + x];
-      if (repeat || x + 1 < W) {
-        const float step = h[std::size_t(y) * W + (x + 1) % W] - v;
-        sp.rise[0][0][b] = std::min(sp.rise[0][0][b], step);
-        sp.rise[1][0][b] = std::min(sp.rise[1][0][b], -step);
+  for_each_row_block(bh, 4, [&](int b0, int b1) {
+    for (int y = b0 << SlopePyramid::kBase; y < std::min(H, b1 << SlopePyramid::kBase); ++y)
+      for (int x = 0; x < W; ++x) {
+        const std::size_t b = std::size_t(y >> SlopePyramid::kBase) * bw + std::size_t(x >> SlopePyramid::kBase);
+        const float v = h[std::size_t(y) * W + x];
+        if (repeat || x + 1 < W) {
+          const float step = h[std::size_t(y) * W + (x + 1) % W] - v;
+          sp.rise[0][0][b] = std::min(sp.rise[0][0][b], step);
+          sp.rise[1][0][b] = std::min(sp.rise[1][0][b], -step);
+        }
+        if (repeat || y + 1 < H) {
+          const float step = h[std::size_t((y + 1) % H) * W + x] - v;
+          sp.rise[2][0][b] = std::min(sp.rise[2][0][b], step);
+          sp.rise[3][0][b] = std::min(sp.rise[3][0][b], -step);
+        }
       }
-      if (repeat || y + 1 < H) {
-        const float step = h[std::size_t((y + 1) % H) * W + x] - v;
-        sp.rise[2][0][b] = std::min(sp.rise[2][0][b], step);
-        sp.rise[3][0][b] = std::min(sp.rise[3][0][b], -step);
-      }
-    }
+  });
   for (int k = SlopePyramid::kBase + 1; k <= top; ++k) {
     const int pw = pyr.w[std::size_t(k - 1)], ph = pyr.h[std::size_t(k - 1)], nw = pyr.w[std::size_t(k)], nh = pyr.h[std::size_t(k)];
     for (auto& r : sp.rise) {
@@ -244,7 +246,8 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
   const int cw = (W + kConeCell - 1) / kConeCell, ch = (H + kConeCell - 1) / kConeCell;
   const int reach = o.fast_reach;
   auto shrunk = [&](int gap) { return gap > shrink ? gap - shrink : 0; };
-  const SlopePyramid slopes = shrink > 0 ? SlopePyramid{} : build_slopes(heights, W, H, repeat, pyr);
+  // (--fast does not use the slope bound: its blocks are near the cell.)
+  const SlopePyramid slopes = shrink > 0 || reach > 0 ? SlopePyramid{} : build_slopes(heights, W, H, repeat, pyr);
   std::vector<float> out(heights.size());
   for_each_row_block(ch, 1, [&](int r0, int r1) {
     std::vector<Node> stack;
@@ -321,7 +324,7 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
           const int bx0 = ux << s, bx1 = std::min((ux + 1) << s, W) - 1;
           const int by0 = uy << s, by1 = std::min((uy + 1) << s, H) - 1;
           if (detail::cone_cell_clear(g, c, bx0, bx1, by0, by1, Mc, 0, 0.0f, 0)) return true;
-          if (shrink > 0 || s < SlopePyramid::kBase) return false;
+          if (slopes.rise[0].empty() || s < SlopePyramid::kBase) return false;
           const std::size_t at = std::size_t(uy) * pyr.w[std::size_t(s)] + ux;
           for (int axis = 0; axis < 2; ++axis) {
             const int side = axis == 0 ? side_x : side_y;
@@ -381,7 +384,13 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
               // Each apex with its own cone, where the child would be opened or
               // scanned (a --fast obstacle costs about as much as this test).
               const bool obstacle = reach > 0 && std::max(gx, gy) >= kConeCell && std::max(gx, gy) >= std::max(reach << s, shrink + 1);
-              if (!obstacle && clear(s, ux, uy, Mc, side_x, side_y)) continue;
+              if (!obstacle) {
+                // --fast's blocks are near the cell, where the cheaper cell-gap test does as well.
+                if (reach > 0 ? num > double(detail::cone_cell_reach(c, Mc)) * m.dd * kPruneSlack
+                              : clear(s, ux, uy, Mc, side_x, side_y)) {
+                  continue;
+                }
+              }
               kids[count++] = {s, ux, uy, num / (den * kPruneSlack), gx, gy};
             }
           for (int a = 1; a < count; ++a)
