@@ -169,11 +169,12 @@ template <bool kCheckZero>
 HWY_INLINE bool Update(VF& best, VF& bdd, VF hp, VF d2, VF hq, VF dd, VF slack) {
   const DF d;
   const VF dh = hn::Sub(hq, hp);
-  const VF dh2 = hn::Mul(dh, dh);
-  auto may_improve = hn::And(hn::Gt(dh, hn::Zero(d)), hn::Lt(d2, hn::Mul(bdd, dh2)));
+  // dh * |dh|: dh^2 where the obstacle is higher, <= 0 where it is not (so
+  // d2 >= 0 never passes there): one test for both conditions.
+  auto may_improve = hn::Lt(d2, hn::Mul(bdd, hn::Mul(dh, hn::Abs(dh))));
   if (kCheckZero) may_improve = hn::And(may_improve, hn::Gt(d2, hn::Zero(d)));
   if (HWY_LIKELY(hn::AllFalse(d, may_improve))) return false;
-  best = hn::IfThenElse(may_improve, hn::Min(best, hn::Div(d2, hn::Mul(dd, dh2))), best);
+  best = hn::IfThenElse(may_improve, hn::Min(best, hn::Div(d2, hn::Mul(dd, hn::Mul(dh, dh)))), best);
   bdd = hn::Mul(hn::Mul(best, dd), slack);
   return true;  // (or nearly: a lane within the margin may keep its value)
 }
