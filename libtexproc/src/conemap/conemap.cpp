@@ -54,29 +54,37 @@ int texel_distance(int p, int q, int n, bool repeat) {
 }
 
 struct Pyramid {
-  std::vector<std::vector<float>> max;  // level 0: the heights
+  const float* base = nullptr;          // level 0: the heights (not copied)
+  std::vector<std::vector<float>> max;  // levels 1 and up (max[0] unused)
   std::vector<int> w, h;
+  const float* level(int k) const { return k == 0 ? base : max[std::size_t(k)].data(); }
+  int levels() const { return int(w.size()); }
 };
 
+// `heights` must outlive the pyramid.
 Pyramid build_pyramid(const std::vector<float>& heights, int W, int H) {
   Pyramid p;
-  p.max.push_back(heights);
+  p.base = heights.data();
+  p.max.emplace_back();
   p.w.push_back(W);
   p.h.push_back(H);
   while (p.w.back() > 1 || p.h.back() > 1) {
+    const int k = p.levels() - 1;
     const int pw = p.w.back(), ph = p.h.back(), nw = (pw + 1) / 2, nh = (ph + 1) / 2;
-    const std::vector<float>& prev = p.max.back();
+    const float* prev = p.level(k);
     std::vector<float> next(std::size_t(nw) * nh);
-    for (int y = 0; y < nh; ++y)
-      for (int x = 0; x < nw; ++x) {
-        float m = prev[std::size_t(2 * y) * pw + 2 * x];
-        if (2 * x + 1 < pw) m = std::max(m, prev[std::size_t(2 * y) * pw + 2 * x + 1]);
-        if (2 * y + 1 < ph) {
-          m = std::max(m, prev[std::size_t(2 * y + 1) * pw + 2 * x]);
-          if (2 * x + 1 < pw) m = std::max(m, prev[std::size_t(2 * y + 1) * pw + 2 * x + 1]);
+    for_each_row_block(nh, 64, [&](int y0, int y1) {
+      for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < nw; ++x) {
+          float m = prev[std::size_t(2 * y) * pw + 2 * x];
+          if (2 * x + 1 < pw) m = std::max(m, prev[std::size_t(2 * y) * pw + 2 * x + 1]);
+          if (2 * y + 1 < ph) {
+            m = std::max(m, prev[std::size_t(2 * y + 1) * pw + 2 * x]);
+            if (2 * x + 1 < pw) m = std::max(m, prev[std::size_t(2 * y + 1) * pw + 2 * x + 1]);
+          }
+          next[std::size_t(y) * nw + x] = m;
         }
-        next[std::size_t(y) * nw + x] = m;
-      }
+    });
     p.max.push_back(std::move(next));
     p.w.push_back(nw);
     p.h.push_back(nh);
@@ -167,7 +175,7 @@ struct SlopePyramid {
 
 SlopePyramid build_slopes(const std::vector<float>& h, int W, int H, bool repeat, const Pyramid& pyr) {
   SlopePyramid sp;
-  const int top = int(pyr.max.size()) - 1;
+  const int top = pyr.levels() - 1;
   if (top < SlopePyramid::kBase) return sp;
   const float inf = std::numeric_limits<float>::infinity();
   const int bw = pyr.w[SlopePyramid::kBase], bh = pyr.h[SlopePyramid::kBase];
@@ -232,16 +240,18 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
   detail::ConeGeometry g = geometry(W, H, o, shrink);
   const int runs = (W + kConeCell - 1) / kConeCell;
   std::vector<float> row_max8(std::size_t(runs) * H);
-  for (int y = 0; y < H; ++y)
-    for (int x = 0; x < W; ++x) {
-      float& v = row_max8[std::size_t(y) * runs + std::size_t(x / kConeCell)];
-      v = x % kConeCell == 0 ? heights[std::size_t(y) * W + x] : std::max(v, heights[std::size_t(y) * W + x]);
-    }
+  for_each_row_block(H, 64, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < W; ++x) {
+        float& v = row_max8[std::size_t(y) * runs + std::size_t(x / kConeCell)];
+        v = x % kConeCell == 0 ? heights[std::size_t(y) * W + x] : std::max(v, heights[std::size_t(y) * W + x]);
+      }
+  });
   g.row_max8 = row_max8.data();
   const Metric m{1.0 / (double(W) * W), 1.0 / (double(H) * H), double(o.depth) * o.depth};
   const bool repeat = g.repeat;
-  const int top = int(pyr.max.size()) - 1;
-  const float summit = pyr.max[std::size_t(top)][0];
+  const int top = pyr.levels() - 1;
+  const float summit = pyr.level(top)[0];
   const float cap2 = o.max_ratio * o.max_ratio;
   const int cw = (W + kConeCell - 1) / kConeCell, ch = (H + kConeCell - 1) / kConeCell;
   const int reach = o.fast_reach;
@@ -349,7 +359,7 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
           const int k = n.level;
           const int bx0 = n.x << k, bx1 = std::min((n.x + 1) << k, W) - 1;
           const int by0 = n.y << k, by1 = std::min((n.y + 1) << k, H) - 1;
-          const float M = pyr.max[std::size_t(k)][std::size_t(n.y) * pyr.w[std::size_t(k)] + n.x];
+          const float M = pyr.level(k)[std::size_t(n.y) * pyr.w[std::size_t(k)] + n.x];
           // --fast: the blocks next to the cell are scanned, farther ones
           // opened only until they are reach of their sizes away.
           const int gap = reach > 0 ? std::max(n.gx, n.gy) : 0;
@@ -373,7 +383,7 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
             for (int i = 0; i < 2; ++i) {
               const int ux = 2 * n.x + i, uy = 2 * n.y + j;
               if (ux >= kw || uy >= kh) continue;
-              const float Mc = pyr.max[std::size_t(s)][std::size_t(uy) * kw + ux];
+              const float Mc = pyr.level(s)[std::size_t(uy) * kw + ux];
               if (Mc <= cell_min) continue;
               int side_x = 0, side_y = 0;
               const int gx = range_gap(c.x0, x1, ux << s, std::min((ux + 1) << s, W) - 1, W, repeat, &side_x);
@@ -496,8 +506,10 @@ std::vector<float> relaxed_texels(const std::vector<float>& heights, int W, int 
   const Behind behind{heights, W, H, repeat};
   std::vector<Pyramid> exit_pyr;
   const int sx[4] = {1, -1, 0, 0}, sy[4] = {0, 0, 1, -1};
+  std::vector<std::vector<float>> exit_heights(4);  // level 0 of each exit pyramid
   for (int f = 0; f < 4; ++f) {
-    std::vector<float> v(heights.size());
+    std::vector<float>& v = exit_heights[std::size_t(f)];
+    v.resize(heights.size());
     for (int y = 0; y < H; ++y)
       for (int x = 0; x < W; ++x) {
         const float hq = heights[std::size_t(y) * W + x];
@@ -520,7 +532,7 @@ std::vector<float> relaxed_texels(const std::vector<float>& heights, int W, int 
     if (b < a || 2 * std::abs(a) == n || 2 * std::abs(b) == n) return 0;  // across the seam, or a tie
     return a > 0 ? 1 : b < 0 ? -1 : 0;
   };
-  const int top = int(pyr.max.size()) - 1;
+  const int top = pyr.levels() - 1;
   const float cap2 = o.max_ratio * o.max_ratio;
   const int reach = o.fast_reach;
   std::vector<float> out(heights.size());
@@ -582,10 +594,10 @@ std::vector<float> relaxed_texels(const std::vector<float>& heights, int W, int 
               const int xs = side(px, bx0, bx1, W), ys = side(py, by0, by1, H);
               const std::size_t at = std::size_t(cy) * cw + cx;
               float M = -1.0f;
-              if (xs >= 0) M = std::max(M, exit_pyr[0].max[std::size_t(s)][at]);
-              if (xs <= 0) M = std::max(M, exit_pyr[1].max[std::size_t(s)][at]);
-              if (ys >= 0) M = std::max(M, exit_pyr[2].max[std::size_t(s)][at]);
-              if (ys <= 0) M = std::max(M, exit_pyr[3].max[std::size_t(s)][at]);
+              if (xs >= 0) M = std::max(M, exit_pyr[0].level(s)[at]);
+              if (xs <= 0) M = std::max(M, exit_pyr[1].level(s)[at]);
+              if (ys >= 0) M = std::max(M, exit_pyr[2].level(s)[at]);
+              if (ys <= 0) M = std::max(M, exit_pyr[3].level(s)[at]);
               if (M <= hp) continue;
               const int dx = axis_distance(px, bx0, bx1, W, repeat), dy = axis_distance(py, by0, by1, H, repeat);
               const double bound = m.ratio2(dx, dy, double(M) - hp);
@@ -609,7 +621,10 @@ std::vector<float> relaxed_texels(const std::vector<float>& heights, int W, int 
 }
 
 std::vector<float> square_roots(std::vector<float> r2) {
-  for (float& v : r2) v = std::sqrt(v);
+  const int rows = int((r2.size() + 4095) / 4096);
+  for_each_row_block(rows, 16, [&](int r0, int r1) {
+    for (std::size_t i = std::size_t(r0) * 4096; i < std::min(r2.size(), std::size_t(r1) * 4096); ++i) r2[i] = std::sqrt(r2[i]);
+  });
   return r2;
 }
 
