@@ -144,18 +144,20 @@ struct Behind {
 
 // Gap in texels between texel ranges [a0, a1] and [b0, b1] along an axis of
 // n texels (with repeat, to the nearest periodic copy of b).
-int range_gap(int a0, int a1, int b0, int b1, int n, bool repeat, int* side = nullptr) {
-  auto gap = [&](int shift, int& sd) {
-    sd = b0 + shift > a1 ? 1 : b1 + shift < a0 ? -1 : 0;
-    return std::max({0, b0 + shift - a1, a0 - (b1 + shift)});
+inline int range_gap(int a0, int a1, int b0, int b1, int n, bool repeat, int* side = nullptr) {
+  // The gap to [b0, b1] shifted by `shift`, and the side it lies on.
+  auto gap = [a0, a1, b0, b1](int shift, int& sd) {
+    const int after = b0 + shift - a1, before = a0 - (b1 + shift);
+    sd = after > 0 ? 1 : before > 0 ? -1 : 0;
+    return after > 0 ? after : before > 0 ? before : 0;
   };
   int sd = 0, g = gap(0, sd);
   if (repeat && g > 0) {
-    for (int shift : {-n, n}) {
-      int s2 = 0;
-      const int g2 = gap(shift, s2);
-      if (g2 < g) g = g2, sd = s2;
-    }
+    int s2 = 0;
+    int g2 = gap(-n, s2);
+    if (g2 < g) g = g2, sd = s2;
+    g2 = gap(n, s2);
+    if (g2 < g) g = g2, sd = s2;
   }
   if (side) *side = sd;
   return g;
