@@ -106,15 +106,17 @@ TEST(ConeMap, FastModeNeverWiderThanExact) {
         ConeMapOptions o;
         o.wrap = wrap;
         const std::vector<float> f = field(w, h, kind, unsigned(3 * w + h));
-        for (bool bilinear : {false, true}) {
+        for (int variant = 0; variant < 3; ++variant) {  // classic, bilinear-safe, relaxed
+          const bool bilinear = variant == 1;
           o.bilinear_safe = bilinear;
+          o.mode = variant == 2 ? ConeMode::relaxed : ConeMode::conservative;
           o.fast_reach = 0;
           const std::vector<float> exact = cone_ratios_brute_force(f, w, h, o);
           for (int reach : {1, 2, 4}) {
             o.fast_reach = reach;
             const std::vector<float> fast = cone_ratios(f, w, h, o);
             for (std::size_t i = 0; i < f.size(); ++i) {
-              ASSERT_LE(fast[i], exact[i]) << kind << " reach " << reach << " bilinear " << bilinear << " texel " << i;
+              ASSERT_LE(fast[i], exact[i]) << kind << " reach " << reach << " variant " << variant << " texel " << i;
               ASSERT_GE(fast[i], 0.0f);
             }
           }
@@ -143,11 +145,12 @@ TEST(ConeMap, SimdEqualsScalarOnEveryTarget) {
   for (auto [w, h] : {std::pair{64, 64}, {37, 21}}) {
     for (const char* kind : {"random", "spikes", "quantized"}) {
       for (WrapMode wrap : {WrapMode::repeat, WrapMode::clamp}) {
-        for (int variant = 0; variant < 3; ++variant) {
+        for (int variant = 0; variant < 5; ++variant) {  // exact, fast, bilinear-safe, relaxed, relaxed fast
           ConeMapOptions o;
           o.wrap = wrap;
-          o.fast_reach = variant == 1 ? 1 : 0;
+          o.fast_reach = variant == 1 || variant == 4 ? 1 : 0;
           o.bilinear_safe = variant == 2;
+          o.mode = variant >= 3 ? ConeMode::relaxed : ConeMode::conservative;
           const std::vector<float> f = field(w, h, kind, unsigned(w * h));
           expect_same_on_every_target([&] { return cone_ratios(f, w, h, o); },
                                       std::string(kind) + " variant " + std::to_string(variant));

@@ -11,6 +11,8 @@
 // and a texel's squared ratio is the smallest r2 (or the cap it starts from).
 #pragma once
 
+#include <cstddef>
+
 namespace texproc::detail {
 
 constexpr int kConeCell = 8;
@@ -23,7 +25,30 @@ struct ConeGeometry {
   // Optional: the highest of each run of 8 texels in a row (x / 8, y), with
   // (W + 7) / 8 per row: lets a scan skip obstacle rows no higher than the apexes.
   const float* row_max8 = nullptr;
+  // Relaxed cones: per texel, which 4-neighbours are lower (bit 0: +x,
+  // 1: -x, 2: +y, 3: -y); a texel counts for an apex only where the ray can
+  // leave the relief behind it (cone_exits). Null: conservative cones.
+  const unsigned char* exit_bits = nullptr;
 };
+
+// Relaxed cones: whether texel q, higher than p, has a lower 4-neighbour
+// behind it as seen from p (one step farther from p along x or y; both ways
+// when p and q share that coordinate, or are half the map apart with repeat).
+inline bool cone_exits(const ConeGeometry& g, int px, int py, int qx, int qy) {
+  auto offset = [&](int p, int q, int n) {
+    int d = q - p;
+    if (g.repeat) {
+      if (d > n / 2) d -= n;
+      if (d < -n / 2) d += n;
+    }
+    return d;
+  };
+  const int ox = offset(px, qx, g.W), oy = offset(py, qy, g.H);
+  const bool both_x = g.repeat && 2 * (ox < 0 ? -ox : ox) == g.W, both_y = g.repeat && 2 * (oy < 0 ? -oy : oy) == g.H;
+  const unsigned bits = g.exit_bits[std::size_t(qy) * g.W + qx];
+  return ((ox >= 0 || both_x) && (bits & 1)) || ((ox <= 0 || both_x) && (bits & 2)) ||
+         ((oy >= 0 || both_y) && (bits & 4)) || ((oy <= 0 || both_y) && (bits & 8));
+}
 
 struct ConeCell {
   int x0 = 0, y0 = 0;                       // apex texel of lane 0, row 0

@@ -43,6 +43,7 @@ bool cone_cell_texels(const ConeGeometry& g, const float* heights, ConeCell& c, 
       const float* hrow = heights + std::size_t(qy) * g.W;
       for (int qx = bx0; qx <= bx1; ++qx)
         for (int l = 0; l < kConeCell; ++l) {
+          if (g.exit_bits && !(hrow[qx] > c.apex[r][l] && cone_exits(g, c.x0 + l, py, qx, qy))) continue;
           const float d2 = cone_d2(g, cone_axis_distance(c.x0 + l, qx, qx, g.W, g.repeat), dy);
           improved |= update(g, hrow[qx], d2, c.apex[r][l], c.best[r][l]);
         }
@@ -165,8 +166,16 @@ HWY_INLINE bool AnyRow(const bool* rows, int v, int lanes) {
 
 // One obstacle of height hq for the lanes: best = min(best, r2) where it
 // counts. bdd = best * dd * slack tests a candidate without dividing.
+// Relaxed cones: where a lane may improve, the exit rule decides, per lane
+// (rare once the cones have narrowed; cone_exits, as the reference).
+struct Exits {
+  const ConeGeometry* g = nullptr;  // null: conservative
+  const ConeCell* c = nullptr;
+  int v = 0, qx = 0, qy = 0;
+};
+
 template <bool kCheckZero>
-HWY_INLINE bool Update(VF& best, VF& bdd, VF hp, VF d2, VF hq, VF dd, VF slack) {
+HWY_INLINE bool Update(VF& best, VF& bdd, VF hp, VF d2, VF hq, VF dd, VF slack, const Exits& ex = {}) {
   const DF d;
   const VF dh = hn::Sub(hq, hp);
   // dh * |dh|: dh^2 where the obstacle is higher, <= 0 where it is not (so
@@ -174,6 +183,18 @@ HWY_INLINE bool Update(VF& best, VF& bdd, VF hp, VF d2, VF hq, VF dd, VF slack) 
   auto may_improve = hn::Lt(d2, hn::Mul(bdd, hn::Mul(dh, hn::Abs(dh))));
   if (kCheckZero) may_improve = hn::And(may_improve, hn::Gt(d2, hn::Zero(d)));
   if (HWY_LIKELY(hn::AllFalse(d, may_improve))) return false;
+  if (ex.g) {
+    const int N = int(hn::Lanes(d));
+    HWY_ALIGN float keep[2 * kConeCell];
+    hn::Store(hn::IfThenElseZero(may_improve, hn::Set(d, 1.0f)), d, keep);
+    for (int l = 0; l < N; ++l) {
+      const int flat = ex.v * N + l;
+      if (keep[l] != 0.0f && !cone_exits(*ex.g, ex.c->x0 + (flat & (kConeCell - 1)), ex.c->y0 + (flat >> 3), ex.qx, ex.qy)) {
+        keep[l] = 0.0f;
+      }
+    }
+    may_improve = hn::Ne(hn::Load(d, keep), hn::Zero(d));
+  }
   best = hn::IfThenElse(may_improve, hn::Min(best, hn::Div(d2, hn::Mul(dd, hn::Mul(dh, dh)))), best);
   bdd = hn::Mul(hn::Mul(best, dd), slack);
   return true;  // (or nearly: a lane within the margin may keep its value)
@@ -214,7 +235,9 @@ bool Texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, i
       }
       const float* hrow = heights + std::size_t(qy) * g.W + bx0;
       for (int j = 0; j < nq; ++j) {
-        improved |= Update<kCheckZero>(best, bdd, hp, hn::Add(dxt[j], dyt), hn::Set(d, hrow[j]), dd, slack);
+        Exits ex;
+        if (g.exit_bits) ex = {&g, &c, v, bx0 + j, qy};
+        improved |= Update<kCheckZero>(best, bdd, hp, hn::Add(dxt[j], dyt), hn::Set(d, hrow[j]), dd, slack, ex);
       }
     }
     hn::Store(best, d, best_all + v * N);

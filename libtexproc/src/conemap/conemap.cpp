@@ -5,7 +5,7 @@
 // best so far, d / (depth * (M - h_p)) >= best, is skipped with everything
 // in it. Conservative cones walk the pyramid once per 8x8 cell of apex
 // texels and scan the surviving 8x8 blocks with SIMD (cone_cells.h);
-// relaxed cones walk it per texel.
+// relaxed cones too, with the exit rule and pyramids of exits.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -39,14 +39,6 @@ struct Metric {
   double sx, sy, dd;
   double ratio2(double dx, double dy, double dh) const { return (dx * dx * sx + dy * dy * sy) / (dd * dh * dh); }
 };
-
-// Distance in texels from p to the nearest point of [lo, hi] (texel
-// centres), along one axis; with repeat, to the nearest periodic copy.
-int axis_distance(int p, int lo, int hi, int n, bool repeat) {
-  int d = p < lo ? lo - p : p > hi ? p - hi : 0;
-  if (repeat && d > 0) d = std::min({d, lo + n - p, p - hi + n});
-  return d;
-}
 
 int texel_distance(int p, int q, int n, bool repeat) {
   const int d = p > q ? p - q : q - p;
@@ -92,7 +84,6 @@ Pyramid build_pyramid(const std::vector<float>& heights, int W, int H) {
   return p;
 }
 
-constexpr int kLeafLevel = 2;  // relaxed: blocks of 4x4 texels are scanned directly
 // Prune only when the bound exceeds the best by more than rounding could
 // explain: bounds are in double, candidates in float (within a few float
 // ulps, 1e-7 relative, of the real quotient).
@@ -101,7 +92,8 @@ constexpr double kPruneSlack = 1.0 + 1e-5;
 struct Node {
   int level, x, y;
   double bound;
-  int gx = 0, gy = 0;  // conservative cells: the block's gap to the cell along x and y
+  int gx = 0, gy = 0;  // cells: the block's gap to the cell along x and y
+  float M = 0.0f;      // cells: the block's bound height (its highest texel that can count)
 };
 
 // Relaxed cones count a higher texel q only if a 4-neighbour behind it, as
@@ -235,8 +227,41 @@ detail::ConeGeometry geometry(int W, int H, const ConeMapOptions& o, int shrink)
 // the row (cone_cells.h). With o.fast_reach, the blocks next to the cell are
 // still scanned, but a farther block whose gap to the cell is at least
 // fast_reach of its own sizes counts as one obstacle.
+// Relaxed cones on the cell walk: the exit rule per texel, and four maximum
+// pyramids of the texels with a lower +x, -x, +y or -y neighbour (-1
+// elsewhere). A block wholly on one side of the cell along an axis can only
+// hold exits that way for every apex of the cell, so its bound height takes
+// the maximum of the matching pyramids.
+struct RelaxedBounds {
+  std::vector<unsigned char> exit_bits;
+  std::vector<std::vector<float>> exit_heights;  // level 0 of each pyramid
+  std::vector<Pyramid> exit_pyr;
+};
+
+RelaxedBounds relaxed_bounds(const std::vector<float>& heights, int W, int H, bool repeat) {
+  RelaxedBounds rb;
+  const Behind behind{heights, W, H, repeat};
+  const int sx[4] = {1, -1, 0, 0}, sy[4] = {0, 0, 1, -1};
+  rb.exit_bits.assign(heights.size(), 0);
+  rb.exit_heights.assign(4, std::vector<float>(heights.size()));
+  for_each_row_block(H, 16, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < W; ++x) {
+        const std::size_t i = std::size_t(y) * W + x;
+        for (int f = 0; f < 4; ++f) {
+          const bool lower = behind.lower(x, y, heights[i], sx[f], sy[f]);
+          rb.exit_bits[i] = static_cast<unsigned char>(rb.exit_bits[i] | (lower ? 1 << f : 0));
+          rb.exit_heights[std::size_t(f)][i] = lower ? heights[i] : -1.0f;
+        }
+      }
+  });
+  for (int f = 0; f < 4; ++f) rb.exit_pyr.push_back(build_pyramid(rb.exit_heights[std::size_t(f)], W, H));
+  return rb;
+}
+
 std::vector<float> conservative_cells(const std::vector<float>& heights, const std::vector<float>& apex, int W, int H,
-                                      const ConeMapOptions& o, const Pyramid& pyr, int shrink) {
+                                      const ConeMapOptions& o, const Pyramid& pyr, int shrink,
+                                      const RelaxedBounds* relaxed = nullptr) {
   using detail::kConeCell;
   constexpr int kScanLevel = 3;  // 8x8-texel blocks are scanned
   detail::ConeGeometry g = geometry(W, H, o, shrink);
@@ -253,13 +278,31 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
   const Metric m{1.0 / (double(W) * W), 1.0 / (double(H) * H), double(o.depth) * o.depth};
   const bool repeat = g.repeat;
   const int top = pyr.levels() - 1;
-  const float summit = pyr.level(top)[0];
+  float summit = pyr.level(top)[0];
+  if (relaxed) {
+    g.exit_bits = relaxed->exit_bits.data();
+    summit = -1.0f;
+    for (const Pyramid& e : relaxed->exit_pyr) summit = std::max(summit, e.level(top)[0]);
+  }
   const float cap2 = o.max_ratio * o.max_ratio;
   const int cw = (W + kConeCell - 1) / kConeCell, ch = (H + kConeCell - 1) / kConeCell;
   const int reach = o.fast_reach;
   auto shrunk = [&](int gap) { return gap > shrink ? gap - shrink : 0; };
   // (--fast does not use the slope bound: its blocks are near the cell.)
-  const SlopePyramid slopes = shrink > 0 || reach > 0 ? SlopePyramid{} : build_slopes(heights, W, H, repeat, pyr);
+  // (Nor do relaxed cones: their bound heights are not the slope's anchor.)
+  const SlopePyramid slopes =
+      shrink > 0 || reach > 0 || relaxed ? SlopePyramid{} : build_slopes(heights, W, H, repeat, pyr);
+  // The bound height of block (x, y) at level k, on sides (sx, sy) of the cell.
+  auto bound_height = [&](int k, int x, int y, int sx, int sy) {
+    const std::size_t at = std::size_t(y) * pyr.w[std::size_t(k)] + x;
+    if (!relaxed) return pyr.level(k)[at];
+    float M = -1.0f;
+    if (sx >= 0) M = std::max(M, relaxed->exit_pyr[0].level(k)[at]);
+    if (sx <= 0) M = std::max(M, relaxed->exit_pyr[1].level(k)[at]);
+    if (sy >= 0) M = std::max(M, relaxed->exit_pyr[2].level(k)[at]);
+    if (sy <= 0) M = std::max(M, relaxed->exit_pyr[3].level(k)[at]);
+    return M;
+  };
   std::vector<float> out(heights.size());
   for_each_row_block(ch, 1, [&](int r0, int r1) {
     std::vector<Node> stack;
@@ -353,7 +396,7 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
           return false;
         };
         stack.clear();
-        if (cell_max > 0) stack.push_back({top, 0, 0, 0.0});
+        if (cell_max > 0) stack.push_back({top, 0, 0, 0.0, 0, 0, summit});
         while (!stack.empty()) {
           const Node n = stack.back();
           stack.pop_back();
@@ -361,7 +404,7 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
           const int k = n.level;
           const int bx0 = n.x << k, bx1 = std::min((n.x + 1) << k, W) - 1;
           const int by0 = n.y << k, by1 = std::min((n.y + 1) << k, H) - 1;
-          const float M = pyr.level(k)[std::size_t(n.y) * pyr.w[std::size_t(k)] + n.x];
+          const float M = n.M;
           // --fast: the blocks next to the cell are scanned, farther ones
           // opened only until they are reach of their sizes away.
           const int gap = reach > 0 ? std::max(n.gx, n.gy) : 0;
@@ -385,11 +428,17 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
             for (int i = 0; i < 2; ++i) {
               const int ux = 2 * n.x + i, uy = 2 * n.y + j;
               if (ux >= kw || uy >= kh) continue;
-              const float Mc = pyr.level(s)[std::size_t(uy) * kw + ux];
-              if (Mc <= cell_min) continue;
+              if (pyr.level(s)[std::size_t(uy) * kw + ux] <= cell_min) continue;
               int side_x = 0, side_y = 0;
-              const int gx = range_gap(c.x0, x1, ux << s, std::min((ux + 1) << s, W) - 1, W, repeat, &side_x);
-              const int gy = range_gap(c.y0, y1, uy << s, std::min((uy + 1) << s, H) - 1, H, repeat, &side_y);
+              const int ux0 = ux << s, ux1 = std::min((ux + 1) << s, W) - 1;
+              const int uy0 = uy << s, uy1 = std::min((uy + 1) << s, H) - 1;
+              const int gx = range_gap(c.x0, x1, ux0, ux1, W, repeat, &side_x);
+              const int gy = range_gap(c.y0, y1, uy0, uy1, H, repeat, &side_y);
+              // With repeat, a side holds for every apex only well within half the map.
+              if (repeat && 2 * (gx + (x1 - c.x0) + (ux1 - ux0)) >= W) side_x = 0;
+              if (repeat && 2 * (gy + (y1 - c.y0) + (uy1 - uy0)) >= H) side_y = 0;
+              const float Mc = bound_height(s, ux, uy, side_x, side_y);
+              if (Mc <= cell_min) continue;
               const double sgx = shrunk(gx), sgy = shrunk(gy), dh = double(Mc) - cell_min;
               const double num = sgx * sgx * m.sx + sgy * sgy * m.sy, den = m.dd * dh * dh;
               if (num > cell_max * kPruneSlack * den) continue;
@@ -403,7 +452,7 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
                   continue;
                 }
               }
-              kids[count++] = {s, ux, uy, num / (den * kPruneSlack), gx, gy};
+              kids[count++] = {s, ux, uy, num / (den * kPruneSlack), gx, gy, Mc};
             }
           for (int a = 1; a < count; ++a)
             for (int b = a; b > 0 && kids[b - 1].bound < kids[b].bound; --b) std::swap(kids[b - 1], kids[b]);
@@ -493,135 +542,6 @@ void bilinear_local(const std::vector<float>& heights, const std::vector<float>&
     r2[i] = std::min(r2[i], b);
   }
 }
-// Relaxed cones, a texel at a time (which texels count depends on where p
-// is): four more pyramids, of the heights of the texels whose +x, -x, +y or
-// -y neighbour is lower (-1 elsewhere). A block wholly on one side of p
-// along an axis can only hold exits that way, so its bound takes the
-// maximum of the matching pyramids. With fast_reach, a block at least
-// fast_reach of its sizes away is not opened: its highest exit counts at its
-// nearest point.
-std::vector<float> relaxed_texels(const std::vector<float>& heights, int W, int H, const ConeMapOptions& o,
-                                  const Pyramid& pyr) {
-  const bool repeat = o.wrap == WrapMode::repeat;
-  const detail::ConeGeometry g = geometry(W, H, o, 0);
-  const Metric m{1.0 / (double(W) * W), 1.0 / (double(H) * H), double(o.depth) * o.depth};
-  const Behind behind{heights, W, H, repeat};
-  std::vector<Pyramid> exit_pyr;
-  const int sx[4] = {1, -1, 0, 0}, sy[4] = {0, 0, 1, -1};
-  std::vector<std::vector<float>> exit_heights(4);  // level 0 of each exit pyramid
-  for (int f = 0; f < 4; ++f) {
-    std::vector<float>& v = exit_heights[std::size_t(f)];
-    v.resize(heights.size());
-    for (int y = 0; y < H; ++y)
-      for (int x = 0; x < W; ++x) {
-        const float hq = heights[std::size_t(y) * W + x];
-        v[std::size_t(y) * W + x] = behind.lower(x, y, hq, sx[f], sy[f]) ? hq : -1.0f;
-      }
-    exit_pyr.push_back(build_pyramid(v, W, H));
-  }
-  // Which side of p a block [lo, hi] lies on along an axis: +1, -1, or 0
-  // (both: it holds p's row or column, or straddles the far seam).
-  auto side = [&](int p, int lo, int hi, int n) {
-    if (!repeat) return lo > p ? 1 : hi < p ? -1 : 0;
-    if (2 * (hi - lo + 1) >= n) return 0;
-    auto off = [&](int q) {
-      int d = q - p;
-      if (d > n / 2) d -= n;
-      if (d < -n / 2) d += n;
-      return d;
-    };
-    const int a = off(lo), b = off(hi);
-    if (b < a || 2 * std::abs(a) == n || 2 * std::abs(b) == n) return 0;  // across the seam, or a tie
-    return a > 0 ? 1 : b < 0 ? -1 : 0;
-  };
-  const int top = pyr.levels() - 1;
-  const float cap2 = o.max_ratio * o.max_ratio;
-  const int reach = o.fast_reach;
-  std::vector<float> out(heights.size());
-  auto candidate = [&](int px, int py, int qx, int qy, float hq, float hp) {
-    return detail::cone_r2(g, detail::cone_d2(g, texel_distance(px, qx, W, repeat), texel_distance(py, qy, H, repeat)),
-                           hq - hp);
-  };
-
-  for_each_row_block(H, 4, [&](int y0, int y1) {
-    thread_local std::vector<Node> stack;
-    for (int py = y0; py < y1; ++py) {
-      // The texel that bounded the previous texel's cone usually bounds this
-      // one too, nearly as tightly: starting from it prunes from the start.
-      // (Only a starting bound: the search still proves the minimum.)
-      int wx = -1, wy = -1;
-      for (int px = 0; px < W; ++px) {
-        const float hp = heights[std::size_t(py) * W + px];
-        float best = cap2;
-        if (wx >= 0) {
-          const float hq = heights[std::size_t(wy) * W + wx];
-          if (hq > hp && behind.exits(px, py, wx, wy, hq)) best = std::min(best, candidate(px, py, wx, wy, hq, hp));
-        }
-        stack.clear();
-        stack.push_back({top, 0, 0, 0.0});
-        while (!stack.empty()) {
-          const Node n = stack.back();
-          stack.pop_back();
-          if (n.bound > best) continue;  // the best improved since it was pushed
-          const int k = n.level;
-          const int x_lo = n.x << k, x_hi = std::min((n.x + 1) << k, W) - 1;
-          const int y_lo = n.y << k, y_hi = std::min((n.y + 1) << k, H) - 1;
-          if (k <= kLeafLevel) {
-            for (int qy = y_lo; qy <= y_hi; ++qy) {
-              const float* row = heights.data() + std::size_t(qy) * W;
-              for (int qx = x_lo; qx <= x_hi; ++qx) {
-                const float hq = row[qx];
-                if (hq <= hp) continue;
-                const float r2 = candidate(px, py, qx, qy, hq, hp);
-                if (r2 < best && behind.exits(px, py, qx, qy, hq)) {
-                  best = r2;
-                  wx = qx;
-                  wy = qy;
-                }
-              }
-            }
-            continue;
-          }
-          // Children, farthest pushed first so the nearest is searched first.
-          Node kids[4];
-          int count = 0;
-          const int s = k - 1;
-          const int cw = pyr.w[std::size_t(s)], ch = pyr.h[std::size_t(s)];
-          for (int j = 0; j < 2; ++j)
-            for (int i = 0; i < 2; ++i) {
-              const int cx = 2 * n.x + i, cy = 2 * n.y + j;
-              if (cx >= cw || cy >= ch) continue;
-              const int bx0 = cx << s, bx1 = std::min((cx + 1) << s, W) - 1;
-              const int by0 = cy << s, by1 = std::min((cy + 1) << s, H) - 1;
-              const int xs = side(px, bx0, bx1, W), ys = side(py, by0, by1, H);
-              const std::size_t at = std::size_t(cy) * cw + cx;
-              float M = -1.0f;
-              if (xs >= 0) M = std::max(M, exit_pyr[0].level(s)[at]);
-              if (xs <= 0) M = std::max(M, exit_pyr[1].level(s)[at]);
-              if (ys >= 0) M = std::max(M, exit_pyr[2].level(s)[at]);
-              if (ys <= 0) M = std::max(M, exit_pyr[3].level(s)[at]);
-              if (M <= hp) continue;
-              const int dx = axis_distance(px, bx0, bx1, W, repeat), dy = axis_distance(py, by0, by1, H, repeat);
-              const double bound = m.ratio2(dx, dy, double(M) - hp);
-              if (bound > best * kPruneSlack) continue;
-              if (reach > 0 && std::max(dx, dy) >= (reach << s)) {  // --fast: the block as one obstacle
-                best = std::min(best, detail::cone_r2(g, detail::cone_d2(g, dx, dy), M - hp));
-                continue;
-              }
-              kids[count++] = {s, cx, cy, bound / kPruneSlack};
-            }
-          // At most four: insertion sort, largest bound first.
-          for (int a = 1; a < count; ++a)
-            for (int b = a; b > 0 && kids[b - 1].bound < kids[b].bound; --b) std::swap(kids[b - 1], kids[b]);
-          for (int c = 0; c < count; ++c) stack.push_back(kids[c]);
-        }
-        out[std::size_t(py) * W + px] = best;
-      }
-    }
-  });
-  return out;
-}
-
 std::vector<float> square_roots(std::vector<float> r2) {
   const int rows = int((r2.size() + 4095) / 4096);
   for_each_row_block(rows, 16, [&](int r0, int r1) {
@@ -635,7 +555,10 @@ std::vector<float> square_roots(std::vector<float> r2) {
 std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, const ConeMapOptions& o) {
   check(heights, W, H, o);
   const Pyramid pyr = build_pyramid(heights, W, H);
-  if (o.mode == ConeMode::relaxed) return square_roots(relaxed_texels(heights, W, H, o, pyr));
+  if (o.mode == ConeMode::relaxed) {
+    const RelaxedBounds rb = relaxed_bounds(heights, W, H, o.wrap == WrapMode::repeat);
+    return square_roots(conservative_cells(heights, heights, W, H, o, pyr, 0, &rb));
+  }
   if (!o.bilinear_safe) return square_roots(conservative_cells(heights, heights, W, H, o, pyr, 0));
   const std::vector<float> apex = bilinear_apex(heights, W, H, o.wrap == WrapMode::repeat);
   std::vector<float> r2 = conservative_cells(heights, apex, W, H, o, pyr, kBilinearShrink);
