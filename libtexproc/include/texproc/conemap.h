@@ -29,10 +29,11 @@ struct ConeMapOptions {
   float depth = 1.0f;       // relief depth in texture widths (> 0)
   float max_ratio = 1.0f;   // cap on the ratio (> 0); the map stores sqrt(ratio / max_ratio)
   WrapMode wrap = WrapMode::repeat;  // repeat: tiling reliefs see across the edges; clamp: they do not
-  // Fast cones, never wider than exact, 0 = exact: a pyramid block whose gap
-  // to the texel (conservative: to the texel's 8x8 cell) is at least
-  // fast_reach of the block's own sizes is not opened; its highest texel
-  // counts at the block's nearest texel. Larger reaches: wider cones, slower.
+  // Fast cones, never wider than exact, 0 = exact: the pyramid blocks next
+  // to the texel's 8x8 cell are searched texel by texel, and a farther block
+  // whose gap to the cell is at least fast_reach of its own sizes is not
+  // opened: its highest texel (relaxed: its highest exit) counts at its
+  // nearest texel. Larger reaches: wider cones, slower.
   int fast_reach = 0;
   ConeMode mode = ConeMode::conservative;
   // Conservative cones that stay safe when a renderer interpolates the
@@ -44,8 +45,8 @@ struct ConeMapOptions {
 // field of heights in [0, 1] (row-major), by branch and bound over a maximum
 // mip pyramid: a block is skipped when even its highest texel at its nearest
 // point cannot narrow the cone found so far, and blocks are visited nearest
-// first, so the bound tightens early. Conservative cones are searched a cell
-// of 8x8 texels at a time, SIMD across the cell's rows. The result equals
+// first, so the bound tightens early. Cones are searched a cell of 8x8
+// texels at a time, SIMD across the cell's texels. The result equals
 // brute force bit for bit (tested), for any thread count and SIMD target.
 //
 // bilinear_safe: a renderer that samples the height and the ratio with
