@@ -1,6 +1,6 @@
 // The inner loops of the cone-map search: a cell of up to 8x8 apex texels
-// against obstacles, SIMD across the 8 texels of a cell row (Highway) with a
-// plain scalar reference beside it; both give identical ratios.
+// against obstacles, SIMD across the cell's texels in row order (Highway)
+// with a plain scalar reference beside it; both give identical ratios.
 //
 // One candidate, the same float operations everywhere (brute force included):
 //   dx, dy  = texel distances along each axis (the nearest periodic copy with

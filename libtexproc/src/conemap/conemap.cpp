@@ -33,11 +33,10 @@ void check(const std::vector<float>& heights, int width, int height, const ConeM
   }
 }
 
-// Squared ratio of a candidate: (dx^2 / W^2 + dy^2 / H^2) / (D^2 dh^2), in
-// double, the same expression in the fast search and the brute force.
+// The terms of a squared ratio, (dx^2 sx + dy^2 sy) / (dd dh^2), in double
+// for the search's bounds (candidates are in float: cone_cells.h).
 struct Metric {
-  double sx, sy, dd;
-  double ratio2(double dx, double dy, double dh) const { return (dx * dx * sx + dy * dy * sy) / (dd * dh * dh); }
+  double sx, sy, dd;  // 1 / W^2, 1 / H^2, depth^2
 };
 
 int texel_distance(int p, int q, int n, bool repeat) {
@@ -369,15 +368,13 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
           std::copy(all_rows, all_rows + kConeCell, rows);
           refresh();
         };
-        // Whether a child block can narrow no cone of the cell: each apex with
-        // its own cone and distance, and where the block climbs away from the
-        // cell along an axis, the slope bound (cone_cells.h; classic cones
-        // only: the shrunk distances of --bilinear-safe do not add up so).
-        auto gx_of = [&](int ux, int s) { return range_gap(c.x0, x1, ux << s, std::min((ux + 1) << s, W) - 1, W, repeat); };
-        auto gy_of = [&](int uy, int s) { return range_gap(c.y0, y1, uy << s, std::min((uy + 1) << s, H) - 1, H, repeat); };
-        auto clear = [&](int s, int ux, int uy, float Mc, int side_x, int side_y) {
-          const int bx0 = ux << s, bx1 = std::min((ux + 1) << s, W) - 1;
-          const int by0 = uy << s, by1 = std::min((uy + 1) << s, H) - 1;
+        // Whether child block (ux, uy) at level s, texels [bx0, bx1] x [by0, by1],
+        // can narrow no cone of the cell: each apex with its own cone and
+        // distance, and where the block climbs away from the cell along an axis
+        // (side != 0: the child loop keeps a side only where every apex sees
+        // the block on it), the slope bound (cone_cells.h; classic cones only:
+        // the shrunk distances of --bilinear-safe do not add up so).
+        auto clear = [&](int s, int ux, int uy, int bx0, int bx1, int by0, int by1, float Mc, int side_x, int side_y) {
           if (detail::cone_cell_clear(g, c, bx0, bx1, by0, by1, Mc, 0, 0.0f, 0)) return true;
           if (slopes.rise[0].empty() || s < SlopePyramid::kBase) return false;
           const std::size_t at = std::size_t(uy) * pyr.w[std::size_t(s)] + ux;
@@ -387,10 +384,6 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
             const float E = slopes.rise[axis * 2 + (side > 0 ? 0 : 1)][std::size_t(s - SlopePyramid::kBase)][at];
             if (!(E > 0.0f)) continue;
             const int extent = axis == 0 ? bx1 - bx0 : by1 - by0;
-            // With repeat, every apex must see the block on that side (its
-            // nearest copy), or its distance does not grow with the offset.
-            const int span = axis == 0 ? x1 - c.x0 : y1 - c.y0, n_axis = axis == 0 ? W : H;
-            if (repeat && 2 * ((axis == 0 ? gx_of(ux, s) : gy_of(uy, s)) + span + extent) > n_axis) continue;
             if (detail::cone_cell_clear(g, c, bx0, bx1, by0, by1, Mc, axis, E, extent)) return true;
           }
           return false;
@@ -434,7 +427,8 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
               const int uy0 = uy << s, uy1 = std::min((uy + 1) << s, H) - 1;
               const int gx = range_gap(c.x0, x1, ux0, ux1, W, repeat, &side_x);
               const int gy = range_gap(c.y0, y1, uy0, uy1, H, repeat, &side_y);
-              // With repeat, a side holds for every apex only well within half the map.
+              // With repeat, a side holds for every apex only well within half the
+              // map (the exit pyramids and the slope bound rely on it).
               if (repeat && 2 * (gx + (x1 - c.x0) + (ux1 - ux0)) >= W) side_x = 0;
               if (repeat && 2 * (gy + (y1 - c.y0) + (uy1 - uy0)) >= H) side_y = 0;
               const float Mc = bound_height(s, ux, uy, side_x, side_y);
@@ -448,7 +442,7 @@ std::vector<float> conservative_cells(const std::vector<float>& heights, const s
               if (!obstacle) {
                 // --fast's blocks are near the cell, where the cheaper cell-gap test does as well.
                 if (reach > 0 ? num > double(detail::cone_cell_reach(c, Mc)) * m.dd * kPruneSlack
-                              : clear(s, ux, uy, Mc, side_x, side_y)) {
+                              : clear(s, ux, uy, ux0, ux1, uy0, uy1, Mc, side_x, side_y)) {
                   continue;
                 }
               }
