@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <map>
 
+#include "bench_common.h"
 #include "texproc/block_decode.h"
 #include "texproc/block_encode.h"
 #include "texproc/image_io.h"
@@ -44,12 +45,7 @@ const std::vector<Height>& heights() {
 }
 
 double psnr(const Image& src, const std::vector<std::uint8_t>& blocks) {
-  Texture t;
-  t.format = TexelFormat::bc4_unorm;
-  t.width = std::uint32_t(src.width());
-  t.height = std::uint32_t(src.height());
-  t.images.push_back(blocks);
-  const Image d = decode_texture_image(t, 0, 0, 0, PixelType::f32);
+  const Image d = bench::decode_blocks(src.width(), src.height(), TexelFormat::bc4_unorm, blocks, PixelType::f32);
   double se = 0;
   for (int y = 0; y < src.height(); ++y)
     for (int x = 0; x < src.width(); ++x) se += std::pow(d.get(x, y, 0) * 255.0 - src.row<std::uint8_t>(y)[x], 2);

@@ -31,14 +31,19 @@ inline const std::vector<Image>& color_textures() {
   return t;
 }
 
-// PSNR over RGB of `blocks` (format f) against the RGBA8 source.
-inline double psnr_rgb(const Image& src, TexelFormat f, const std::vector<std::uint8_t>& blocks) {
+// One level of `blocks` (format f, width x height texels) decoded to `type`.
+inline Image decode_blocks(int width, int height, TexelFormat f, std::vector<std::uint8_t> blocks, PixelType type) {
   Texture t;
   t.format = f;
-  t.width = std::uint32_t(src.width());
-  t.height = std::uint32_t(src.height());
-  t.images.push_back(blocks);
-  const Image d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
+  t.width = std::uint32_t(width);
+  t.height = std::uint32_t(height);
+  t.images.push_back(std::move(blocks));
+  return decode_texture_image(t, 0, 0, 0, type);
+}
+
+// PSNR over RGB of `blocks` (format f) against the RGBA8 source.
+inline double psnr_rgb(const Image& src, TexelFormat f, const std::vector<std::uint8_t>& blocks) {
+  const Image d = decode_blocks(src.width(), src.height(), f, blocks, PixelType::u8);
   double se = 0;
   for (int y = 0; y < src.height(); ++y)
     for (int x = 0; x < src.width(); ++x)

@@ -218,14 +218,6 @@ detail::ConeGeometry geometry(int W, int H, const ConeMapOptions& o, int shrink)
   return g;
 }
 
-// Conservative cones, a cell of 8x8 apex texels at a time: one walk of the
-// pyramid per cell, nearest block first, a block skipped when even the
-// cell's lowest apex at the cell's nearest point could not narrow the widest
-// cone in the cell; the blocks of 8x8 texels that survive are scanned
-// against every apex row that a row-wise bound cannot rule out, SIMD across
-// the row (cone_cells.h). With o.fast_reach, the blocks next to the cell are
-// still scanned, but a farther block whose gap to the cell is at least
-// fast_reach of its own sizes counts as one obstacle.
 // Relaxed cones on the cell walk: the exit rule per texel, and four maximum
 // pyramids of the texels with a lower +x, -x, +y or -y neighbour (-1
 // elsewhere). A block wholly on one side of the cell along an axis can only
@@ -258,7 +250,19 @@ RelaxedBounds relaxed_bounds(const std::vector<float>& heights, int W, int H, bo
   return rb;
 }
 
-std::vector<float> conservative_cells(const std::vector<float>& heights, const std::vector<float>& apex, int W, int H,
+// Squared cone ratios, a cell of 8x8 apex texels at a time: one walk of the
+// pyramid per cell, nearest block first, a block skipped when even the
+// cell's lowest apex at the cell's nearest point could not narrow the widest
+// cone in the cell, or no apex with its own cone and distance could be
+// narrowed (and, for classic cones, by the slope bound); the blocks of 8x8
+// texels that survive are scanned against every apex row that a row-wise
+// bound cannot rule out, SIMD across the cell (cone_cells.h). With
+// o.fast_reach, the blocks next to the cell are still scanned, but a farther
+// block whose gap to the cell is at least fast_reach of its own sizes counts
+// as one obstacle. `apex`: the apex heights (the heights, or their 3x3
+// minima for --bilinear-safe, with distances shrunk by `shrink`);
+// `relaxed`: relaxed cones (their exits and bound heights).
+std::vector<float> cell_cones(const std::vector<float>& heights, const std::vector<float>& apex, int W, int H,
                                       const ConeMapOptions& o, const Pyramid& pyr, int shrink,
                                       const RelaxedBounds* relaxed = nullptr) {
   using detail::kConeCell;
@@ -551,11 +555,11 @@ std::vector<float> cone_ratios(const std::vector<float>& heights, int W, int H, 
   const Pyramid pyr = build_pyramid(heights, W, H);
   if (o.mode == ConeMode::relaxed) {
     const RelaxedBounds rb = relaxed_bounds(heights, W, H, o.wrap == WrapMode::repeat);
-    return square_roots(conservative_cells(heights, heights, W, H, o, pyr, 0, &rb));
+    return square_roots(cell_cones(heights, heights, W, H, o, pyr, 0, &rb));
   }
-  if (!o.bilinear_safe) return square_roots(conservative_cells(heights, heights, W, H, o, pyr, 0));
+  if (!o.bilinear_safe) return square_roots(cell_cones(heights, heights, W, H, o, pyr, 0));
   const std::vector<float> apex = bilinear_apex(heights, W, H, o.wrap == WrapMode::repeat);
-  std::vector<float> r2 = conservative_cells(heights, apex, W, H, o, pyr, kBilinearShrink);
+  std::vector<float> r2 = cell_cones(heights, apex, W, H, o, pyr, kBilinearShrink);
   bilinear_local(heights, apex, W, H, o, r2);
   return square_roots(std::move(r2));
 }
