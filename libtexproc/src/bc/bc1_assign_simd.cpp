@@ -1,9 +1,12 @@
-// BC1 index assignment: the scalar reference and its Highway twin (lanes over
-// the 16 texels, 32-bit integers: identical results).
+// BC1's per-texel work: the scalar references and their Highway twins (lanes
+// over the 16 texels, 32-bit lanes; integer sums, and one float expression
+// evaluated per texel in the same order: identical results).
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "bc/bc1_assign_simd.cpp"
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
+
+#include <algorithm>
 
 #include "bc/bc1_assign.h"
 #include "texproc/runtime.h"
@@ -11,12 +14,32 @@
 #ifndef TEXPROC_BC1_ASSIGN_REF
 #define TEXPROC_BC1_ASSIGN_REF
 namespace texproc::ref {
-void bc1_nearest(const Bc1Texels& tx, const int pal[4][3], int candidates, std::uint8_t codes[16],
-                 std::int32_t errors[16]) {
+
+void bc1_moments(const Bc1Texels& tx, Bc1Moments& m) {
+  m = Bc1Moments{};
+  for (int i = 0; i < 16; ++i) {
+    if (tx.transparent[i]) continue;
+    const std::int32_t r = tx.r[i], g = tx.g[i], b = tx.b[i];
+    ++m.n;
+    m.sum[0] += r, m.sum[1] += g, m.sum[2] += b;
+    m.sq[0] += r * r, m.sq[1] += r * g, m.sq[2] += r * b, m.sq[3] += g * g, m.sq[4] += g * b, m.sq[5] += b * b;
+  }
+}
+
+void bc1_project_range(const Bc1Texels& tx, const float axis[3], float& lo, float& hi) {
+  lo = 1e30f, hi = -1e30f;
+  for (int i = 0; i < 16; ++i) {
+    if (tx.transparent[i]) continue;
+    const float p = float(tx.r[i]) * axis[0] + float(tx.g[i]) * axis[1] + float(tx.b[i]) * axis[2];
+    lo = std::min(lo, p), hi = std::max(hi, p);
+  }
+}
+
+std::int32_t bc1_nearest(const Bc1Texels& tx, const int pal[4][3], int candidates, std::uint8_t codes[16]) {
+  std::int32_t total = 0;
   for (int i = 0; i < 16; ++i) {
     if (tx.transparent[i]) {
       codes[i] = 3;
-      errors[i] = 0;
       continue;
     }
     int best = 0;
@@ -27,9 +50,23 @@ void bc1_nearest(const Bc1Texels& tx, const int pal[4][3], int candidates, std::
       if (be < 0 || d < be) be = d, best = k;
     }
     codes[i] = std::uint8_t(best);
-    errors[i] = be;
+    total += be;
+  }
+  return total;
+}
+
+void bc1_ls_sums(const Bc1Texels& tx, const std::uint8_t codes[16], const int weight[4], int den, Bc1LsSums& s) {
+  s = Bc1LsSums{};
+  for (int i = 0; i < 16; ++i) {
+    const int w = weight[codes[i]];
+    if (tx.transparent[i] || w < 0) continue;
+    const int u = den - w;
+    s.aa += u * u, s.ab += u * w, s.bb += w * w;
+    s.at[0] += u * tx.r[i], s.at[1] += u * tx.g[i], s.at[2] += u * tx.b[i];
+    s.bt[0] += w * tx.r[i], s.bt[1] += w * tx.g[i], s.bt[2] += w * tx.b[i];
   }
 }
+
 }  // namespace texproc::ref
 #endif
 
@@ -38,33 +75,100 @@ namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void Bc1Nearest(const Bc1Texels& tx, const int pal[4][3], int candidates, std::uint8_t codes[16],
-                std::int32_t errors[16]) {
-  const hn::CappedTag<std::int32_t, 16> d;
+using D = hn::CappedTag<std::int32_t, 16>;
+using V = hn::Vec<D>;
+
+HWY_INLINE std::int32_t Total(D d, V v) { return hn::GetLane(hn::SumOfLanes(d, v)); }
+
+void Bc1Moments_(const Bc1Texels& tx, Bc1Moments& m) {
+  const D d;
+  const int lanes = int(hn::Lanes(d));
+  V n = hn::Zero(d), sr = n, sg = n, sb = n, rr = n, rg = n, rb = n, gg = n, gb = n, bb = n;
+  for (int i = 0; i < 16; i += lanes) {
+    const auto opaque = hn::Eq(hn::LoadU(d, tx.transparent + i), hn::Zero(d));
+    const V r = hn::IfThenElseZero(opaque, hn::LoadU(d, tx.r + i)), g = hn::IfThenElseZero(opaque, hn::LoadU(d, tx.g + i)),
+            b = hn::IfThenElseZero(opaque, hn::LoadU(d, tx.b + i));
+    n = hn::Add(n, hn::IfThenElseZero(opaque, hn::Set(d, 1)));
+    sr = hn::Add(sr, r), sg = hn::Add(sg, g), sb = hn::Add(sb, b);
+    rr = hn::Add(rr, hn::Mul(r, r)), rg = hn::Add(rg, hn::Mul(r, g)), rb = hn::Add(rb, hn::Mul(r, b));
+    gg = hn::Add(gg, hn::Mul(g, g)), gb = hn::Add(gb, hn::Mul(g, b)), bb = hn::Add(bb, hn::Mul(b, b));
+  }
+  m.n = Total(d, n);
+  m.sum[0] = Total(d, sr), m.sum[1] = Total(d, sg), m.sum[2] = Total(d, sb);
+  m.sq[0] = Total(d, rr), m.sq[1] = Total(d, rg), m.sq[2] = Total(d, rb);
+  m.sq[3] = Total(d, gg), m.sq[4] = Total(d, gb), m.sq[5] = Total(d, bb);
+}
+
+void Bc1ProjectRange(const Bc1Texels& tx, const float axis[3], float& lo, float& hi) {
+  const D d;
+  const hn::Rebind<float, D> df;
+  const int lanes = int(hn::Lanes(d));
+  const auto ax = hn::Set(df, axis[0]), ay = hn::Set(df, axis[1]), az = hn::Set(df, axis[2]);
+  auto vlo = hn::Set(df, 1e30f), vhi = hn::Set(df, -1e30f);
+  for (int i = 0; i < 16; i += lanes) {
+    const auto opaque = hn::RebindMask(df, hn::Eq(hn::LoadU(d, tx.transparent + i), hn::Zero(d)));
+    const auto p = hn::Add(hn::Add(hn::Mul(hn::ConvertTo(df, hn::LoadU(d, tx.r + i)), ax),
+                                   hn::Mul(hn::ConvertTo(df, hn::LoadU(d, tx.g + i)), ay)),
+                           hn::Mul(hn::ConvertTo(df, hn::LoadU(d, tx.b + i)), az));
+    vlo = hn::Min(vlo, hn::IfThenElse(opaque, p, vlo));
+    vhi = hn::Max(vhi, hn::IfThenElse(opaque, p, vhi));
+  }
+  lo = hn::GetLane(hn::MinOfLanes(df, vlo));
+  hi = hn::GetLane(hn::MaxOfLanes(df, vhi));
+}
+
+std::int32_t Bc1Nearest(const Bc1Texels& tx, const int pal[4][3], int candidates, std::uint8_t codes[16]) {
+  const D d;
   const int lanes = int(hn::Lanes(d));
   HWY_ALIGN std::int32_t code_out[16];
+  V total = hn::Zero(d);
   for (int i = 0; i < 16; i += lanes) {
-    const auto r = hn::LoadU(d, tx.r + i), g = hn::LoadU(d, tx.g + i), b = hn::LoadU(d, tx.b + i);
+    const V r = hn::LoadU(d, tx.r + i), g = hn::LoadU(d, tx.g + i), b = hn::LoadU(d, tx.b + i);
     auto error_of = [&](int k) {
-      const auto dr = hn::Sub(r, hn::Set(d, pal[k][0])), dg = hn::Sub(g, hn::Set(d, pal[k][1])),
-                 db = hn::Sub(b, hn::Set(d, pal[k][2]));
+      const V dr = hn::Sub(r, hn::Set(d, pal[k][0])), dg = hn::Sub(g, hn::Set(d, pal[k][1])),
+              db = hn::Sub(b, hn::Set(d, pal[k][2]));
       return hn::Add(hn::Add(hn::Mul(dr, dr), hn::Mul(dg, dg)), hn::Mul(db, db));
     };
-    auto be = error_of(0);
-    auto best = hn::Zero(d);
+    V be = error_of(0);
+    V best = hn::Zero(d);
     for (int k = 1; k < candidates; ++k) {
-      const auto e = error_of(k);
+      const V e = error_of(k);
       const auto better = hn::Lt(e, be);
       be = hn::IfThenElse(better, e, be);
       best = hn::IfThenElse(better, hn::Set(d, k), best);
     }
     const auto transparent = hn::Ne(hn::LoadU(d, tx.transparent + i), hn::Zero(d));
-    be = hn::IfThenElse(transparent, hn::Zero(d), be);
-    best = hn::IfThenElse(transparent, hn::Set(d, 3), best);
-    hn::StoreU(be, d, errors + i);
-    hn::StoreU(best, d, code_out + i);
+    total = hn::Add(total, hn::IfThenZeroElse(transparent, be));
+    hn::StoreU(hn::IfThenElse(transparent, hn::Set(d, 3), best), d, code_out + i);
   }
   for (int i = 0; i < 16; ++i) codes[i] = std::uint8_t(code_out[i]);
+  return Total(d, total);
+}
+
+void Bc1LsSums_(const Bc1Texels& tx, const std::uint8_t codes[16], const int weight[4], int den, Bc1LsSums& s) {
+  const D d;
+  const int lanes = int(hn::Lanes(d));
+  HWY_ALIGN std::int32_t code32[16];
+  for (int i = 0; i < 16; ++i) code32[i] = codes[i];
+  V aa = hn::Zero(d), ab = aa, bb = aa, ar = aa, ag = aa, ab_ = aa, br = aa, bg = aa, bbl = aa;
+  const V vden = hn::Set(d, den);
+  for (int i = 0; i < 16; i += lanes) {
+    const V c = hn::LoadU(d, code32 + i);
+    V w = hn::Set(d, weight[3]);
+    w = hn::IfThenElse(hn::Eq(c, hn::Set(d, 2)), hn::Set(d, weight[2]), w);
+    w = hn::IfThenElse(hn::Eq(c, hn::Set(d, 1)), hn::Set(d, weight[1]), w);
+    w = hn::IfThenElse(hn::Eq(c, hn::Zero(d)), hn::Set(d, weight[0]), w);
+    const auto in = hn::And(hn::Eq(hn::LoadU(d, tx.transparent + i), hn::Zero(d)), hn::Not(hn::Lt(w, hn::Zero(d))));
+    w = hn::IfThenElseZero(in, w);
+    const V u = hn::IfThenElseZero(in, hn::Sub(vden, w));
+    const V r = hn::LoadU(d, tx.r + i), g = hn::LoadU(d, tx.g + i), b = hn::LoadU(d, tx.b + i);
+    aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w)), bb = hn::Add(bb, hn::Mul(w, w));
+    ar = hn::Add(ar, hn::Mul(u, r)), ag = hn::Add(ag, hn::Mul(u, g)), ab_ = hn::Add(ab_, hn::Mul(u, b));
+    br = hn::Add(br, hn::Mul(w, r)), bg = hn::Add(bg, hn::Mul(w, g)), bbl = hn::Add(bbl, hn::Mul(w, b));
+  }
+  s.aa = Total(d, aa), s.ab = Total(d, ab), s.bb = Total(d, bb);
+  s.at[0] = Total(d, ar), s.at[1] = Total(d, ag), s.at[2] = Total(d, ab_);
+  s.bt[0] = Total(d, br), s.bt[1] = Total(d, bg), s.bt[2] = Total(d, bbl);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -73,12 +177,26 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 namespace texproc {
+HWY_EXPORT(Bc1Moments_);
+HWY_EXPORT(Bc1ProjectRange);
 HWY_EXPORT(Bc1Nearest);
+HWY_EXPORT(Bc1LsSums_);
 
-void bc1_nearest(const Bc1Texels& tx, const int pal[4][3], int candidates, std::uint8_t codes[16],
-                 std::int32_t errors[16]) {
-  if (force_scalar()) return ref::bc1_nearest(tx, pal, candidates, codes, errors);
-  HWY_DYNAMIC_DISPATCH(Bc1Nearest)(tx, pal, candidates, codes, errors);
+void bc1_moments(const Bc1Texels& tx, Bc1Moments& m) {
+  if (force_scalar()) return ref::bc1_moments(tx, m);
+  HWY_DYNAMIC_DISPATCH(Bc1Moments_)(tx, m);
+}
+void bc1_project_range(const Bc1Texels& tx, const float axis[3], float& lo, float& hi) {
+  if (force_scalar()) return ref::bc1_project_range(tx, axis, lo, hi);
+  HWY_DYNAMIC_DISPATCH(Bc1ProjectRange)(tx, axis, lo, hi);
+}
+std::int32_t bc1_nearest(const Bc1Texels& tx, const int pal[4][3], int candidates, std::uint8_t codes[16]) {
+  if (force_scalar()) return ref::bc1_nearest(tx, pal, candidates, codes);
+  return HWY_DYNAMIC_DISPATCH(Bc1Nearest)(tx, pal, candidates, codes);
+}
+void bc1_ls_sums(const Bc1Texels& tx, const std::uint8_t codes[16], const int weight[4], int den, Bc1LsSums& s) {
+  if (force_scalar()) return ref::bc1_ls_sums(tx, codes, weight, den, s);
+  HWY_DYNAMIC_DISPATCH(Bc1LsSums_)(tx, codes, weight, den, s);
 }
 }  // namespace texproc
 #endif

@@ -58,15 +58,12 @@ void assign(const Bc1Texels& tx, const Endpoints& e, bool four, bool allow_black
   palette(e, four, pal);
   r.e = e;
   r.four = four;
-  std::int32_t errors[16];
-  bc1_nearest(tx, pal, four ? 4 : (allow_black ? 4 : 3), r.idx, errors);  // SIMD twins
-  r.error = 0;
-  for (int i = 0; i < 16; ++i) r.error += errors[i];
+  r.error = bc1_nearest(tx, pal, four ? 4 : (allow_black ? 4 : 3), r.idx);  // SIMD twins
 }
 
 int quantize(float v, int bits) {
   const int max = (1 << bits) - 1;
-  return std::clamp(int(std::lround(v / 255.0f * max)), 0, max);
+  return std::clamp(int(v * float(max) / 255.0f + 0.5f), 0, max);  // v in [0, 255]
 }
 
 Endpoints quantize(const float a[3], const float b[3]) {
@@ -81,22 +78,19 @@ Endpoints quantize(const float a[3], const float b[3]) {
 }
 
 // Least-squares endpoints for the current indices (weights along c0 -> c1
-// for the palette positions). False if singular (all texels at one end).
-bool refit(const std::uint8_t rgb[16][3], const bool transparent[16], const Result& r, float a[3], float b[3]) {
-  static constexpr float kFour[4] = {0.0f, 1.0f, 1.0f / 3.0f, 2.0f / 3.0f};
-  static constexpr float kThree[3] = {0.0f, 1.0f, 0.5f};
-  double aa = 0, ab = 0, bb = 0, at[3] = {}, bt[3] = {};
-  for (int i = 0; i < 16; ++i) {
-    if (transparent[i] || (!r.four && r.idx[i] == 3)) continue;
-    const double w = r.four ? kFour[r.idx[i]] : kThree[r.idx[i]], u = 1.0 - w;
-    aa += u * u, ab += u * w, bb += w * w;
-    for (int ch = 0; ch < 3; ++ch) at[ch] += u * rgb[i][ch], bt[ch] += w * rgb[i][ch];
-  }
-  const double det = aa * bb - ab * ab;
-  if (std::abs(det) < 1e-6) return false;
+// for the palette positions, in thirds or halves: integer sums, exact).
+// False if singular (all texels at one end).
+bool refit(const Bc1Texels& tx, const Result& r, float a[3], float b[3]) {
+  static constexpr int kFour[4] = {0, 3, 1, 2}, kThree[4] = {0, 2, 1, -1};
+  const int den = r.four ? 3 : 2;
+  Bc1LsSums s;
+  bc1_ls_sums(tx, r.idx, r.four ? kFour : kThree, den, s);  // SIMD twins
+  const double det = double(s.aa) * s.bb - double(s.ab) * s.ab;
+  if (det == 0) return false;
+  const double scale = den / det;
   for (int ch = 0; ch < 3; ++ch) {
-    a[ch] = float(std::clamp((at[ch] * bb - bt[ch] * ab) / det, 0.0, 255.0));
-    b[ch] = float(std::clamp((bt[ch] * aa - at[ch] * ab) / det, 0.0, 255.0));
+    a[ch] = float(std::clamp((double(s.at[ch]) * s.bb - double(s.bt[ch]) * s.ab) * scale, 0.0, 255.0));
+    b[ch] = float(std::clamp((double(s.bt[ch]) * s.aa - double(s.at[ch]) * s.ab) * scale, 0.0, 255.0));
   }
   return true;
 }
@@ -278,19 +272,15 @@ void cluster_fit(const std::uint8_t rgb[16][3], const bool transparent[16], cons
 }  // namespace
 
 void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
-  std::uint8_t rgb[16][3];
-  bool transparent[16];
-  bool any_transparent = false;
-  for (int i = 0; i < 16; ++i) {
-    for (int ch = 0; ch < 3; ++ch) rgb[i][ch] = rgba[i][ch];
-    transparent[i] = mode == ColorMode::bc1_punch_through && rgba[i][3] < 128;
-    any_transparent |= transparent[i];
-  }
   Bc1Texels tx;
   for (int i = 0; i < 16; ++i) {
-    tx.r[i] = rgb[i][0], tx.g[i] = rgb[i][1], tx.b[i] = rgb[i][2];
-    tx.transparent[i] = transparent[i] ? 1 : 0;
+    tx.r[i] = rgba[i][0], tx.g[i] = rgba[i][1], tx.b[i] = rgba[i][2];
+    tx.transparent[i] = mode == ColorMode::bc1_punch_through && rgba[i][3] < 128 ? 1 : 0;
   }
+  encode_bc1_color(tx, mode, q, out);
+}
+
+void encode_bc1_color(const Bc1Texels& tx, ColorMode mode, Quality q, std::uint8_t out[8]) {
   const bool three_allowed = mode != ColorMode::four_only;
   Result best;
   best.error = -1;
@@ -299,13 +289,10 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q,
   };
 
   // Opaque texels only decide the endpoints.
-  int n = 0;
-  float mean[3] = {};
-  for (int i = 0; i < 16; ++i) {
-    if (transparent[i]) continue;
-    ++n;
-    for (int ch = 0; ch < 3; ++ch) mean[ch] += rgb[i][ch];
-  }
+  Bc1Moments m;
+  bc1_moments(tx, m);  // SIMD twins
+  const int n = m.n;
+  const bool any_transparent = n < 16;
   if (n == 0) {  // fully transparent: any endpoints, every index 3
     Result r;
     r.four = false;
@@ -314,63 +301,87 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q,
     write(r, out);
     return;
   }
-  for (float& m : mean) m /= float(n);
+  // Covariance (times n^2, exact) and mean.
+  const std::int64_t cov_n2[6] = {
+      std::int64_t(m.sq[0]) * n - std::int64_t(m.sum[0]) * m.sum[0], std::int64_t(m.sq[1]) * n - std::int64_t(m.sum[0]) * m.sum[1],
+      std::int64_t(m.sq[2]) * n - std::int64_t(m.sum[0]) * m.sum[2], std::int64_t(m.sq[3]) * n - std::int64_t(m.sum[1]) * m.sum[1],
+      std::int64_t(m.sq[4]) * n - std::int64_t(m.sum[1]) * m.sum[2], std::int64_t(m.sq[5]) * n - std::int64_t(m.sum[2]) * m.sum[2]};
+  float mean[3];
+  for (int ch = 0; ch < 3; ++ch) mean[ch] = float(m.sum[ch]) / float(n);
 
   // One colour: the optimal single-colour pair through index 2.
-  bool flat = !any_transparent;
-  for (int i = 1; i < 16 && flat; ++i) flat = std::memcmp(rgb[i], rgb[0], 3) == 0;
-  if (flat) {
+  const bool flat = cov_n2[0] == 0 && cov_n2[3] == 0 && cov_n2[5] == 0;
+  if (flat && !any_transparent) {
     const SingleColorTables& s = single();
-    for (int m = 0; m < (three_allowed ? 2 : 1); ++m) {
+    const int c[3] = {tx.r[0], tx.g[0], tx.b[0]};
+    for (int md = 0; md < (three_allowed ? 2 : 1); ++md) {
       Endpoints e;
       for (int k = 0; k < 2; ++k) {
-        e.c[k][0] = s.five[m][rgb[0][0]][k];
-        e.c[k][1] = s.six[m][rgb[0][1]][k];
-        e.c[k][2] = s.five[m][rgb[0][2]][k];
+        e.c[k][0] = s.five[md][c[0]][k];
+        e.c[k][1] = s.six[md][c[1]][k];
+        e.c[k][2] = s.five[md][c[2]][k];
       }
       Result r;
-      assign(tx, e, m == 0, false, r);
+      assign(tx, e, md == 0, false, r);
       keep(r);
     }
+    write(best, out);
+    return;
   }
 
-  // Principal axis of the opaque colours (power iteration on the covariance).
-  double cov[6] = {};
-  for (int i = 0; i < 16; ++i) {
-    if (transparent[i]) continue;
-    const double d[3] = {rgb[i][0] - mean[0], rgb[i][1] - mean[1], rgb[i][2] - mean[2]};
-    cov[0] += d[0] * d[0], cov[1] += d[0] * d[1], cov[2] += d[0] * d[2];
-    cov[3] += d[1] * d[1], cov[4] += d[1] * d[2], cov[5] += d[2] * d[2];
+  // Principal axis of the opaque colours: power iteration on the covariance,
+  // from its row of greatest variance.
+  const float cov[6] = {float(cov_n2[0]), float(cov_n2[1]), float(cov_n2[2]),
+                        float(cov_n2[3]), float(cov_n2[4]), float(cov_n2[5])};
+  float axis[3];
+  {
+    const int row = cov[0] >= cov[3] && cov[0] >= cov[5] ? 0 : cov[3] >= cov[5] ? 1 : 2;
+    const float rows[3][3] = {{cov[0], cov[1], cov[2]}, {cov[1], cov[3], cov[4]}, {cov[2], cov[4], cov[5]}};
+    float v[3] = {rows[row][0], rows[row][1], rows[row][2]};
+    for (int it = 0; it < 4; ++it) {
+      const float len = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
+      if (len == 0.0f) break;
+      const float x = v[0] / len, y = v[1] / len, z = v[2] / len;
+      v[0] = cov[0] * x + cov[1] * y + cov[2] * z;
+      v[1] = cov[1] * x + cov[3] * y + cov[4] * z;
+      v[2] = cov[2] * x + cov[4] * y + cov[5] * z;
+    }
+    const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (len > 0.0f) {
+      for (int ch = 0; ch < 3; ++ch) axis[ch] = v[ch] / len;
+    } else {
+      axis[0] = axis[1] = axis[2] = 0.57735027f;
+    }
   }
-  double axis[3] = {0.57735, 0.57735, 0.57735};
-  for (int it = 0; it < 8; ++it) {
-    const double x = cov[0] * axis[0] + cov[1] * axis[1] + cov[2] * axis[2];
-    const double y = cov[1] * axis[0] + cov[3] * axis[1] + cov[4] * axis[2];
-    const double z = cov[2] * axis[0] + cov[4] * axis[1] + cov[5] * axis[2];
-    const double len = std::sqrt(x * x + y * y + z * z);
-    if (len < 1e-12) break;
-    axis[0] = x / len, axis[1] = y / len, axis[2] = z / len;
-  }
-  double lo = 1e30, hi = -1e30;
-  for (int i = 0; i < 16; ++i) {
-    if (transparent[i]) continue;
-    const double p = (rgb[i][0] - mean[0]) * axis[0] + (rgb[i][1] - mean[1]) * axis[1] + (rgb[i][2] - mean[2]) * axis[2];
-    lo = std::min(lo, p), hi = std::max(hi, p);
-  }
+  float lo, hi;
+  bc1_project_range(tx, axis, lo, hi);  // SIMD twins
+  const float mean_p = mean[0] * axis[0] + mean[1] * axis[1] + mean[2] * axis[2];
   float a[3], b[3];
   for (int ch = 0; ch < 3; ++ch) {
-    a[ch] = float(std::clamp(mean[ch] + hi * axis[ch], 0.0, 255.0));
-    b[ch] = float(std::clamp(mean[ch] + lo * axis[ch], 0.0, 255.0));
+    a[ch] = std::clamp(mean[ch] + (hi - mean_p) * axis[ch], 0.0f, 255.0f);
+    b[ch] = std::clamp(mean[ch] + (lo - mean_p) * axis[ch], 0.0f, 255.0f);
   }
-  const int refinements = q == Quality::fast ? 0 : q == Quality::normal ? 2 : 4;
+  // The slow searches below work on double colours.
+  std::uint8_t rgb[16][3];
+  bool transparent[16];
+  double daxis[3] = {axis[0], axis[1], axis[2]};
+  if (q != Quality::fast) {
+    for (int i = 0; i < 16; ++i) {
+      rgb[i][0] = std::uint8_t(tx.r[i]), rgb[i][1] = std::uint8_t(tx.g[i]), rgb[i][2] = std::uint8_t(tx.b[i]);
+      transparent[i] = tx.transparent[i] != 0;
+    }
+  }
+  double* const axis_d = daxis;
+  const int refinements = q == Quality::fast ? 1 : q == Quality::normal ? 2 : 4;
   for (int four = 1; four >= 0; --four) {
     if (!four && !three_allowed) continue;
+    if (!four && q == Quality::fast && !any_transparent) continue;
     if (four && any_transparent) continue;  // transparent texels need the three-colour mode
     Result r;
     assign(tx, quantize(a, b), four, false, r);
     for (int it = 0; it < refinements; ++it) {
       float ra[3], rb[3];
-      if (!refit(rgb, transparent, r, ra, rb)) break;
+      if (!refit(tx, r, ra, rb)) break;
       Result n2;
       assign(tx, quantize(ra, rb), four, false, n2);
       if (n2.error >= r.error) break;
@@ -379,7 +390,7 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q,
     if (q == Quality::normal && four) {
       // A local cluster fit: splits near the range fit's, its best two scored exactly.
       std::vector<Endpoints> cands;
-      cluster_fit(rgb, transparent, axis, four, 2, cands, 1);
+      cluster_fit(rgb, transparent, axis_d, four, 2, cands, 1);
       for (const Endpoints& e : cands) {
         Result n2;
         assign(tx, e, four, false, n2);
@@ -389,7 +400,7 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q,
     if (q == Quality::high || q == Quality::max) {
       // Cluster fit along the principal axis (and, iterated, along the best
       // endpoints' axis): its best splits compete under the exact decoding.
-      double fit_axis[3] = {axis[0], axis[1], axis[2]};
+      double fit_axis[3] = {axis_d[0], axis_d[1], axis_d[2]};
       for (int round = 0; round < (q == Quality::max ? 3 : 1); ++round) {
         std::vector<Endpoints> cands;
         cluster_fit(rgb, transparent, fit_axis, four, q == Quality::max ? 8 : 3, cands);

@@ -209,10 +209,7 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
     std::uint8_t rgba[16][4];
     for (int by = by0; by < by1; ++by)
       for (int bx = 0; bx < bw; ++bx) {
-        for (int i = 0; i < 16; ++i) {
-          const int x = std::min(bx * 4 + i % 4, img.width - 1), y = std::min(by * 4 + i / 4, img.height - 1);
-          for (int c = 0; c < 4; ++c) rgba[i][c] = texel8(img, x, y, c);
-        }
+        gather_rgba8(img, bx, by, rgba);
         std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx) * block_bytes;
         if (bc1 || bc1a) {
           encode_bc1_color(rgba, bc1a ? ColorMode::bc1_punch_through : ColorMode::bc1, q, dst);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 #include "texproc/image.h"
 
@@ -35,6 +36,34 @@ inline float texel_unit(const ImageView& img, int x, int y, int c) {
     case PixelType::f32: return std::clamp(img.row<const float>(y)[x * img.channels + c], 0.0f, 1.0f);
   }
   return 0.0f;
+}
+
+}  // namespace texproc
+
+namespace texproc {
+
+// The 4x4 block at block coordinates (bx, by) as RGBA8 texels, row by row;
+// texels past the image's right and bottom edges repeat the edge texels.
+inline void gather_rgba8(const ImageView& img, int bx, int by, std::uint8_t rgba[16][4]) {
+  const int x0 = bx * 4, y0 = by * 4;
+  if (img.type == PixelType::u8 && img.channels == 4 && x0 + 4 <= img.width && y0 + 4 <= img.height) {
+    for (int y = 0; y < 4; ++y) std::memcpy(rgba[4 * y], img.row<const std::uint8_t>(y0 + y) + 4 * x0, 16);
+    return;
+  }
+  if (img.type == PixelType::u8 && img.channels == 3 && x0 + 4 <= img.width && y0 + 4 <= img.height) {
+    for (int y = 0; y < 4; ++y) {
+      const std::uint8_t* src = img.row<const std::uint8_t>(y0 + y) + 3 * x0;
+      for (int x = 0; x < 4; ++x) {
+        std::uint8_t* dst = rgba[4 * y + x];
+        dst[0] = src[3 * x], dst[1] = src[3 * x + 1], dst[2] = src[3 * x + 2], dst[3] = 255;
+      }
+    }
+    return;
+  }
+  for (int i = 0; i < 16; ++i) {
+    const int x = std::min(x0 + i % 4, img.width - 1), y = std::min(y0 + i / 4, img.height - 1);
+    for (int c = 0; c < 4; ++c) rgba[i][c] = texel8(img, x, y, c);
+  }
 }
 
 }  // namespace texproc
