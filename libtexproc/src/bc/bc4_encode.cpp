@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "bc/bc1_encode.h"
+#include "bc/bc1_fast.h"
 #include "bc/bc4_eval.h"
 #include "bc/block_gather.h"
 #include "etc/etc_encode.h"
@@ -205,27 +206,56 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
   const int block_bytes = bc1 || bc1a ? 8 : 16;
   const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * block_bytes);
+  const ColorMode color_mode = bc1 ? ColorMode::bc1 : bc1a ? ColorMode::bc1_punch_through : ColorMode::four_only;
+  const bool batched = q == Quality::fast && color_mode != ColorMode::bc1_punch_through;
   for_each_row_block(bh, 4, [&](int by0, int by1) {
-    std::uint8_t rgba[16][4];
+    std::uint8_t rgba[kBc1Batch][16][4];
+    std::uint32_t texel[16][kBc1Batch] = {};
+    std::uint8_t color[kBc1Batch][8];
+    bool handled[kBc1Batch] = {};
     for (int by = by0; by < by1; ++by)
-      for (int bx = 0; bx < bw; ++bx) {
-        gather_rgba8(img, bx, by, rgba);
-        std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx) * block_bytes;
-        if (bc1 || bc1a) {
-          encode_bc1_color(rgba, bc1a ? ColorMode::bc1_punch_through : ColorMode::bc1, q, dst);
-          continue;
-        }
-        if (bc2) {  // explicit 4-bit alpha, rounded
-          for (int i = 0; i < 16; i += 2) {
-            const int a0 = (rgba[i][3] * 15 + 127) / 255, a1 = (rgba[i + 1][3] * 15 + 127) / 255;
-            dst[i / 2] = std::uint8_t(a0 | a1 << 4);
+      for (int bx0 = 0; bx0 < bw; bx0 += kBc1Batch) {
+        const int count = std::min(kBc1Batch, bw - bx0);
+        const bool rows_direct = batched && img.type == PixelType::u8 && img.channels == 4 &&
+                                 (bx0 + count) * 4 <= img.width && by * 4 + 4 <= img.height;
+        if (rows_direct) {  // RGBA8 texels straight from the rows (the kernel ignores alpha)
+          for (int y = 0; y < 4; ++y) {
+            const std::uint8_t* row = img.row<const std::uint8_t>(by * 4 + y) + bx0 * 16;
+            for (int k = 0; k < count; ++k)
+              for (int x = 0; x < 4; ++x) std::memcpy(&texel[4 * y + x][k], row + 16 * k + 4 * x, 4);
           }
-        } else {  // BC3: the alpha as a BC4 block
-          float alpha[16];
-          for (int i = 0; i < 16; ++i) alpha[i] = rgba[i][3];
-          encode_bc4_block(alpha, false, q, dst);
         }
-        encode_bc1_color(rgba, ColorMode::four_only, q, dst + 8);
+        for (int k = 0; k < count; ++k) {
+          if (rows_direct && bc1) continue;  // gathered below only if the kernel leaves it
+          gather_rgba8(img, bx0 + k, by, rgba[k]);
+          if (batched && !rows_direct)
+            for (int i = 0; i < 16; ++i)
+              texel[i][k] = std::uint32_t(rgba[k][i][0]) | std::uint32_t(rgba[k][i][1]) << 8 | std::uint32_t(rgba[k][i][2]) << 16;
+        }
+        // `fast` opaque colour: sixteen blocks at a time (one-colour blocks
+        // are left to the single-colour tables below).
+        if (batched) bc1_fast_blocks(texel, count, color, handled);
+        for (int k = 0; k < count; ++k) {
+          std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes;
+          std::uint8_t* color_dst = bc1 || bc1a ? dst : dst + 8;
+          if (batched && handled[k]) {
+            std::memcpy(color_dst, color[k], 8);
+          } else {
+            if (rows_direct && bc1) gather_rgba8(img, bx0 + k, by, rgba[k]);
+            encode_bc1_color(rgba[k], color_mode, q, color_dst);
+          }
+          if (bc1 || bc1a) continue;
+          if (bc2) {  // explicit 4-bit alpha, rounded
+            for (int i = 0; i < 16; i += 2) {
+              const int a0 = (rgba[k][i][3] * 15 + 127) / 255, a1 = (rgba[k][i + 1][3] * 15 + 127) / 255;
+              dst[i / 2] = std::uint8_t(a0 | a1 << 4);
+            }
+          } else {  // BC3: the alpha as a BC4 block
+            float alpha[16];
+            for (int i = 0; i < 16; ++i) alpha[i] = rgba[k][i][3];
+            encode_bc4_block(alpha, false, q, dst);
+          }
+        }
       }
   });
   return out;

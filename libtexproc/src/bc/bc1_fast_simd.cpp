@@ -1,0 +1,314 @@
+// BC1 `fast`, a block per lane: the scalar reference (one block at a time,
+// plainly) and its Highway twin. Both evaluate the same expressions in the
+// same order; see bc1_fast.h.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "bc/bc1_fast_simd.cpp"
+#include <hwy/foreach_target.h>  // must come before highway.h
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "bc/bc1_fast.h"
+#include "texproc/runtime.h"
+
+#ifndef TEXPROC_BC1_FAST_REF
+#define TEXPROC_BC1_FAST_REF
+namespace texproc::ref {
+namespace {
+
+int quantize(float v, int max) { return std::clamp(int(v * float(max) / 255.0f + 0.5f), 0, max); }
+
+// Four-colour palette of quantized endpoints qa, qb; each texel's nearest
+// entry (first of equals); the total squared error.
+std::int32_t nearest(const int rgb[16][3], const int qa[3], const int qb[3], int codes[16]) {
+  int pal[4][3];
+  for (int ch = 0; ch < 3; ++ch) {
+    const int ea = ch == 1 ? (qa[ch] << 2 | qa[ch] >> 4) : (qa[ch] << 3 | qa[ch] >> 2);
+    const int eb = ch == 1 ? (qb[ch] << 2 | qb[ch] >> 4) : (qb[ch] << 3 | qb[ch] >> 2);
+    pal[0][ch] = ea, pal[1][ch] = eb;
+    pal[2][ch] = (2 * ea + eb + 1) / 3, pal[3][ch] = (ea + 2 * eb + 1) / 3;
+  }
+  std::int32_t total = 0;
+  for (int i = 0; i < 16; ++i) {
+    std::int32_t be = 0;
+    for (int k = 0; k < 4; ++k) {
+      const std::int32_t dr = rgb[i][0] - pal[k][0], dg = rgb[i][1] - pal[k][1], db = rgb[i][2] - pal[k][2];
+      const std::int32_t e = dr * dr + dg * dg + db * db;
+      if (k == 0 || e < be) be = e, codes[i] = k;
+    }
+    total += be;
+  }
+  return total;
+}
+
+void endpoints(const float a[3], const float b[3], int qa[3], int qb[3]) {
+  for (int ch = 0; ch < 3; ++ch) {
+    const int max = ch == 1 ? 63 : 31;
+    qa[ch] = quantize(a[ch], max), qb[ch] = quantize(b[ch], max);
+  }
+}
+
+}  // namespace
+
+void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, std::uint8_t out[][8], bool handled[]) {
+  for (int k = 0; k < count; ++k) {
+    int rgb[16][3];
+    std::int32_t s[3] = {}, q[6] = {};
+    for (int i = 0; i < 16; ++i) {
+      const std::uint32_t t = texel[i][k];
+      const int r = int(t & 255), g = int(t >> 8 & 255), b = int(t >> 16 & 255);
+      rgb[i][0] = r, rgb[i][1] = g, rgb[i][2] = b;
+      s[0] += r, s[1] += g, s[2] += b;
+      q[0] += r * r, q[1] += r * g, q[2] += r * b, q[3] += g * g, q[4] += g * b, q[5] += b * b;
+    }
+    // Covariance times 256 (exact).
+    const std::int32_t c[6] = {16 * q[0] - s[0] * s[0], 16 * q[1] - s[0] * s[1], 16 * q[2] - s[0] * s[2],
+                               16 * q[3] - s[1] * s[1], 16 * q[4] - s[1] * s[2], 16 * q[5] - s[2] * s[2]};
+    handled[k] = !(c[0] == 0 && c[3] == 0 && c[5] == 0);
+    if (!handled[k]) continue;
+    const float cov[6] = {float(c[0]), float(c[1]), float(c[2]), float(c[3]), float(c[4]), float(c[5])};
+    float v[3];
+    if (cov[0] >= cov[3] && cov[0] >= cov[5]) {
+      v[0] = cov[0], v[1] = cov[1], v[2] = cov[2];
+    } else if (cov[3] >= cov[5]) {
+      v[0] = cov[1], v[1] = cov[3], v[2] = cov[4];
+    } else {
+      v[0] = cov[2], v[1] = cov[4], v[2] = cov[5];
+    }
+    for (int it = 0; it < 4; ++it) {
+      const float len = std::max(std::abs(v[0]), std::max(std::abs(v[1]), std::abs(v[2])));
+      const float x = v[0] / len, y = v[1] / len, z = v[2] / len;
+      v[0] = cov[0] * x + cov[1] * y + cov[2] * z;
+      v[1] = cov[1] * x + cov[3] * y + cov[4] * z;
+      v[2] = cov[2] * x + cov[4] * y + cov[5] * z;
+    }
+    const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    const float axis[3] = {v[0] / len, v[1] / len, v[2] / len};
+    float lo = 1e30f, hi = -1e30f;
+    for (int i = 0; i < 16; ++i) {
+      const float p = float(rgb[i][0]) * axis[0] + float(rgb[i][1]) * axis[1] + float(rgb[i][2]) * axis[2];
+      lo = std::min(lo, p), hi = std::max(hi, p);
+    }
+    const float mean[3] = {float(s[0]) * 0.0625f, float(s[1]) * 0.0625f, float(s[2]) * 0.0625f};
+    const float mean_p = mean[0] * axis[0] + mean[1] * axis[1] + mean[2] * axis[2];
+    float a[3], b[3];
+    for (int ch = 0; ch < 3; ++ch) {
+      a[ch] = std::clamp(mean[ch] + (hi - mean_p) * axis[ch], 0.0f, 255.0f);
+      b[ch] = std::clamp(mean[ch] + (lo - mean_p) * axis[ch], 0.0f, 255.0f);
+    }
+    int qa[3], qb[3], codes[16];
+    endpoints(a, b, qa, qb);
+    std::int32_t error = nearest(rgb, qa, qb, codes);
+    // One least-squares refit (weights in thirds: 0, 3, 1, 2 by code).
+    static constexpr int kWeight[4] = {0, 3, 1, 2};
+    std::int32_t aa = 0, ab = 0, bb = 0, at[3] = {}, bt[3] = {};
+    for (int i = 0; i < 16; ++i) {
+      const int w = kWeight[codes[i]], u = 3 - w;
+      aa += u * u, ab += u * w, bb += w * w;
+      for (int ch = 0; ch < 3; ++ch) at[ch] += u * rgb[i][ch], bt[ch] += w * rgb[i][ch];
+    }
+    const std::int32_t det = aa * bb - ab * ab;
+    if (det != 0) {
+      float ra[3], rb[3];
+      for (int ch = 0; ch < 3; ++ch) {
+        ra[ch] = std::clamp(float(3 * (at[ch] * bb - bt[ch] * ab)) / float(det), 0.0f, 255.0f);
+        rb[ch] = std::clamp(float(3 * (bt[ch] * aa - at[ch] * ab)) / float(det), 0.0f, 255.0f);
+      }
+      int qa2[3], qb2[3], codes2[16];
+      endpoints(ra, rb, qa2, qb2);
+      const std::int32_t error2 = nearest(rgb, qa2, qb2, codes2);
+      if (error2 < error) {
+        error = error2;
+        std::copy(qa2, qa2 + 3, qa), std::copy(qb2, qb2 + 3, qb), std::copy(codes2, codes2 + 16, codes);
+      }
+    }
+    std::uint32_t c0 = std::uint32_t(qa[0] << 11 | qa[1] << 5 | qa[2]), c1 = std::uint32_t(qb[0] << 11 | qb[1] << 5 | qb[2]);
+    std::uint32_t bits = 0;
+    for (int i = 0; i < 16; ++i) {
+      const std::uint32_t code = c0 == c1 ? 0u : c0 < c1 ? std::uint32_t(codes[i] ^ 1) : std::uint32_t(codes[i]);
+      bits |= code << (2 * i);
+    }
+    if (c0 < c1) std::swap(c0, c1);
+    const std::uint32_t head = c0 | c1 << 16;
+    std::memcpy(out[k], &head, 4);  // little-endian hosts (as the rest of texproc)
+    std::memcpy(out[k] + 4, &bits, 4);
+  }
+}
+
+}  // namespace texproc::ref
+#endif
+
+HWY_BEFORE_NAMESPACE();
+namespace texproc {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, std::uint8_t out[][8], bool handled[]) {
+  using D = hn::CappedTag<std::int32_t, kBc1Batch>;
+  const D d;
+  const hn::Rebind<float, D> df;
+  const hn::Rebind<std::uint32_t, D> du;
+  using V = hn::Vec<D>;
+  using VF = hn::Vec<decltype(df)>;
+  const int lanes = int(hn::Lanes(d));
+  for (int k0 = 0; k0 < count; k0 += lanes) {
+    V r[16], g[16], b[16];
+    V s0 = hn::Zero(d), s1 = s0, s2 = s0, q0 = s0, q1 = s0, q2 = s0, q3 = s0, q4 = s0, q5 = s0;
+    const V mask8 = hn::Set(d, 255);
+    for (int i = 0; i < 16; ++i) {
+      const V t = hn::BitCast(d, hn::LoadU(du, texel[i] + k0));
+      r[i] = hn::And(t, mask8), g[i] = hn::And(hn::ShiftRight<8>(t), mask8), b[i] = hn::And(hn::ShiftRight<16>(t), mask8);
+      s0 = hn::Add(s0, r[i]), s1 = hn::Add(s1, g[i]), s2 = hn::Add(s2, b[i]);
+      q0 = hn::Add(q0, hn::Mul(r[i], r[i])), q1 = hn::Add(q1, hn::Mul(r[i], g[i])), q2 = hn::Add(q2, hn::Mul(r[i], b[i]));
+      q3 = hn::Add(q3, hn::Mul(g[i], g[i])), q4 = hn::Add(q4, hn::Mul(g[i], b[i])), q5 = hn::Add(q5, hn::Mul(b[i], b[i]));
+    }
+    const V k16 = hn::Set(d, 16);
+    const V c0i = hn::Sub(hn::Mul(k16, q0), hn::Mul(s0, s0)), c1i = hn::Sub(hn::Mul(k16, q1), hn::Mul(s0, s1)),
+            c2i = hn::Sub(hn::Mul(k16, q2), hn::Mul(s0, s2)), c3i = hn::Sub(hn::Mul(k16, q3), hn::Mul(s1, s1)),
+            c4i = hn::Sub(hn::Mul(k16, q4), hn::Mul(s1, s2)), c5i = hn::Sub(hn::Mul(k16, q5), hn::Mul(s2, s2));
+    const auto flat = hn::And(hn::And(hn::Eq(c0i, hn::Zero(d)), hn::Eq(c3i, hn::Zero(d))), hn::Eq(c5i, hn::Zero(d)));
+    HWY_ALIGN std::int32_t flat_out[kBc1Batch];
+    hn::Store(hn::VecFromMask(d, flat), d, flat_out);
+    const VF c0 = hn::ConvertTo(df, c0i), c1 = hn::ConvertTo(df, c1i), c2 = hn::ConvertTo(df, c2i),
+             c3 = hn::ConvertTo(df, c3i), c4 = hn::ConvertTo(df, c4i), c5 = hn::ConvertTo(df, c5i);
+    const auto row0 = hn::And(hn::Ge(c0, c3), hn::Ge(c0, c5));
+    const auto row1 = hn::Ge(c3, c5);
+    VF v0 = hn::IfThenElse(row0, c0, hn::IfThenElse(row1, c1, c2));
+    VF v1 = hn::IfThenElse(row0, c1, hn::IfThenElse(row1, c3, c4));
+    VF v2 = hn::IfThenElse(row0, c2, hn::IfThenElse(row1, c4, c5));
+    // Flat lanes (skipped) divide by 1 instead of 0.
+    const VF one = hn::Set(df, 1.0f);
+    const auto flat_f = hn::RebindMask(df, flat);
+    for (int it = 0; it < 4; ++it) {
+      const VF len = hn::IfThenElse(flat_f, one, hn::Max(hn::Abs(v0), hn::Max(hn::Abs(v1), hn::Abs(v2))));
+      const VF x = hn::Div(v0, len), y = hn::Div(v1, len), z = hn::Div(v2, len);
+      v0 = hn::Add(hn::Add(hn::Mul(c0, x), hn::Mul(c1, y)), hn::Mul(c2, z));
+      v1 = hn::Add(hn::Add(hn::Mul(c1, x), hn::Mul(c3, y)), hn::Mul(c4, z));
+      v2 = hn::Add(hn::Add(hn::Mul(c2, x), hn::Mul(c4, y)), hn::Mul(c5, z));
+    }
+    const VF len = hn::IfThenElse(
+        flat_f, one, hn::Sqrt(hn::Add(hn::Add(hn::Mul(v0, v0), hn::Mul(v1, v1)), hn::Mul(v2, v2))));
+    const VF ax = hn::Div(v0, len), ay = hn::Div(v1, len), az = hn::Div(v2, len);
+    VF lo = hn::Set(df, 1e30f), hi = hn::Set(df, -1e30f);
+    for (int i = 0; i < 16; ++i) {
+      const VF p = hn::Add(hn::Add(hn::Mul(hn::ConvertTo(df, r[i]), ax), hn::Mul(hn::ConvertTo(df, g[i]), ay)),
+                           hn::Mul(hn::ConvertTo(df, b[i]), az));
+      lo = hn::Min(lo, p), hi = hn::Max(hi, p);
+    }
+    const VF sixteenth = hn::Set(df, 0.0625f);
+    const VF m0 = hn::Mul(hn::ConvertTo(df, s0), sixteenth), m1 = hn::Mul(hn::ConvertTo(df, s1), sixteenth),
+             m2 = hn::Mul(hn::ConvertTo(df, s2), sixteenth);
+    const VF mean_p = hn::Add(hn::Add(hn::Mul(m0, ax), hn::Mul(m1, ay)), hn::Mul(m2, az));
+    const VF zero_f = hn::Zero(df), top = hn::Set(df, 255.0f), half = hn::Set(df, 0.5f);
+    auto clamp255 = [&](VF x) { return hn::Min(hn::Max(x, zero_f), top); };
+    auto quantize = [&](VF x, int max) {
+      const V qv = hn::ConvertTo(d, hn::Add(hn::Div(hn::Mul(x, hn::Set(df, float(max))), top), half));
+      return hn::Min(hn::Max(qv, hn::Zero(d)), hn::Set(d, max));
+    };
+    const VF dhi = hn::Sub(hi, mean_p), dlo = hn::Sub(lo, mean_p);
+    V qa[3] = {quantize(clamp255(hn::Add(m0, hn::Mul(dhi, ax))), 31), quantize(clamp255(hn::Add(m1, hn::Mul(dhi, ay))), 63),
+               quantize(clamp255(hn::Add(m2, hn::Mul(dhi, az))), 31)};
+    V qb[3] = {quantize(clamp255(hn::Add(m0, hn::Mul(dlo, ax))), 31), quantize(clamp255(hn::Add(m1, hn::Mul(dlo, ay))), 63),
+               quantize(clamp255(hn::Add(m2, hn::Mul(dlo, az))), 31)};
+    // Nearest of the four-colour palette (x / 3 as x * 43691 >> 17, exact for x < 1536).
+    auto nearest = [&](const V ea5[3], const V eb5[3], V codes[16]) {
+      V pal[4][3];
+      for (int ch = 0; ch < 3; ++ch) {
+        const V ea = ch == 1 ? hn::Or(hn::ShiftLeft<2>(ea5[ch]), hn::ShiftRight<4>(ea5[ch]))
+                             : hn::Or(hn::ShiftLeft<3>(ea5[ch]), hn::ShiftRight<2>(ea5[ch]));
+        const V eb = ch == 1 ? hn::Or(hn::ShiftLeft<2>(eb5[ch]), hn::ShiftRight<4>(eb5[ch]))
+                             : hn::Or(hn::ShiftLeft<3>(eb5[ch]), hn::ShiftRight<2>(eb5[ch]));
+        const V third = hn::Set(d, 43691);
+        pal[0][ch] = ea, pal[1][ch] = eb;
+        pal[2][ch] = hn::ShiftRight<17>(hn::Mul(hn::Add(hn::Add(hn::Add(ea, ea), eb), hn::Set(d, 1)), third));
+        pal[3][ch] = hn::ShiftRight<17>(hn::Mul(hn::Add(hn::Add(hn::Add(eb, eb), ea), hn::Set(d, 1)), third));
+      }
+      V total = hn::Zero(d);
+      for (int i = 0; i < 16; ++i) {
+        V be = hn::Zero(d), best = hn::Zero(d);
+        for (int k = 0; k < 4; ++k) {
+          const V dr = hn::Sub(r[i], pal[k][0]), dg = hn::Sub(g[i], pal[k][1]), db = hn::Sub(b[i], pal[k][2]);
+          const V e = hn::Add(hn::Add(hn::Mul(dr, dr), hn::Mul(dg, dg)), hn::Mul(db, db));
+          if (k == 0) {
+            be = e;
+            continue;
+          }
+          const auto better = hn::Lt(e, be);
+          be = hn::IfThenElse(better, e, be);
+          best = hn::IfThenElse(better, hn::Set(d, k), best);
+        }
+        codes[i] = best;
+        total = hn::Add(total, be);
+      }
+      return total;
+    };
+    V codes[16];
+    V error = nearest(qa, qb, codes);
+    // One least-squares refit; weights in thirds by code: 0, 3, 1, 2.
+    V aa = hn::Zero(d), ab = aa, bb = aa, at[3] = {aa, aa, aa}, bt[3] = {aa, aa, aa};
+    const V three = hn::Set(d, 3);
+    for (int i = 0; i < 16; ++i) {
+      const V c = codes[i];
+      const V w = hn::IfThenElse(hn::Eq(c, hn::Set(d, 1)), three,
+                                 hn::IfThenElseZero(hn::Gt(c, hn::Set(d, 1)), hn::Sub(c, hn::Set(d, 1))));
+      const V u = hn::Sub(three, w);
+      aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w)), bb = hn::Add(bb, hn::Mul(w, w));
+      at[0] = hn::Add(at[0], hn::Mul(u, r[i])), at[1] = hn::Add(at[1], hn::Mul(u, g[i])), at[2] = hn::Add(at[2], hn::Mul(u, b[i]));
+      bt[0] = hn::Add(bt[0], hn::Mul(w, r[i])), bt[1] = hn::Add(bt[1], hn::Mul(w, g[i])), bt[2] = hn::Add(bt[2], hn::Mul(w, b[i]));
+    }
+    const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
+    const auto solvable = hn::Ne(det, hn::Zero(d));
+    const VF fdet = hn::ConvertTo(df, hn::IfThenElse(solvable, det, hn::Set(d, 1)));
+    V qa2[3], qb2[3];
+    for (int ch = 0; ch < 3; ++ch) {
+      const int max = ch == 1 ? 63 : 31;
+      const V na = hn::Mul(three, hn::Sub(hn::Mul(at[ch], bb), hn::Mul(bt[ch], ab)));
+      const V nb = hn::Mul(three, hn::Sub(hn::Mul(bt[ch], aa), hn::Mul(at[ch], ab)));
+      qa2[ch] = quantize(clamp255(hn::Div(hn::ConvertTo(df, na), fdet)), max);
+      qb2[ch] = quantize(clamp255(hn::Div(hn::ConvertTo(df, nb), fdet)), max);
+    }
+    V codes2[16];
+    const V error2 = nearest(qa2, qb2, codes2);
+    const auto take = hn::And(solvable, hn::Lt(error2, error));
+    for (int ch = 0; ch < 3; ++ch) qa[ch] = hn::IfThenElse(take, qa2[ch], qa[ch]), qb[ch] = hn::IfThenElse(take, qb2[ch], qb[ch]);
+    for (int i = 0; i < 16; ++i) codes[i] = hn::IfThenElse(take, codes2[i], codes[i]);
+    // Pack: c0 > c1 for the four-colour mode (swap ends and flip codes' low
+    // bit), every code 0 when the ends are equal.
+    V e0 = hn::Or(hn::Or(hn::ShiftLeft<11>(qa[0]), hn::ShiftLeft<5>(qa[1])), qa[2]);
+    V e1 = hn::Or(hn::Or(hn::ShiftLeft<11>(qb[0]), hn::ShiftLeft<5>(qb[1])), qb[2]);
+    const auto swap = hn::Lt(e0, e1), equal = hn::Eq(e0, e1);
+    const V flip = hn::IfThenElseZero(swap, hn::Set(d, 1));
+    auto bits = hn::Zero(du);
+    for (int i = 0; i < 16; ++i) {
+      const V code = hn::IfThenZeroElse(equal, hn::Xor(codes[i], flip));
+      bits = hn::Or(bits, hn::Shl(hn::BitCast(du, code), hn::Set(du, std::uint32_t(2 * i))));
+    }
+    const V hi_end = hn::IfThenElse(swap, e1, e0), lo_end = hn::IfThenElse(swap, e0, e1);
+    HWY_ALIGN std::uint32_t head[kBc1Batch], bits_out[kBc1Batch];
+    hn::Store(hn::BitCast(du, hn::Or(hi_end, hn::ShiftLeft<16>(lo_end))), du, head);
+    hn::Store(bits, du, bits_out);
+    for (int k = 0; k < lanes && k0 + k < count; ++k) {
+      handled[k0 + k] = flat_out[k] == 0;
+      if (!handled[k0 + k]) continue;
+      std::memcpy(out[k0 + k], head + k, 4);
+      std::memcpy(out[k0 + k] + 4, bits_out + k, 4);
+    }
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace texproc
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace texproc {
+HWY_EXPORT(Bc1FastBlocks);
+
+void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, std::uint8_t out[][8], bool handled[]) {
+  if (force_scalar()) return ref::bc1_fast_blocks(texel, count, out, handled);
+  HWY_DYNAMIC_DISPATCH(Bc1FastBlocks)(texel, count, out, handled);
+}
+}  // namespace texproc
+#endif
