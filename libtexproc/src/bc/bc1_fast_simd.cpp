@@ -20,20 +20,21 @@ namespace {
 
 int quantize(float v, int max) { return std::clamp(int(v * float(max) / 255.0f + 0.5f), 0, max); }
 
-// Four-colour palette of quantized endpoints qa, qb; each texel's nearest
-// entry (first of equals); the total squared error.
-std::int32_t nearest(const int rgb[16][3], const int qa[3], const int qb[3], int codes[16]) {
+// The palette of quantized endpoints qa, qb (four colours, or three: the
+// average and no black); each texel's nearest entry (first of equals); the
+// total squared error.
+std::int32_t nearest(const int rgb[16][3], const int qa[3], const int qb[3], bool four, int codes[16]) {
   int pal[4][3];
   for (int ch = 0; ch < 3; ++ch) {
     const int ea = ch == 1 ? (qa[ch] << 2 | qa[ch] >> 4) : (qa[ch] << 3 | qa[ch] >> 2);
     const int eb = ch == 1 ? (qb[ch] << 2 | qb[ch] >> 4) : (qb[ch] << 3 | qb[ch] >> 2);
     pal[0][ch] = ea, pal[1][ch] = eb;
-    pal[2][ch] = (2 * ea + eb + 1) / 3, pal[3][ch] = (ea + 2 * eb + 1) / 3;
+    pal[2][ch] = four ? (2 * ea + eb + 1) / 3 : (ea + eb + 1) / 2, pal[3][ch] = (ea + 2 * eb + 1) / 3;
   }
   std::int32_t total = 0;
   for (int i = 0; i < 16; ++i) {
     std::int32_t be = 0;
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < (four ? 4 : 3); ++k) {
       const std::int32_t dr = rgb[i][0] - pal[k][0], dg = rgb[i][1] - pal[k][1], db = rgb[i][2] - pal[k][2];
       const std::int32_t e = dr * dr + dg * dg + db * db;
       if (k == 0 || e < be) be = e, codes[i] = k;
@@ -50,9 +51,39 @@ void endpoints(const float a[3], const float b[3], int qa[3], int qb[3]) {
   }
 }
 
+struct State {
+  int qa[3], qb[3], codes[16];
+  std::int32_t error;
+};
+
+// Least-squares endpoints for s's codes (weights by code in thirds, four
+// colours: 0, 3, 1, 2; in halves, three: 0, 2, 1), quantized and scored;
+// kept if better.
+void refit(const int rgb[16][3], bool four, State& s) {
+  const int den = four ? 3 : 2;
+  std::int32_t aa = 0, ab = 0, bb = 0, at[3] = {}, bt[3] = {};
+  for (int i = 0; i < 16; ++i) {
+    const int c = s.codes[i], w = c == 1 ? den : c == 0 ? 0 : c - 1, u = den - w;
+    aa += u * u, ab += u * w, bb += w * w;
+    for (int ch = 0; ch < 3; ++ch) at[ch] += u * rgb[i][ch], bt[ch] += w * rgb[i][ch];
+  }
+  const std::int32_t det = aa * bb - ab * ab;
+  if (det == 0) return;
+  float ra[3], rb[3];
+  for (int ch = 0; ch < 3; ++ch) {
+    ra[ch] = std::clamp(float(den * (at[ch] * bb - bt[ch] * ab)) / float(det), 0.0f, 255.0f);
+    rb[ch] = std::clamp(float(den * (bt[ch] * aa - at[ch] * ab)) / float(det), 0.0f, 255.0f);
+  }
+  State n;
+  endpoints(ra, rb, n.qa, n.qb);
+  n.error = nearest(rgb, n.qa, n.qb, four, n.codes);
+  if (n.error < s.error) s = n;
+}
+
 }  // namespace
 
-void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, std::uint8_t out[][8], bool handled[]) {
+void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, bool normal, bool three,
+                     std::uint8_t out[][8], bool handled[]) {
   for (int k = 0; k < count; ++k) {
     int rgb[16][3];
     std::int32_t s[3] = {}, q[6] = {};
@@ -98,39 +129,48 @@ void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, std::u
       a[ch] = std::clamp(mean[ch] + (hi - mean_p) * axis[ch], 0.0f, 255.0f);
       b[ch] = std::clamp(mean[ch] + (lo - mean_p) * axis[ch], 0.0f, 255.0f);
     }
-    int qa[3], qb[3], codes[16];
-    endpoints(a, b, qa, qb);
-    std::int32_t error = nearest(rgb, qa, qb, codes);
-    // One least-squares refit (weights in thirds: 0, 3, 1, 2 by code).
-    static constexpr int kWeight[4] = {0, 3, 1, 2};
-    std::int32_t aa = 0, ab = 0, bb = 0, at[3] = {}, bt[3] = {};
-    for (int i = 0; i < 16; ++i) {
-      const int w = kWeight[codes[i]], u = 3 - w;
-      aa += u * u, ab += u * w, bb += w * w;
-      for (int ch = 0; ch < 3; ++ch) at[ch] += u * rgb[i][ch], bt[ch] += w * rgb[i][ch];
-    }
-    const std::int32_t det = aa * bb - ab * ab;
-    if (det != 0) {
-      float ra[3], rb[3];
-      for (int ch = 0; ch < 3; ++ch) {
-        ra[ch] = std::clamp(float(3 * (at[ch] * bb - bt[ch] * ab)) / float(det), 0.0f, 255.0f);
-        rb[ch] = std::clamp(float(3 * (bt[ch] * aa - at[ch] * ab)) / float(det), 0.0f, 255.0f);
+    State st;
+    endpoints(a, b, st.qa, st.qb);
+    const State start = st;
+    st.error = nearest(rgb, st.qa, st.qb, true, st.codes);
+    refit(rgb, true, st);
+    bool four = true;
+    if (normal) {
+      refit(rgb, true, st);
+      // Each endpoint channel nudged by one step while that helps (at most
+      // four passes over the twelve moves).
+      for (int pass = 0; pass < 4; ++pass) {
+        bool improved = false;
+        for (int m = 0; m < 12; ++m) {
+          State n = st;
+          int& v = (m < 6 ? n.qa : n.qb)[m % 6 / 2];
+          v += m % 2 ? 1 : -1;
+          if (v < 0 || v > (m % 6 / 2 == 1 ? 63 : 31)) continue;
+          n.error = nearest(rgb, n.qa, n.qb, true, n.codes);
+          if (n.error < st.error) st = n, improved = true;
+        }
+        if (!improved) break;
       }
-      int qa2[3], qb2[3], codes2[16];
-      endpoints(ra, rb, qa2, qb2);
-      const std::int32_t error2 = nearest(rgb, qa2, qb2, codes2);
-      if (error2 < error) {
-        error = error2;
-        std::copy(qa2, qa2 + 3, qa), std::copy(qb2, qb2 + 3, qb), std::copy(codes2, codes2 + 16, codes);
+      if (three) {  // the three-colour mode from the principal-axis ends, refitted once
+        State t = start;
+        t.error = nearest(rgb, t.qa, t.qb, false, t.codes);
+        refit(rgb, false, t);
+        if (t.error < st.error) st = t, four = false;
       }
     }
-    std::uint32_t c0 = std::uint32_t(qa[0] << 11 | qa[1] << 5 | qa[2]), c1 = std::uint32_t(qb[0] << 11 | qb[1] << 5 | qb[2]);
+    std::uint32_t c0 = std::uint32_t(st.qa[0] << 11 | st.qa[1] << 5 | st.qa[2]);
+    std::uint32_t c1 = std::uint32_t(st.qb[0] << 11 | st.qb[1] << 5 | st.qb[2]);
+    // Four colours: c0 > c1 (swapping the ends flips the codes' low bit;
+    // equal ends: every code 0). Three: c0 <= c1 (swapping exchanges codes 0 and 1).
+    const bool swap = four ? c0 < c1 : c0 > c1;
     std::uint32_t bits = 0;
     for (int i = 0; i < 16; ++i) {
-      const std::uint32_t code = c0 == c1 ? 0u : c0 < c1 ? std::uint32_t(codes[i] ^ 1) : std::uint32_t(codes[i]);
-      bits |= code << (2 * i);
+      int code = st.codes[i];
+      if (four && c0 == c1) code = 0;
+      if (swap && (four || code < 2)) code ^= 1;
+      bits |= std::uint32_t(code) << (2 * i);
     }
-    if (c0 < c1) std::swap(c0, c1);
+    if (swap) std::swap(c0, c1);
     const std::uint32_t head = c0 | c1 << 16;
     std::memcpy(out[k], &head, 4);  // little-endian hosts (as the rest of texproc)
     std::memcpy(out[k] + 4, &bits, 4);
@@ -145,13 +185,15 @@ namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, std::uint8_t out[][8], bool handled[]) {
+void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, bool normal, bool three,
+                   std::uint8_t out[][8], bool handled[]) {
   using D = hn::CappedTag<std::int32_t, kBc1Batch>;
   const D d;
   const hn::Rebind<float, D> df;
   const hn::Rebind<std::uint32_t, D> du;
   using V = hn::Vec<D>;
   using VF = hn::Vec<decltype(df)>;
+  using M = hn::Mask<D>;
   const int lanes = int(hn::Lanes(d));
   for (int k0 = 0; k0 < count; k0 += lanes) {
     V r[16], g[16], b[16];
@@ -207,28 +249,33 @@ void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, std::uin
       const V qv = hn::ConvertTo(d, hn::Add(hn::Div(hn::Mul(x, hn::Set(df, float(max))), top), half));
       return hn::Min(hn::Max(qv, hn::Zero(d)), hn::Set(d, max));
     };
-    const VF dhi = hn::Sub(hi, mean_p), dlo = hn::Sub(lo, mean_p);
-    V qa[3] = {quantize(clamp255(hn::Add(m0, hn::Mul(dhi, ax))), 31), quantize(clamp255(hn::Add(m1, hn::Mul(dhi, ay))), 63),
-               quantize(clamp255(hn::Add(m2, hn::Mul(dhi, az))), 31)};
-    V qb[3] = {quantize(clamp255(hn::Add(m0, hn::Mul(dlo, ax))), 31), quantize(clamp255(hn::Add(m1, hn::Mul(dlo, ay))), 63),
-               quantize(clamp255(hn::Add(m2, hn::Mul(dlo, az))), 31)};
-    // Nearest of the four-colour palette (x / 3 as x * 43691 >> 17, exact for x < 1536).
-    auto nearest = [&](const V ea5[3], const V eb5[3], V codes[16]) {
+    struct State {
+      V qa[3], qb[3], codes[16], error;
+    };
+    auto select = [&](M take, const State& n, State& st) {
+      for (int ch = 0; ch < 3; ++ch)
+        st.qa[ch] = hn::IfThenElse(take, n.qa[ch], st.qa[ch]), st.qb[ch] = hn::IfThenElse(take, n.qb[ch], st.qb[ch]);
+      for (int i = 0; i < 16; ++i) st.codes[i] = hn::IfThenElse(take, n.codes[i], st.codes[i]);
+      st.error = hn::IfThenElse(take, n.error, st.error);
+    };
+    // Nearest palette entry per texel (x / 3 as x * 43691 >> 17, exact for
+    // x < 1536); st.codes and st.error.
+    auto nearest = [&](bool four, State& st) {
       V pal[4][3];
       for (int ch = 0; ch < 3; ++ch) {
-        const V ea = ch == 1 ? hn::Or(hn::ShiftLeft<2>(ea5[ch]), hn::ShiftRight<4>(ea5[ch]))
-                             : hn::Or(hn::ShiftLeft<3>(ea5[ch]), hn::ShiftRight<2>(ea5[ch]));
-        const V eb = ch == 1 ? hn::Or(hn::ShiftLeft<2>(eb5[ch]), hn::ShiftRight<4>(eb5[ch]))
-                             : hn::Or(hn::ShiftLeft<3>(eb5[ch]), hn::ShiftRight<2>(eb5[ch]));
-        const V third = hn::Set(d, 43691);
+        const V qa = st.qa[ch], qb = st.qb[ch];
+        const V ea = ch == 1 ? hn::Or(hn::ShiftLeft<2>(qa), hn::ShiftRight<4>(qa)) : hn::Or(hn::ShiftLeft<3>(qa), hn::ShiftRight<2>(qa));
+        const V eb = ch == 1 ? hn::Or(hn::ShiftLeft<2>(qb), hn::ShiftRight<4>(qb)) : hn::Or(hn::ShiftLeft<3>(qb), hn::ShiftRight<2>(qb));
+        const V third = hn::Set(d, 43691), one_i = hn::Set(d, 1);
         pal[0][ch] = ea, pal[1][ch] = eb;
-        pal[2][ch] = hn::ShiftRight<17>(hn::Mul(hn::Add(hn::Add(hn::Add(ea, ea), eb), hn::Set(d, 1)), third));
-        pal[3][ch] = hn::ShiftRight<17>(hn::Mul(hn::Add(hn::Add(hn::Add(eb, eb), ea), hn::Set(d, 1)), third));
+        pal[2][ch] = four ? hn::ShiftRight<17>(hn::Mul(hn::Add(hn::Add(hn::Add(ea, ea), eb), one_i), third))
+                          : hn::ShiftRight<1>(hn::Add(hn::Add(ea, eb), one_i));
+        pal[3][ch] = hn::ShiftRight<17>(hn::Mul(hn::Add(hn::Add(hn::Add(eb, eb), ea), one_i), third));
       }
       V total = hn::Zero(d);
       for (int i = 0; i < 16; ++i) {
         V be = hn::Zero(d), best = hn::Zero(d);
-        for (int k = 0; k < 4; ++k) {
+        for (int k = 0; k < (four ? 4 : 3); ++k) {
           const V dr = hn::Sub(r[i], pal[k][0]), dg = hn::Sub(g[i], pal[k][1]), db = hn::Sub(b[i], pal[k][2]);
           const V e = hn::Add(hn::Add(hn::Mul(dr, dr), hn::Mul(dg, dg)), hn::Mul(db, db));
           if (k == 0) {
@@ -239,53 +286,92 @@ void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, std::uin
           be = hn::IfThenElse(better, e, be);
           best = hn::IfThenElse(better, hn::Set(d, k), best);
         }
-        codes[i] = best;
+        st.codes[i] = best;
         total = hn::Add(total, be);
       }
-      return total;
+      st.error = total;
     };
-    V codes[16];
-    V error = nearest(qa, qb, codes);
-    // One least-squares refit; weights in thirds by code: 0, 3, 1, 2.
-    V aa = hn::Zero(d), ab = aa, bb = aa, at[3] = {aa, aa, aa}, bt[3] = {aa, aa, aa};
-    const V three = hn::Set(d, 3);
-    for (int i = 0; i < 16; ++i) {
-      const V c = codes[i];
-      const V w = hn::IfThenElse(hn::Eq(c, hn::Set(d, 1)), three,
-                                 hn::IfThenElseZero(hn::Gt(c, hn::Set(d, 1)), hn::Sub(c, hn::Set(d, 1))));
-      const V u = hn::Sub(three, w);
-      aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w)), bb = hn::Add(bb, hn::Mul(w, w));
-      at[0] = hn::Add(at[0], hn::Mul(u, r[i])), at[1] = hn::Add(at[1], hn::Mul(u, g[i])), at[2] = hn::Add(at[2], hn::Mul(u, b[i]));
-      bt[0] = hn::Add(bt[0], hn::Mul(w, r[i])), bt[1] = hn::Add(bt[1], hn::Mul(w, g[i])), bt[2] = hn::Add(bt[2], hn::Mul(w, b[i]));
+    // One least-squares refit; weights by code in thirds (0, 3, 1, 2) or halves (0, 2, 1).
+    auto refit = [&](bool four, State& st) {
+      const int den_s = four ? 3 : 2;
+      const V den = hn::Set(d, den_s), one_i = hn::Set(d, 1);
+      V aa = hn::Zero(d), ab = aa, bb = aa, at[3] = {aa, aa, aa}, bt[3] = {aa, aa, aa};
+      for (int i = 0; i < 16; ++i) {
+        const V c = st.codes[i];
+        const V w = hn::IfThenElse(hn::Eq(c, one_i), den, hn::IfThenElseZero(hn::Gt(c, one_i), hn::Sub(c, one_i)));
+        const V u = hn::Sub(den, w);
+        aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w)), bb = hn::Add(bb, hn::Mul(w, w));
+        at[0] = hn::Add(at[0], hn::Mul(u, r[i])), at[1] = hn::Add(at[1], hn::Mul(u, g[i])), at[2] = hn::Add(at[2], hn::Mul(u, b[i]));
+        bt[0] = hn::Add(bt[0], hn::Mul(w, r[i])), bt[1] = hn::Add(bt[1], hn::Mul(w, g[i])), bt[2] = hn::Add(bt[2], hn::Mul(w, b[i]));
+      }
+      const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
+      const auto solvable = hn::Ne(det, hn::Zero(d));
+      const VF fdet = hn::ConvertTo(df, hn::IfThenElse(solvable, det, one_i));
+      State n;
+      for (int ch = 0; ch < 3; ++ch) {
+        const int max = ch == 1 ? 63 : 31;
+        const V na = hn::Mul(den, hn::Sub(hn::Mul(at[ch], bb), hn::Mul(bt[ch], ab)));
+        const V nb = hn::Mul(den, hn::Sub(hn::Mul(bt[ch], aa), hn::Mul(at[ch], ab)));
+        n.qa[ch] = quantize(clamp255(hn::Div(hn::ConvertTo(df, na), fdet)), max);
+        n.qb[ch] = quantize(clamp255(hn::Div(hn::ConvertTo(df, nb), fdet)), max);
+      }
+      nearest(four, n);
+      select(hn::And(solvable, hn::Lt(n.error, st.error)), n, st);
+    };
+    const VF dhi = hn::Sub(hi, mean_p), dlo = hn::Sub(lo, mean_p);
+    State st;
+    st.qa[0] = quantize(clamp255(hn::Add(m0, hn::Mul(dhi, ax))), 31);
+    st.qa[1] = quantize(clamp255(hn::Add(m1, hn::Mul(dhi, ay))), 63);
+    st.qa[2] = quantize(clamp255(hn::Add(m2, hn::Mul(dhi, az))), 31);
+    st.qb[0] = quantize(clamp255(hn::Add(m0, hn::Mul(dlo, ax))), 31);
+    st.qb[1] = quantize(clamp255(hn::Add(m1, hn::Mul(dlo, ay))), 63);
+    st.qb[2] = quantize(clamp255(hn::Add(m2, hn::Mul(dlo, az))), 31);
+    const State start = st;
+    nearest(true, st);
+    refit(true, st);
+    M four = hn::Eq(hn::Zero(d), hn::Zero(d));
+    if (normal) {
+      refit(true, st);
+      for (int pass = 0; pass < 4; ++pass) {
+        M improved = hn::Lt(hn::Zero(d), hn::Zero(d));
+        for (int m = 0; m < 12; ++m) {
+          const int ch = m % 6 / 2, max = ch == 1 ? 63 : 31;
+          State n = st;
+          V& v = (m < 6 ? n.qa : n.qb)[ch];
+          v = hn::Add(v, hn::Set(d, m % 2 ? 1 : -1));
+          const auto valid = hn::And(hn::Not(hn::Lt(v, hn::Zero(d))), hn::Not(hn::Gt(v, hn::Set(d, max))));
+          if (hn::AllFalse(d, valid)) continue;
+          v = hn::Min(hn::Max(v, hn::Zero(d)), hn::Set(d, max));
+          nearest(true, n);
+          const auto take = hn::And(valid, hn::Lt(n.error, st.error));
+          select(take, n, st);
+          improved = hn::Or(improved, take);
+        }
+        if (hn::AllFalse(d, hn::AndNot(flat, improved))) break;
+      }
+      if (three) {
+        State t = start;
+        nearest(false, t);
+        refit(false, t);
+        const auto take = hn::Lt(t.error, st.error);
+        select(take, t, st);
+        four = hn::AndNot(take, four);
+      }
     }
-    const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
-    const auto solvable = hn::Ne(det, hn::Zero(d));
-    const VF fdet = hn::ConvertTo(df, hn::IfThenElse(solvable, det, hn::Set(d, 1)));
-    V qa2[3], qb2[3];
-    for (int ch = 0; ch < 3; ++ch) {
-      const int max = ch == 1 ? 63 : 31;
-      const V na = hn::Mul(three, hn::Sub(hn::Mul(at[ch], bb), hn::Mul(bt[ch], ab)));
-      const V nb = hn::Mul(three, hn::Sub(hn::Mul(bt[ch], aa), hn::Mul(at[ch], ab)));
-      qa2[ch] = quantize(clamp255(hn::Div(hn::ConvertTo(df, na), fdet)), max);
-      qb2[ch] = quantize(clamp255(hn::Div(hn::ConvertTo(df, nb), fdet)), max);
-    }
-    V codes2[16];
-    const V error2 = nearest(qa2, qb2, codes2);
-    const auto take = hn::And(solvable, hn::Lt(error2, error));
-    for (int ch = 0; ch < 3; ++ch) qa[ch] = hn::IfThenElse(take, qa2[ch], qa[ch]), qb[ch] = hn::IfThenElse(take, qb2[ch], qb[ch]);
-    for (int i = 0; i < 16; ++i) codes[i] = hn::IfThenElse(take, codes2[i], codes[i]);
-    // Pack: c0 > c1 for the four-colour mode (swap ends and flip codes' low
-    // bit), every code 0 when the ends are equal.
-    V e0 = hn::Or(hn::Or(hn::ShiftLeft<11>(qa[0]), hn::ShiftLeft<5>(qa[1])), qa[2]);
-    V e1 = hn::Or(hn::Or(hn::ShiftLeft<11>(qb[0]), hn::ShiftLeft<5>(qb[1])), qb[2]);
-    const auto swap = hn::Lt(e0, e1), equal = hn::Eq(e0, e1);
-    const V flip = hn::IfThenElseZero(swap, hn::Set(d, 1));
+    // Pack. Four colours: c0 > c1 (swapping the ends flips the codes' low
+    // bit; equal ends: every code 0). Three: c0 <= c1 (swapping exchanges codes 0 and 1).
+    const V e0 = hn::Or(hn::Or(hn::ShiftLeft<11>(st.qa[0]), hn::ShiftLeft<5>(st.qa[1])), st.qa[2]);
+    const V e1 = hn::Or(hn::Or(hn::ShiftLeft<11>(st.qb[0]), hn::ShiftLeft<5>(st.qb[1])), st.qb[2]);
+    const auto swap_m = hn::Or(hn::And(four, hn::Lt(e0, e1)), hn::AndNot(four, hn::Gt(e0, e1)));
+    const auto zero_codes = hn::And(four, hn::Eq(e0, e1));
     auto bits = hn::Zero(du);
     for (int i = 0; i < 16; ++i) {
-      const V code = hn::IfThenZeroElse(equal, hn::Xor(codes[i], flip));
-      bits = hn::Or(bits, hn::Shl(hn::BitCast(du, code), hn::Set(du, std::uint32_t(2 * i))));
+      V code = hn::IfThenZeroElse(zero_codes, st.codes[i]);
+      const auto flip = hn::And(swap_m, hn::Or(four, hn::Lt(code, hn::Set(d, 2))));
+      code = hn::IfThenElse(flip, hn::Xor(code, hn::Set(d, 1)), code);
+      bits = hn::Or(bits, hn::ShiftLeftSame(hn::BitCast(du, code), 2 * i));
     }
-    const V hi_end = hn::IfThenElse(swap, e1, e0), lo_end = hn::IfThenElse(swap, e0, e1);
+    const V hi_end = hn::IfThenElse(swap_m, e1, e0), lo_end = hn::IfThenElse(swap_m, e0, e1);
     HWY_ALIGN std::uint32_t head[kBc1Batch], bits_out[kBc1Batch];
     hn::Store(hn::BitCast(du, hn::Or(hi_end, hn::ShiftLeft<16>(lo_end))), du, head);
     hn::Store(bits, du, bits_out);
@@ -306,9 +392,10 @@ HWY_AFTER_NAMESPACE();
 namespace texproc {
 HWY_EXPORT(Bc1FastBlocks);
 
-void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, std::uint8_t out[][8], bool handled[]) {
-  if (force_scalar()) return ref::bc1_fast_blocks(texel, count, out, handled);
-  HWY_DYNAMIC_DISPATCH(Bc1FastBlocks)(texel, count, out, handled);
+void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, bool normal, bool three,
+                     std::uint8_t out[][8], bool handled[]) {
+  if (force_scalar()) return ref::bc1_fast_blocks(texel, count, normal, three, out, handled);
+  HWY_DYNAMIC_DISPATCH(Bc1FastBlocks)(texel, count, normal, three, out, handled);
 }
 }  // namespace texproc
 #endif

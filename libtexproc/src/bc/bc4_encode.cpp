@@ -207,7 +207,7 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
   const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * block_bytes);
   const ColorMode color_mode = bc1 ? ColorMode::bc1 : bc1a ? ColorMode::bc1_punch_through : ColorMode::four_only;
-  const bool batched = q == Quality::fast && color_mode != ColorMode::bc1_punch_through;
+  const bool batched = (q == Quality::fast || q == Quality::normal) && color_mode != ColorMode::bc1_punch_through;
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::uint8_t rgba[kBc1Batch][16][4];
     std::uint32_t texel[16][kBc1Batch] = {};
@@ -232,9 +232,9 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
             for (int i = 0; i < 16; ++i)
               texel[i][k] = std::uint32_t(rgba[k][i][0]) | std::uint32_t(rgba[k][i][1]) << 8 | std::uint32_t(rgba[k][i][2]) << 16;
         }
-        // `fast` opaque colour: sixteen blocks at a time (one-colour blocks
+        // `fast` and `normal` opaque colour: sixteen blocks at a time (one-colour blocks
         // are left to the single-colour tables below).
-        if (batched) bc1_fast_blocks(texel, count, color, handled);
+        if (batched) bc1_fast_blocks(texel, count, q == Quality::normal, bc1, color, handled);
         for (int k = 0; k < count; ++k) {
           std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes;
           std::uint8_t* color_dst = bc1 || bc1a ? dst : dst + 8;
