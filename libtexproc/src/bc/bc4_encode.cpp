@@ -8,6 +8,7 @@
 
 #include "bc/bc1_encode.h"
 #include "bc/bc1_fast.h"
+#include "bc/bc4_fast.h"
 #include "bc/bc4_eval.h"
 #include "bc/block_gather.h"
 #include "etc/etc_encode.h"
@@ -108,6 +109,14 @@ void write_block(const Candidate& c, bool snorm, std::uint8_t out[8]) {
 }  // namespace
 
 void encode_bc4_block(const float v[16], bool snorm, Quality q, std::uint8_t out[8]) {
+  if (q == Quality::fast) {  // as whole images do: bc4_fast.h
+    float batch[16][kBc4Batch] = {};
+    for (int i = 0; i < 16; ++i) batch[i][0] = v[i];
+    std::uint8_t block[1][8];
+    bc4_fast_blocks(batch, 1, snorm, block);
+    std::memcpy(out, block[0], 8);
+    return;
+  }
   const int lo_code = snorm ? -127 : 0, hi_code = snorm ? 127 : 255;
   float mn = v[0], mx = v[0];
   for (int i = 1; i < 16; ++i) mn = std::min(mn, v[i]), mx = std::max(mx, v[i]);
@@ -213,6 +222,8 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
     std::uint32_t texel[16][kBc1Batch] = {};
     std::uint8_t color[kBc1Batch][8];
     bool handled[kBc1Batch] = {};
+    float alpha[16][kBc4Batch] = {};
+    std::uint8_t alpha_blocks[kBc4Batch][8];
     for (int by = by0; by < by1; ++by)
       for (int bx0 = 0; bx0 < bw; bx0 += kBc1Batch) {
         const int count = std::min(kBc1Batch, bw - bx0);
@@ -250,11 +261,17 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
               const int a0 = (rgba[k][i][3] * 15 + 127) / 255, a1 = (rgba[k][i + 1][3] * 15 + 127) / 255;
               dst[i / 2] = std::uint8_t(a0 | a1 << 4);
             }
-          } else {  // BC3: the alpha as a BC4 block
-            float alpha[16];
-            for (int i = 0; i < 16; ++i) alpha[i] = rgba[k][i][3];
-            encode_bc4_block(alpha, false, q, dst);
+          } else if (q == Quality::fast) {  // BC3: the alpha as a BC4 block, batched below
+            for (int i = 0; i < 16; ++i) alpha[i][k] = rgba[k][i][3];
+          } else {
+            float a[16];
+            for (int i = 0; i < 16; ++i) a[i] = rgba[k][i][3];
+            encode_bc4_block(a, false, q, dst);
           }
+        }
+        if (!bc1 && !bc1a && !bc2 && q == Quality::fast) {
+          bc4_fast_blocks(alpha, count, false, alpha_blocks);
+          for (int k = 0; k < count; ++k) std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes, alpha_blocks[k], 8);
         }
       }
   });
@@ -284,18 +301,41 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
     }
     return snorm ? (v * 2.0f - 1.0f) * 127.0f : v * 255.0f;
   };
+  float u8_value[256];
+  for (int i = 0; i < 256; ++i) {
+    const float v = float(i) / 255.0f;
+    u8_value[i] = snorm ? (v * 2.0f - 1.0f) * 127.0f : v * 255.0f;
+  }
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     float v[16];
+    float batch[16][kBc4Batch] = {};
+    std::uint8_t blocks[kBc4Batch][8];
     for (int by = by0; by < by1; ++by)
-      for (int bx = 0; bx < bw; ++bx) {
-        std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx) * block_bytes;
+      for (int bx0 = 0; bx0 < bw; bx0 += kBc4Batch) {
+        const int count = std::min(kBc4Batch, bw - bx0);
         for (int ch = 0; ch < (bc5 ? 2 : 1); ++ch) {
-          for (int i = 0; i < 16; ++i) {
-            // Partial blocks: the edge texels repeat into the missing ones.
-            const int x = std::min(bx * 4 + i % 4, img.width - 1), y = std::min(by * 4 + i / 4, img.height - 1);
-            v[i] = value(x, y, ch);
+          if (q == Quality::fast && img.type == PixelType::u8 && ch < img.channels) {
+            // 8-bit texels through a table of the same values value() gives.
+            for (int y = 0; y < 4; ++y) {
+              const std::uint8_t* row = img.row<const std::uint8_t>(std::min(by * 4 + y, img.height - 1));
+              for (int k = 0; k < count; ++k)
+                for (int x = 0; x < 4; ++x)
+                  batch[4 * y + x][k] = u8_value[row[std::min((bx0 + k) * 4 + x, img.width - 1) * img.channels + ch]];
+            }
+          } else {
+            for (int k = 0; k < count; ++k)
+              for (int i = 0; i < 16; ++i) {
+                // Partial blocks: the edge texels repeat into the missing ones.
+                const int x = std::min((bx0 + k) * 4 + i % 4, img.width - 1), y = std::min(by * 4 + i / 4, img.height - 1);
+                (q == Quality::fast ? batch[i][k] : v[i]) = value(x, y, ch);
+                if (q != Quality::fast && i == 15)
+                  encode_bc4_block(v, snorm, q, out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes + 8 * ch);
+              }
           }
-          encode_bc4_block(v, snorm, q, dst + 8 * ch);
+          if (q != Quality::fast) continue;
+          bc4_fast_blocks(batch, count, snorm, blocks);  // sixteen blocks at a time
+          for (int k = 0; k < count; ++k)
+            std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes + 8 * ch, blocks[k], 8);
         }
       }
   });

@@ -1,0 +1,29 @@
+// BC4's `fast` encoder (also BC5's channels and BC3's alpha), sixteen blocks
+// at a time (a block per SIMD lane), SIMD and scalar twins with identical
+// bytes.
+//
+// Per block: the values' range, rounded outwards to whole codes, as the
+// eight-value mode's endpoints (equal ends: the six-value mode, flat); and,
+// where values lie strictly inside the code range and their own range
+// differs, the six-value mode over those inner values (the range's two ends
+// come free). Each value's code is found by rounding its position between
+// the endpoints (the palette is evenly spaced under the exact decoding); the
+// candidate with less squared error wins (the first on a tie). Float
+// expressions in the same order on both twins, no FMA.
+#pragma once
+
+#include <cstdint>
+
+namespace texproc {
+
+constexpr int kBc4Batch = 16;
+
+// v[i][k]: value i (row by row) of block k in code units: [0, 255], or
+// [-127, 127] with `snorm` (clamped here).
+void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, std::uint8_t out[][8]);
+
+namespace ref {
+void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, std::uint8_t out[][8]);
+}  // namespace ref
+
+}  // namespace texproc

@@ -1,0 +1,188 @@
+// BC4 `fast`, a block per lane: the scalar reference (one block at a time,
+// plainly) and its Highway twin. Both evaluate the same expressions in the
+// same order; see bc4_fast.h.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "bc/bc4_fast_simd.cpp"
+#include <hwy/foreach_target.h>  // must come before highway.h
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "bc/bc4_fast.h"
+#include "texproc/runtime.h"
+
+#ifndef TEXPROC_BC4_FAST_REF
+#define TEXPROC_BC4_FAST_REF
+namespace texproc::ref {
+namespace {
+
+// Codes and squared error of endpoints r0, r1 (r0 > r1: eight values, by
+// rounding the position from r0; else six values by rounding from r0, or
+// the code range's ends where nearer).
+float evaluate(const float t[16], int r0, int r1, float lo_code, float hi_code, int codes[16]) {
+  float error = 0.0f;
+  const float f0 = float(r0), f1 = float(r1);
+  for (int i = 0; i < 16; ++i) {
+    if (r0 > r1) {
+      const int j = std::clamp(int((f0 - t[i]) * 7.0f / (f0 - f1) + 0.5f), 0, 7);
+      const float d = t[i] - (f0 * float(7 - j) + f1 * float(j)) / 7.0f;
+      error += d * d;
+      codes[i] = j == 0 ? 0 : j == 7 ? 1 : j + 1;
+    } else {
+      const int j = r1 > r0 ? std::clamp(int((t[i] - f0) * 5.0f / (f1 - f0) + 0.5f), 0, 5) : 0;
+      const float d = t[i] - (f0 * float(5 - j) + f1 * float(j)) / 5.0f;
+      const float dl = t[i] - lo_code, dh = t[i] - hi_code;
+      float best = d * d;
+      int code = j == 0 ? 0 : j == 5 ? 1 : j + 1;
+      if (dl * dl < best) best = dl * dl, code = 6;
+      if (dh * dh < best) best = dh * dh, code = 7;
+      error += best;
+      codes[i] = code;
+    }
+  }
+  return error;
+}
+
+}  // namespace
+
+void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, std::uint8_t out[][8]) {
+  const float lo_code = snorm ? -127.0f : 0.0f, hi_code = snorm ? 127.0f : 255.0f;
+  for (int k = 0; k < count; ++k) {
+    float t[16], mn = hi_code, mx = lo_code, mn6 = hi_code, mx6 = lo_code;
+    for (int i = 0; i < 16; ++i) {
+      t[i] = std::min(std::max(v[i][k], lo_code), hi_code);
+      mn = std::min(mn, t[i]), mx = std::max(mx, t[i]);
+      if (t[i] > lo_code + 0.5f && t[i] < hi_code - 0.5f) mn6 = std::min(mn6, t[i]), mx6 = std::max(mx6, t[i]);
+    }
+    const int lo = int(std::floor(mn)), hi = int(std::ceil(mx));
+    int r0 = hi > lo ? hi : lo, r1 = lo, codes[16];
+    float error = evaluate(t, r0, r1, lo_code, hi_code, codes);
+    if (mn6 <= mx6) {
+      const int lo6 = int(std::floor(mn6)), hi6 = int(std::ceil(mx6));
+      if (lo6 != lo || hi6 != hi) {
+        int codes6[16];
+        const float error6 = evaluate(t, lo6, hi6, lo_code, hi_code, codes6);
+        if (error6 < error) {
+          error = error6, r0 = lo6, r1 = hi6;
+          std::copy(codes6, codes6 + 16, codes);
+        }
+      }
+    }
+    out[k][0] = std::uint8_t(r0 & 255), out[k][1] = std::uint8_t(r1 & 255);  // SNORM: two's complement
+    std::uint64_t bits = 0;
+    for (int i = 0; i < 16; ++i) bits |= std::uint64_t(codes[i]) << (3 * i);
+    for (int b = 0; b < 6; ++b) out[k][2 + b] = std::uint8_t(bits >> (8 * b));
+  }
+}
+
+}  // namespace texproc::ref
+#endif
+
+HWY_BEFORE_NAMESPACE();
+namespace texproc {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+void Bc4FastBlocks(const float v[16][kBc4Batch], int count, bool snorm, std::uint8_t out[][8]) {
+  using D = hn::CappedTag<float, kBc4Batch>;
+  const D df;
+  const hn::RebindToSigned<D> d;
+  using VF = hn::Vec<D>;
+  using V = hn::Vec<decltype(d)>;
+  const int lanes = int(hn::Lanes(df));
+  const VF lo_code = hn::Set(df, snorm ? -127.0f : 0.0f), hi_code = hn::Set(df, snorm ? 127.0f : 255.0f);
+  const VF half = hn::Set(df, 0.5f);
+  for (int k0 = 0; k0 < count; k0 += lanes) {
+    VF t[16];
+    VF mn = hi_code, mx = lo_code, mn6 = hi_code, mx6 = lo_code;
+    const VF inner_lo = hn::Add(lo_code, half), inner_hi = hn::Sub(hi_code, half);
+    for (int i = 0; i < 16; ++i) {
+      t[i] = hn::Min(hn::Max(hn::LoadU(df, v[i] + k0), lo_code), hi_code);
+      mn = hn::Min(mn, t[i]), mx = hn::Max(mx, t[i]);
+      const auto inner = hn::And(hn::Gt(t[i], inner_lo), hn::Lt(t[i], inner_hi));
+      mn6 = hn::IfThenElse(inner, hn::Min(mn6, t[i]), mn6), mx6 = hn::IfThenElse(inner, hn::Max(mx6, t[i]), mx6);
+    }
+    const V lo = hn::ConvertTo(d, hn::Floor(mn)), hi = hn::ConvertTo(d, hn::Ceil(mx));
+    auto evaluate = [&](V r0, V r1, V codes[16]) {
+      const VF f0 = hn::ConvertTo(df, r0), f1 = hn::ConvertTo(df, r1);
+      const auto eight = hn::Gt(r0, r1);
+      const auto eight_f = hn::RebindMask(df, eight);
+      const auto wide6 = hn::RebindMask(df, hn::Gt(r1, r0));
+      const VF one = hn::Set(df, 1.0f);
+      const VF span8 = hn::IfThenElse(eight_f, hn::Sub(f0, f1), one), span6 = hn::IfThenElse(wide6, hn::Sub(f1, f0), one);
+      VF error = hn::Zero(df);
+      for (int i = 0; i < 16; ++i) {
+        // Eight values.
+        const V j8 = hn::Min(hn::Max(hn::ConvertTo(d, hn::Add(hn::Div(hn::Mul(hn::Sub(f0, t[i]), hn::Set(df, 7.0f)), span8), half)),
+                                     hn::Zero(d)), hn::Set(d, 7));
+        const VF fj8 = hn::ConvertTo(df, j8);
+        const VF d8 = hn::Sub(t[i], hn::Div(hn::Add(hn::Mul(f0, hn::Sub(hn::Set(df, 7.0f), fj8)), hn::Mul(f1, fj8)), hn::Set(df, 7.0f)));
+        const V c8 = hn::IfThenElse(hn::Eq(j8, hn::Zero(d)), hn::Zero(d),
+                                    hn::IfThenElse(hn::Eq(j8, hn::Set(d, 7)), hn::Set(d, 1), hn::Add(j8, hn::Set(d, 1))));
+        // Six values and the range's ends.
+        const V j6 = hn::IfThenElseZero(
+            hn::RebindMask(d, wide6),
+            hn::Min(hn::Max(hn::ConvertTo(d, hn::Add(hn::Div(hn::Mul(hn::Sub(t[i], f0), hn::Set(df, 5.0f)), span6), half)),
+                            hn::Zero(d)), hn::Set(d, 5)));
+        const VF fj6 = hn::ConvertTo(df, j6);
+        const VF d6 = hn::Sub(t[i], hn::Div(hn::Add(hn::Mul(f0, hn::Sub(hn::Set(df, 5.0f), fj6)), hn::Mul(f1, fj6)), hn::Set(df, 5.0f)));
+        const VF dl = hn::Sub(t[i], lo_code), dh = hn::Sub(t[i], hi_code);
+        VF best6 = hn::Mul(d6, d6);
+        V c6 = hn::IfThenElse(hn::Eq(j6, hn::Zero(d)), hn::Zero(d),
+                              hn::IfThenElse(hn::Eq(j6, hn::Set(d, 5)), hn::Set(d, 1), hn::Add(j6, hn::Set(d, 1))));
+        const VF el = hn::Mul(dl, dl), eh = hn::Mul(dh, dh);
+        const auto use_lo = hn::Lt(el, best6);
+        best6 = hn::IfThenElse(use_lo, el, best6);
+        c6 = hn::IfThenElse(hn::RebindMask(d, use_lo), hn::Set(d, 6), c6);
+        const auto use_hi = hn::Lt(eh, best6);
+        best6 = hn::IfThenElse(use_hi, eh, best6);
+        c6 = hn::IfThenElse(hn::RebindMask(d, use_hi), hn::Set(d, 7), c6);
+        error = hn::Add(error, hn::IfThenElse(eight_f, hn::Mul(d8, d8), best6));
+        codes[i] = hn::IfThenElse(eight, c8, c6);
+      }
+      return error;
+    };
+    V r0 = hn::IfThenElse(hn::Gt(hi, lo), hi, lo), r1 = lo, codes[16];
+    VF error = evaluate(r0, r1, codes);
+    const V lo6 = hn::ConvertTo(d, hn::Floor(mn6)), hi6 = hn::ConvertTo(d, hn::Ceil(mx6));
+    const auto try6 = hn::And(hn::RebindMask(d, hn::Le(mn6, mx6)), hn::Or(hn::Ne(lo6, lo), hn::Ne(hi6, hi)));
+    if (!hn::AllFalse(d, try6)) {
+      // Lanes not trying it evaluate a harmless pair and ignore the result.
+      const V a = hn::IfThenElse(try6, lo6, lo), b = hn::IfThenElse(try6, hi6, hi);
+      V codes6[16];
+      const VF error6 = evaluate(a, b, codes6);
+      const auto take = hn::And(try6, hn::RebindMask(d, hn::Lt(error6, error)));
+      r0 = hn::IfThenElse(take, a, r0), r1 = hn::IfThenElse(take, b, r1);
+      for (int i = 0; i < 16; ++i) codes[i] = hn::IfThenElse(take, codes6[i], codes[i]);
+    }
+    V bits_lo = hn::Zero(d), bits_hi = hn::Zero(d);
+    for (int i = 0; i < 8; ++i) {
+      bits_lo = hn::Or(bits_lo, hn::ShiftLeftSame(codes[i], 3 * i));
+      bits_hi = hn::Or(bits_hi, hn::ShiftLeftSame(codes[i + 8], 3 * i));
+    }
+    HWY_ALIGN std::int32_t e0[kBc4Batch], e1[kBc4Batch], blo[kBc4Batch], bhi[kBc4Batch];
+    hn::Store(r0, d, e0), hn::Store(r1, d, e1), hn::Store(bits_lo, d, blo), hn::Store(bits_hi, d, bhi);
+    for (int k = 0; k < lanes && k0 + k < count; ++k) {
+      std::uint8_t* o = out[k0 + k];
+      o[0] = std::uint8_t(e0[k] & 255), o[1] = std::uint8_t(e1[k] & 255);
+      o[2] = std::uint8_t(blo[k]), o[3] = std::uint8_t(blo[k] >> 8), o[4] = std::uint8_t(blo[k] >> 16);
+      o[5] = std::uint8_t(bhi[k]), o[6] = std::uint8_t(bhi[k] >> 8), o[7] = std::uint8_t(bhi[k] >> 16);
+    }
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace texproc
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace texproc {
+HWY_EXPORT(Bc4FastBlocks);
+
+void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, std::uint8_t out[][8]) {
+  if (force_scalar()) return ref::bc4_fast_blocks(v, count, snorm, out);
+  HWY_DYNAMIC_DISPATCH(Bc4FastBlocks)(v, count, snorm, out);
+}
+}  // namespace texproc
+#endif
