@@ -646,4 +646,16 @@ TEST(EtcEncode, SimdMatchesScalarOnEveryTarget) {
                                   std::string(format_info(f).name) + " " + to_string(q));
     }
   }
+  // `fast` encodes 16 blocks at a time: 21 blocks a row (a batch of 16, one
+  // of 5) read straight from whole rows, with halves far apart (individual
+  // mode) in some blocks and not in others.
+  Image wide = random_image(84, 8, 4, PixelType::u8, 5);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 84; ++x)
+      if ((x / 4) % 3 == 0)
+        for (int c = 0; c < 3; ++c) wide.row<std::uint8_t>(y)[4 * x + c] = std::uint8_t(x % 4 < 2 ? 20 + y : 230 - y);
+  for (TexelFormat f : {TexelFormat::etc1_rgb, TexelFormat::etc2_rgba8_unorm}) {
+    expect_same_on_every_target([&] { return compress_image(wide.view(), f, Quality::fast); },
+                                std::string(format_info(f).name) + " fast, whole rows");
+  }
 }

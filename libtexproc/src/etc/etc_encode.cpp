@@ -16,6 +16,7 @@
 // bits, every distance tried).
 #include "etc/etc_encode.h"
 #include "etc/etc_eval.h"
+#include "etc/etc_fast.h"
 
 #include <algorithm>
 #include <array>
@@ -583,6 +584,20 @@ void search_t_h(const Texels& tx, bool non_opaque, Quality q_level, Candidate& b
 }  // namespace
 
 long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
+  if (q == Quality::fast && mode != ColorMode::etc2_punch) {  // as whole images do: etc_fast.h
+    std::uint32_t texel[16][kEtcBatch] = {};
+    for (int i = 0; i < 16; ++i)
+      texel[i][0] = std::uint32_t(rgba[i][0]) | std::uint32_t(rgba[i][1]) << 8 | std::uint32_t(rgba[i][2]) << 16;
+    std::uint8_t block[1][8];
+    etc1_fast_blocks(texel, 1, block);
+    std::memcpy(out, block[0], 8);
+    Rgba8Block decoded;
+    decode_etc1(out, decoded);  // an ETC1 block reads the same as ETC2
+    long err = 0;
+    for (int i = 0; i < 16; ++i)
+      for (int c = 0; c < 3; ++c) err += long(rgba[i][c] - decoded[i][c]) * (rgba[i][c] - decoded[i][c]);
+    return err;
+  }
   Texels tx;
   for (int i = 0; i < 16; ++i) {
     for (int c = 0; c < 3; ++c) tx.rgb[i][c] = rgba[i][c];
@@ -695,40 +710,56 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
   const ColorMode mode = format == F::etc1_rgb                                           ? ColorMode::etc1
                          : format == F::etc2_rgba1_unorm || format == F::etc2_rgba1_srgb ? ColorMode::etc2_punch
                                                                                          : ColorMode::etc2;
+  // `fast` opaque colour: sixteen blocks at a time (etc_fast.h).
+  const bool batched = q == Quality::fast && mode != ColorMode::etc2_punch;
   for_each_row_block(bh, 4, [&](int by0, int by1) {
-    std::uint8_t rgba[16][4];
+    std::uint8_t rgba[kEtcBatch][16][4];
+    std::uint32_t texel[16][kEtcBatch] = {};
+    std::uint8_t color[kEtcBatch][8];
     float values[16];
     for (int by = by0; by < by1; ++by)
-      for (int bx = 0; bx < bw; ++bx) {
-        std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx) * std::size_t(info.block_bytes);
-        // Partial blocks: the edge texels repeat into the missing ones.
-        auto at = [&](int i, int& x, int& y) {
-          x = std::min(bx * 4 + i % 4, img.width - 1);
-          y = std::min(by * 4 + i / 4, img.height - 1);
-        };
-        if (eac) {
-          for (int c = 0; c < eac_channels; ++c) {
-            for (int i = 0; i < 16; ++i) {
-              int x, y;
-              at(i, x, y);
-              const float u = texel_unit(img, x, y, c);
-              values[i] = snorm ? (u * 2.0f - 1.0f) * 1023.0f : u * 2047.0f;
-            }
-            encode_eac_block(values, snorm ? EacKind::r11_signed : EacKind::r11, q, dst + 8 * c);
+      for (int bx0 = 0; bx0 < bw; bx0 += kEtcBatch) {
+        const int count = std::min(kEtcBatch, bw - bx0);
+        const bool rows_direct = batched && !rgba8 && img.type == PixelType::u8 && img.channels == 4 &&
+                                 (bx0 + count) * 4 <= img.width && by * 4 + 4 <= img.height;
+        if (rows_direct) {  // RGBA8 texels straight from the rows (the kernel ignores alpha)
+          for (int y = 0; y < 4; ++y) {
+            const std::uint8_t* row = img.row<const std::uint8_t>(by * 4 + y) + bx0 * 16;
+            for (int k = 0; k < count; ++k)
+              for (int x = 0; x < 4; ++x) std::memcpy(&texel[4 * y + x][k], row + 16 * k + 4 * x, 4);
           }
-          continue;
         }
-        for (int i = 0; i < 16; ++i) {
-          int x, y;
-          at(i, x, y);
-          for (int c = 0; c < 4; ++c) rgba[i][c] = texel8(img, x, y, c);
+        for (int k = 0; k < count && !rows_direct; ++k) {
+          const int bx = bx0 + k;
+          std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx) * std::size_t(info.block_bytes);
+          if (eac) {
+            for (int c = 0; c < eac_channels; ++c) {
+              for (int i = 0; i < 16; ++i) {
+                // Partial blocks: the edge texels repeat into the missing ones.
+                const int x = std::min(bx * 4 + i % 4, img.width - 1), y = std::min(by * 4 + i / 4, img.height - 1);
+                const float u = texel_unit(img, x, y, c);
+                values[i] = snorm ? (u * 2.0f - 1.0f) * 1023.0f : u * 2047.0f;
+              }
+              encode_eac_block(values, snorm ? EacKind::r11_signed : EacKind::r11, q, dst + 8 * c);
+            }
+            continue;
+          }
+          gather_rgba8(img, bx, by, rgba[k]);
+          if (rgba8) {
+            for (int i = 0; i < 16; ++i) values[i] = rgba[k][i][3];
+            encode_eac_block(values, EacKind::alpha8, q, dst);
+          }
+          if (batched) {
+            for (int i = 0; i < 16; ++i)
+              texel[i][k] = std::uint32_t(rgba[k][i][0]) | std::uint32_t(rgba[k][i][1]) << 8 | std::uint32_t(rgba[k][i][2]) << 16;
+          } else {
+            encode_color_block(rgba[k], mode, q, dst + (rgba8 ? 8 : 0));
+          }
         }
-        if (rgba8) {
-          for (int i = 0; i < 16; ++i) values[i] = rgba[i][3];
-          encode_eac_block(values, EacKind::alpha8, q, dst);
-          dst += 8;
-        }
-        encode_color_block(rgba, mode, q, dst);
+        if (eac || !batched) continue;
+        etc1_fast_blocks(texel, count, color);
+        for (int k = 0; k < count; ++k)
+          std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + (rgba8 ? 8 : 0), color[k], 8);
       }
   });
   return out;

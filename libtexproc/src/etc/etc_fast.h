@@ -1,0 +1,29 @@
+// ETC1's `fast` encoder (also ETC2 RGB's and ETC2 RGBA's colour at `fast`),
+// sixteen opaque blocks at a time (a block per SIMD lane), SIMD and scalar
+// twins with identical bytes.
+//
+// Per block and half block (left, right, top, bottom): the base colour is
+// the half's mean, quantized to 5 bits (and to 4 where the differential
+// delta cannot reach: individual mode); the three intensity tables whose
+// modifiers are nearest the texels' spread about the mean (mean absolute
+// deviation of R + G + B, over 3) are scored with each texel at its best
+// modifier under the decoder's clamping, and the best kept. The flip with
+// less error wins (the first on a tie). Integer arithmetic throughout, and
+// one float division per quantized channel, the same on both twins.
+#pragma once
+
+#include <cstdint>
+
+namespace texproc::etc {
+
+constexpr int kEtcBatch = 16;
+
+// texel[i][k]: texel i (row by row) of block k as R | G << 8 | B << 16
+// (alpha ignored). out: the ETC1 blocks (valid ETC2 RGB blocks too).
+void etc1_fast_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]);
+
+namespace ref {
+void etc1_fast_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]);
+}  // namespace ref
+
+}  // namespace texproc::etc
