@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <string>
 
@@ -24,8 +25,8 @@ using namespace texproc;
 
 namespace {
 
-void run(benchmark::State& state, int squish_flags, Quality q) {
-  ThreadLimit one(1);
+void run_threads(benchmark::State& state, int squish_flags, Quality q, int threads) {
+  ThreadLimit limit(threads);
   double psnr_sum = 0, pixels = 0;
   for (auto _ : state) {
     psnr_sum = 0;
@@ -45,6 +46,29 @@ void run(benchmark::State& state, int squish_flags, Quality q) {
   for (const Image& img : bench::color_textures()) pixels += double(img.width()) * img.height();
   state.counters["MPix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["PSNR"] = psnr_sum / double(bench::color_textures().size());
+}
+
+void run(benchmark::State& state, int squish_flags, Quality q) { run_threads(state, squish_flags, q, 1); }
+
+// The textures tiled into one 2048x2048 image.
+const Image& mosaic_image() {
+  static const Image img = [] {
+    Image m(2048, 2048, 4, PixelType::u8);
+    const auto& t = bench::color_textures();
+    for (int y = 0; y < 2048; ++y)
+      for (int x = 0; x < 2048; ++x) {
+        const Image& src = t[std::size_t((y / 512) * 4 + x / 512) % t.size()];
+        std::memcpy(m.row<std::uint8_t>(y) + 4 * x, src.row<std::uint8_t>(y % src.height()) + 4 * (x % src.width()), 4);
+      }
+    return m;
+  }();
+  return img;
+}
+
+void mosaic(benchmark::State& state, Quality q, int threads) {
+  ThreadLimit limit(threads);
+  for (auto _ : state) benchmark::DoNotOptimize(compress_image(mosaic_image().view(), TexelFormat::bc1_rgb_unorm, q));
+  state.counters["MPix/s"] = benchmark::Counter(2048.0 * 2048.0 / 1e6, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 // The textures as TGA files (what nvcompress reads), written once.
@@ -103,5 +127,15 @@ BENCHMARK_CAPTURE(run, libsquish_iterative_cluster_fit, squish::kColourIterative
 BENCHMARK_CAPTURE(run, texproc_fast, 0, Quality::fast)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(run, texproc_normal, 0, Quality::normal)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(run, texproc_high, 0, Quality::high)->Unit(benchmark::kMillisecond)->Iterations(1);
+// Thread scaling (wall-clock time): the textures above on two threads (each
+// image is small: a fast encode takes well under a millisecond, so waking
+// the second thread shows), and a 2048x2048 mosaic of them on one and two.
+BENCHMARK_CAPTURE(run_threads, texproc_fast_2_threads, 0, Quality::fast, 2)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+BENCHMARK_CAPTURE(run_threads, texproc_normal_2_threads, 0, Quality::normal, 2)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+BENCHMARK_CAPTURE(run_threads, texproc_high_2_threads, 0, Quality::high, 2)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+BENCHMARK_CAPTURE(mosaic, fast_1_thread, Quality::fast, 1)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+BENCHMARK_CAPTURE(mosaic, fast_2_threads, Quality::fast, 2)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+BENCHMARK_CAPTURE(mosaic, normal_1_thread, Quality::normal, 1)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+BENCHMARK_CAPTURE(mosaic, normal_2_threads, Quality::normal, 2)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
 
 BENCHMARK_MAIN();
