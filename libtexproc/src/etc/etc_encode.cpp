@@ -584,12 +584,13 @@ void search_t_h(const Texels& tx, bool non_opaque, Quality q_level, Candidate& b
 }  // namespace
 
 long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
-  if (q == Quality::fast && mode != ColorMode::etc2_punch) {  // as whole images do: etc_fast.h
+  if ((q == Quality::fast && mode != ColorMode::etc2_punch) || (q == Quality::normal && mode == ColorMode::etc1)) {
+    // As whole images do: etc_fast.h.
     std::uint32_t texel[16][kEtcBatch] = {};
     for (int i = 0; i < 16; ++i)
       texel[i][0] = std::uint32_t(rgba[i][0]) | std::uint32_t(rgba[i][1]) << 8 | std::uint32_t(rgba[i][2]) << 16;
     std::uint8_t block[1][8];
-    etc1_fast_blocks(texel, 1, block);
+    (q == Quality::fast ? etc1_fast_blocks : etc1_normal_blocks)(texel, 1, block);
     std::memcpy(out, block[0], 8);
     Rgba8Block decoded;
     decode_etc1(out, decoded);  // an ETC1 block reads the same as ETC2
@@ -710,8 +711,8 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
   const ColorMode mode = format == F::etc1_rgb                                           ? ColorMode::etc1
                          : format == F::etc2_rgba1_unorm || format == F::etc2_rgba1_srgb ? ColorMode::etc2_punch
                                                                                          : ColorMode::etc2;
-  // `fast` opaque colour: sixteen blocks at a time (etc_fast.h).
-  const bool batched = q == Quality::fast && mode != ColorMode::etc2_punch;
+  // `fast` opaque colour and ETC1 `normal`: sixteen blocks at a time (etc_fast.h).
+  const bool batched = (q == Quality::fast && mode != ColorMode::etc2_punch) || (q == Quality::normal && mode == ColorMode::etc1);
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::uint8_t rgba[kEtcBatch][16][4];
     std::uint32_t texel[16][kEtcBatch] = {};
@@ -757,7 +758,7 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
           }
         }
         if (eac || !batched) continue;
-        etc1_fast_blocks(texel, count, color);
+        (q == Quality::fast ? etc1_fast_blocks : etc1_normal_blocks)(texel, count, color);
         for (int k = 0; k < count; ++k)
           std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + (rgba8 ? 8 : 0), color[k], 8);
       }

@@ -22,8 +22,17 @@ constexpr int kEtcBatch = 16;
 // (alpha ignored). out: the ETC1 blocks (valid ETC2 RGB blocks too).
 void etc1_fast_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]);
 
+// `normal`: per half every table at the mean, exactly (the decoder's
+// clamping, each texel at its best modifier); the best two tables
+// re-centred up to twice (base = mean of the texels minus their modifiers)
+// while that helps. Halves too far apart for the delta try the individual
+// mode (4-bit fits as above) and the differential mode with either base
+// pulled within the delta of the other (that half's best table refitted).
+void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]);
+
 namespace ref {
 void etc1_fast_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]);
+void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]);
 }  // namespace ref
 
 }  // namespace texproc::etc

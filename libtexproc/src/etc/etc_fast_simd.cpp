@@ -55,6 +55,11 @@ inline int quantize_sum(int sum, int bits) {
   return int(float((bits == 5 ? 62 : 30) * sum + 2040) / 4080.0f);
 }
 
+// The same for a sum that may leave [0, 2040] (texels minus modifiers): clamped.
+inline int quantize_centre(int sum, int bits) {
+  return std::clamp(int(float((bits == 5 ? 62 : 30) * sum + 2040) / 4080.0f), 0, bits == 5 ? 31 : 15);
+}
+
 }  // namespace fast
 
 namespace ref {
@@ -147,6 +152,128 @@ void etc1_fast_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::
         best.table[s] = f.table;
         std::copy(f.idx, f.idx + 8, best.idx[s]);
       }
+    }
+    fast::pack(best, out[k]);
+  }
+}
+
+namespace {
+
+// Exact score of base q (4 or 5 bits) with table t for half h: each texel
+// at its best modifier under the decoder's clamping (the first of equals).
+HalfFit eval_exact(const int rgb[16][3], int h, const int q[3], int bits, int t) {
+  HalfFit f{};
+  int pal[4][3];
+  for (int c = 0; c < 3; ++c) {
+    f.q[c] = q[c];
+    const int base = bits == 5 ? extend5(q[c]) : extend4(q[c]);
+    for (int k = 0; k < 4; ++k) pal[k][c] = clamp255(base + kModifiers[t][k]);
+  }
+  f.table = t;
+  for (int i = 0; i < 8; ++i) {
+    const int* px = rgb[fast::kHalf[h][i]];
+    int be = 0;
+    for (int k = 0; k < 4; ++k) {
+      const int dr = px[0] - pal[k][0], dg = px[1] - pal[k][1], db = px[2] - pal[k][2];
+      const int e = dr * dr + dg * dg + db * db;
+      if (k == 0 || e < be) be = e, f.idx[i] = k;
+    }
+    f.err += be;
+  }
+  return f;
+}
+
+// Every table at the half's mean; the best two re-centred (the base that
+// minimizes the error for their indices: the mean of the texels minus their
+// modifiers) up to twice while that helps.
+HalfFit fit_normal(const int rgb[16][3], int h, int bits) {
+  int sum[3] = {};
+  for (int i = 0; i < 8; ++i)
+    for (int c = 0; c < 3; ++c) sum[c] += rgb[fast::kHalf[h][i]][c];
+  const int q0[3] = {fast::quantize_sum(sum[0], bits), fast::quantize_sum(sum[1], bits), fast::quantize_sum(sum[2], bits)};
+  int e1 = -1, e2 = -1, t1 = 0, t2 = 0;
+  for (int t = 0; t < 8; ++t) {
+    const int e = eval_exact(rgb, h, q0, bits, t).err;
+    if (e1 < 0 || e < e1) {
+      e2 = e1, t2 = t1, e1 = e, t1 = t;
+    } else if (e2 < 0 || e < e2) {
+      e2 = e, t2 = t;
+    }
+  }
+  HalfFit best{};
+  best.err = -1;
+  for (int t : {t1, t2}) {
+    HalfFit cur = eval_exact(rgb, h, q0, bits, t);
+    for (int pass = 0; pass < 2; ++pass) {
+      int centre[3] = {};
+      for (int i = 0; i < 8; ++i)
+        for (int c = 0; c < 3; ++c) centre[c] += rgb[fast::kHalf[h][i]][c] - kModifiers[t][cur.idx[i]];
+      const int q1[3] = {fast::quantize_centre(centre[0], bits), fast::quantize_centre(centre[1], bits),
+                         fast::quantize_centre(centre[2], bits)};
+      if (std::equal(q1, q1 + 3, cur.q)) break;
+      const HalfFit next = eval_exact(rgb, h, q1, bits, t);
+      if (next.err >= cur.err) break;
+      cur = next;
+    }
+    if (best.err < 0 || cur.err < best.err) best = cur;
+  }
+  return best;
+}
+
+// Half h at a fixed 5-bit base: the best table.
+HalfFit fit_fixed(const int rgb[16][3], int h, const int q[3]) {
+  HalfFit best = eval_exact(rgb, h, q, 5, 0);
+  for (int t = 1; t < 8; ++t) {
+    const HalfFit f = eval_exact(rgb, h, q, 5, t);
+    if (f.err < best.err) best = f;
+  }
+  return best;
+}
+
+void take(fast::Params& p, int flip, bool differential, const HalfFit& a, const HalfFit& b) {
+  p.flip = flip, p.differential = differential ? 1 : 0;
+  for (int s = 0; s < 2; ++s) {
+    const HalfFit& f = s ? b : a;
+    std::copy(f.q, f.q + 3, p.q[s]);
+    p.table[s] = f.table;
+    std::copy(f.idx, f.idx + 8, p.idx[s]);
+  }
+}
+
+}  // namespace
+
+void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
+  for (int k = 0; k < count; ++k) {
+    int rgb[16][3];
+    for (int i = 0; i < 16; ++i) {
+      const std::uint32_t t = texel[i][k];
+      rgb[i][0] = int(t & 255), rgb[i][1] = int(t >> 8 & 255), rgb[i][2] = int(t >> 16 & 255);
+    }
+    HalfFit f5[4];
+    for (int h = 0; h < 4; ++h) f5[h] = fit_normal(rgb, h, 5);
+    fast::Params best{};
+    int best_err = -1;
+    auto consider = [&](int flip, bool differential, const HalfFit& a, const HalfFit& b) {
+      if (best_err >= 0 && a.err + b.err >= best_err) return;
+      best_err = a.err + b.err;
+      take(best, flip, differential, a, b);
+    };
+    for (int flip = 0; flip < 2; ++flip) {
+      const int a = 2 * flip, b = a + 1;
+      bool fits = true;
+      for (int c = 0; c < 3; ++c) fits &= f5[b].q[c] - f5[a].q[c] >= -4 && f5[b].q[c] - f5[a].q[c] <= 3;
+      if (fits) {
+        consider(flip, true, f5[a], f5[b]);
+        continue;
+      }
+      // Too far apart for the delta: individual mode, or one base pulled
+      // within the delta of the other and its half refitted.
+      consider(flip, false, fit_normal(rgb, a, 4), fit_normal(rgb, b, 4));
+      int qa[3], qb[3];
+      for (int c = 0; c < 3; ++c) qa[c] = std::clamp(f5[a].q[c], f5[b].q[c] - 3, f5[b].q[c] + 4);
+      consider(flip, true, fit_fixed(rgb, a, qa), f5[b]);
+      for (int c = 0; c < 3; ++c) qb[c] = std::clamp(f5[b].q[c], f5[a].q[c] - 4, f5[a].q[c] + 3);
+      consider(flip, true, f5[a], fit_fixed(rgb, b, qb));
     }
     fast::pack(best, out[k]);
   }
@@ -308,6 +435,187 @@ void Etc1FastBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::ui
   }
 }
 
+void Etc1NormalBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
+  using D = hn::CappedTag<std::int32_t, kEtcBatch>;
+  const D d;
+  const hn::Rebind<float, D> df;
+  const hn::Rebind<std::uint32_t, D> du;
+  using V = hn::Vec<D>;
+  using M = hn::Mask<D>;
+  const int lanes = int(hn::Lanes(d));
+  struct Fit {
+    V err, q[3], table, idx[8];
+  };
+  int mod_a[8], mod_b[8];
+  for (int j = 0; j < 8; ++j) mod_a[j] = kModifiers[j][0], mod_b[j] = kModifiers[j][1];
+  const V zero = hn::Zero(d), top8 = hn::Set(d, 255);
+  auto lookup = [&](V t, const int* table) {  // table[t] per lane
+    V v = hn::Set(d, table[0]);
+    for (int j = 1; j < 8; ++j) v = hn::IfThenElse(hn::Eq(t, hn::Set(d, j)), hn::Set(d, table[j]), v);
+    return v;
+  };
+  auto select = [&](M m, const Fit& from, Fit& to) {
+    to.err = hn::IfThenElse(m, from.err, to.err);
+    to.table = hn::IfThenElse(m, from.table, to.table);
+    for (int c = 0; c < 3; ++c) to.q[c] = hn::IfThenElse(m, from.q[c], to.q[c]);
+    for (int i = 0; i < 8; ++i) to.idx[i] = hn::IfThenElse(m, from.idx[i], to.idx[i]);
+  };
+  auto quantize = [&](V sum, int bits) {  // as fast::quantize_centre
+    const V num = hn::Add(hn::Mul(hn::Set(d, bits == 5 ? 62 : 30), sum), hn::Set(d, 2040));
+    const V q = hn::ConvertTo(d, hn::Div(hn::ConvertTo(df, num), hn::Set(df, 4080.0f)));
+    return hn::Min(hn::Max(q, zero), hn::Set(d, bits == 5 ? 31 : 15));
+  };
+  for (int k0 = 0; k0 < count; k0 += lanes) {
+    V r[16], g[16], b[16];
+    for (int i = 0; i < 16; ++i) {
+      const V t = hn::BitCast(d, hn::LoadU(du, texel[i] + k0));
+      r[i] = hn::And(t, top8), g[i] = hn::And(hn::ShiftRight<8>(t), top8), b[i] = hn::And(hn::ShiftRight<16>(t), top8);
+    }
+    auto eval = [&](int h, const V q[3], int bits, V t) {
+      Fit f;
+      f.table = t;
+      const V ma = lookup(t, mod_a), mb = lookup(t, mod_b);
+      const V mods[4] = {ma, mb, hn::Neg(ma), hn::Neg(mb)};
+      V pal[4][3];
+      for (int c = 0; c < 3; ++c) {
+        f.q[c] = q[c];
+        const V base = bits == 5 ? hn::Or(hn::ShiftLeft<3>(q[c]), hn::ShiftRight<2>(q[c])) : hn::Or(hn::ShiftLeft<4>(q[c]), q[c]);
+        for (int m = 0; m < 4; ++m) pal[m][c] = hn::Min(hn::Max(hn::Add(base, mods[m]), zero), top8);
+      }
+      f.err = zero;
+      for (int i = 0; i < 8; ++i) {
+        const int p = fast::kHalf[h][i];
+        V be = zero, bi = zero;
+        for (int m = 0; m < 4; ++m) {
+          const V dr = hn::Sub(r[p], pal[m][0]), dg = hn::Sub(g[p], pal[m][1]), db = hn::Sub(b[p], pal[m][2]);
+          const V e = hn::Add(hn::Add(hn::Mul(dr, dr), hn::Mul(dg, dg)), hn::Mul(db, db));
+          if (m == 0) {
+            be = e;
+            continue;
+          }
+          const M better = hn::Lt(e, be);
+          be = hn::IfThenElse(better, e, be);
+          bi = hn::IfThenElse(better, hn::Set(d, m), bi);
+        }
+        f.idx[i] = bi;
+        f.err = hn::Add(f.err, be);
+      }
+      return f;
+    };
+    auto fit_normal = [&](int h, int bits) {
+      V sum[3] = {zero, zero, zero};
+      for (int i = 0; i < 8; ++i) {
+        const int p = fast::kHalf[h][i];
+        sum[0] = hn::Add(sum[0], r[p]), sum[1] = hn::Add(sum[1], g[p]), sum[2] = hn::Add(sum[2], b[p]);
+      }
+      const V q0[3] = {quantize(sum[0], bits), quantize(sum[1], bits), quantize(sum[2], bits)};
+      V e1 = eval(h, q0, bits, zero).err, t1 = zero, e2 = hn::Set(d, -1), t2 = zero;
+      for (int t = 1; t < 8; ++t) {
+        const V tv = hn::Set(d, t);
+        const V e = eval(h, q0, bits, tv).err;
+        const M first = hn::Lt(e, e1);
+        const M second = hn::AndNot(first, hn::Or(hn::Lt(e2, zero), hn::Lt(e, e2)));
+        e2 = hn::IfThenElse(first, e1, hn::IfThenElse(second, e, e2));
+        t2 = hn::IfThenElse(first, t1, hn::IfThenElse(second, tv, t2));
+        e1 = hn::IfThenElse(first, e, e1);
+        t1 = hn::IfThenElse(first, tv, t1);
+      }
+      Fit best;
+      for (int which = 0; which < 2; ++which) {
+        const V t = which ? t2 : t1;
+        Fit cur = eval(h, q0, bits, t);
+        const V ma = lookup(t, mod_a), mb = lookup(t, mod_b);
+        M active = hn::Eq(zero, zero);
+        for (int pass = 0; pass < 2; ++pass) {
+          V centre[3] = {zero, zero, zero};
+          for (int i = 0; i < 8; ++i) {
+            const int p = fast::kHalf[h][i];
+            const V idx = cur.idx[i];
+            const V mag = hn::IfThenElse(hn::Eq(hn::And(idx, hn::Set(d, 1)), zero), ma, mb);
+            const V m = hn::IfThenElse(hn::Lt(idx, hn::Set(d, 2)), mag, hn::Neg(mag));
+            centre[0] = hn::Add(centre[0], hn::Sub(r[p], m));
+            centre[1] = hn::Add(centre[1], hn::Sub(g[p], m));
+            centre[2] = hn::Add(centre[2], hn::Sub(b[p], m));
+          }
+          const V q1[3] = {quantize(centre[0], bits), quantize(centre[1], bits), quantize(centre[2], bits)};
+          const M same = hn::And(hn::And(hn::Eq(q1[0], cur.q[0]), hn::Eq(q1[1], cur.q[1])), hn::Eq(q1[2], cur.q[2]));
+          active = hn::AndNot(same, active);
+          if (hn::AllFalse(d, active)) break;
+          const Fit next = eval(h, q1, bits, t);
+          active = hn::And(active, hn::Lt(next.err, cur.err));
+          select(active, next, cur);
+        }
+        if (which == 0) {
+          best = cur;
+        } else {
+          select(hn::Lt(cur.err, best.err), cur, best);
+        }
+      }
+      return best;
+    };
+    auto fit_fixed = [&](int h, const V q[3]) {
+      Fit best = eval(h, q, 5, zero);
+      for (int t = 1; t < 8; ++t) {
+        const Fit f = eval(h, q, 5, hn::Set(d, t));
+        select(hn::Lt(f.err, best.err), f, best);
+      }
+      return best;
+    };
+    Fit f5[4];
+    for (int h = 0; h < 4; ++h) f5[h] = fit_normal(h, 5);
+    V best_err = hn::Set(d, 0x7fffffff), best_flip = zero, best_diff = zero;
+    Fit best_a = f5[0], best_b = f5[1];
+    auto consider = [&](M m, int flip, bool differential, const Fit& a, const Fit& bb) {
+      const V err = hn::Add(a.err, bb.err);
+      const M take = hn::And(m, hn::Lt(err, best_err));
+      best_err = hn::IfThenElse(take, err, best_err);
+      best_flip = hn::IfThenElse(take, hn::Set(d, flip), best_flip);
+      best_diff = hn::IfThenElse(take, hn::Set(d, differential ? 1 : 0), best_diff);
+      select(take, a, best_a);
+      select(take, bb, best_b);
+    };
+    for (int flip = 0; flip < 2; ++flip) {
+      const int a = 2 * flip, bh = a + 1;
+      M fits = hn::Eq(zero, zero);
+      for (int c = 0; c < 3; ++c) {
+        const V delta = hn::Sub(f5[bh].q[c], f5[a].q[c]);
+        fits = hn::And(fits, hn::And(hn::Not(hn::Lt(delta, hn::Set(d, -4))), hn::Not(hn::Gt(delta, hn::Set(d, 3)))));
+      }
+      consider(fits, flip, true, f5[a], f5[bh]);
+      if (hn::AllTrue(d, fits)) continue;
+      const M far = hn::Not(fits);
+      consider(far, flip, false, fit_normal(a, 4), fit_normal(bh, 4));
+      V qa[3], qb[3];
+      for (int c = 0; c < 3; ++c)
+        qa[c] = hn::Min(hn::Max(f5[a].q[c], hn::Sub(f5[bh].q[c], hn::Set(d, 3))), hn::Add(f5[bh].q[c], hn::Set(d, 4)));
+      consider(far, flip, true, fit_fixed(a, qa), f5[bh]);
+      for (int c = 0; c < 3; ++c)
+        qb[c] = hn::Min(hn::Max(f5[bh].q[c], hn::Sub(f5[a].q[c], hn::Set(d, 4))), hn::Add(f5[a].q[c], hn::Set(d, 3)));
+      consider(far, flip, true, f5[a], fit_fixed(bh, qb));
+    }
+    HWY_ALIGN std::int32_t flip_o[kEtcBatch], diff_o[kEtcBatch], q_o[2][3][kEtcBatch], t_o[2][kEtcBatch], idx_o[2][8][kEtcBatch];
+    hn::Store(best_flip, d, flip_o);
+    hn::Store(best_diff, d, diff_o);
+    for (int s2 = 0; s2 < 2; ++s2) {
+      const Fit& f = s2 ? best_b : best_a;
+      for (int c = 0; c < 3; ++c) hn::Store(f.q[c], d, q_o[s2][c]);
+      hn::Store(f.table, d, t_o[s2]);
+      for (int i = 0; i < 8; ++i) hn::Store(f.idx[i], d, idx_o[s2][i]);
+    }
+    for (int k = 0; k < lanes && k0 + k < count; ++k) {
+      fast::Params p;
+      p.flip = flip_o[k], p.differential = diff_o[k];
+      for (int s2 = 0; s2 < 2; ++s2) {
+        for (int c = 0; c < 3; ++c) p.q[s2][c] = q_o[s2][c][k];
+        p.table[s2] = t_o[s2][k];
+        for (int i = 0; i < 8; ++i) p.idx[s2][i] = idx_o[s2][i][k];
+      }
+      fast::pack(p, out[k0 + k]);
+    }
+  }
+}
+
+
 }  // namespace HWY_NAMESPACE
 }  // namespace texproc::etc
 HWY_AFTER_NAMESPACE();
@@ -315,10 +623,16 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace texproc::etc {
 HWY_EXPORT(Etc1FastBlocks);
+HWY_EXPORT(Etc1NormalBlocks);
 
 void etc1_fast_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
   if (force_scalar()) return ref::etc1_fast_blocks(texel, count, out);
   HWY_DYNAMIC_DISPATCH(Etc1FastBlocks)(texel, count, out);
+}
+
+void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
+  if (force_scalar()) return ref::etc1_normal_blocks(texel, count, out);
+  HWY_DYNAMIC_DISPATCH(Etc1NormalBlocks)(texel, count, out);
 }
 }  // namespace texproc::etc
 #endif
