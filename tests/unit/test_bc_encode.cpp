@@ -307,14 +307,15 @@ TEST(Bc4Encode, SimdMatchesScalarOnEveryTarget) {
                                   std::string(format_info(f).name) + " " + to_string(q));
     }
   }
-  // 8-bit texels (read through a table at `fast`), 21 blocks a row (a batch
+  // 8-bit texels (read through a table at `fast` and `normal`), 21 blocks a row (a batch
   // of 16 and one of 5), with 0 and 255 (the six-value mode's free ends).
   Image img8 = random_image(84, 12, 2, PixelType::u8, 9);
   for (int x = 0; x < 84; x += 5) img8.row<std::uint8_t>(x % 12)[2 * x] = std::uint8_t(x % 2 ? 255 : 0);
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 8; ++x) img8.row<std::uint8_t>(y)[2 * x] = 77;  // flat blocks
-  for (TexelFormat f : {TexelFormat::bc4_unorm, TexelFormat::bc4_snorm, TexelFormat::bc5_snorm}) {
-    expect_same_on_every_target([&] { return compress_image(img8.view(), f, Quality::fast); },
-                                std::string(format_info(f).name) + " 8-bit fast");
-  }
+  for (TexelFormat f : {TexelFormat::bc4_unorm, TexelFormat::bc4_snorm, TexelFormat::bc5_snorm})
+    for (Quality q : {Quality::fast, Quality::normal}) {
+      expect_same_on_every_target([&] { return compress_image(img8.view(), f, q); },
+                                  std::string(format_info(f).name) + " 8-bit " + to_string(q));
+    }
 }

@@ -109,11 +109,11 @@ void write_block(const Candidate& c, bool snorm, std::uint8_t out[8]) {
 }  // namespace
 
 void encode_bc4_block(const float v[16], bool snorm, Quality q, std::uint8_t out[8]) {
-  if (q == Quality::fast) {  // as whole images do: bc4_fast.h
+  if (q == Quality::fast || q == Quality::normal) {  // as whole images do: bc4_fast.h
     float batch[16][kBc4Batch] = {};
     for (int i = 0; i < 16; ++i) batch[i][0] = v[i];
     std::uint8_t block[1][8];
-    bc4_fast_blocks(batch, 1, snorm, block);
+    bc4_fast_blocks(batch, 1, snorm, q == Quality::normal, block);
     std::memcpy(out, block[0], 8);
     return;
   }
@@ -216,7 +216,8 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
   const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * block_bytes);
   const ColorMode color_mode = bc1 ? ColorMode::bc1 : bc1a ? ColorMode::bc1_punch_through : ColorMode::four_only;
-  const bool batched = (q == Quality::fast || q == Quality::normal) && color_mode != ColorMode::bc1_punch_through;
+  const bool lanes4 = q == Quality::fast || q == Quality::normal;  // BC4 blocks a lane each (bc4_fast.h)
+  const bool batched = lanes4 && color_mode != ColorMode::bc1_punch_through;
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::uint8_t rgba[kBc1Batch][16][4];
     std::uint32_t texel[16][kBc1Batch] = {};
@@ -261,7 +262,7 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
               const int a0 = (rgba[k][i][3] * 15 + 127) / 255, a1 = (rgba[k][i + 1][3] * 15 + 127) / 255;
               dst[i / 2] = std::uint8_t(a0 | a1 << 4);
             }
-          } else if (q == Quality::fast) {  // BC3: the alpha as a BC4 block, batched below
+          } else if (lanes4) {  // BC3: the alpha as a BC4 block, batched below
             for (int i = 0; i < 16; ++i) alpha[i][k] = rgba[k][i][3];
           } else {
             float a[16];
@@ -269,8 +270,8 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
             encode_bc4_block(a, false, q, dst);
           }
         }
-        if (!bc1 && !bc1a && !bc2 && q == Quality::fast) {
-          bc4_fast_blocks(alpha, count, false, alpha_blocks);
+        if (!bc1 && !bc1a && !bc2 && lanes4) {
+          bc4_fast_blocks(alpha, count, false, q == Quality::normal, alpha_blocks);
           for (int k = 0; k < count; ++k) std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes, alpha_blocks[k], 8);
         }
       }
@@ -301,6 +302,7 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
     }
     return snorm ? (v * 2.0f - 1.0f) * 127.0f : v * 255.0f;
   };
+  const bool lanes4 = q == Quality::fast || q == Quality::normal;  // a block per lane (bc4_fast.h)
   float u8_value[256];
   for (int i = 0; i < 256; ++i) {
     const float v = float(i) / 255.0f;
@@ -314,7 +316,7 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
       for (int bx0 = 0; bx0 < bw; bx0 += kBc4Batch) {
         const int count = std::min(kBc4Batch, bw - bx0);
         for (int ch = 0; ch < (bc5 ? 2 : 1); ++ch) {
-          if (q == Quality::fast && img.type == PixelType::u8 && ch < img.channels) {
+          if (lanes4 && img.type == PixelType::u8 && ch < img.channels) {
             // 8-bit texels through a table of the same values value() gives.
             for (int y = 0; y < 4; ++y) {
               const std::uint8_t* row = img.row<const std::uint8_t>(std::min(by * 4 + y, img.height - 1));
@@ -327,13 +329,13 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
               for (int i = 0; i < 16; ++i) {
                 // Partial blocks: the edge texels repeat into the missing ones.
                 const int x = std::min((bx0 + k) * 4 + i % 4, img.width - 1), y = std::min(by * 4 + i / 4, img.height - 1);
-                (q == Quality::fast ? batch[i][k] : v[i]) = value(x, y, ch);
-                if (q != Quality::fast && i == 15)
+                (lanes4 ? batch[i][k] : v[i]) = value(x, y, ch);
+                if (!lanes4 && i == 15)
                   encode_bc4_block(v, snorm, q, out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes + 8 * ch);
               }
           }
-          if (q != Quality::fast) continue;
-          bc4_fast_blocks(batch, count, snorm, blocks);  // sixteen blocks at a time
+          if (!lanes4) continue;
+          bc4_fast_blocks(batch, count, snorm, q == Quality::normal, blocks);  // sixteen blocks at a time
           for (int k = 0; k < count; ++k)
             std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes + 8 * ch, blocks[k], 8);
         }

@@ -46,8 +46,9 @@ float evaluate(const float t[16], int r0, int r1, float lo_code, float hi_code, 
 
 }  // namespace
 
-void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, std::uint8_t out[][8]) {
+void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, bool normal, std::uint8_t out[][8]) {
   const float lo_code = snorm ? -127.0f : 0.0f, hi_code = snorm ? 127.0f : 255.0f;
+  const int lo_int = int(lo_code), hi_int = int(hi_code);
   for (int k = 0; k < count; ++k) {
     float t[16], mn = hi_code, mx = lo_code, mn6 = hi_code, mx6 = lo_code;
     for (int i = 0; i < 16; ++i) {
@@ -69,6 +70,57 @@ void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, std::u
         }
       }
     }
+    if (normal && error > 0.0f) {
+      const bool inner = mn6 <= mx6;
+      const int lo6 = inner ? int(std::floor(mn6)) : lo, hi6 = inner ? int(std::ceil(mx6)) : hi;
+      for (int mode = 0; mode < 2; ++mode) {  // 0: eight values, 1: six
+        if (mode == 0 && hi <= lo) continue;
+        int m0 = mode == 0 ? hi : lo6, m1 = mode == 0 ? lo : std::max(lo6, hi6), mc[16];
+        float me = evaluate(t, m0, m1, lo_code, hi_code, mc);
+        for (int iter = 0; iter < 2; ++iter) {
+          // Least-squares endpoints for these codes (positions in steps of
+          // 1/7 or 1/5 from r0; the six-value mode's fixed ends left out).
+          const bool eight = m0 > m1;
+          const int steps = eight ? 7 : 5;
+          int aa = 0, ab = 0, bb = 0;
+          float at = 0.0f, bt = 0.0f;
+          for (int i = 0; i < 16; ++i) {
+            const int code = mc[i];
+            if (!eight && code >= 6) continue;
+            const int pos = code == 0 ? 0 : code == 1 ? steps : code - 1, u = steps - pos;
+            aa += u * u, ab += u * pos, bb += pos * pos;
+            at += float(u) * t[i], bt += float(pos) * t[i];
+          }
+          const int det = aa * bb - ab * ab;
+          if (det == 0) break;
+          const float fa = float(steps) * (at * float(bb) - bt * float(ab)) / float(det);
+          const float fb = float(steps) * (bt * float(aa) - at * float(ab)) / float(det);
+          int ia = std::clamp(int(std::floor(fa + 0.5f)), lo_int, hi_int), ib = std::clamp(int(std::floor(fb + 0.5f)), lo_int, hi_int);
+          if (mode == 0 && ia <= ib) break;  // the fit left the eight-value mode
+          if (mode == 1 && ia > ib) std::swap(ia, ib);
+          int cc[16];
+          const float ce = evaluate(t, ia, ib, lo_code, hi_code, cc);
+          if (ce >= me) break;
+          m0 = ia, m1 = ib, me = ce;
+          std::copy(cc, cc + 16, mc);
+        }
+        if (me < error) {
+          error = me, r0 = m0, r1 = m1;
+          std::copy(mc, mc + 16, codes);
+        }
+        // The +-1 window around the refined endpoints, in the same mode.
+        for (int a = m0 - 1; a <= m0 + 1; ++a)
+          for (int b = m1 - 1; b <= m1 + 1; ++b) {
+            if ((mode == 0) != (a > b) || a < lo_int || a > hi_int || b < lo_int || b > hi_int) continue;
+            int cc[16];
+            const float ce = evaluate(t, a, b, lo_code, hi_code, cc);
+            if (ce < error) {
+              error = ce, r0 = a, r1 = b;
+              std::copy(cc, cc + 16, codes);
+            }
+          }
+      }
+    }
     out[k][0] = std::uint8_t(r0 & 255), out[k][1] = std::uint8_t(r1 & 255);  // SNORM: two's complement
     std::uint64_t bits = 0;
     for (int i = 0; i < 16; ++i) bits |= std::uint64_t(codes[i]) << (3 * i);
@@ -84,7 +136,7 @@ namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void Bc4FastBlocks(const float v[16][kBc4Batch], int count, bool snorm, std::uint8_t out[][8]) {
+void Bc4FastBlocks(const float v[16][kBc4Batch], int count, bool snorm, bool normal, std::uint8_t out[][8]) {
   using D = hn::CappedTag<float, kBc4Batch>;
   const D df;
   const hn::RebindToSigned<D> d;
@@ -104,7 +156,9 @@ void Bc4FastBlocks(const float v[16][kBc4Batch], int count, bool snorm, std::uin
       mn6 = hn::IfThenElse(inner, hn::Min(mn6, t[i]), mn6), mx6 = hn::IfThenElse(inner, hn::Max(mx6, t[i]), mx6);
     }
     const V lo = hn::ConvertTo(d, hn::Floor(mn)), hi = hn::ConvertTo(d, hn::Ceil(mx));
-    auto evaluate = [&](V r0, V r1, V codes[16]) {
+    // kind 8: every lane in the eight-value mode (r0 > r1), 6: every lane in
+    // the six-value mode, 0: either, by lane.
+    auto evaluate = [&](V r0, V r1, V codes[16], int kind = 0) {
       const VF f0 = hn::ConvertTo(df, r0), f1 = hn::ConvertTo(df, r1);
       const auto eight = hn::Gt(r0, r1);
       const auto eight_f = hn::RebindMask(df, eight);
@@ -113,33 +167,44 @@ void Bc4FastBlocks(const float v[16][kBc4Batch], int count, bool snorm, std::uin
       const VF span8 = hn::IfThenElse(eight_f, hn::Sub(f0, f1), one), span6 = hn::IfThenElse(wide6, hn::Sub(f1, f0), one);
       VF error = hn::Zero(df);
       for (int i = 0; i < 16; ++i) {
-        // Eight values.
-        const V j8 = hn::Min(hn::Max(hn::ConvertTo(d, hn::Add(hn::Div(hn::Mul(hn::Sub(f0, t[i]), hn::Set(df, 7.0f)), span8), half)),
-                                     hn::Zero(d)), hn::Set(d, 7));
-        const VF fj8 = hn::ConvertTo(df, j8);
-        const VF d8 = hn::Sub(t[i], hn::Div(hn::Add(hn::Mul(f0, hn::Sub(hn::Set(df, 7.0f), fj8)), hn::Mul(f1, fj8)), hn::Set(df, 7.0f)));
-        const V c8 = hn::IfThenElse(hn::Eq(j8, hn::Zero(d)), hn::Zero(d),
-                                    hn::IfThenElse(hn::Eq(j8, hn::Set(d, 7)), hn::Set(d, 1), hn::Add(j8, hn::Set(d, 1))));
-        // Six values and the range's ends.
-        const V j6 = hn::IfThenElseZero(
-            hn::RebindMask(d, wide6),
-            hn::Min(hn::Max(hn::ConvertTo(d, hn::Add(hn::Div(hn::Mul(hn::Sub(t[i], f0), hn::Set(df, 5.0f)), span6), half)),
-                            hn::Zero(d)), hn::Set(d, 5)));
-        const VF fj6 = hn::ConvertTo(df, j6);
-        const VF d6 = hn::Sub(t[i], hn::Div(hn::Add(hn::Mul(f0, hn::Sub(hn::Set(df, 5.0f), fj6)), hn::Mul(f1, fj6)), hn::Set(df, 5.0f)));
-        const VF dl = hn::Sub(t[i], lo_code), dh = hn::Sub(t[i], hi_code);
-        VF best6 = hn::Mul(d6, d6);
-        V c6 = hn::IfThenElse(hn::Eq(j6, hn::Zero(d)), hn::Zero(d),
+        VF e8 = hn::Zero(df), e6 = hn::Zero(df);
+        V c8 = hn::Zero(d), c6 = hn::Zero(d);
+        if (kind != 6) {  // eight values
+          const V j8 = hn::Min(hn::Max(hn::ConvertTo(d, hn::Add(hn::Div(hn::Mul(hn::Sub(f0, t[i]), hn::Set(df, 7.0f)), span8), half)),
+                                       hn::Zero(d)), hn::Set(d, 7));
+          const VF fj8 = hn::ConvertTo(df, j8);
+          const VF d8 = hn::Sub(t[i], hn::Div(hn::Add(hn::Mul(f0, hn::Sub(hn::Set(df, 7.0f), fj8)), hn::Mul(f1, fj8)), hn::Set(df, 7.0f)));
+          e8 = hn::Mul(d8, d8);
+          c8 = hn::IfThenElse(hn::Eq(j8, hn::Zero(d)), hn::Zero(d),
+                              hn::IfThenElse(hn::Eq(j8, hn::Set(d, 7)), hn::Set(d, 1), hn::Add(j8, hn::Set(d, 1))));
+        }
+        if (kind != 8) {  // six values and the range's ends
+          const V j6 = hn::IfThenElseZero(
+              hn::RebindMask(d, wide6),
+              hn::Min(hn::Max(hn::ConvertTo(d, hn::Add(hn::Div(hn::Mul(hn::Sub(t[i], f0), hn::Set(df, 5.0f)), span6), half)),
+                              hn::Zero(d)), hn::Set(d, 5)));
+          const VF fj6 = hn::ConvertTo(df, j6);
+          const VF d6 = hn::Sub(t[i], hn::Div(hn::Add(hn::Mul(f0, hn::Sub(hn::Set(df, 5.0f), fj6)), hn::Mul(f1, fj6)), hn::Set(df, 5.0f)));
+          const VF dl = hn::Sub(t[i], lo_code), dh = hn::Sub(t[i], hi_code);
+          e6 = hn::Mul(d6, d6);
+          c6 = hn::IfThenElse(hn::Eq(j6, hn::Zero(d)), hn::Zero(d),
                               hn::IfThenElse(hn::Eq(j6, hn::Set(d, 5)), hn::Set(d, 1), hn::Add(j6, hn::Set(d, 1))));
-        const VF el = hn::Mul(dl, dl), eh = hn::Mul(dh, dh);
-        const auto use_lo = hn::Lt(el, best6);
-        best6 = hn::IfThenElse(use_lo, el, best6);
-        c6 = hn::IfThenElse(hn::RebindMask(d, use_lo), hn::Set(d, 6), c6);
-        const auto use_hi = hn::Lt(eh, best6);
-        best6 = hn::IfThenElse(use_hi, eh, best6);
-        c6 = hn::IfThenElse(hn::RebindMask(d, use_hi), hn::Set(d, 7), c6);
-        error = hn::Add(error, hn::IfThenElse(eight_f, hn::Mul(d8, d8), best6));
-        codes[i] = hn::IfThenElse(eight, c8, c6);
+          const VF el = hn::Mul(dl, dl), eh = hn::Mul(dh, dh);
+          const auto use_lo = hn::Lt(el, e6);
+          e6 = hn::IfThenElse(use_lo, el, e6);
+          c6 = hn::IfThenElse(hn::RebindMask(d, use_lo), hn::Set(d, 6), c6);
+          const auto use_hi = hn::Lt(eh, e6);
+          e6 = hn::IfThenElse(use_hi, eh, e6);
+          c6 = hn::IfThenElse(hn::RebindMask(d, use_hi), hn::Set(d, 7), c6);
+        }
+        if (kind == 8) {
+          error = hn::Add(error, e8), codes[i] = c8;
+        } else if (kind == 6) {
+          error = hn::Add(error, e6), codes[i] = c6;
+        } else {
+          error = hn::Add(error, hn::IfThenElse(eight_f, e8, e6));
+          codes[i] = hn::IfThenElse(eight, c8, c6);
+        }
       }
       return error;
     };
@@ -154,7 +219,75 @@ void Bc4FastBlocks(const float v[16][kBc4Batch], int count, bool snorm, std::uin
       const VF error6 = evaluate(a, b, codes6);
       const auto take = hn::And(try6, hn::RebindMask(d, hn::Lt(error6, error)));
       r0 = hn::IfThenElse(take, a, r0), r1 = hn::IfThenElse(take, b, r1);
+      error = hn::IfThenElse(hn::RebindMask(df, take), error6, error);
       for (int i = 0; i < 16; ++i) codes[i] = hn::IfThenElse(take, codes6[i], codes[i]);
+    }
+    const auto need = hn::RebindMask(d, hn::Gt(error, hn::Zero(df)));
+    if (normal && !hn::AllFalse(d, need)) {
+      const V lo_i = hn::Set(d, snorm ? -127 : 0), hi_i = hn::Set(d, snorm ? 127 : 255);
+      const auto inner = hn::RebindMask(d, hn::Le(mn6, mx6));
+      const V lo6v = hn::IfThenElse(inner, lo6, lo), hi6v = hn::IfThenElse(inner, hi6, hi);
+      auto take_where = [&](hn::Mask<decltype(d)> m, V a, V b, VF e, const V cc[16]) {
+        r0 = hn::IfThenElse(m, a, r0), r1 = hn::IfThenElse(m, b, r1);
+        error = hn::IfThenElse(hn::RebindMask(df, m), e, error);
+        for (int i = 0; i < 16; ++i) codes[i] = hn::IfThenElse(m, cc[i], codes[i]);
+      };
+      for (int mode = 0; mode < 2; ++mode) {
+        const int kind = mode == 0 ? 8 : 6;
+        const auto mode_ok = mode == 0 ? hn::And(need, hn::Gt(hi, lo)) : need;
+        if (hn::AllFalse(d, mode_ok)) continue;
+        V m0 = mode == 0 ? hi : lo6v, m1 = mode == 0 ? lo : hn::Max(lo6v, hi6v), mc[16];
+        VF me = evaluate(m0, m1, mc, kind);
+        auto active = mode_ok;
+        for (int iter = 0; iter < 2; ++iter) {
+          const V steps = hn::Set(d, mode == 0 ? 7 : 5);
+          V aa = hn::Zero(d), ab = aa, bb = aa;
+          VF at = hn::Zero(df), bt = at;
+          for (int i = 0; i < 16; ++i) {
+            const V code = mc[i];
+            const V pos = hn::IfThenElse(hn::Eq(code, hn::Zero(d)), hn::Zero(d),
+                                         hn::IfThenElse(hn::Eq(code, hn::Set(d, 1)), steps, hn::Sub(code, hn::Set(d, 1))));
+            const auto in = mode == 0 ? hn::Eq(code, code) : hn::Lt(code, hn::Set(d, 6));
+            const V u = hn::IfThenElseZero(in, hn::Sub(steps, pos)), w = hn::IfThenElseZero(in, pos);
+            aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w)), bb = hn::Add(bb, hn::Mul(w, w));
+            at = hn::Add(at, hn::IfThenElseZero(hn::RebindMask(df, in), hn::Mul(hn::ConvertTo(df, u), t[i])));
+            bt = hn::Add(bt, hn::IfThenElseZero(hn::RebindMask(df, in), hn::Mul(hn::ConvertTo(df, w), t[i])));
+          }
+          const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
+          active = hn::And(active, hn::Ne(det, hn::Zero(d)));
+          const VF fdet = hn::ConvertTo(df, hn::IfThenElse(active, det, hn::Set(d, 1)));
+          const VF fsteps = hn::ConvertTo(df, steps);
+          const VF fa = hn::Div(hn::Mul(fsteps, hn::Sub(hn::Mul(at, hn::ConvertTo(df, bb)), hn::Mul(bt, hn::ConvertTo(df, ab)))), fdet);
+          const VF fb = hn::Div(hn::Mul(fsteps, hn::Sub(hn::Mul(bt, hn::ConvertTo(df, aa)), hn::Mul(at, hn::ConvertTo(df, ab)))), fdet);
+          V ia = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(fa, half))), lo_i), hi_i);
+          V ib = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(fb, half))), lo_i), hi_i);
+          if (mode == 0) {
+            active = hn::And(active, hn::Gt(ia, ib));
+          } else {
+            const V lo_end = hn::Min(ia, ib), hi_end = hn::Max(ia, ib);
+            ia = lo_end, ib = hi_end;
+          }
+          if (hn::AllFalse(d, active)) break;
+          V cc[16];
+          const VF ce = evaluate(ia, ib, cc, kind);
+          active = hn::And(active, hn::RebindMask(d, hn::Lt(ce, me)));
+          m0 = hn::IfThenElse(active, ia, m0), m1 = hn::IfThenElse(active, ib, m1);
+          me = hn::IfThenElse(hn::RebindMask(df, active), ce, me);
+          for (int i = 0; i < 16; ++i) mc[i] = hn::IfThenElse(active, cc[i], mc[i]);
+        }
+        take_where(hn::And(mode_ok, hn::RebindMask(d, hn::Lt(me, error))), m0, m1, me, mc);
+        for (int da = -1; da <= 1; ++da)
+          for (int db = -1; db <= 1; ++db) {
+            const V a = hn::Add(m0, hn::Set(d, da)), b = hn::Add(m1, hn::Set(d, db));
+            auto valid = hn::And(mode_ok, mode == 0 ? hn::Gt(a, b) : hn::Not(hn::Gt(a, b)));
+            valid = hn::And(valid, hn::And(hn::Not(hn::Lt(a, lo_i)), hn::Not(hn::Gt(a, hi_i))));
+            valid = hn::And(valid, hn::And(hn::Not(hn::Lt(b, lo_i)), hn::Not(hn::Gt(b, hi_i))));
+            if (hn::AllFalse(d, valid)) continue;
+            V cc[16];
+            const VF ce = evaluate(a, b, cc, kind);
+            take_where(hn::And(valid, hn::RebindMask(d, hn::Lt(ce, error))), a, b, ce, cc);
+          }
+      }
     }
     V bits_lo = hn::Zero(d), bits_hi = hn::Zero(d);
     for (int i = 0; i < 8; ++i) {
@@ -180,9 +313,9 @@ HWY_AFTER_NAMESPACE();
 namespace texproc {
 HWY_EXPORT(Bc4FastBlocks);
 
-void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, std::uint8_t out[][8]) {
-  if (force_scalar()) return ref::bc4_fast_blocks(v, count, snorm, out);
-  HWY_DYNAMIC_DISPATCH(Bc4FastBlocks)(v, count, snorm, out);
+void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, bool normal, std::uint8_t out[][8]) {
+  if (force_scalar()) return ref::bc4_fast_blocks(v, count, snorm, normal, out);
+  HWY_DYNAMIC_DISPATCH(Bc4FastBlocks)(v, count, snorm, normal, out);
 }
 }  // namespace texproc
 #endif
