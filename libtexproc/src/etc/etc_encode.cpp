@@ -24,6 +24,7 @@
 #include <cstring>
 #include <limits>
 
+#include "bc/bc1_assign.h"
 #include "bc/bc4_eval.h"
 #include "bc/block_gather.h"
 #include "etc/etc_tables.h"
@@ -60,6 +61,7 @@ struct Texels {
   bool transparent[16];  // punch-through: alpha < 128
   bool any_transparent = false;
   HalfTexels half[4];    // the texels of each half block, as planes (for eval_half)
+  Bc1Texels planes;      // all 16 as planes (for bc1_nearest: T and H of opaque blocks)
 };
 
 struct HalfFit {
@@ -460,6 +462,12 @@ void search_t_h(const Texels& tx, bool non_opaque, Quality q_level, Candidate& b
 
   // Scores four paint colours; `usable[k]`: index k may be used.
   auto score = [&](const int paint[4][3], std::uint8_t idx[16]) {
+    if (!non_opaque) {  // each texel's nearest paint colour, first of equals (SIMD twins)
+      int pal[4][3];
+      for (int k = 0; k < 4; ++k)
+        for (int c = 0; c < 3; ++c) pal[k][c] = clamp255(paint[k][c]);
+      return long(bc1_nearest(tx.planes, pal, 4, idx));
+    }
     long err = 0;
     for (int i = 0; i < 16; ++i) {
       if (non_opaque && tx.transparent[i]) {
@@ -583,27 +591,16 @@ void search_t_h(const Texels& tx, bool non_opaque, Quality q_level, Candidate& b
 
 }  // namespace
 
-long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
-  if ((q == Quality::fast && mode != ColorMode::etc2_punch) || (q == Quality::normal && mode == ColorMode::etc1)) {
-    // As whole images do: etc_fast.h.
-    std::uint32_t texel[16][kEtcBatch] = {};
-    for (int i = 0; i < 16; ++i)
-      texel[i][0] = std::uint32_t(rgba[i][0]) | std::uint32_t(rgba[i][1]) << 8 | std::uint32_t(rgba[i][2]) << 16;
-    std::uint8_t block[1][8];
-    (q == Quality::fast ? etc1_fast_blocks : etc1_normal_blocks)(texel, 1, block);
-    std::memcpy(out, block[0], 8);
-    Rgba8Block decoded;
-    decode_etc1(out, decoded);  // an ETC1 block reads the same as ETC2
-    long err = 0;
-    for (int i = 0; i < 16; ++i)
-      for (int c = 0; c < 3; ++c) err += long(rgba[i][c] - decoded[i][c]) * (rgba[i][c] - decoded[i][c]);
-    return err;
-  }
+namespace {
+
+Texels make_texels(const std::uint8_t rgba[16][4], ColorMode mode) {
   Texels tx;
   for (int i = 0; i < 16; ++i) {
     for (int c = 0; c < 3; ++c) tx.rgb[i][c] = rgba[i][c];
     tx.transparent[i] = mode == ColorMode::etc2_punch && rgba[i][3] < 128;
     tx.any_transparent |= tx.transparent[i];
+    tx.planes.r[i] = rgba[i][0], tx.planes.g[i] = rgba[i][1], tx.planes.b[i] = rgba[i][2];
+    tx.planes.transparent[i] = 0;
   }
   for (int h = 0; h < 4; ++h) {
     const HalfLayout& L = halves()[std::size_t(h)];
@@ -614,6 +611,66 @@ long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality 
       tx.half[h].transparent[i] = tx.transparent[p] ? 1 : 0;
     }
   }
+  return tx;
+}
+
+// Squared RGB error of an ETC1 block.
+long block_error(const std::uint8_t rgba[16][4], const std::uint8_t block[8]) {
+  Rgba8Block decoded;
+  decode_etc1(block, decoded);
+  long err = 0;
+  for (int i = 0; i < 16; ++i)
+    for (int c = 0; c < 3; ++c) err += long(rgba[i][c] - decoded[i][c]) * (rgba[i][c] - decoded[i][c]);
+  return err;
+}
+
+// `fast` and `normal` opaque colour go sixteen blocks at a time (etc_fast.h).
+bool etc_blocks_in_lanes(ColorMode mode, Quality q) {
+  return (q == Quality::fast || q == Quality::normal) && mode != ColorMode::etc2_punch;
+}
+
+// ETC2 at `normal`: the planar mode, and where the lanes' ETC1 block (its
+// error `err`) leaves more than 75 per texel (squared RGB), the T and H
+// modes, tried against it; the block is replaced if one wins. The texels
+// come as the lanes took them (row by row, R | G << 8 | B << 16).
+long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err, std::uint8_t block[8]) {
+  Texels tx;
+  for (int i = 0; i < 16; ++i) {
+    const std::uint32_t t = texel[i][k];
+    tx.rgb[i][0] = tx.planes.r[i] = int(t & 255), tx.rgb[i][1] = tx.planes.g[i] = int(t >> 8 & 255);
+    tx.rgb[i][2] = tx.planes.b[i] = int(t >> 16 & 255);
+    tx.transparent[i] = false, tx.planes.transparent[i] = 0;
+  }
+  Candidate best;
+  best.err = err;
+  best.bits = load_be64(block);
+  search_planar(tx, Quality::normal, best);
+  if (best.err > 16 * 75) search_t_h(tx, false, Quality::normal, best);
+  store_be64(best.bits, block);
+  return best.err;
+}
+
+}  // namespace
+
+long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
+  if (etc_blocks_in_lanes(mode, q)) {  // as whole images do: etc_fast.h
+    std::uint32_t texel[16][kEtcBatch] = {};
+    for (int i = 0; i < 16; ++i)
+      texel[i][0] = std::uint32_t(rgba[i][0]) | std::uint32_t(rgba[i][1]) << 8 | std::uint32_t(rgba[i][2]) << 16;
+    std::uint8_t block[1][8];
+    long err = 0;
+    if (q == Quality::fast) {
+      etc1_fast_blocks(texel, 1, block);
+      err = block_error(rgba, block[0]);
+    } else {
+      std::int32_t e[1];
+      etc1_normal_blocks(texel, 1, block, e);
+      err = mode == ColorMode::etc1 ? e[0] : finish_etc2_block(texel, 0, e[0], block[0]);
+    }
+    std::memcpy(out, block[0], 8);
+    return err;
+  }
+  const Texels tx = make_texels(rgba, mode);
   Candidate best;
   const bool punch = mode == ColorMode::etc2_punch;
   const bool non_opaque = punch && tx.any_transparent;
@@ -711,9 +768,12 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
   const ColorMode mode = format == F::etc1_rgb                                           ? ColorMode::etc1
                          : format == F::etc2_rgba1_unorm || format == F::etc2_rgba1_srgb ? ColorMode::etc2_punch
                                                                                          : ColorMode::etc2;
-  // `fast` opaque colour and ETC1 `normal`: sixteen blocks at a time (etc_fast.h).
-  const bool batched = (q == Quality::fast && mode != ColorMode::etc2_punch) || (q == Quality::normal && mode == ColorMode::etc1);
+  // `fast` and `normal` opaque colour: sixteen blocks at a time (etc_fast.h);
+  // ETC2 `normal` then tries its planar, T and H modes block by block.
+  const bool batched = etc_blocks_in_lanes(mode, q);
+  const bool finish = batched && q == Quality::normal && mode != ColorMode::etc1;  // ETC2: planar, T, H per block
   for_each_row_block(bh, 4, [&](int by0, int by1) {
+    std::int32_t errors[kEtcBatch];
     std::uint8_t rgba[kEtcBatch][16][4];
     std::uint32_t texel[16][kEtcBatch] = {};
     std::uint8_t color[kEtcBatch][8];
@@ -758,7 +818,12 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
           }
         }
         if (eac || !batched) continue;
-        (q == Quality::fast ? etc1_fast_blocks : etc1_normal_blocks)(texel, count, color);
+        if (q == Quality::fast) {
+          etc1_fast_blocks(texel, count, color);
+        } else {
+          etc1_normal_blocks(texel, count, color, errors);
+          for (int k = 0; k < count && finish; ++k) finish_etc2_block(texel, k, errors[k], color[k]);
+        }
         for (int k = 0; k < count; ++k)
           std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + (rgba8 ? 8 : 0), color[k], 8);
       }

@@ -28,11 +28,12 @@ void etc1_fast_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::
 // while that helps. Halves too far apart for the delta try the individual
 // mode (4-bit fits as above) and the differential mode with either base
 // pulled within the delta of the other (that half's best table refitted).
-void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]);
+// error[k]: block k's squared RGB error as decoded.
+void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8], std::int32_t error[]);
 
 namespace ref {
 void etc1_fast_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]);
-void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]);
+void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8], std::int32_t error[]);
 }  // namespace ref
 
 }  // namespace texproc::etc

@@ -242,7 +242,7 @@ void take(fast::Params& p, int flip, bool differential, const HalfFit& a, const 
 
 }  // namespace
 
-void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
+void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8], std::int32_t error[]) {
   for (int k = 0; k < count; ++k) {
     int rgb[16][3];
     for (int i = 0; i < 16; ++i) {
@@ -276,6 +276,7 @@ void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std
       consider(flip, true, f5[a], fit_fixed(rgb, b, qb));
     }
     fast::pack(best, out[k]);
+    error[k] = best_err;
   }
 }
 
@@ -435,7 +436,7 @@ void Etc1FastBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::ui
   }
 }
 
-void Etc1NormalBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
+void Etc1NormalBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8], std::int32_t error[]) {
   using D = hn::CappedTag<std::int32_t, kEtcBatch>;
   const D d;
   const hn::Rebind<float, D> df;
@@ -594,6 +595,8 @@ void Etc1NormalBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::
       consider(far, flip, true, f5[a], fit_fixed(bh, qb));
     }
     HWY_ALIGN std::int32_t flip_o[kEtcBatch], diff_o[kEtcBatch], q_o[2][3][kEtcBatch], t_o[2][kEtcBatch], idx_o[2][8][kEtcBatch];
+    HWY_ALIGN std::int32_t err_o[kEtcBatch];
+    hn::Store(best_err, d, err_o);
     hn::Store(best_flip, d, flip_o);
     hn::Store(best_diff, d, diff_o);
     for (int s2 = 0; s2 < 2; ++s2) {
@@ -611,6 +614,7 @@ void Etc1NormalBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::
         for (int i = 0; i < 8; ++i) p.idx[s2][i] = idx_o[s2][i][k];
       }
       fast::pack(p, out[k0 + k]);
+      error[k0 + k] = err_o[k];
     }
   }
 }
@@ -630,9 +634,9 @@ void etc1_fast_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::
   HWY_DYNAMIC_DISPATCH(Etc1FastBlocks)(texel, count, out);
 }
 
-void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
-  if (force_scalar()) return ref::etc1_normal_blocks(texel, count, out);
-  HWY_DYNAMIC_DISPATCH(Etc1NormalBlocks)(texel, count, out);
+void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8], std::int32_t error[]) {
+  if (force_scalar()) return ref::etc1_normal_blocks(texel, count, out, error);
+  HWY_DYNAMIC_DISPATCH(Etc1NormalBlocks)(texel, count, out, error);
 }
 }  // namespace texproc::etc
 #endif
