@@ -18,7 +18,7 @@
 namespace texproc::ref {
 namespace {
 
-int quantize(float v, int max) { return std::clamp(int(v * float(max) / 255.0f + 0.5f), 0, max); }
+int quantize(float v, int max) { return std::clamp(int(v * (float(max) / 255.0f) + 0.5f), 0, max); }
 
 // The palette of quantized endpoints qa, qb (four colours, or three: the
 // average and no black); each texel's nearest entry (first of equals); the
@@ -70,9 +70,10 @@ void refit(const int rgb[16][3], bool four, State& s) {
   const std::int32_t det = aa * bb - ab * ab;
   if (det == 0) return;
   float ra[3], rb[3];
+  const float inv = 1.0f / float(det);
   for (int ch = 0; ch < 3; ++ch) {
-    ra[ch] = std::clamp(float(den * (at[ch] * bb - bt[ch] * ab)) / float(det), 0.0f, 255.0f);
-    rb[ch] = std::clamp(float(den * (bt[ch] * aa - at[ch] * ab)) / float(det), 0.0f, 255.0f);
+    ra[ch] = std::clamp(float(den * (at[ch] * bb - bt[ch] * ab)) * inv, 0.0f, 255.0f);
+    rb[ch] = std::clamp(float(den * (bt[ch] * aa - at[ch] * ab)) * inv, 0.0f, 255.0f);
   }
   State n;
   endpoints(ra, rb, n.qa, n.qb);
@@ -109,18 +110,19 @@ void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, bool n
       v[0] = cov[2], v[1] = cov[4], v[2] = cov[5];
     }
     for (int it = 0; it < 4; ++it) {
-      const float len = std::max(std::abs(v[0]), std::max(std::abs(v[1]), std::abs(v[2])));
-      const float x = v[0] / len, y = v[1] / len, z = v[2] / len;
+      const float inv = 1.0f / std::max(std::abs(v[0]), std::max(std::abs(v[1]), std::abs(v[2])));
+      const float x = v[0] * inv, y = v[1] * inv, z = v[2] * inv;
       v[0] = cov[0] * x + cov[1] * y + cov[2] * z;
       v[1] = cov[1] * x + cov[3] * y + cov[4] * z;
       v[2] = cov[2] * x + cov[4] * y + cov[5] * z;
     }
-    const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    const float axis[3] = {v[0] / len, v[1] / len, v[2] / len};
-    float lo = 1e30f, hi = -1e30f;
+    const float inv = 1.0f / std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    const float axis[3] = {v[0] * inv, v[1] * inv, v[2] * inv};
+    float lo = 1e30f, hi = -1e30f, proj[16];
     for (int i = 0; i < 16; ++i) {
       const float p = float(rgb[i][0]) * axis[0] + float(rgb[i][1]) * axis[1] + float(rgb[i][2]) * axis[2];
       lo = std::min(lo, p), hi = std::max(hi, p);
+      proj[i] = p;
     }
     const float mean[3] = {float(s[0]) * 0.0625f, float(s[1]) * 0.0625f, float(s[2]) * 0.0625f};
     const float mean_p = mean[0] * axis[0] + mean[1] * axis[1] + mean[2] * axis[2];
@@ -132,10 +134,31 @@ void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, bool n
     State st;
     endpoints(a, b, st.qa, st.qb);
     const State start = st;
-    st.error = nearest(rgb, st.qa, st.qb, true, st.codes);
-    refit(rgb, true, st);
     bool four = true;
-    if (normal) {
+    if (!normal) {
+      // Each texel at the nearest third of the extent along the axis; one
+      // least-squares fit for those positions; then the nearest colours.
+      const float scale = hi > lo ? 3.0f / (hi - lo) : 0.0f;
+      std::int32_t aa = 0, ab = 0, bb = 0, at[3] = {}, bt[3] = {};
+      for (int i = 0; i < 16; ++i) {
+        const int w = std::min(int((hi - proj[i]) * scale + 0.5f), 3), u = 3 - w;
+        aa += u * u, ab += u * w, bb += w * w;
+        for (int ch = 0; ch < 3; ++ch) at[ch] += u * rgb[i][ch], bt[ch] += w * rgb[i][ch];
+      }
+      const std::int32_t det = aa * bb - ab * ab;
+      if (det != 0) {
+        float ra[3], rb[3];
+        const float inv = 1.0f / float(det);
+        for (int ch = 0; ch < 3; ++ch) {
+          ra[ch] = std::clamp(float(3 * (at[ch] * bb - bt[ch] * ab)) * inv, 0.0f, 255.0f);
+          rb[ch] = std::clamp(float(3 * (bt[ch] * aa - at[ch] * ab)) * inv, 0.0f, 255.0f);
+        }
+        endpoints(ra, rb, st.qa, st.qb);
+      }
+      st.error = nearest(rgb, st.qa, st.qb, true, st.codes);
+    } else {
+      st.error = nearest(rgb, st.qa, st.qb, true, st.codes);
+      refit(rgb, true, st);
       refit(rgb, true, st);
       // Each endpoint channel nudged by one step while that helps (at most
       // four passes over the twelve moves).
@@ -224,20 +247,22 @@ void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, bool nor
     const VF one = hn::Set(df, 1.0f);
     const auto flat_f = hn::RebindMask(df, flat);
     for (int it = 0; it < 4; ++it) {
-      const VF len = hn::IfThenElse(flat_f, one, hn::Max(hn::Abs(v0), hn::Max(hn::Abs(v1), hn::Abs(v2))));
-      const VF x = hn::Div(v0, len), y = hn::Div(v1, len), z = hn::Div(v2, len);
+      const VF inv = hn::Div(one, hn::IfThenElse(flat_f, one, hn::Max(hn::Abs(v0), hn::Max(hn::Abs(v1), hn::Abs(v2)))));
+      const VF x = hn::Mul(v0, inv), y = hn::Mul(v1, inv), z = hn::Mul(v2, inv);
       v0 = hn::Add(hn::Add(hn::Mul(c0, x), hn::Mul(c1, y)), hn::Mul(c2, z));
       v1 = hn::Add(hn::Add(hn::Mul(c1, x), hn::Mul(c3, y)), hn::Mul(c4, z));
       v2 = hn::Add(hn::Add(hn::Mul(c2, x), hn::Mul(c4, y)), hn::Mul(c5, z));
     }
     const VF len = hn::IfThenElse(
         flat_f, one, hn::Sqrt(hn::Add(hn::Add(hn::Mul(v0, v0), hn::Mul(v1, v1)), hn::Mul(v2, v2))));
-    const VF ax = hn::Div(v0, len), ay = hn::Div(v1, len), az = hn::Div(v2, len);
-    VF lo = hn::Set(df, 1e30f), hi = hn::Set(df, -1e30f);
+    const VF inv_len = hn::Div(one, len);
+    const VF ax = hn::Mul(v0, inv_len), ay = hn::Mul(v1, inv_len), az = hn::Mul(v2, inv_len);
+    VF lo = hn::Set(df, 1e30f), hi = hn::Set(df, -1e30f), proj[16];
     for (int i = 0; i < 16; ++i) {
       const VF p = hn::Add(hn::Add(hn::Mul(hn::ConvertTo(df, r[i]), ax), hn::Mul(hn::ConvertTo(df, g[i]), ay)),
                            hn::Mul(hn::ConvertTo(df, b[i]), az));
       lo = hn::Min(lo, p), hi = hn::Max(hi, p);
+      proj[i] = p;
     }
     const VF sixteenth = hn::Set(df, 0.0625f);
     const VF m0 = hn::Mul(hn::ConvertTo(df, s0), sixteenth), m1 = hn::Mul(hn::ConvertTo(df, s1), sixteenth),
@@ -246,7 +271,7 @@ void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, bool nor
     const VF zero_f = hn::Zero(df), top = hn::Set(df, 255.0f), half = hn::Set(df, 0.5f);
     auto clamp255 = [&](VF x) { return hn::Min(hn::Max(x, zero_f), top); };
     auto quantize = [&](VF x, int max) {
-      const V qv = hn::ConvertTo(d, hn::Add(hn::Div(hn::Mul(x, hn::Set(df, float(max))), top), half));
+      const V qv = hn::ConvertTo(d, hn::Add(hn::Mul(x, hn::Set(df, float(max) / 255.0f)), half));
       return hn::Min(hn::Max(qv, hn::Zero(d)), hn::Set(d, max));
     };
     struct State {
@@ -306,14 +331,14 @@ void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, bool nor
       }
       const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
       const auto solvable = hn::Ne(det, hn::Zero(d));
-      const VF fdet = hn::ConvertTo(df, hn::IfThenElse(solvable, det, one_i));
+      const VF inv_det = hn::Div(hn::Set(df, 1.0f), hn::ConvertTo(df, hn::IfThenElse(solvable, det, one_i)));
       State n;
       for (int ch = 0; ch < 3; ++ch) {
         const int max = ch == 1 ? 63 : 31;
         const V na = hn::Mul(den, hn::Sub(hn::Mul(at[ch], bb), hn::Mul(bt[ch], ab)));
         const V nb = hn::Mul(den, hn::Sub(hn::Mul(bt[ch], aa), hn::Mul(at[ch], ab)));
-        n.qa[ch] = quantize(clamp255(hn::Div(hn::ConvertTo(df, na), fdet)), max);
-        n.qb[ch] = quantize(clamp255(hn::Div(hn::ConvertTo(df, nb), fdet)), max);
+        n.qa[ch] = quantize(clamp255(hn::Mul(hn::ConvertTo(df, na), inv_det)), max);
+        n.qb[ch] = quantize(clamp255(hn::Mul(hn::ConvertTo(df, nb), inv_det)), max);
       }
       nearest(four, n);
       select(hn::And(solvable, hn::Lt(n.error, st.error)), n, st);
@@ -326,11 +351,34 @@ void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, bool nor
     st.qb[0] = quantize(clamp255(hn::Add(m0, hn::Mul(dlo, ax))), 31);
     st.qb[1] = quantize(clamp255(hn::Add(m1, hn::Mul(dlo, ay))), 63);
     st.qb[2] = quantize(clamp255(hn::Add(m2, hn::Mul(dlo, az))), 31);
-    const State start = st;
-    nearest(true, st);
-    refit(true, st);
+    const V start_qa[3] = {st.qa[0], st.qa[1], st.qa[2]}, start_qb[3] = {st.qb[0], st.qb[1], st.qb[2]};
     M four = hn::Eq(hn::Zero(d), hn::Zero(d));
-    if (normal) {
+    if (!normal) {
+      const auto wide = hn::Gt(hi, lo);
+      const VF scale = hn::IfThenElseZero(wide, hn::Div(hn::Set(df, 3.0f), hn::IfThenElse(wide, hn::Sub(hi, lo), one)));
+      const V three_i = hn::Set(d, 3);
+      V aa = hn::Zero(d), ab = aa, bb = aa, at[3] = {aa, aa, aa}, bt[3] = {aa, aa, aa};
+      for (int i = 0; i < 16; ++i) {
+        const V w = hn::Min(hn::ConvertTo(d, hn::Add(hn::Mul(hn::Sub(hi, proj[i]), scale), half)), three_i);
+        const V u = hn::Sub(three_i, w);
+        aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w)), bb = hn::Add(bb, hn::Mul(w, w));
+        at[0] = hn::Add(at[0], hn::Mul(u, r[i])), at[1] = hn::Add(at[1], hn::Mul(u, g[i])), at[2] = hn::Add(at[2], hn::Mul(u, b[i]));
+        bt[0] = hn::Add(bt[0], hn::Mul(w, r[i])), bt[1] = hn::Add(bt[1], hn::Mul(w, g[i])), bt[2] = hn::Add(bt[2], hn::Mul(w, b[i]));
+      }
+      const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
+      const auto solvable = hn::Ne(det, hn::Zero(d));
+      const VF inv_det = hn::Div(one, hn::ConvertTo(df, hn::IfThenElse(solvable, det, hn::Set(d, 1))));
+      for (int ch = 0; ch < 3; ++ch) {
+        const int max = ch == 1 ? 63 : 31;
+        const V na = hn::Mul(three_i, hn::Sub(hn::Mul(at[ch], bb), hn::Mul(bt[ch], ab)));
+        const V nb = hn::Mul(three_i, hn::Sub(hn::Mul(bt[ch], aa), hn::Mul(at[ch], ab)));
+        st.qa[ch] = hn::IfThenElse(solvable, quantize(clamp255(hn::Mul(hn::ConvertTo(df, na), inv_det)), max), st.qa[ch]);
+        st.qb[ch] = hn::IfThenElse(solvable, quantize(clamp255(hn::Mul(hn::ConvertTo(df, nb), inv_det)), max), st.qb[ch]);
+      }
+      nearest(true, st);
+    } else {
+      nearest(true, st);
+      refit(true, st);
       refit(true, st);
       for (int pass = 0; pass < 4; ++pass) {
         M improved = hn::Lt(hn::Zero(d), hn::Zero(d));
@@ -350,7 +398,8 @@ void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, bool nor
         if (hn::AllFalse(d, hn::AndNot(flat, improved))) break;
       }
       if (three) {
-        State t = start;
+        State t;
+        for (int ch = 0; ch < 3; ++ch) t.qa[ch] = start_qa[ch], t.qb[ch] = start_qb[ch];
         nearest(false, t);
         refit(false, t);
         const auto take = hn::Lt(t.error, st.error);
