@@ -75,29 +75,6 @@ void evaluate(const float v[16], int r0, int r1, bool snorm, Candidate& c) {
   c.error = err;
 }
 
-// Least-squares endpoints for the indices of `c`: each texel's code puts it
-// at weight w in [0, 1] between r0 and r1 (the range's ends, in six-value
-// mode, are fixed and left out); minimizing sum (t - (1 - w) r0 - w r1)^2
-// is a 2x2 linear system. Returns false if it is singular.
-bool least_squares(const float v[16], const Candidate& c, bool snorm, double& r0, double& r1) {
-  const bool eight = c.r0 > c.r1;
-  const int steps = eight ? 7 : 5;
-  double aa = 0, ab = 0, bb = 0, at = 0, bt = 0;
-  for (int i = 0; i < 16; ++i) {
-    const int code = c.indices[i];
-    if (!eight && code >= 6) continue;
-    const int pos = code == 0 ? 0 : code == 1 ? steps : code - 1;
-    const double w = double(pos) / steps, a = 1.0 - w;
-    const double t = std::clamp(double(v[i]), snorm ? -127.0 : 0.0, snorm ? 127.0 : 255.0);
-    aa += a * a, ab += a * w, bb += w * w, at += a * t, bt += w * t;
-  }
-  const double det = aa * bb - ab * ab;
-  if (std::abs(det) < 1e-9) return false;
-  r0 = (at * bb - bt * ab) / det;
-  r1 = (bt * aa - at * ab) / det;
-  return true;
-}
-
 void write_block(const Candidate& c, bool snorm, std::uint8_t out[8]) {
   out[0] = std::uint8_t(snorm ? std::uint8_t(std::int8_t(c.r0)) : c.r0);
   out[1] = std::uint8_t(snorm ? std::uint8_t(std::int8_t(c.r1)) : c.r1);
@@ -106,85 +83,29 @@ void write_block(const Candidate& c, bool snorm, std::uint8_t out[8]) {
   for (int b = 0; b < 6; ++b) out[2 + b] = std::uint8_t(bits >> (8 * b));
 }
 
+// The lanes' level for a quality (bc4_fast.h); `max` searches block by block.
+int lane_level(Quality q) { return q == Quality::fast ? 0 : q == Quality::normal ? 1 : 2; }
+
 }  // namespace
 
 void encode_bc4_block(const float v[16], bool snorm, Quality q, std::uint8_t out[8]) {
-  if (q == Quality::fast || q == Quality::normal) {  // as whole images do: bc4_fast.h
+  if (q != Quality::max) {  // as whole images do: bc4_fast.h
     float batch[16][kBc4Batch] = {};
     for (int i = 0; i < 16; ++i) batch[i][0] = v[i];
     std::uint8_t block[1][8];
-    bc4_fast_blocks(batch, 1, snorm, q == Quality::normal, block);
+    bc4_fast_blocks(batch, 1, snorm, lane_level(q), block);
     std::memcpy(out, block[0], 8);
     return;
   }
+  // `max`: every endpoint pair in both modes, scored with the exact palette.
   const int lo_code = snorm ? -127 : 0, hi_code = snorm ? 127 : 255;
-  float mn = v[0], mx = v[0];
-  for (int i = 1; i < 16; ++i) mn = std::min(mn, v[i]), mx = std::max(mx, v[i]);
-  const int lo = std::clamp(int(std::floor(mn)), lo_code, hi_code), hi = std::clamp(int(std::ceil(mx)), lo_code, hi_code);
   Candidate best, c;
-  // Eight-value mode needs r0 > r1; a flat block uses the six-value mode
-  // with equal endpoints, which decodes every code 0-5 to that value.
-  if (hi > lo) {
-    evaluate(v, hi, lo, snorm, best);
-  } else {
-    evaluate(v, lo, lo, snorm, best);
-  }
-  auto consider = [&](int r0, int r1) {
-    if (r0 < lo_code || r0 > hi_code || r1 < lo_code || r1 > hi_code) return;
-    evaluate(v, r0, r1, snorm, c);
-    if (c.error < best.error) best = c;
-  };
-  // The six-value mode has the range's two ends for free, so its endpoints
-  // should span the values strictly inside the range, not the extremes.
-  float mn6 = float(hi_code), mx6 = float(lo_code);
-  for (int i = 0; i < 16; ++i) {
-    if (v[i] > lo_code + 0.5f && v[i] < hi_code - 0.5f) mn6 = std::min(mn6, v[i]), mx6 = std::max(mx6, v[i]);
-  }
-  const bool has_inner = mn6 <= mx6;
-  const int lo6 = has_inner ? std::clamp(int(std::floor(mn6)), lo_code, hi_code) : lo;
-  const int hi6 = has_inner ? std::clamp(int(std::ceil(mx6)), lo_code, hi_code) : hi;
-  if (has_inner && (lo6 != lo || hi6 != hi)) consider(lo6, hi6);
-  if (q == Quality::max) {
-    for (int a = lo_code; a <= hi_code; ++a)
-      for (int b = lo_code; b <= hi_code; ++b) consider(a, b);
-  } else if (q != Quality::fast && best.error > 0.0) {
-    // Per mode: from the range's endpoints, alternate index assignment and
-    // least-squares endpoints (twice), then search a small window around
-    // the result: +-1 at normal, +-3 at high.
-    const int window = q == Quality::normal ? 1 : 3;
-    for (int mode = 0; mode < 2; ++mode) {
-      Candidate m;
-      if (mode == 0) {
-        if (hi <= lo) continue;
-        evaluate(v, hi, lo, snorm, m);
-      } else {
-        evaluate(v, lo6, std::max(lo6, hi6), snorm, m);
-      }
-      for (int iter = 0; iter < 2; ++iter) {
-        double a, b;
-        if (!least_squares(v, m, snorm, a, b)) break;
-        int ia = std::clamp(int(std::lround(a)), lo_code, hi_code), ib = std::clamp(int(std::lround(b)), lo_code, hi_code);
-        if (mode == 0 && ia <= ib) break;  // the fit left eight-value mode
-        if (mode == 1 && ia > ib) std::swap(ia, ib);
-        evaluate(v, ia, ib, snorm, c);
-        if (c.error >= m.error) break;
-        m = c;
-      }
-      if (m.error < best.error) best = m;
-      for (int a = m.r0 - window; a <= m.r0 + window; ++a)
-        for (int b = m.r1 - window; b <= m.r1 + window; ++b) {
-          if ((mode == 0) == (a > b)) consider(a, b);
-        }
+  evaluate(v, lo_code, lo_code, snorm, best);
+  for (int a = lo_code; a <= hi_code; ++a)
+    for (int b = lo_code; b <= hi_code; ++b) {
+      evaluate(v, a, b, snorm, c);
+      if (c.error < best.error) best = c;
     }
-    if (q == Quality::high) {
-      // And +-8 around the range's endpoints in both modes: within 0.01 dB
-      // of the exhaustive search on the test blocks (test_bc_encode.cpp).
-      for (int a = hi - 8; a <= hi + 8; ++a)
-        for (int b = lo - 8; b <= lo + 8; ++b) consider(a, b);
-      for (int a = lo6 - 8; a <= lo6 + 8; ++a)
-        for (int b = hi6 - 8; b <= hi6 + 8; ++b) consider(a, b);
-    }
-  }
   write_block(best, snorm, out);
 }
 
@@ -216,7 +137,7 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
   const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * block_bytes);
   const ColorMode color_mode = bc1 ? ColorMode::bc1 : bc1a ? ColorMode::bc1_punch_through : ColorMode::four_only;
-  const bool lanes4 = q == Quality::fast || q == Quality::normal;  // BC4 blocks a lane each (bc4_fast.h)
+  const bool lanes4 = q != Quality::max;  // BC4 blocks a lane each (bc4_fast.h)
   const bool batched = lanes4 && color_mode != ColorMode::bc1_punch_through;
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::uint8_t rgba[kBc1Batch][16][4];
@@ -271,7 +192,7 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
           }
         }
         if (!bc1 && !bc1a && !bc2 && lanes4) {
-          bc4_fast_blocks(alpha, count, false, q == Quality::normal, alpha_blocks);
+          bc4_fast_blocks(alpha, count, false, lane_level(q), alpha_blocks);
           for (int k = 0; k < count; ++k) std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes, alpha_blocks[k], 8);
         }
       }
@@ -302,7 +223,7 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
     }
     return snorm ? (v * 2.0f - 1.0f) * 127.0f : v * 255.0f;
   };
-  const bool lanes4 = q == Quality::fast || q == Quality::normal;  // a block per lane (bc4_fast.h)
+  const bool lanes4 = q != Quality::max;  // a block per lane (bc4_fast.h)
   float u8_value[256];
   for (int i = 0; i < 256; ++i) {
     const float v = float(i) / 255.0f;
@@ -335,7 +256,7 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
               }
           }
           if (!lanes4) continue;
-          bc4_fast_blocks(batch, count, snorm, q == Quality::normal, blocks);  // sixteen blocks at a time
+          bc4_fast_blocks(batch, count, snorm, lane_level(q), blocks);  // sixteen blocks at a time
           for (int k = 0; k < count; ++k)
             std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes + 8 * ch, blocks[k], 8);
         }

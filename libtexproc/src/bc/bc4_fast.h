@@ -1,4 +1,4 @@
-// BC4's `fast` and `normal` encoders (also BC5's channels and BC3's alpha), sixteen blocks
+// BC4's `fast`, `normal` and `high` encoders (also BC5's channels and BC3's alpha), sixteen blocks
 // at a time (a block per SIMD lane), SIMD and scalar twins with identical
 // bytes.
 //
@@ -20,14 +20,16 @@ constexpr int kBc4Batch = 16;
 
 // v[i][k]: value i (row by row) of block k in code units: [0, 255], or
 // [-127, 127] with `snorm` (clamped here).
-// `normal` then, per mode (eight values from the range; six from the inner
-// range), alternates least-squares endpoints for the codes (rounded) and
-// codes for the endpoints, twice while that helps, and tries the +-1 window
-// around the result in the same mode.
-void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, bool normal, std::uint8_t out[][8]);
+// level 0: `fast`, as above. 1: `normal` then, per mode (eight values from
+// the range; six from the inner range), alternates least-squares endpoints
+// for the codes (rounded) and codes for the endpoints, twice while that
+// helps, and tries the +-1 window around the result in the same mode. 2:
+// `high`, the same with a +-3 window, and +-8 around each mode's starting
+// endpoints.
+void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]);
 
 namespace ref {
-void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, bool normal, std::uint8_t out[][8]);
+void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]);
 }  // namespace ref
 
 }  // namespace texproc

@@ -46,7 +46,7 @@ float evaluate(const float t[16], int r0, int r1, float lo_code, float hi_code, 
 
 }  // namespace
 
-void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, bool normal, std::uint8_t out[][8]) {
+void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]) {
   const float lo_code = snorm ? -127.0f : 0.0f, hi_code = snorm ? 127.0f : 255.0f;
   const int lo_int = int(lo_code), hi_int = int(hi_code);
   for (int k = 0; k < count; ++k) {
@@ -70,7 +70,8 @@ void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, bool n
         }
       }
     }
-    if (normal && error > 0.0f) {
+    if (level >= 1 && error > 0.0f) {
+      const int window = level >= 2 ? 3 : 1;
       const bool inner = mn6 <= mx6;
       const int lo6 = inner ? int(std::floor(mn6)) : lo, hi6 = inner ? int(std::ceil(mx6)) : hi;
       for (int mode = 0; mode < 2; ++mode) {  // 0: eight values, 1: six
@@ -108,17 +109,22 @@ void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, bool n
           error = me, r0 = m0, r1 = m1;
           std::copy(mc, mc + 16, codes);
         }
-        // The +-1 window around the refined endpoints, in the same mode.
-        for (int a = m0 - 1; a <= m0 + 1; ++a)
-          for (int b = m1 - 1; b <= m1 + 1; ++b) {
-            if ((mode == 0) != (a > b) || a < lo_int || a > hi_int || b < lo_int || b > hi_int) continue;
-            int cc[16];
-            const float ce = evaluate(t, a, b, lo_code, hi_code, cc);
-            if (ce < error) {
-              error = ce, r0 = a, r1 = b;
-              std::copy(cc, cc + 16, codes);
+        // The window around the refined endpoints (+-1, `high` +-3), in the
+        // same mode; at `high` also +-8 around the starting endpoints.
+        auto window_at = [&](int c0, int c1, int w) {
+          for (int a = c0 - w; a <= c0 + w; ++a)
+            for (int b = c1 - w; b <= c1 + w; ++b) {
+              if ((mode == 0) != (a > b) || a < lo_int || a > hi_int || b < lo_int || b > hi_int) continue;
+              int cc[16];
+              const float ce = evaluate(t, a, b, lo_code, hi_code, cc);
+              if (ce < error) {
+                error = ce, r0 = a, r1 = b;
+                std::copy(cc, cc + 16, codes);
+              }
             }
-          }
+        };
+        window_at(m0, m1, window);
+        if (level >= 2) window_at(mode == 0 ? hi : lo6, mode == 0 ? lo : hi6, 8);
       }
     }
     out[k][0] = std::uint8_t(r0 & 255), out[k][1] = std::uint8_t(r1 & 255);  // SNORM: two's complement
@@ -136,7 +142,7 @@ namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void Bc4FastBlocks(const float v[16][kBc4Batch], int count, bool snorm, bool normal, std::uint8_t out[][8]) {
+void Bc4FastBlocks(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]) {
   using D = hn::CappedTag<float, kBc4Batch>;
   const D df;
   const hn::RebindToSigned<D> d;
@@ -223,7 +229,8 @@ void Bc4FastBlocks(const float v[16][kBc4Batch], int count, bool snorm, bool nor
       for (int i = 0; i < 16; ++i) codes[i] = hn::IfThenElse(take, codes6[i], codes[i]);
     }
     const auto need = hn::RebindMask(d, hn::Gt(error, hn::Zero(df)));
-    if (normal && !hn::AllFalse(d, need)) {
+    if (level >= 1 && !hn::AllFalse(d, need)) {
+      const int window = level >= 2 ? 3 : 1;
       const V lo_i = hn::Set(d, snorm ? -127 : 0), hi_i = hn::Set(d, snorm ? 127 : 255);
       const auto inner = hn::RebindMask(d, hn::Le(mn6, mx6));
       const V lo6v = hn::IfThenElse(inner, lo6, lo), hi6v = hn::IfThenElse(inner, hi6, hi);
@@ -276,17 +283,21 @@ void Bc4FastBlocks(const float v[16][kBc4Batch], int count, bool snorm, bool nor
           for (int i = 0; i < 16; ++i) mc[i] = hn::IfThenElse(active, cc[i], mc[i]);
         }
         take_where(hn::And(mode_ok, hn::RebindMask(d, hn::Lt(me, error))), m0, m1, me, mc);
-        for (int da = -1; da <= 1; ++da)
-          for (int db = -1; db <= 1; ++db) {
-            const V a = hn::Add(m0, hn::Set(d, da)), b = hn::Add(m1, hn::Set(d, db));
-            auto valid = hn::And(mode_ok, mode == 0 ? hn::Gt(a, b) : hn::Not(hn::Gt(a, b)));
-            valid = hn::And(valid, hn::And(hn::Not(hn::Lt(a, lo_i)), hn::Not(hn::Gt(a, hi_i))));
-            valid = hn::And(valid, hn::And(hn::Not(hn::Lt(b, lo_i)), hn::Not(hn::Gt(b, hi_i))));
-            if (hn::AllFalse(d, valid)) continue;
-            V cc[16];
-            const VF ce = evaluate(a, b, cc, kind);
-            take_where(hn::And(valid, hn::RebindMask(d, hn::Lt(ce, error))), a, b, ce, cc);
-          }
+        auto window_at = [&](V c0, V c1, int w) {
+          for (int da = -w; da <= w; ++da)
+            for (int db = -w; db <= w; ++db) {
+              const V a = hn::Add(c0, hn::Set(d, da)), b = hn::Add(c1, hn::Set(d, db));
+              auto valid = hn::And(mode_ok, mode == 0 ? hn::Gt(a, b) : hn::Not(hn::Gt(a, b)));
+              valid = hn::And(valid, hn::And(hn::Not(hn::Lt(a, lo_i)), hn::Not(hn::Gt(a, hi_i))));
+              valid = hn::And(valid, hn::And(hn::Not(hn::Lt(b, lo_i)), hn::Not(hn::Gt(b, hi_i))));
+              if (hn::AllFalse(d, valid)) continue;
+              V cc[16];
+              const VF ce = evaluate(a, b, cc, kind);
+              take_where(hn::And(valid, hn::RebindMask(d, hn::Lt(ce, error))), a, b, ce, cc);
+            }
+        };
+        window_at(m0, m1, window);
+        if (level >= 2) window_at(mode == 0 ? hi : lo6v, mode == 0 ? lo : hi6v, 8);
       }
     }
     V bits_lo = hn::Zero(d), bits_hi = hn::Zero(d);
@@ -313,9 +324,9 @@ HWY_AFTER_NAMESPACE();
 namespace texproc {
 HWY_EXPORT(Bc4FastBlocks);
 
-void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, bool normal, std::uint8_t out[][8]) {
-  if (force_scalar()) return ref::bc4_fast_blocks(v, count, snorm, normal, out);
-  HWY_DYNAMIC_DISPATCH(Bc4FastBlocks)(v, count, snorm, normal, out);
+void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]) {
+  if (force_scalar()) return ref::bc4_fast_blocks(v, count, snorm, level, out);
+  HWY_DYNAMIC_DISPATCH(Bc4FastBlocks)(v, count, snorm, level, out);
 }
 }  // namespace texproc
 #endif
