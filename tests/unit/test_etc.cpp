@@ -646,7 +646,7 @@ TEST(EtcEncode, SimdMatchesScalarOnEveryTarget) {
                                   std::string(format_info(f).name) + " " + to_string(q));
     }
   }
-  // `fast` (and ETC1 `normal`) encode 16 blocks at a time: 21 blocks a row (a batch of 16, one
+  // `fast` (and ETC1 `normal` and `high`) encode 16 blocks at a time: 21 blocks a row (a batch of 16, one
   // of 5) read straight from whole rows, with halves far apart (individual
   // mode) in some blocks and not in others.
   Image wide = random_image(84, 8, 4, PixelType::u8, 5);
@@ -658,6 +658,7 @@ TEST(EtcEncode, SimdMatchesScalarOnEveryTarget) {
     expect_same_on_every_target([&] { return compress_image(wide.view(), f, Quality::fast); },
                                 std::string(format_info(f).name) + " fast, whole rows");
   }
-  expect_same_on_every_target([&] { return compress_image(wide.view(), TexelFormat::etc1_rgb, Quality::normal); },
-                              "etc1 normal, whole rows");
+  for (Quality q : {Quality::normal, Quality::high})
+    expect_same_on_every_target([&] { return compress_image(wide.view(), TexelFormat::etc1_rgb, q); },
+                                std::string("etc1 ") + to_string(q) + ", whole rows");
 }

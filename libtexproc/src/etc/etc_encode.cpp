@@ -624,16 +624,17 @@ long block_error(const std::uint8_t rgba[16][4], const std::uint8_t block[8]) {
   return err;
 }
 
-// `fast` and `normal` opaque colour go sixteen blocks at a time (etc_fast.h).
+// Opaque colour goes sixteen blocks at a time (etc_fast.h) at every quality but `max`.
 bool etc_blocks_in_lanes(ColorMode mode, Quality q) {
-  return (q == Quality::fast || q == Quality::normal) && mode != ColorMode::etc2_punch;
+  return q != Quality::max && mode != ColorMode::etc2_punch;
 }
 
-// ETC2 at `normal`: the planar mode, and where the lanes' ETC1 block (its
-// error `err`) leaves more than 75 per texel (squared RGB), the T and H
-// modes, tried against it; the block is replaced if one wins. The texels
-// come as the lanes took them (row by row, R | G << 8 | B << 16).
-long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err, std::uint8_t block[8]) {
+// ETC2 at `normal` and `high`: the planar mode, and the T and H modes (at
+// `normal` only where the lanes' ETC1 block, its error `err`, leaves more
+// than 75 per texel, squared RGB), tried against it; the block is replaced
+// if one wins. The texels come as the lanes took them (row by row,
+// R | G << 8 | B << 16).
+long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err, Quality q, std::uint8_t block[8]) {
   Texels tx;
   for (int i = 0; i < 16; ++i) {
     const std::uint32_t t = texel[i][k];
@@ -644,8 +645,8 @@ long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err
   Candidate best;
   best.err = err;
   best.bits = load_be64(block);
-  search_planar(tx, Quality::normal, best);
-  if (best.err > 16 * 75) search_t_h(tx, false, Quality::normal, best);
+  search_planar(tx, q, best);
+  if (q != Quality::normal || best.err > 16 * 75) search_t_h(tx, false, q, best);
   store_be64(best.bits, block);
   return best.err;
 }
@@ -664,8 +665,8 @@ long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality 
       err = block_error(rgba, block[0]);
     } else {
       std::int32_t e[1];
-      etc1_normal_blocks(texel, 1, block, e);
-      err = mode == ColorMode::etc1 ? e[0] : finish_etc2_block(texel, 0, e[0], block[0]);
+      etc1_normal_blocks(texel, 1, q == Quality::high, block, e);
+      err = mode == ColorMode::etc1 ? e[0] : finish_etc2_block(texel, 0, e[0], q, block[0]);
     }
     std::memcpy(out, block[0], 8);
     return err;
@@ -768,10 +769,10 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
   const ColorMode mode = format == F::etc1_rgb                                           ? ColorMode::etc1
                          : format == F::etc2_rgba1_unorm || format == F::etc2_rgba1_srgb ? ColorMode::etc2_punch
                                                                                          : ColorMode::etc2;
-  // `fast` and `normal` opaque colour: sixteen blocks at a time (etc_fast.h);
-  // ETC2 `normal` then tries its planar, T and H modes block by block.
+  // Opaque colour: sixteen blocks at a time (etc_fast.h); ETC2 then tries
+  // its planar, T and H modes block by block.
   const bool batched = etc_blocks_in_lanes(mode, q);
-  const bool finish = batched && q == Quality::normal && mode != ColorMode::etc1;  // ETC2: planar, T, H per block
+  const bool finish = batched && q != Quality::fast && mode != ColorMode::etc1;  // ETC2: planar, T, H per block
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::int32_t errors[kEtcBatch];
     std::uint8_t rgba[kEtcBatch][16][4];
@@ -821,8 +822,8 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
         if (q == Quality::fast) {
           etc1_fast_blocks(texel, count, color);
         } else {
-          etc1_normal_blocks(texel, count, color, errors);
-          for (int k = 0; k < count && finish; ++k) finish_etc2_block(texel, k, errors[k], color[k]);
+          etc1_normal_blocks(texel, count, q == Quality::high, color, errors);
+          for (int k = 0; k < count && finish; ++k) finish_etc2_block(texel, k, errors[k], q, color[k]);
         }
         for (int k = 0; k < count; ++k)
           std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + (rgba8 ? 8 : 0), color[k], 8);

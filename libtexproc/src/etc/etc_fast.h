@@ -29,11 +29,13 @@ void etc1_fast_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::
 // mode (4-bit fits as above) and the differential mode with either base
 // pulled within the delta of the other (that half's best table refitted).
 // error[k]: block k's squared RGB error as decoded.
-void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8], std::int32_t error[]);
+void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
+                        std::int32_t error[]);
 
 namespace ref {
 void etc1_fast_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]);
-void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8], std::int32_t error[]);
+void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
+                        std::int32_t error[]);
 }  // namespace ref
 
 }  // namespace texproc::etc

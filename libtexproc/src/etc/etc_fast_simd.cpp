@@ -185,38 +185,88 @@ HalfFit eval_exact(const int rgb[16][3], int h, const int q[3], int bits, int t)
 
 // Every table at the half's mean; the best two re-centred (the base that
 // minimizes the error for their indices: the mean of the texels minus their
-// modifiers) up to twice while that helps.
-HalfFit fit_normal(const int rgb[16][3], int h, int bits) {
+// modifiers) up to twice while that helps. `high`: every table re-centred
+// up to three times, then the +-1 neighbourhood of the two best bases.
+HalfFit fit_normal(const int rgb[16][3], int h, int bits, bool high) {
   int sum[3] = {};
   for (int i = 0; i < 8; ++i)
     for (int c = 0; c < 3; ++c) sum[c] += rgb[fast::kHalf[h][i]][c];
   const int q0[3] = {fast::quantize_sum(sum[0], bits), fast::quantize_sum(sum[1], bits), fast::quantize_sum(sum[2], bits)};
-  int e1 = -1, e2 = -1, t1 = 0, t2 = 0;
-  for (int t = 0; t < 8; ++t) {
-    const int e = eval_exact(rgb, h, q0, bits, t).err;
-    if (e1 < 0 || e < e1) {
-      e2 = e1, t2 = t1, e1 = e, t1 = t;
-    } else if (e2 < 0 || e < e2) {
-      e2 = e, t2 = t;
-    }
-  }
-  HalfFit best{};
-  best.err = -1;
-  for (int t : {t1, t2}) {
-    HalfFit cur = eval_exact(rgb, h, q0, bits, t);
-    for (int pass = 0; pass < 2; ++pass) {
+  auto recentre = [&](HalfFit cur, int passes) {
+    for (int pass = 0; pass < passes; ++pass) {
       int centre[3] = {};
       for (int i = 0; i < 8; ++i)
-        for (int c = 0; c < 3; ++c) centre[c] += rgb[fast::kHalf[h][i]][c] - kModifiers[t][cur.idx[i]];
+        for (int c = 0; c < 3; ++c) centre[c] += rgb[fast::kHalf[h][i]][c] - kModifiers[cur.table][cur.idx[i]];
       const int q1[3] = {fast::quantize_centre(centre[0], bits), fast::quantize_centre(centre[1], bits),
                          fast::quantize_centre(centre[2], bits)};
       if (std::equal(q1, q1 + 3, cur.q)) break;
-      const HalfFit next = eval_exact(rgb, h, q1, bits, t);
+      const HalfFit next = eval_exact(rgb, h, q1, bits, cur.table);
       if (next.err >= cur.err) break;
       cur = next;
     }
-    if (best.err < 0 || cur.err < best.err) best = cur;
+    return cur;
+  };
+  // The two tables with the least error (first of equals), from `err`.
+  auto best_two = [](const int err[8], int& t1, int& t2) {
+    int e1 = -1, e2 = -1;
+    t1 = t2 = 0;
+    for (int t = 0; t < 8; ++t) {
+      if (e1 < 0 || err[t] < e1) {
+        e2 = e1, t2 = t1, e1 = err[t], t1 = t;
+      } else if (e2 < 0 || err[t] < e2) {
+        e2 = err[t], t2 = t;
+      }
+    }
+  };
+  HalfFit at_mean[8];
+  int err[8];
+  for (int t = 0; t < 8; ++t) at_mean[t] = eval_exact(rgb, h, q0, bits, t), err[t] = at_mean[t].err;
+  HalfFit best{};
+  best.err = -1;
+  if (!high) {
+    int t1, t2;
+    best_two(err, t1, t2);
+    for (int t : {t1, t2}) {
+      const HalfFit cur = recentre(at_mean[t], 2);
+      if (best.err < 0 || cur.err < best.err) best = cur;
+    }
+    return best;
   }
+  // Seeds: the brightest and darkest texels (by R + G + B, the first of
+  // equals) minus their likely modifiers; in an exact fit they carry the
+  // extreme ones.
+  int bright = fast::kHalf[h][0], dark = bright;
+  for (int i = 1; i < 8; ++i) {
+    const int p = fast::kHalf[h][i];
+    const int sp = rgb[p][0] + rgb[p][1] + rgb[p][2];
+    if (sp > rgb[bright][0] + rgb[bright][1] + rgb[bright][2]) bright = p;
+    if (sp < rgb[dark][0] + rgb[dark][1] + rgb[dark][2]) dark = p;
+  }
+  const int top = bits == 5 ? 31 : 15;
+  auto quantize8 = [&](int v) { return std::clamp(int(float(v * top) / 255.0f + 0.5f), 0, top); };
+  HalfFit refined[8];
+  for (int t = 0; t < 8; ++t) {
+    HalfFit start = at_mean[t];
+    const int seeds[4][2] = {{bright, kModifiers[t][1]}, {dark, -kModifiers[t][1]}, {bright, kModifiers[t][0]}, {dark, -kModifiers[t][0]}};
+    for (const auto& sd : seeds) {
+      const int q[3] = {quantize8(rgb[sd[0]][0] - sd[1]), quantize8(rgb[sd[0]][1] - sd[1]), quantize8(rgb[sd[0]][2] - sd[1])};
+      const HalfFit f = eval_exact(rgb, h, q, bits, t);
+      if (f.err < start.err) start = f;
+    }
+    refined[t] = recentre(start, 3), err[t] = refined[t].err;
+    if (best.err < 0 || refined[t].err < best.err) best = refined[t];
+  }
+  int t1, t2;
+  best_two(err, t1, t2);
+  for (int t : {t1, t2})
+    for (int dr = -1; dr <= 1; ++dr)
+      for (int dg = -1; dg <= 1; ++dg)
+        for (int db = -1; db <= 1; ++db) {
+          const int q[3] = {refined[t].q[0] + dr, refined[t].q[1] + dg, refined[t].q[2] + db};
+          if (std::min({q[0], q[1], q[2]}) < 0 || std::max({q[0], q[1], q[2]}) > top) continue;
+          const HalfFit f = eval_exact(rgb, h, q, bits, t);
+          if (f.err < best.err) best = f;
+        }
   return best;
 }
 
@@ -242,7 +292,8 @@ void take(fast::Params& p, int flip, bool differential, const HalfFit& a, const 
 
 }  // namespace
 
-void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8], std::int32_t error[]) {
+void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
+                        std::int32_t error[]) {
   for (int k = 0; k < count; ++k) {
     int rgb[16][3];
     for (int i = 0; i < 16; ++i) {
@@ -250,7 +301,7 @@ void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std
       rgb[i][0] = int(t & 255), rgb[i][1] = int(t >> 8 & 255), rgb[i][2] = int(t >> 16 & 255);
     }
     HalfFit f5[4];
-    for (int h = 0; h < 4; ++h) f5[h] = fit_normal(rgb, h, 5);
+    for (int h = 0; h < 4; ++h) f5[h] = fit_normal(rgb, h, 5, high);
     fast::Params best{};
     int best_err = -1;
     auto consider = [&](int flip, bool differential, const HalfFit& a, const HalfFit& b) {
@@ -262,13 +313,13 @@ void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std
       const int a = 2 * flip, b = a + 1;
       bool fits = true;
       for (int c = 0; c < 3; ++c) fits &= f5[b].q[c] - f5[a].q[c] >= -4 && f5[b].q[c] - f5[a].q[c] <= 3;
-      if (fits) {
-        consider(flip, true, f5[a], f5[b]);
-        continue;
-      }
-      // Too far apart for the delta: individual mode, or one base pulled
-      // within the delta of the other and its half refitted.
-      consider(flip, false, fit_normal(rgb, a, 4), fit_normal(rgb, b, 4));
+      // `high` always tries the individual mode (4-bit bases).
+      if (fits) consider(flip, true, f5[a], f5[b]);
+      if (fits && !high) continue;
+      consider(flip, false, fit_normal(rgb, a, 4, high), fit_normal(rgb, b, 4, high));
+      if (fits) continue;
+      // Too far apart for the delta: one base pulled within the delta of
+      // the other and its half refitted.
       int qa[3], qb[3];
       for (int c = 0; c < 3; ++c) qa[c] = std::clamp(f5[a].q[c], f5[b].q[c] - 3, f5[b].q[c] + 4);
       consider(flip, true, fit_fixed(rgb, a, qa), f5[b]);
@@ -436,7 +487,8 @@ void Etc1FastBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::ui
   }
 }
 
-void Etc1NormalBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8], std::int32_t error[]) {
+void Etc1NormalBlocks(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
+                      std::int32_t error[]) {
   using D = hn::CappedTag<std::int32_t, kEtcBatch>;
   const D d;
   const hn::Rebind<float, D> df;
@@ -503,6 +555,45 @@ void Etc1NormalBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::
       }
       return f;
     };
+    // Re-centres `cur` (its table per lane) up to `passes` times while that helps.
+    auto recentre = [&](int h, int bits, Fit cur, int passes) {
+      const V ma = lookup(cur.table, mod_a), mb = lookup(cur.table, mod_b);
+      M active = hn::Eq(zero, zero);
+      for (int pass = 0; pass < passes; ++pass) {
+        V centre[3] = {zero, zero, zero};
+        for (int i = 0; i < 8; ++i) {
+          const int p = fast::kHalf[h][i];
+          const V idx = cur.idx[i];
+          const V mag = hn::IfThenElse(hn::Eq(hn::And(idx, hn::Set(d, 1)), zero), ma, mb);
+          const V m = hn::IfThenElse(hn::Lt(idx, hn::Set(d, 2)), mag, hn::Neg(mag));
+          centre[0] = hn::Add(centre[0], hn::Sub(r[p], m));
+          centre[1] = hn::Add(centre[1], hn::Sub(g[p], m));
+          centre[2] = hn::Add(centre[2], hn::Sub(b[p], m));
+        }
+        const V q1[3] = {quantize(centre[0], bits), quantize(centre[1], bits), quantize(centre[2], bits)};
+        const M same = hn::And(hn::And(hn::Eq(q1[0], cur.q[0]), hn::Eq(q1[1], cur.q[1])), hn::Eq(q1[2], cur.q[2]));
+        active = hn::AndNot(same, active);
+        if (hn::AllFalse(d, active)) break;
+        const Fit next = eval(h, q1, bits, cur.table);
+        active = hn::And(active, hn::Lt(next.err, cur.err));
+        select(active, next, cur);
+      }
+      return cur;
+    };
+    // The two tables with the least error (first of equals).
+    auto best_two = [&](const V err[8], V& t1, V& t2) {
+      V e1 = err[0], e2 = hn::Set(d, -1);
+      t1 = zero, t2 = zero;
+      for (int t = 1; t < 8; ++t) {
+        const V tv = hn::Set(d, t);
+        const M first = hn::Lt(err[t], e1);
+        const M second = hn::AndNot(first, hn::Or(hn::Lt(e2, zero), hn::Lt(err[t], e2)));
+        e2 = hn::IfThenElse(first, e1, hn::IfThenElse(second, err[t], e2));
+        t2 = hn::IfThenElse(first, t1, hn::IfThenElse(second, tv, t2));
+        e1 = hn::IfThenElse(first, err[t], e1);
+        t1 = hn::IfThenElse(first, tv, t1);
+      }
+    };
     auto fit_normal = [&](int h, int bits) {
       V sum[3] = {zero, zero, zero};
       for (int i = 0; i < 8; ++i) {
@@ -510,47 +601,78 @@ void Etc1NormalBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::
         sum[0] = hn::Add(sum[0], r[p]), sum[1] = hn::Add(sum[1], g[p]), sum[2] = hn::Add(sum[2], b[p]);
       }
       const V q0[3] = {quantize(sum[0], bits), quantize(sum[1], bits), quantize(sum[2], bits)};
-      V e1 = eval(h, q0, bits, zero).err, t1 = zero, e2 = hn::Set(d, -1), t2 = zero;
-      for (int t = 1; t < 8; ++t) {
-        const V tv = hn::Set(d, t);
-        const V e = eval(h, q0, bits, tv).err;
-        const M first = hn::Lt(e, e1);
-        const M second = hn::AndNot(first, hn::Or(hn::Lt(e2, zero), hn::Lt(e, e2)));
-        e2 = hn::IfThenElse(first, e1, hn::IfThenElse(second, e, e2));
-        t2 = hn::IfThenElse(first, t1, hn::IfThenElse(second, tv, t2));
-        e1 = hn::IfThenElse(first, e, e1);
-        t1 = hn::IfThenElse(first, tv, t1);
-      }
+      Fit at_mean[8];
+      V err[8];
+      for (int t = 0; t < 8; ++t) at_mean[t] = eval(h, q0, bits, hn::Set(d, t)), err[t] = at_mean[t].err;
+      auto pick = [&](const Fit* fits, V t) {  // fits[t] per lane
+        Fit f = fits[0];
+        for (int j = 1; j < 8; ++j) select(hn::Eq(t, hn::Set(d, j)), fits[j], f);
+        return f;
+      };
       Fit best;
-      for (int which = 0; which < 2; ++which) {
-        const V t = which ? t2 : t1;
-        Fit cur = eval(h, q0, bits, t);
-        const V ma = lookup(t, mod_a), mb = lookup(t, mod_b);
-        M active = hn::Eq(zero, zero);
-        for (int pass = 0; pass < 2; ++pass) {
-          V centre[3] = {zero, zero, zero};
-          for (int i = 0; i < 8; ++i) {
-            const int p = fast::kHalf[h][i];
-            const V idx = cur.idx[i];
-            const V mag = hn::IfThenElse(hn::Eq(hn::And(idx, hn::Set(d, 1)), zero), ma, mb);
-            const V m = hn::IfThenElse(hn::Lt(idx, hn::Set(d, 2)), mag, hn::Neg(mag));
-            centre[0] = hn::Add(centre[0], hn::Sub(r[p], m));
-            centre[1] = hn::Add(centre[1], hn::Sub(g[p], m));
-            centre[2] = hn::Add(centre[2], hn::Sub(b[p], m));
-          }
-          const V q1[3] = {quantize(centre[0], bits), quantize(centre[1], bits), quantize(centre[2], bits)};
-          const M same = hn::And(hn::And(hn::Eq(q1[0], cur.q[0]), hn::Eq(q1[1], cur.q[1])), hn::Eq(q1[2], cur.q[2]));
-          active = hn::AndNot(same, active);
-          if (hn::AllFalse(d, active)) break;
-          const Fit next = eval(h, q1, bits, t);
-          active = hn::And(active, hn::Lt(next.err, cur.err));
-          select(active, next, cur);
+      if (!high) {
+        V t1, t2;
+        best_two(err, t1, t2);
+        best = recentre(h, bits, pick(at_mean, t1), 2);
+        const Fit second = recentre(h, bits, pick(at_mean, t2), 2);
+        select(hn::Lt(second.err, best.err), second, best);
+        return best;
+      }
+      // Seeds: the brightest and darkest texels (first of equals) minus the
+      // table's extreme modifiers.
+      V bright[3], dark[3], bright_sum, dark_sum;
+      {
+        const int p0 = fast::kHalf[h][0];
+        bright[0] = dark[0] = r[p0], bright[1] = dark[1] = g[p0], bright[2] = dark[2] = b[p0];
+        bright_sum = dark_sum = hn::Add(hn::Add(r[p0], g[p0]), b[p0]);
+        for (int i = 1; i < 8; ++i) {
+          const int p = fast::kHalf[h][i];
+          const V sp = hn::Add(hn::Add(r[p], g[p]), b[p]);
+          const M up = hn::Gt(sp, bright_sum), down = hn::Lt(sp, dark_sum);
+          bright_sum = hn::IfThenElse(up, sp, bright_sum), dark_sum = hn::IfThenElse(down, sp, dark_sum);
+          const V px[3] = {r[p], g[p], b[p]};
+          for (int c = 0; c < 3; ++c) bright[c] = hn::IfThenElse(up, px[c], bright[c]), dark[c] = hn::IfThenElse(down, px[c], dark[c]);
         }
-        if (which == 0) {
-          best = cur;
+      }
+      const int top = bits == 5 ? 31 : 15;
+      auto quantize8 = [&](V v) {
+        const V q = hn::ConvertTo(d, hn::Add(hn::Div(hn::ConvertTo(df, hn::Mul(v, hn::Set(d, top))), hn::Set(df, 255.0f)),
+                                             hn::Set(df, 0.5f)));
+        return hn::Min(hn::Max(q, zero), hn::Set(d, top));
+      };
+      Fit refined[8];
+      for (int t = 0; t < 8; ++t) {
+        Fit start = at_mean[t];
+        const V tv = hn::Set(d, t);
+        const int seeds[4] = {kModifiers[t][1], -kModifiers[t][1], kModifiers[t][0], -kModifiers[t][0]};
+        for (int sd = 0; sd < 4; ++sd) {
+          const V* px = sd % 2 ? dark : bright;
+          const V m = hn::Set(d, seeds[sd]);
+          const V q[3] = {quantize8(hn::Sub(px[0], m)), quantize8(hn::Sub(px[1], m)), quantize8(hn::Sub(px[2], m))};
+          const Fit f = eval(h, q, bits, tv);
+          select(hn::Lt(f.err, start.err), f, start);
+        }
+        refined[t] = recentre(h, bits, start, 3), err[t] = refined[t].err;
+        if (t == 0) {
+          best = refined[0];
         } else {
-          select(hn::Lt(cur.err, best.err), cur, best);
+          select(hn::Lt(refined[t].err, best.err), refined[t], best);
         }
+      }
+      V t1, t2;
+      best_two(err, t1, t2);
+      for (int which = 0; which < 2; ++which) {
+        const Fit base = pick(refined, which ? t2 : t1);
+        for (int dr = -1; dr <= 1; ++dr)
+          for (int dg = -1; dg <= 1; ++dg)
+            for (int db = -1; db <= 1; ++db) {
+              const V q[3] = {hn::Add(base.q[0], hn::Set(d, dr)), hn::Add(base.q[1], hn::Set(d, dg)), hn::Add(base.q[2], hn::Set(d, db))};
+              M valid = hn::Eq(zero, zero);
+              for (int c = 0; c < 3; ++c) valid = hn::And(valid, hn::And(hn::Not(hn::Lt(q[c], zero)), hn::Not(hn::Gt(q[c], hn::Set(d, top)))));
+              if (hn::AllFalse(d, valid)) continue;
+              const Fit f = eval(h, q, bits, base.table);
+              select(hn::And(valid, hn::Lt(f.err, best.err)), f, best);
+            }
       }
       return best;
     };
@@ -583,9 +705,10 @@ void Etc1NormalBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::
         fits = hn::And(fits, hn::And(hn::Not(hn::Lt(delta, hn::Set(d, -4))), hn::Not(hn::Gt(delta, hn::Set(d, 3)))));
       }
       consider(fits, flip, true, f5[a], f5[bh]);
-      if (hn::AllTrue(d, fits)) continue;
+      if (hn::AllTrue(d, fits) && !high) continue;
       const M far = hn::Not(fits);
-      consider(far, flip, false, fit_normal(a, 4), fit_normal(bh, 4));
+      consider(high ? hn::Eq(zero, zero) : far, flip, false, fit_normal(a, 4), fit_normal(bh, 4));  // `high`: always
+      if (hn::AllTrue(d, fits)) continue;
       V qa[3], qb[3];
       for (int c = 0; c < 3; ++c)
         qa[c] = hn::Min(hn::Max(f5[a].q[c], hn::Sub(f5[bh].q[c], hn::Set(d, 3))), hn::Add(f5[bh].q[c], hn::Set(d, 4)));
@@ -634,9 +757,10 @@ void etc1_fast_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::
   HWY_DYNAMIC_DISPATCH(Etc1FastBlocks)(texel, count, out);
 }
 
-void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8], std::int32_t error[]) {
-  if (force_scalar()) return ref::etc1_normal_blocks(texel, count, out, error);
-  HWY_DYNAMIC_DISPATCH(Etc1NormalBlocks)(texel, count, out, error);
+void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
+                        std::int32_t error[]) {
+  if (force_scalar()) return ref::etc1_normal_blocks(texel, count, high, out, error);
+  HWY_DYNAMIC_DISPATCH(Etc1NormalBlocks)(texel, count, high, out, error);
 }
 }  // namespace texproc::etc
 #endif
