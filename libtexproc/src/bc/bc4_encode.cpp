@@ -138,7 +138,8 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * block_bytes);
   const ColorMode color_mode = bc1 ? ColorMode::bc1 : bc1a ? ColorMode::bc1_punch_through : ColorMode::four_only;
   const bool lanes4 = q != Quality::max;  // BC4 blocks a lane each (bc4_fast.h)
-  const bool batched = lanes4 && color_mode != ColorMode::bc1_punch_through;
+  // BC1 colour a block per lane at `fast` and `normal` (bc1_fast.h; `high` and `max` search block by block).
+  const bool batched = (q == Quality::fast || q == Quality::normal) && color_mode != ColorMode::bc1_punch_through;
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::uint8_t rgba[kBc1Batch][16][4];
     std::uint32_t texel[16][kBc1Batch] = {};
