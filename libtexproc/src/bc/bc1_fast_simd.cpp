@@ -81,9 +81,41 @@ void refit(const int rgb[16][3], bool four, State& s) {
   if (n.error < s.error) s = n;
 }
 
+// Least-squares endpoints for the four-colour positions of each texel
+// (weights w in thirds on the second endpoint); false if singular. `red`:
+// the fit's reduction of the squared error (sum of squares minus the
+// residual, unquantized).
+bool fit_positions(const int rgb[16][3], const int w[16], float ra[3], float rb[3], float& red) {
+  std::int32_t aa = 0, ab = 0, bb = 0, at[3] = {}, bt[3] = {};
+  for (int i = 0; i < 16; ++i) {
+    const int u = 3 - w[i];
+    aa += u * u, ab += u * w[i], bb += w[i] * w[i];
+    for (int ch = 0; ch < 3; ++ch) at[ch] += u * rgb[i][ch], bt[ch] += w[i] * rgb[i][ch];
+  }
+  const std::int32_t det = aa * bb - ab * ab;
+  if (det == 0) return false;
+  const float inv = 1.0f / float(det);
+  red = 0.0f;
+  for (int ch = 0; ch < 3; ++ch) {
+    const float x = float(at[ch]), y = float(bt[ch]);
+    red += (x * x * float(bb) - 2.0f * x * y * float(ab) + y * y * float(aa)) * inv;
+    ra[ch] = std::clamp(float(3 * (at[ch] * bb - bt[ch] * ab)) * inv, 0.0f, 255.0f);
+    rb[ch] = std::clamp(float(3 * (bt[ch] * aa - at[ch] * ab)) * inv, 0.0f, 255.0f);
+  }
+  return true;
+}
+
+// The partition variants: texels split into four runs along the axis at
+// thirds of the extent shifted by `offset` steps of 0.15 and stretched by
+// `stretch` steps of 0.15 (about the middle).
+constexpr float kVariantStep = 0.15f;
+inline float variant_shift(int offset, int stretch) {
+  return 0.5f + kVariantStep * float(offset) - kVariantStep * float(stretch) * 1.5f;
+}
+
 }  // namespace
 
-void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, bool normal, bool three,
+void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
                      std::uint8_t out[][8], bool handled[]) {
   for (int k = 0; k < count; ++k) {
     int rgb[16][3];
@@ -135,7 +167,7 @@ void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, bool n
     endpoints(a, b, st.qa, st.qb);
     const State start = st;
     bool four = true;
-    if (!normal) {
+    if (level == 0) {
       // Each texel at the nearest third of the extent along the axis; one
       // least-squares fit for those positions; then the nearest colours.
       const float scale = hi > lo ? 3.0f / (hi - lo) : 0.0f;
@@ -160,6 +192,44 @@ void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, bool n
       st.error = nearest(rgb, st.qa, st.qb, true, st.codes);
       refit(rgb, true, st);
       refit(rgb, true, st);
+      // Partition variants along the axis (a cluster fit's neighbourhood):
+      // `normal` ranks 21 by their unquantized error and scores the best
+      // two exactly; `high` scores all 45 exactly, each refitted once.
+      const int offsets = level >= 2 ? 4 : 3, stretches = level >= 2 ? 2 : 1;
+      float e1 = 0.0f, e2 = 0.0f;
+      int have = 0, q1[2][3] = {}, q2[2][3] = {};
+      for (int o = -offsets; o <= offsets; ++o)
+        for (int sv = -stretches; sv <= stretches; ++sv) {
+          const float scale = hi > lo ? 3.0f * (1.0f + kVariantStep * float(sv)) / (hi - lo) : 0.0f;
+          const float shift = variant_shift(o, sv);
+          int w[16];
+          for (int i = 0; i < 16; ++i) w[i] = std::clamp(int(std::floor((hi - proj[i]) * scale + shift)), 0, 3);
+          float ra[3], rb[3], red;
+          if (!fit_positions(rgb, w, ra, rb, red)) continue;
+          State n;
+          endpoints(ra, rb, n.qa, n.qb);
+          if (level >= 2) {
+            n.error = nearest(rgb, n.qa, n.qb, true, n.codes);
+            refit(rgb, true, n);
+            if (n.error < st.error) st = n;
+            continue;
+          }
+          const float e = -red;  // less is better: the sum of squares is the same for every variant
+          if (have == 0 || e < e1) {
+            if (have > 0) e2 = e1, std::copy(&q1[0][0], &q1[0][0] + 6, &q2[0][0]);
+            e1 = e, std::copy(n.qa, n.qa + 3, q1[0]), std::copy(n.qb, n.qb + 3, q1[1]);
+            have = std::min(have + 1, 2);
+          } else if (have == 1 || e < e2) {
+            e2 = e, std::copy(n.qa, n.qa + 3, q2[0]), std::copy(n.qb, n.qb + 3, q2[1]);
+            have = 2;
+          }
+        }
+      for (int m = 0; m < have; ++m) {
+        State n;
+        std::copy((m ? q2 : q1)[0], (m ? q2 : q1)[0] + 3, n.qa), std::copy((m ? q2 : q1)[1], (m ? q2 : q1)[1] + 3, n.qb);
+        n.error = nearest(rgb, n.qa, n.qb, true, n.codes);
+        if (n.error < st.error) st = n;
+      }
       // Each endpoint channel nudged by one step while that helps (at most
       // four passes over the twelve moves).
       for (int pass = 0; pass < 4; ++pass) {
@@ -208,7 +278,7 @@ namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, bool normal, bool three,
+void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
                    std::uint8_t out[][8], bool handled[]) {
   using D = hn::CappedTag<std::int32_t, kBc1Batch>;
   const D d;
@@ -353,7 +423,35 @@ void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, bool nor
     st.qb[2] = quantize(clamp255(hn::Add(m2, hn::Mul(dlo, az))), 31);
     const V start_qa[3] = {st.qa[0], st.qa[1], st.qa[2]}, start_qb[3] = {st.qb[0], st.qb[1], st.qb[2]};
     M four = hn::Eq(hn::Zero(d), hn::Zero(d));
-    if (!normal) {
+    // Least-squares endpoints (quantized) for the four-colour positions w
+    // (thirds on the second endpoint); `solvable`: the system is not
+    // singular; `red`: the unquantized fit's reduction of the squared error.
+    auto fit_positions = [&](const V w[16], V qa[3], V qb[3], M& solvable, VF& red) {
+      const V three_i = hn::Set(d, 3);
+      V aa = hn::Zero(d), ab = aa, bb = aa, at[3] = {aa, aa, aa}, bt[3] = {aa, aa, aa};
+      for (int i = 0; i < 16; ++i) {
+        const V u = hn::Sub(three_i, w[i]);
+        aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w[i])), bb = hn::Add(bb, hn::Mul(w[i], w[i]));
+        at[0] = hn::Add(at[0], hn::Mul(u, r[i])), at[1] = hn::Add(at[1], hn::Mul(u, g[i])), at[2] = hn::Add(at[2], hn::Mul(u, b[i]));
+        bt[0] = hn::Add(bt[0], hn::Mul(w[i], r[i])), bt[1] = hn::Add(bt[1], hn::Mul(w[i], g[i])), bt[2] = hn::Add(bt[2], hn::Mul(w[i], b[i]));
+      }
+      const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
+      solvable = hn::Ne(det, hn::Zero(d));
+      const VF inv_det = hn::Div(one, hn::ConvertTo(df, hn::IfThenElse(solvable, det, hn::Set(d, 1))));
+      const VF faa = hn::ConvertTo(df, aa), fab = hn::ConvertTo(df, ab), fbb = hn::ConvertTo(df, bb), two = hn::Set(df, 2.0f);
+      red = hn::Zero(df);
+      for (int ch = 0; ch < 3; ++ch) {
+        const int max = ch == 1 ? 63 : 31;
+        const VF x = hn::ConvertTo(df, at[ch]), y = hn::ConvertTo(df, bt[ch]);
+        const VF t = hn::Add(hn::Sub(hn::Mul(hn::Mul(x, x), fbb), hn::Mul(hn::Mul(hn::Mul(two, x), y), fab)), hn::Mul(hn::Mul(y, y), faa));
+        red = hn::Add(red, hn::Mul(t, inv_det));
+        const V na = hn::Mul(three_i, hn::Sub(hn::Mul(at[ch], bb), hn::Mul(bt[ch], ab)));
+        const V nb = hn::Mul(three_i, hn::Sub(hn::Mul(bt[ch], aa), hn::Mul(at[ch], ab)));
+        qa[ch] = quantize(clamp255(hn::Mul(hn::ConvertTo(df, na), inv_det)), max);
+        qb[ch] = quantize(clamp255(hn::Mul(hn::ConvertTo(df, nb), inv_det)), max);
+      }
+    };
+    if (level == 0) {
       const auto wide = hn::Gt(hi, lo);
       const VF scale = hn::IfThenElseZero(wide, hn::Div(hn::Set(df, 3.0f), hn::IfThenElse(wide, hn::Sub(hi, lo), one)));
       const V three_i = hn::Set(d, 3);
@@ -380,6 +478,55 @@ void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, bool nor
       nearest(true, st);
       refit(true, st);
       refit(true, st);
+      // Partition variants along the axis (see the scalar reference).
+      const int offsets = level >= 2 ? 4 : 3, stretches = level >= 2 ? 2 : 1;
+      const auto wide = hn::Gt(hi, lo);
+      const VF extent = hn::IfThenElse(wide, hn::Sub(hi, lo), one);
+      VF e1 = hn::Zero(df), e2 = e1;
+      V have = hn::Zero(d), q1[2][3], q2[2][3];
+      for (int ch = 0; ch < 3; ++ch) q1[0][ch] = q1[1][ch] = q2[0][ch] = q2[1][ch] = hn::Zero(d);
+      for (int o = -offsets; o <= offsets; ++o)
+        for (int sv = -stretches; sv <= stretches; ++sv) {
+          const VF scale = hn::IfThenElseZero(
+              wide, hn::Div(hn::Set(df, 3.0f * (1.0f + ref::kVariantStep * float(sv))), extent));
+          const VF shift = hn::Set(df, ref::variant_shift(o, sv));
+          V w[16];
+          for (int i = 0; i < 16; ++i)
+            w[i] = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(hn::Mul(hn::Sub(hi, proj[i]), scale), shift))), hn::Zero(d)),
+                           hn::Set(d, 3));
+          State n;
+          M solvable;
+          VF red;
+          fit_positions(w, n.qa, n.qb, solvable, red);
+          if (level >= 2) {
+            nearest(true, n);
+            refit(true, n);
+            select(hn::And(solvable, hn::Lt(n.error, st.error)), n, st);
+            continue;
+          }
+          const VF e = hn::Neg(red);
+          const M none = hn::Eq(have, hn::Zero(d)), one_kept = hn::Eq(have, hn::Set(d, 1));
+          const M first = hn::And(solvable, hn::Or(none, hn::RebindMask(d, hn::Lt(e, e1))));
+          const M second = hn::AndNot(first, hn::And(solvable, hn::Or(one_kept, hn::RebindMask(d, hn::Lt(e, e2)))));
+          const M shift_down = hn::AndNot(none, first);
+          e2 = hn::IfThenElse(hn::RebindMask(df, shift_down), e1, hn::IfThenElse(hn::RebindMask(df, second), e, e2));
+          for (int k = 0; k < 2; ++k)
+            for (int ch = 0; ch < 3; ++ch) {
+              const V nq = k ? n.qb[ch] : n.qa[ch];
+              q2[k][ch] = hn::IfThenElse(shift_down, q1[k][ch], hn::IfThenElse(second, nq, q2[k][ch]));
+              q1[k][ch] = hn::IfThenElse(first, nq, q1[k][ch]);
+            }
+          e1 = hn::IfThenElse(hn::RebindMask(df, first), e, e1);
+          have = hn::Min(hn::Add(have, hn::IfThenElseZero(hn::Or(first, second), hn::Set(d, 1))), hn::Set(d, 2));
+        }
+      for (int m = 0; m < 2 && level < 2; ++m) {
+        const M valid = hn::Gt(have, hn::Set(d, m));
+        if (hn::AllFalse(d, valid)) continue;
+        State n;
+        for (int ch = 0; ch < 3; ++ch) n.qa[ch] = (m ? q2 : q1)[0][ch], n.qb[ch] = (m ? q2 : q1)[1][ch];
+        nearest(true, n);
+        select(hn::And(valid, hn::Lt(n.error, st.error)), n, st);
+      }
       for (int pass = 0; pass < 4; ++pass) {
         M improved = hn::Lt(hn::Zero(d), hn::Zero(d));
         for (int m = 0; m < 12; ++m) {
@@ -441,10 +588,10 @@ HWY_AFTER_NAMESPACE();
 namespace texproc {
 HWY_EXPORT(Bc1FastBlocks);
 
-void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, bool normal, bool three,
+void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
                      std::uint8_t out[][8], bool handled[]) {
-  if (force_scalar()) return ref::bc1_fast_blocks(texel, count, normal, three, out, handled);
-  HWY_DYNAMIC_DISPATCH(Bc1FastBlocks)(texel, count, normal, three, out, handled);
+  if (force_scalar()) return ref::bc1_fast_blocks(texel, count, level, three, out, handled);
+  HWY_DYNAMIC_DISPATCH(Bc1FastBlocks)(texel, count, level, three, out, handled);
 }
 }  // namespace texproc
 #endif

@@ -138,8 +138,8 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * block_bytes);
   const ColorMode color_mode = bc1 ? ColorMode::bc1 : bc1a ? ColorMode::bc1_punch_through : ColorMode::four_only;
   const bool lanes4 = q != Quality::max;  // BC4 blocks a lane each (bc4_fast.h)
-  // BC1 colour a block per lane at `fast` and `normal` (bc1_fast.h; `high` and `max` search block by block).
-  const bool batched = (q == Quality::fast || q == Quality::normal) && color_mode != ColorMode::bc1_punch_through;
+  // Opaque BC1 colour a block per lane below `max` (bc1_fast.h; `max` and punch-through go block by block).
+  const bool batched = q != Quality::max && color_mode != ColorMode::bc1_punch_through;
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::uint8_t rgba[kBc1Batch][16][4];
     std::uint32_t texel[16][kBc1Batch] = {};
@@ -168,7 +168,7 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
         }
         // `fast` and `normal` opaque colour: sixteen blocks at a time (one-colour blocks
         // are left to the single-colour tables below).
-        if (batched) bc1_fast_blocks(texel, count, q == Quality::normal, bc1, color, handled);
+        if (batched) bc1_fast_blocks(texel, count, lane_level(q), bc1, color, handled);
         for (int k = 0; k < count; ++k) {
           std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes;
           std::uint8_t* color_dst = bc1 || bc1a ? dst : dst + 8;
