@@ -1,17 +1,27 @@
-// BC1's `fast` and `normal` encoders for opaque blocks, sixteen blocks at a
-// time (a block per SIMD lane), SIMD and scalar twins with identical bytes.
+// BC1's encoder for opaque blocks at `fast`, `normal` and `high`, sixteen
+// blocks at a time (a block per SIMD lane), SIMD and scalar twins with
+// identical bytes.
 //
-// `fast`, per block: the principal axis of the colours (power iteration on the
-// covariance, from its row of greatest variance), the colours' extent along
-// it as endpoints, each texel's nearest colour of the four-colour palette,
-// then one least-squares refit of the endpoints for those indices, kept
-// where it lowers the error. `normal` adds a second refit, then nudges each
-// quantized endpoint channel by one step while that lowers the error (at
-// most four passes over the twelve moves), and, with `three`, tries the
-// three-colour mode (no black) from the principal-axis ends refitted once.
-// Integer sums, and float expressions evaluated
-// in the same order by both twins (no FMA; divisions and square roots are
-// correctly rounded on every target).
+// Every level starts from the principal axis of the block's colours (power
+// iteration on the covariance, from its row of greatest variance) and the
+// colours' extent along it.
+// - `fast` (level 0): each texel at the nearest third of the extent, one
+//   least-squares fit of the endpoints for those positions, each texel's
+//   nearest colour of the quantized palette.
+// - `normal` (1): the extent's ends as endpoints, nearest colours and two
+//   least-squares refits (each kept where it lowers the error); then
+//   partition variants along the axis: the thirds shifted (offsets of 0.15
+//   up to +-0.3) and stretched (+-15%), each a least-squares fit, the 15
+//   ranked by their unquantized error and the best two scored exactly;
+//   then each quantized endpoint channel nudged by one step while that
+//   lowers the error (at most four passes over the twelve moves); with
+//   `three`, the three-colour mode (no black) from the extent's ends,
+//   refitted once.
+// - `high` (2): as normal, but 45 variants (offsets up to +-0.6, stretches
+//   up to +-30%), every one scored exactly and refitted once.
+// Integer sums, and float expressions evaluated in the same order by both
+// twins (no FMA; divisions and square roots are correctly rounded on every
+// target).
 #pragma once
 
 #include <cstdint>

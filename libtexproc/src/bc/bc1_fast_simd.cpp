@@ -193,9 +193,9 @@ void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, int le
       refit(rgb, true, st);
       refit(rgb, true, st);
       // Partition variants along the axis (a cluster fit's neighbourhood):
-      // `normal` ranks 21 by their unquantized error and scores the best
+      // `normal` ranks 15 by their unquantized error and scores the best
       // two exactly; `high` scores all 45 exactly, each refitted once.
-      const int offsets = level >= 2 ? 4 : 3, stretches = level >= 2 ? 2 : 1;
+      const int offsets = level >= 2 ? 4 : 2, stretches = level >= 2 ? 2 : 1;
       float e1 = 0.0f, e2 = 0.0f;
       int have = 0, q1[2][3] = {}, q2[2][3] = {};
       for (int o = -offsets; o <= offsets; ++o)
@@ -479,7 +479,7 @@ void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, int leve
       refit(true, st);
       refit(true, st);
       // Partition variants along the axis (see the scalar reference).
-      const int offsets = level >= 2 ? 4 : 3, stretches = level >= 2 ? 2 : 1;
+      const int offsets = level >= 2 ? 4 : 2, stretches = level >= 2 ? 2 : 1;
       const auto wide = hn::Gt(hi, lo);
       const VF extent = hn::IfThenElse(wide, hn::Sub(hi, lo), one);
       VF e1 = hn::Zero(df), e2 = e1;
