@@ -19,6 +19,8 @@
 
 namespace texproc {
 
+static_assert(kBc1Batch == kBlockBatch, "the lanes take the texels gather_rows_rgba8 reads");
+
 Quality parse_quality(std::string_view n) {
   if (n == "fast") return Quality::fast;
   if (n == "normal") return Quality::normal;
@@ -150,21 +152,13 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
     for (int by = by0; by < by1; ++by)
       for (int bx0 = 0; bx0 < bw; bx0 += kBc1Batch) {
         const int count = std::min(kBc1Batch, bw - bx0);
-        const bool rows_direct = batched && img.type == PixelType::u8 && img.channels == 4 &&
-                                 (bx0 + count) * 4 <= img.width && by * 4 + 4 <= img.height;
-        if (rows_direct) {  // RGBA8 texels straight from the rows (the kernel ignores alpha)
-          for (int y = 0; y < 4; ++y) {
-            const std::uint8_t* row = img.row<const std::uint8_t>(by * 4 + y) + bx0 * 16;
-            for (int k = 0; k < count; ++k)
-              for (int x = 0; x < 4; ++x) std::memcpy(&texel[4 * y + x][k], row + 16 * k + 4 * x, 4);
-          }
-        }
+        // RGBA8 texels straight from the rows where they can be.
+        const bool rows_direct = batched && gather_rows_rgba8(img, bx0, by, count, texel);
         for (int k = 0; k < count; ++k) {
           if (rows_direct && bc1) continue;  // gathered below only if the kernel leaves it
           gather_rgba8(img, bx0 + k, by, rgba[k]);
           if (batched && !rows_direct)
-            for (int i = 0; i < 16; ++i)
-              texel[i][k] = std::uint32_t(rgba[k][i][0]) | std::uint32_t(rgba[k][i][1]) << 8 | std::uint32_t(rgba[k][i][2]) << 16;
+            for (int i = 0; i < 16; ++i) texel[i][k] = pack_rgb(rgba[k][i]);
         }
         // `fast` and `normal` opaque colour: sixteen blocks at a time (one-colour blocks
         // are left to the single-colour tables below).

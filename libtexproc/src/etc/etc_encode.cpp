@@ -32,6 +32,8 @@
 #include "texproc/runtime.h"
 
 namespace texproc::etc {
+
+static_assert(kEtcBatch == kBlockBatch, "the lanes take the texels gather_rows_rgba8 reads");
 namespace {
 
 constexpr long kNone = std::numeric_limits<long>::max() / 4;
@@ -656,8 +658,7 @@ long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err
 long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
   if (etc_blocks_in_lanes(mode, q)) {  // as whole images do: etc_fast.h
     std::uint32_t texel[16][kEtcBatch] = {};
-    for (int i = 0; i < 16; ++i)
-      texel[i][0] = std::uint32_t(rgba[i][0]) | std::uint32_t(rgba[i][1]) << 8 | std::uint32_t(rgba[i][2]) << 16;
+    for (int i = 0; i < 16; ++i) texel[i][0] = pack_rgb(rgba[i]);
     std::uint8_t block[1][8];
     long err = 0;
     if (q == Quality::fast) {
@@ -782,15 +783,8 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
     for (int by = by0; by < by1; ++by)
       for (int bx0 = 0; bx0 < bw; bx0 += kEtcBatch) {
         const int count = std::min(kEtcBatch, bw - bx0);
-        const bool rows_direct = batched && !rgba8 && img.type == PixelType::u8 && img.channels == 4 &&
-                                 (bx0 + count) * 4 <= img.width && by * 4 + 4 <= img.height;
-        if (rows_direct) {  // RGBA8 texels straight from the rows (the kernel ignores alpha)
-          for (int y = 0; y < 4; ++y) {
-            const std::uint8_t* row = img.row<const std::uint8_t>(by * 4 + y) + bx0 * 16;
-            for (int k = 0; k < count; ++k)
-              for (int x = 0; x < 4; ++x) std::memcpy(&texel[4 * y + x][k], row + 16 * k + 4 * x, 4);
-          }
-        }
+        // RGBA8 texels straight from the rows where they can be.
+        const bool rows_direct = batched && !rgba8 && gather_rows_rgba8(img, bx0, by, count, texel);
         for (int k = 0; k < count && !rows_direct; ++k) {
           const int bx = bx0 + k;
           std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx) * std::size_t(info.block_bytes);
@@ -812,8 +806,7 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
             encode_eac_block(values, EacKind::alpha8, q, dst);
           }
           if (batched) {
-            for (int i = 0; i < 16; ++i)
-              texel[i][k] = std::uint32_t(rgba[k][i][0]) | std::uint32_t(rgba[k][i][1]) << 8 | std::uint32_t(rgba[k][i][2]) << 16;
+            for (int i = 0; i < 16; ++i) texel[i][k] = pack_rgb(rgba[k][i]);
           } else {
             encode_color_block(rgba[k], mode, q, dst + (rgba8 ? 8 : 0));
           }

@@ -340,31 +340,41 @@ namespace texproc::etc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
+using D = hn::CappedTag<std::int32_t, kEtcBatch>;
+using V = hn::Vec<D>;
+using M = hn::Mask<D>;
+
+// A half block's fit, per lane: its error, base, table and modifier indices.
+struct Fit {
+  V err, q[3], table, idx[8];
+};
+
+// The texels of blocks k0, k0 + 1, ... as channel planes.
+HWY_INLINE void LoadTexels(const std::uint32_t texel[16][kEtcBatch], int k0, V r[16], V g[16], V b[16]) {
+  const D d;
+  const hn::Rebind<std::uint32_t, D> du;
+  const V mask8 = hn::Set(d, 255);
+  for (int i = 0; i < 16; ++i) {
+    const V t = hn::BitCast(d, hn::LoadU(du, texel[i] + k0));
+    r[i] = hn::And(t, mask8), g[i] = hn::And(hn::ShiftRight<8>(t), mask8), b[i] = hn::And(hn::ShiftRight<16>(t), mask8);
+  }
+}
+
+// The table's modifier a (column 0) or b (column 1) for each lane's table t.
+HWY_INLINE V Modifier(V t, int column) {
+  const D d;
+  V v = hn::Set(d, kModifiers[0][column]);
+  for (int j = 1; j < 8; ++j) v = hn::IfThenElse(hn::Eq(t, hn::Set(d, j)), hn::Set(d, kModifiers[j][column]), v);
+  return v;
+}
+
 void Etc1FastBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
-  using D = hn::CappedTag<std::int32_t, kEtcBatch>;
   const D d;
   const hn::Rebind<float, D> df;
-  const hn::Rebind<std::uint32_t, D> du;
-  using V = hn::Vec<D>;
-  using M = hn::Mask<D>;
   const int lanes = int(hn::Lanes(d));
-  struct Fit {
-    V err, q[3], table, idx[8];
-  };
   for (int k0 = 0; k0 < count; k0 += lanes) {
     V r[16], g[16], b[16];
-    const V mask8 = hn::Set(d, 255);
-    for (int i = 0; i < 16; ++i) {
-      const V t = hn::BitCast(d, hn::LoadU(du, texel[i] + k0));
-      r[i] = hn::And(t, mask8), g[i] = hn::And(hn::ShiftRight<8>(t), mask8), b[i] = hn::And(hn::ShiftRight<16>(t), mask8);
-    }
-    auto lookup = [&](V t, const int* table) {  // table[t] per lane
-      V v = hn::Set(d, table[0]);
-      for (int j = 1; j < 8; ++j) v = hn::IfThenElse(hn::Eq(t, hn::Set(d, j)), hn::Set(d, table[j]), v);
-      return v;
-    };
-    int mod_a[8], mod_b[8];
-    for (int j = 0; j < 8; ++j) mod_a[j] = kModifiers[j][0], mod_b[j] = kModifiers[j][1];
+    LoadTexels(texel, k0, r, g, b);
     V t0[4];
     for (int h = 0; h < 4; ++h) {
       V total = hn::Zero(d), spread = hn::Zero(d);
@@ -408,7 +418,7 @@ void Etc1FastBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::ui
       }
       for (int dt = -1; dt <= 1; ++dt) {
         const V t = hn::Min(hn::Max(hn::Add(t0[h], hn::Set(d, dt)), zero), hn::Set(d, 7));
-        const V ma = lookup(t, mod_a), mb = lookup(t, mod_b);
+        const V ma = Modifier(t, 0), mb = Modifier(t, 1);
         const V edge = hn::Mul(hn::Set(d, 3), hn::Add(ma, mb));
         V err = zero, idx[8];
         for (int i = 0; i < 8; ++i) {
@@ -489,24 +499,10 @@ void Etc1FastBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::ui
 
 void Etc1NormalBlocks(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
                       std::int32_t error[]) {
-  using D = hn::CappedTag<std::int32_t, kEtcBatch>;
   const D d;
   const hn::Rebind<float, D> df;
-  const hn::Rebind<std::uint32_t, D> du;
-  using V = hn::Vec<D>;
-  using M = hn::Mask<D>;
   const int lanes = int(hn::Lanes(d));
-  struct Fit {
-    V err, q[3], table, idx[8];
-  };
-  int mod_a[8], mod_b[8];
-  for (int j = 0; j < 8; ++j) mod_a[j] = kModifiers[j][0], mod_b[j] = kModifiers[j][1];
   const V zero = hn::Zero(d), top8 = hn::Set(d, 255);
-  auto lookup = [&](V t, const int* table) {  // table[t] per lane
-    V v = hn::Set(d, table[0]);
-    for (int j = 1; j < 8; ++j) v = hn::IfThenElse(hn::Eq(t, hn::Set(d, j)), hn::Set(d, table[j]), v);
-    return v;
-  };
   auto select = [&](M m, const Fit& from, Fit& to) {
     to.err = hn::IfThenElse(m, from.err, to.err);
     to.table = hn::IfThenElse(m, from.table, to.table);
@@ -520,14 +516,11 @@ void Etc1NormalBlocks(const std::uint32_t texel[16][kEtcBatch], int count, bool 
   };
   for (int k0 = 0; k0 < count; k0 += lanes) {
     V r[16], g[16], b[16];
-    for (int i = 0; i < 16; ++i) {
-      const V t = hn::BitCast(d, hn::LoadU(du, texel[i] + k0));
-      r[i] = hn::And(t, top8), g[i] = hn::And(hn::ShiftRight<8>(t), top8), b[i] = hn::And(hn::ShiftRight<16>(t), top8);
-    }
+    LoadTexels(texel, k0, r, g, b);
     auto eval = [&](int h, const V q[3], int bits, V t) {
       Fit f;
       f.table = t;
-      const V ma = lookup(t, mod_a), mb = lookup(t, mod_b);
+      const V ma = Modifier(t, 0), mb = Modifier(t, 1);
       const V mods[4] = {ma, mb, hn::Neg(ma), hn::Neg(mb)};
       V pal[4][3];
       for (int c = 0; c < 3; ++c) {
@@ -557,7 +550,7 @@ void Etc1NormalBlocks(const std::uint32_t texel[16][kEtcBatch], int count, bool 
     };
     // Re-centres `cur` (its table per lane) up to `passes` times while that helps.
     auto recentre = [&](int h, int bits, Fit cur, int passes) {
-      const V ma = lookup(cur.table, mod_a), mb = lookup(cur.table, mod_b);
+      const V ma = Modifier(cur.table, 0), mb = Modifier(cur.table, 1);
       M active = hn::Eq(zero, zero);
       for (int pass = 0; pass < passes; ++pass) {
         V centre[3] = {zero, zero, zero};
