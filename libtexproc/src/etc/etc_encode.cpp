@@ -16,6 +16,7 @@
 // bits, every distance tried).
 #include "etc/etc_encode.h"
 #include "etc/etc_eval.h"
+#include "etc/eac_fast.h"
 #include "etc/etc_fast.h"
 
 #include <algorithm>
@@ -720,6 +721,16 @@ void eac_try(const double t[16], EacKind kind, int base, int mult, int table, Ea
 }  // namespace
 
 double encode_eac_block(const float targets[16], EacKind kind, Quality q, std::uint8_t out[8]) {
+  if (q != Quality::max) {  // as whole images do: eac_fast.h
+    float v[16][kEacBatch] = {};
+    for (int i = 0; i < 16; ++i) v[i][0] = targets[i];
+    std::uint8_t block[1][8];
+    float err[1];
+    eac_blocks(v, 1, kind, q == Quality::fast ? 0 : q == Quality::normal ? 1 : 2, block, err);
+    std::memcpy(out, block[0], 8);
+    return err[0];
+  }
+  // `max`: every multiplier and +-8 bases around each one's centring base.
   const double lo_end = kind == EacKind::r11_signed ? -1023 : 0, hi_end = kind == EacKind::alpha8 ? 255 : kind == EacKind::r11 ? 2047 : 1023;
   double t[16], lo = hi_end, hi = lo_end;
   for (int i = 0; i < 16; ++i) {
@@ -774,15 +785,38 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
   // its planar, T and H modes block by block.
   const bool batched = etc_blocks_in_lanes(mode, q);
   const bool finish = batched && q != Quality::fast && mode != ColorMode::etc1;  // ETC2: planar, T, H per block
+  const bool eac_lanes = q != Quality::max;
+  const int eac_level = q == Quality::fast ? 0 : q == Quality::normal ? 1 : 2;
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::int32_t errors[kEtcBatch];
     std::uint8_t rgba[kEtcBatch][16][4];
     std::uint32_t texel[16][kEtcBatch] = {};
     std::uint8_t color[kEtcBatch][8];
     float values[16];
+    float eac_values[16][kEacBatch];  // EAC: sixteen blocks at a time below `max` (eac_fast.h)
+    std::uint8_t eac_out[kEacBatch][8];
+    float eac_err[kEacBatch];
+    auto eac_flush = [&](int by, int bx0, int count, EacKind kind, int offset) {
+      eac_blocks(eac_values, count, kind, eac_level, eac_out, eac_err);
+      for (int k = 0; k < count; ++k)
+        std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + offset, eac_out[k], 8);
+    };
     for (int by = by0; by < by1; ++by)
       for (int bx0 = 0; bx0 < bw; bx0 += kEtcBatch) {
         const int count = std::min(kEtcBatch, bw - bx0);
+        if (eac && eac_lanes) {
+          for (int c = 0; c < eac_channels; ++c) {
+            for (int k = 0; k < count; ++k)
+              for (int i = 0; i < 16; ++i) {
+                // Partial blocks: the edge texels repeat into the missing ones.
+                const int x = std::min((bx0 + k) * 4 + i % 4, img.width - 1), y = std::min(by * 4 + i / 4, img.height - 1);
+                const float u = texel_unit(img, x, y, c);
+                eac_values[i][k] = snorm ? (u * 2.0f - 1.0f) * 1023.0f : u * 2047.0f;
+              }
+            eac_flush(by, bx0, count, snorm ? EacKind::r11_signed : EacKind::r11, 8 * c);
+          }
+          continue;
+        }
         // RGBA8 texels straight from the rows where they can be.
         const bool rows_direct = batched && !rgba8 && gather_rows_rgba8(img, bx0, by, count, texel);
         for (int k = 0; k < count && !rows_direct; ++k) {
@@ -801,7 +835,9 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
             continue;
           }
           gather_rgba8(img, bx, by, rgba[k]);
-          if (rgba8) {
+          if (rgba8 && eac_lanes) {
+            for (int i = 0; i < 16; ++i) eac_values[i][k] = rgba[k][i][3];
+          } else if (rgba8) {
             for (int i = 0; i < 16; ++i) values[i] = rgba[k][i][3];
             encode_eac_block(values, EacKind::alpha8, q, dst);
           }
@@ -811,6 +847,7 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
             encode_color_block(rgba[k], mode, q, dst + (rgba8 ? 8 : 0));
           }
         }
+        if (rgba8 && eac_lanes) eac_flush(by, bx0, count, EacKind::alpha8, 0);
         if (eac || !batched) continue;
         if (q == Quality::fast) {
           etc1_fast_blocks(texel, count, color);

@@ -1,0 +1,32 @@
+// EAC blocks (R11, R11 signed, ETC2's 8-bit alpha), sixteen at a time (a
+// block per SIMD lane), SIMD and scalar twins with identical bytes.
+//
+// Per block and for each of the 16 modifier tables: the multiplier that
+// spreads the table over the values' range (rounded) and, at `normal` the
+// two around it and the next one up, at `high` two either side and the
+// next one up; for each, the base that centres the table on the range
+// (rounded) and, at `normal` +-1, at `high` +-2 around it. Each value takes
+// the nearest palette entry (the palette is monotonic in the modifier, so
+// the entry follows from the value's place among the midpoints); the
+// candidate with the least squared error wins, the first in that order on a
+// tie. Float expressions in the same order on both twins, no FMA.
+#pragma once
+
+#include <cstdint>
+
+#include "etc/etc_encode.h"
+
+namespace texproc::etc {
+
+constexpr int kEacBatch = 16;
+
+// v[i][k]: value i (row by row) of block k in the format's units (see
+// encode_eac_block; clamped here). level: 0 `fast`, 1 `normal`, 2 `high`.
+// error[k]: the block's squared error in those units.
+void eac_blocks(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]);
+
+namespace ref {
+void eac_blocks(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]);
+}  // namespace ref
+
+}  // namespace texproc::etc

@@ -1,0 +1,211 @@
+// EAC in lanes: the scalar reference (one block at a time, plainly) and its
+// Highway twin; both fill the same per-block parameters, which one packer
+// writes. See eac_fast.h.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "etc/eac_fast_simd.cpp"
+#include <hwy/foreach_target.h>  // must come before highway.h
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "etc/eac_fast.h"
+#include "etc/etc_tables.h"
+#include "texproc/runtime.h"
+
+#ifndef TEXPROC_EAC_FAST_REF
+#define TEXPROC_EAC_FAST_REF
+namespace texproc::etc {
+namespace eac {
+
+// The modifier indices of every table in ascending order of modifier (the
+// tables list -a, -b, -c, -d, then e < f < g < h, with a < b < c < d).
+inline constexpr int kAscending[8] = {3, 2, 1, 0, 4, 5, 6, 7};
+
+// A kind's ranges and units: values in [lo_end, hi_end]; a decoded value is
+// base * unit + offset + modifier * multiplier * unit (multiplier 0: the
+// modifier unscaled, for 8-bit alpha nothing), clamped.
+struct Kind {
+  float lo_end, hi_end, unit, offset;
+  int base_lo, base_hi, unit_i, offset_i, zero_step;
+};
+inline Kind kind_of(EacKind k) {
+  switch (k) {
+    case EacKind::alpha8: return {0.0f, 255.0f, 1.0f, 0.0f, 0, 255, 1, 0, 0};
+    case EacKind::r11: return {0.0f, 2047.0f, 8.0f, 4.0f, 0, 255, 8, 4, 1};
+    case EacKind::r11_signed: return {-1023.0f, 1023.0f, 8.0f, 0.0f, -127, 127, 8, 0, 1};
+  }
+  return {};
+}
+
+// The search window by level: multipliers m0 - mult_below .. m0 + mult_above,
+// bases b0 +- base_r.
+inline int mult_below(int level) { return level == 0 ? 0 : level == 1 ? 1 : 2; }
+inline int mult_above(int level) { return level == 0 ? 0 : level == 1 ? 2 : 3; }
+inline int base_radius(int level) { return level == 0 ? 0 : level == 1 ? 1 : 2; }
+
+inline void pack(int base, int mult, int table, const int codes[16], std::uint8_t out[8]) {
+  std::uint64_t v = std::uint64_t(base & 255) << 56 | std::uint64_t(mult) << 52 | std::uint64_t(table) << 48;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) v |= std::uint64_t(codes[y * 4 + x]) << (45 - 3 * (x * 4 + y));
+  store_be64(v, out);
+}
+
+}  // namespace eac
+
+namespace ref {
+
+void eac_blocks(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]) {
+  const eac::Kind K = eac::kind_of(kind);
+  for (int k = 0; k < count; ++k) {
+    float t[16], lo = K.hi_end, hi = K.lo_end;
+    for (int i = 0; i < 16; ++i) {
+      t[i] = std::min(std::max(v[i][k], K.lo_end), K.hi_end);
+      lo = std::min(lo, t[i]), hi = std::max(hi, t[i]);
+    }
+    const float centre = (lo + hi) * 0.5f;
+    float best = -1.0f;
+    int best_base = 0, best_mult = 0, best_table = 0, best_codes[16] = {};
+    for (int table = 0; table < 16; ++table) {
+      const int mn = kEacModifiers[table][3], mx = kEacModifiers[table][7];
+      const int m0 = int(std::floor((hi - lo) / (float(mx - mn) * K.unit) + 0.5f));
+      for (int mult = m0 - eac::mult_below(level); mult <= m0 + eac::mult_above(level); ++mult) {
+        if (mult < 0 || mult > 15) continue;
+        const float step = mult == 0 ? float(K.zero_step) : float(mult) * K.unit;
+        const float bf = (centre - K.offset - float(mn + mx) * 0.5f * step) / K.unit;
+        const int b0 = std::clamp(int(std::floor(bf + 0.5f)), K.base_lo, K.base_hi);
+        for (int base = b0 - eac::base_radius(level); base <= b0 + eac::base_radius(level); ++base) {
+          if (base < K.base_lo || base > K.base_hi) continue;
+          // The palette in ascending order, and the midpoints between.
+          float pal[8];
+          for (int j = 0; j < 8; ++j) {
+            const int m = kEacModifiers[table][eac::kAscending[j]];
+            const int value = base * K.unit_i + K.offset_i + (mult == 0 ? m * K.zero_step : m * mult * K.unit_i);
+            pal[j] = std::min(std::max(float(value), K.lo_end), K.hi_end);
+          }
+          float err = 0.0f;
+          int codes[16];
+          for (int i = 0; i < 16; ++i) {
+            int s = 0;
+            for (int j = 0; j < 7; ++j) s += t[i] > (pal[j] + pal[j + 1]) * 0.5f ? 1 : 0;
+            const float d = t[i] - pal[s];
+            err += d * d;
+            codes[i] = eac::kAscending[s];
+          }
+          if (best < 0.0f || err < best) {
+            best = err, best_base = base, best_mult = mult, best_table = table;
+            std::copy(codes, codes + 16, best_codes);
+          }
+        }
+      }
+    }
+    eac::pack(best_base, best_mult, best_table, best_codes, out[k]);
+    error[k] = best;
+  }
+}
+
+}  // namespace ref
+}  // namespace texproc::etc
+#endif
+
+HWY_BEFORE_NAMESPACE();
+namespace texproc::etc {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+void EacBlocks(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]) {
+  using DF = hn::CappedTag<float, kEacBatch>;
+  const DF df;
+  const hn::RebindToSigned<DF> d;
+  using VF = hn::Vec<DF>;
+  using V = hn::Vec<decltype(d)>;
+  const int lanes = int(hn::Lanes(df));
+  const eac::Kind K = eac::kind_of(kind);
+  const VF lo_end = hn::Set(df, K.lo_end), hi_end = hn::Set(df, K.hi_end), half = hn::Set(df, 0.5f);
+  for (int k0 = 0; k0 < count; k0 += lanes) {
+    VF t[16], lo = hi_end, hi = lo_end;
+    for (int i = 0; i < 16; ++i) {
+      t[i] = hn::Min(hn::Max(hn::LoadU(df, v[i] + k0), lo_end), hi_end);
+      lo = hn::Min(lo, t[i]), hi = hn::Max(hi, t[i]);
+    }
+    const VF centre = hn::Mul(hn::Add(lo, hi), half);
+    VF best = hn::Set(df, -1.0f);
+    V best_base = hn::Zero(d), best_mult = best_base, best_table = best_base, best_codes[16];
+    for (auto& c : best_codes) c = hn::Zero(d);
+    for (int table = 0; table < 16; ++table) {
+      const int mn = kEacModifiers[table][3], mx = kEacModifiers[table][7];
+      const V m0 = hn::ConvertTo(d, hn::Floor(hn::Add(hn::Div(hn::Sub(hi, lo), hn::Set(df, float(mx - mn) * K.unit)), half)));
+      for (int dm = -eac::mult_below(level); dm <= eac::mult_above(level); ++dm) {
+        const V mult = hn::Add(m0, hn::Set(d, dm));
+        auto valid = hn::And(hn::Not(hn::Lt(mult, hn::Zero(d))), hn::Not(hn::Gt(mult, hn::Set(d, 15))));
+        if (hn::AllFalse(d, valid)) continue;
+        const auto zero_mult = hn::Eq(mult, hn::Zero(d));
+        const VF step = hn::IfThenElse(hn::RebindMask(df, zero_mult), hn::Set(df, float(K.zero_step)),
+                                       hn::Mul(hn::ConvertTo(df, mult), hn::Set(df, K.unit)));
+        const VF bf = hn::Div(hn::Sub(hn::Sub(centre, hn::Set(df, K.offset)), hn::Mul(hn::Set(df, float(mn + mx) * 0.5f), step)),
+                              hn::Set(df, K.unit));
+        const V b0 = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(bf, half))), hn::Set(d, K.base_lo)), hn::Set(d, K.base_hi));
+        // Per modifier: what it adds (multiplier 0: the modifier unscaled).
+        const V scale = hn::IfThenElse(zero_mult, hn::Set(d, K.zero_step), hn::Mul(mult, hn::Set(d, K.unit_i)));
+        for (int db = -eac::base_radius(level); db <= eac::base_radius(level); ++db) {
+          const V base = hn::Add(b0, hn::Set(d, db));
+          const auto ok = hn::And(valid, hn::And(hn::Not(hn::Lt(base, hn::Set(d, K.base_lo))), hn::Not(hn::Gt(base, hn::Set(d, K.base_hi)))));
+          if (hn::AllFalse(d, ok)) continue;
+          const V at = hn::Add(hn::Mul(base, hn::Set(d, K.unit_i)), hn::Set(d, K.offset_i));
+          VF pal[8], mid[7];
+          for (int j = 0; j < 8; ++j) {
+            const V value = hn::Add(at, hn::Mul(hn::Set(d, kEacModifiers[table][eac::kAscending[j]]), scale));
+            pal[j] = hn::Min(hn::Max(hn::ConvertTo(df, value), lo_end), hi_end);
+          }
+          for (int j = 0; j < 7; ++j) mid[j] = hn::Mul(hn::Add(pal[j], pal[j + 1]), half);
+          VF err = hn::Zero(df);
+          V codes[16];
+          for (int i = 0; i < 16; ++i) {
+            VF p = pal[0];
+            V code = hn::Set(d, eac::kAscending[0]);
+            for (int j = 0; j < 7; ++j) {
+              const auto above = hn::Gt(t[i], mid[j]);
+              p = hn::IfThenElse(above, pal[j + 1], p);
+              code = hn::IfThenElse(hn::RebindMask(d, above), hn::Set(d, eac::kAscending[j + 1]), code);
+            }
+            const VF diff = hn::Sub(t[i], p);
+            err = hn::Add(err, hn::Mul(diff, diff));
+            codes[i] = code;
+          }
+          const auto take = hn::And(ok, hn::RebindMask(d, hn::Or(hn::Lt(best, hn::Zero(df)), hn::Lt(err, best))));
+          best = hn::IfThenElse(hn::RebindMask(df, take), err, best);
+          best_base = hn::IfThenElse(take, base, best_base);
+          best_mult = hn::IfThenElse(take, mult, best_mult);
+          best_table = hn::IfThenElse(take, hn::Set(d, table), best_table);
+          for (int i = 0; i < 16; ++i) best_codes[i] = hn::IfThenElse(take, codes[i], best_codes[i]);
+        }
+      }
+    }
+    HWY_ALIGN std::int32_t base_o[kEacBatch], mult_o[kEacBatch], table_o[kEacBatch], codes_o[16][kEacBatch];
+    HWY_ALIGN float err_o[kEacBatch];
+    hn::Store(best_base, d, base_o), hn::Store(best_mult, d, mult_o), hn::Store(best_table, d, table_o);
+    hn::Store(best, df, err_o);
+    for (int i = 0; i < 16; ++i) hn::Store(best_codes[i], d, codes_o[i]);
+    for (int k = 0; k < lanes && k0 + k < count; ++k) {
+      int codes[16];
+      for (int i = 0; i < 16; ++i) codes[i] = codes_o[i][k];
+      eac::pack(base_o[k], mult_o[k], table_o[k], codes, out[k0 + k]);
+      error[k0 + k] = err_o[k];
+    }
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace texproc::etc
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace texproc::etc {
+HWY_EXPORT(EacBlocks);
+
+void eac_blocks(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]) {
+  if (force_scalar()) return ref::eac_blocks(v, count, kind, level, out, error);
+  HWY_DYNAMIC_DISPATCH(EacBlocks)(v, count, kind, level, out, error);
+}
+}  // namespace texproc::etc
+#endif
