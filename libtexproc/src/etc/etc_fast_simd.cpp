@@ -368,6 +368,40 @@ HWY_INLINE V Modifier(V t, int column) {
   return v;
 }
 
+// Writes the blocks of lanes k0.. (as fast::pack does, in lanes): flip and
+// differential (0/1 per lane), the halves' fits a (first) and b.
+HWY_INLINE void PackBlocks(V flip, V differential, const Fit& a, const Fit& b, int k0, int count, std::uint8_t out[][8]) {
+  const D d;
+  const hn::Rebind<std::uint32_t, D> du;
+  const V seven = hn::Set(d, 7);
+  const auto is_diff = hn::Ne(differential, hn::Zero(d));
+  V high = hn::Zero(d);
+  for (int c = 0; c < 3; ++c) {  // bits 63-40: a byte per channel
+    const V byte = hn::IfThenElse(is_diff, hn::Or(hn::ShiftLeft<3>(a.q[c]), hn::And(hn::Sub(b.q[c], a.q[c]), seven)),
+                                  hn::Or(hn::ShiftLeft<4>(a.q[c]), b.q[c]));
+    high = hn::Or(high, hn::ShiftLeftSame(byte, 24 - 8 * c));
+  }
+  high = hn::Or(high, hn::Or(hn::Or(hn::ShiftLeft<5>(a.table), hn::ShiftLeft<2>(b.table)),
+                             hn::Or(hn::ShiftLeft<1>(differential), flip)));
+  // Texel (x, y) at bit x * 4 + y of each 16-bit half of the low word
+  // (most significant index bits above); the halves' texels depend on the flip.
+  V low[2] = {hn::Zero(d), hn::Zero(d)};
+  for (int f = 0; f < 2; ++f)
+    for (int s = 0; s < 2; ++s)
+      for (int i = 0; i < 8; ++i) {
+        const int t = fast::kHalf[2 * f + s][i], bit = (t % 4) * 4 + t / 4;
+        const V idx = (s ? b : a).idx[i];
+        low[f] = hn::Or(low[f], hn::Or(hn::ShiftLeftSame(hn::ShiftRight<1>(idx), bit + 16),
+                                       hn::ShiftLeftSame(hn::And(idx, hn::Set(d, 1)), bit)));
+      }
+  const V lo = hn::IfThenElse(hn::Ne(flip, hn::Zero(d)), low[1], low[0]);
+  HWY_ALIGN std::uint32_t hi_o[kEtcBatch], lo_o[kEtcBatch];
+  hn::Store(hn::BitCast(du, high), du, hi_o);
+  hn::Store(hn::BitCast(du, lo), du, lo_o);
+  for (int k = 0; k < int(hn::Lanes(d)) && k0 + k < count; ++k)
+    store_be64(std::uint64_t(hi_o[k]) << 32 | lo_o[k], out[k0 + k]);
+}
+
 void Etc1FastBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
   const D d;
   const hn::Rebind<float, D> df;
@@ -473,27 +507,16 @@ void Etc1FastBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::ui
       err[flip] = hn::Add(chosen[flip][0].err, chosen[flip][1].err);
     }
     const M flip = hn::Lt(err[1], err[0]);
-    HWY_ALIGN std::int32_t flip_o[kEtcBatch], diff_o[kEtcBatch], q_o[2][3][kEtcBatch], t_o[2][kEtcBatch], idx_o[2][8][kEtcBatch];
-    hn::Store(hn::IfThenElseZero(flip, hn::Set(d, 1)), d, flip_o);
     const M differential = hn::Or(hn::And(flip, fits[1]), hn::AndNot(flip, fits[0]));
-    hn::Store(hn::IfThenElseZero(differential, hn::Set(d, 1)), d, diff_o);
+    Fit pa = chosen[0][0], pb = chosen[0][1];
     for (int s = 0; s < 2; ++s) {
-      const Fit& f0 = chosen[0][s];
       const Fit& f1 = chosen[1][s];
-      for (int c = 0; c < 3; ++c) hn::Store(hn::IfThenElse(flip, f1.q[c], f0.q[c]), d, q_o[s][c]);
-      hn::Store(hn::IfThenElse(flip, f1.table, f0.table), d, t_o[s]);
-      for (int i = 0; i < 8; ++i) hn::Store(hn::IfThenElse(flip, f1.idx[i], f0.idx[i]), d, idx_o[s][i]);
+      Fit& f = s ? pb : pa;
+      for (int c = 0; c < 3; ++c) f.q[c] = hn::IfThenElse(flip, f1.q[c], f.q[c]);
+      f.table = hn::IfThenElse(flip, f1.table, f.table);
+      for (int i = 0; i < 8; ++i) f.idx[i] = hn::IfThenElse(flip, f1.idx[i], f.idx[i]);
     }
-    for (int k = 0; k < lanes && k0 + k < count; ++k) {
-      fast::Params p;
-      p.flip = flip_o[k], p.differential = diff_o[k];
-      for (int s = 0; s < 2; ++s) {
-        for (int c = 0; c < 3; ++c) p.q[s][c] = q_o[s][c][k];
-        p.table[s] = t_o[s][k];
-        for (int i = 0; i < 8; ++i) p.idx[s][i] = idx_o[s][i][k];
-      }
-      fast::pack(p, out[k0 + k]);
-    }
+    PackBlocks(hn::IfThenElseZero(flip, hn::Set(d, 1)), hn::IfThenElseZero(differential, hn::Set(d, 1)), pa, pb, k0, count, out);
   }
 }
 
@@ -710,31 +733,12 @@ void Etc1NormalBlocks(const std::uint32_t texel[16][kEtcBatch], int count, bool 
         qb[c] = hn::Min(hn::Max(f5[bh].q[c], hn::Sub(f5[a].q[c], hn::Set(d, 4))), hn::Add(f5[a].q[c], hn::Set(d, 3)));
       consider(far, flip, true, f5[a], fit_fixed(bh, qb));
     }
-    HWY_ALIGN std::int32_t flip_o[kEtcBatch], diff_o[kEtcBatch], q_o[2][3][kEtcBatch], t_o[2][kEtcBatch], idx_o[2][8][kEtcBatch];
     HWY_ALIGN std::int32_t err_o[kEtcBatch];
     hn::Store(best_err, d, err_o);
-    hn::Store(best_flip, d, flip_o);
-    hn::Store(best_diff, d, diff_o);
-    for (int s2 = 0; s2 < 2; ++s2) {
-      const Fit& f = s2 ? best_b : best_a;
-      for (int c = 0; c < 3; ++c) hn::Store(f.q[c], d, q_o[s2][c]);
-      hn::Store(f.table, d, t_o[s2]);
-      for (int i = 0; i < 8; ++i) hn::Store(f.idx[i], d, idx_o[s2][i]);
-    }
-    for (int k = 0; k < lanes && k0 + k < count; ++k) {
-      fast::Params p;
-      p.flip = flip_o[k], p.differential = diff_o[k];
-      for (int s2 = 0; s2 < 2; ++s2) {
-        for (int c = 0; c < 3; ++c) p.q[s2][c] = q_o[s2][c][k];
-        p.table[s2] = t_o[s2][k];
-        for (int i = 0; i < 8; ++i) p.idx[s2][i] = idx_o[s2][i][k];
-      }
-      fast::pack(p, out[k0 + k]);
-      error[k0 + k] = err_o[k];
-    }
+    for (int k = 0; k < lanes && k0 + k < count; ++k) error[k0 + k] = err_o[k];
+    PackBlocks(best_flip, best_diff, best_a, best_b, k0, count, out);
   }
 }
-
 
 }  // namespace HWY_NAMESPACE
 }  // namespace texproc::etc
