@@ -7,8 +7,8 @@
 #include <cstring>
 
 #include "bc/bc1_encode.h"
-#include "bc/bc1_fast.h"
-#include "bc/bc4_fast.h"
+#include "bc/bc1_lanes.h"
+#include "bc/bc4_lanes.h"
 #include "bc/bc4_eval.h"
 #include "bc/block_gather.h"
 #include "etc/etc_encode.h"
@@ -85,17 +85,17 @@ void write_block(const Candidate& c, bool snorm, std::uint8_t out[8]) {
   for (int b = 0; b < 6; ++b) out[2 + b] = std::uint8_t(bits >> (8 * b));
 }
 
-// The lanes' level for a quality (bc4_fast.h); `max` searches block by block.
+// The lanes' level for a quality (bc4_lanes.h); `max` searches block by block.
 int lane_level(Quality q) { return q == Quality::fast ? 0 : q == Quality::normal ? 1 : 2; }
 
 }  // namespace
 
 void encode_bc4_block(const float v[16], bool snorm, Quality q, std::uint8_t out[8]) {
-  if (q != Quality::max) {  // as whole images do: bc4_fast.h
+  if (q != Quality::max) {  // as whole images do: bc4_lanes.h
     float batch[16][kBc4Batch] = {};
     for (int i = 0; i < 16; ++i) batch[i][0] = v[i];
     std::uint8_t block[1][8];
-    bc4_fast_blocks(batch, 1, snorm, lane_level(q), block);
+    bc4_encode_lanes(batch, 1, snorm, lane_level(q), block);
     std::memcpy(out, block[0], 8);
     return;
   }
@@ -139,8 +139,8 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
   const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * block_bytes);
   const ColorMode color_mode = bc1 ? ColorMode::bc1 : bc1a ? ColorMode::bc1_punch_through : ColorMode::four_only;
-  const bool lanes4 = q != Quality::max;  // BC4 blocks a lane each (bc4_fast.h)
-  // Opaque BC1 colour a block per lane below `max` (bc1_fast.h; `max` and punch-through go block by block).
+  const bool lanes4 = q != Quality::max;  // BC4 blocks a lane each (bc4_lanes.h)
+  // Opaque BC1 colour a block per lane below `max` (bc1_lanes.h; `max` and punch-through go block by block).
   const bool batched = q != Quality::max && color_mode != ColorMode::bc1_punch_through;
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::uint8_t rgba[kBc1Batch][16][4];
@@ -162,7 +162,7 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
         }
         // `fast` and `normal` opaque colour: sixteen blocks at a time (one-colour blocks
         // are left to the single-colour tables below).
-        if (batched) bc1_fast_blocks(texel, count, lane_level(q), bc1, color, handled);
+        if (batched) bc1_encode_lanes(texel, count, lane_level(q), bc1, color, handled);
         for (int k = 0; k < count; ++k) {
           std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes;
           std::uint8_t* color_dst = bc1 || bc1a ? dst : dst + 8;
@@ -187,7 +187,7 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
           }
         }
         if (!bc1 && !bc1a && !bc2 && lanes4) {
-          bc4_fast_blocks(alpha, count, false, lane_level(q), alpha_blocks);
+          bc4_encode_lanes(alpha, count, false, lane_level(q), alpha_blocks);
           for (int k = 0; k < count; ++k) std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes, alpha_blocks[k], 8);
         }
       }
@@ -218,7 +218,7 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
     }
     return snorm ? (v * 2.0f - 1.0f) * 127.0f : v * 255.0f;
   };
-  const bool lanes4 = q != Quality::max;  // a block per lane (bc4_fast.h)
+  const bool lanes4 = q != Quality::max;  // a block per lane (bc4_lanes.h)
   float u8_value[256];
   for (int i = 0; i < 256; ++i) {
     const float v = float(i) / 255.0f;
@@ -251,7 +251,7 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
               }
           }
           if (!lanes4) continue;
-          bc4_fast_blocks(batch, count, snorm, lane_level(q), blocks);  // sixteen blocks at a time
+          bc4_encode_lanes(batch, count, snorm, lane_level(q), blocks);  // sixteen blocks at a time
           for (int k = 0; k < count; ++k)
             std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes + 8 * ch, blocks[k], 8);
         }

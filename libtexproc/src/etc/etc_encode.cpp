@@ -16,8 +16,8 @@
 // bits, every distance tried).
 #include "etc/etc_encode.h"
 #include "etc/etc_eval.h"
-#include "etc/eac_fast.h"
-#include "etc/etc_fast.h"
+#include "etc/eac_lanes.h"
+#include "etc/etc_lanes.h"
 
 #include <algorithm>
 #include <array>
@@ -627,7 +627,7 @@ long block_error(const std::uint8_t rgba[16][4], const std::uint8_t block[8]) {
   return err;
 }
 
-// Opaque colour goes sixteen blocks at a time (etc_fast.h) at every quality but `max`.
+// Opaque colour goes sixteen blocks at a time (etc_lanes.h) at every quality but `max`.
 bool etc_blocks_in_lanes(ColorMode mode, Quality q) {
   return q != Quality::max && mode != ColorMode::etc2_punch;
 }
@@ -657,17 +657,17 @@ long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err
 }  // namespace
 
 long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
-  if (etc_blocks_in_lanes(mode, q)) {  // as whole images do: etc_fast.h
+  if (etc_blocks_in_lanes(mode, q)) {  // as whole images do: etc_lanes.h
     std::uint32_t texel[16][kEtcBatch] = {};
     for (int i = 0; i < 16; ++i) texel[i][0] = pack_rgb(rgba[i]);
     std::uint8_t block[1][8];
     long err = 0;
     if (q == Quality::fast) {
-      etc1_fast_blocks(texel, 1, block);
+      etc1_fast_lanes(texel, 1, block);
       err = block_error(rgba, block[0]);
     } else {
       std::int32_t e[1];
-      etc1_normal_blocks(texel, 1, q == Quality::high, block, e);
+      etc1_search_lanes(texel, 1, q == Quality::high, block, e);
       err = mode == ColorMode::etc1 ? e[0] : finish_etc2_block(texel, 0, e[0], q, block[0]);
     }
     std::memcpy(out, block[0], 8);
@@ -721,12 +721,12 @@ void eac_try(const double t[16], EacKind kind, int base, int mult, int table, Ea
 }  // namespace
 
 double encode_eac_block(const float targets[16], EacKind kind, Quality q, std::uint8_t out[8]) {
-  if (q != Quality::max) {  // as whole images do: eac_fast.h
+  if (q != Quality::max) {  // as whole images do: eac_lanes.h
     float v[16][kEacBatch] = {};
     for (int i = 0; i < 16; ++i) v[i][0] = targets[i];
     std::uint8_t block[1][8];
     float err[1];
-    eac_blocks(v, 1, kind, q == Quality::fast ? 0 : q == Quality::normal ? 1 : 2, block, err);
+    eac_encode_lanes(v, 1, kind, q == Quality::fast ? 0 : q == Quality::normal ? 1 : 2, block, err);
     std::memcpy(out, block[0], 8);
     return err[0];
   }
@@ -781,7 +781,7 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
   const ColorMode mode = format == F::etc1_rgb                                           ? ColorMode::etc1
                          : format == F::etc2_rgba1_unorm || format == F::etc2_rgba1_srgb ? ColorMode::etc2_punch
                                                                                          : ColorMode::etc2;
-  // Opaque colour: sixteen blocks at a time (etc_fast.h); ETC2 then tries
+  // Opaque colour: sixteen blocks at a time (etc_lanes.h); ETC2 then tries
   // its planar, T and H modes block by block.
   const bool batched = etc_blocks_in_lanes(mode, q);
   const bool finish = batched && q != Quality::fast && mode != ColorMode::etc1;  // ETC2: planar, T, H per block
@@ -793,11 +793,11 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
     std::uint32_t texel[16][kEtcBatch] = {};
     std::uint8_t color[kEtcBatch][8];
     float values[16];
-    float eac_values[16][kEacBatch];  // EAC: sixteen blocks at a time below `max` (eac_fast.h)
+    float eac_values[16][kEacBatch];  // EAC: sixteen blocks at a time below `max` (eac_lanes.h)
     std::uint8_t eac_out[kEacBatch][8];
     float eac_err[kEacBatch];
     auto eac_flush = [&](int by, int bx0, int count, EacKind kind, int offset) {
-      eac_blocks(eac_values, count, kind, eac_level, eac_out, eac_err);
+      eac_encode_lanes(eac_values, count, kind, eac_level, eac_out, eac_err);
       for (int k = 0; k < count; ++k)
         std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + offset, eac_out[k], 8);
     };
@@ -850,9 +850,9 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
         if (rgba8 && eac_lanes) eac_flush(by, bx0, count, EacKind::alpha8, 0);
         if (eac || !batched) continue;
         if (q == Quality::fast) {
-          etc1_fast_blocks(texel, count, color);
+          etc1_fast_lanes(texel, count, color);
         } else {
-          etc1_normal_blocks(texel, count, q == Quality::high, color, errors);
+          etc1_search_lanes(texel, count, q == Quality::high, color, errors);
           for (int k = 0; k < count && finish; ++k) finish_etc2_block(texel, k, errors[k], q, color[k]);
         }
         for (int k = 0; k < count; ++k)

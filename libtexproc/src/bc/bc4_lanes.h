@@ -26,10 +26,10 @@ constexpr int kBc4Batch = 16;
 // helps, and tries the +-1 window around the result in the same mode. 2:
 // `high`, the same with a +-3 window, and +-8 around each mode's starting
 // endpoints.
-void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]);
+void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]);
 
 namespace ref {
-void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]);
+void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]);
 }  // namespace ref
 
 }  // namespace texproc

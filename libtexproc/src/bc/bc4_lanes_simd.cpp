@@ -1,19 +1,19 @@
-// BC4 `fast`, a block per lane: the scalar reference (one block at a time,
-// plainly) and its Highway twin. Both evaluate the same expressions in the
-// same order; see bc4_fast.h.
+// BC4 `fast`, `normal` and `high`, a block per lane: the scalar reference
+// (one block at a time, plainly) and its Highway twin. Both evaluate the same expressions in the
+// same order; see bc4_lanes.h.
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "bc/bc4_fast_simd.cpp"
+#define HWY_TARGET_INCLUDE "bc/bc4_lanes_simd.cpp"
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "bc/bc4_fast.h"
+#include "bc/bc4_lanes.h"
 #include "texproc/runtime.h"
 
-#ifndef TEXPROC_BC4_FAST_REF
-#define TEXPROC_BC4_FAST_REF
+#ifndef TEXPROC_BC4_LANES_REF
+#define TEXPROC_BC4_LANES_REF
 namespace texproc::ref {
 namespace {
 
@@ -46,7 +46,7 @@ float evaluate(const float t[16], int r0, int r1, float lo_code, float hi_code, 
 
 }  // namespace
 
-void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]) {
+void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]) {
   const float lo_code = snorm ? -127.0f : 0.0f, hi_code = snorm ? 127.0f : 255.0f;
   const int lo_int = int(lo_code), hi_int = int(hi_code);
   for (int k = 0; k < count; ++k) {
@@ -142,7 +142,7 @@ namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void Bc4FastBlocks(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]) {
+void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]) {
   using D = hn::CappedTag<float, kBc4Batch>;
   const D df;
   const hn::RebindToSigned<D> d;
@@ -322,11 +322,11 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 namespace texproc {
-HWY_EXPORT(Bc4FastBlocks);
+HWY_EXPORT(Bc4EncodeLanes);
 
-void bc4_fast_blocks(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]) {
-  if (force_scalar()) return ref::bc4_fast_blocks(v, count, snorm, level, out);
-  HWY_DYNAMIC_DISPATCH(Bc4FastBlocks)(v, count, snorm, level, out);
+void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]) {
+  if (force_scalar()) return ref::bc4_encode_lanes(v, count, snorm, level, out);
+  HWY_DYNAMIC_DISPATCH(Bc4EncodeLanes)(v, count, snorm, level, out);
 }
 }  // namespace texproc
 #endif

@@ -34,11 +34,11 @@ constexpr int kBc1Batch = 16;
 // (alpha ignored). Blocks of one colour are left to the caller
 // (`handled[k]` false; their bytes are not written): the single-colour
 // tables encode them.
-void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
+void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
                      std::uint8_t out[][8], bool handled[]);
 
 namespace ref {
-void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
+void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
                      std::uint8_t out[][8], bool handled[]);
 }  // namespace ref
 

@@ -1,20 +1,21 @@
-// ETC1 `fast`, a block per lane: the scalar reference (one block at a time,
-// plainly) and its Highway twin; both fill the same per-block parameters,
-// which one packer writes. See etc_fast.h.
+// ETC1 `fast`, `normal` and `high`, a block per lane: the scalar reference
+// (one block at a time, plainly) and its Highway twin, which packs the
+// blocks in lanes too (the reference's packer is the plain statement of the
+// layout). See etc_lanes.h.
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "etc/etc_fast_simd.cpp"
+#define HWY_TARGET_INCLUDE "etc/etc_lanes_simd.cpp"
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
 
 #include <algorithm>
 #include <cstdlib>
 
-#include "etc/etc_fast.h"
+#include "etc/etc_lanes.h"
 #include "etc/etc_tables.h"
 #include "texproc/runtime.h"
 
-#ifndef TEXPROC_ETC_FAST_REF
-#define TEXPROC_ETC_FAST_REF
+#ifndef TEXPROC_ETC_LANES_REF
+#define TEXPROC_ETC_LANES_REF
 namespace texproc::etc {
 namespace fast {
 
@@ -109,7 +110,7 @@ HalfFit fit(const int rgb[16][3], int h, int bits, int t0) {
 
 }  // namespace
 
-void etc1_fast_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
+void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
   for (int k = 0; k < count; ++k) {
     int rgb[16][3];
     for (int i = 0; i < 16; ++i) {
@@ -292,7 +293,7 @@ void take(fast::Params& p, int flip, bool differential, const HalfFit& a, const 
 
 }  // namespace
 
-void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
+void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
                         std::int32_t error[]) {
   for (int k = 0; k < count; ++k) {
     int rgb[16][3];
@@ -402,7 +403,7 @@ HWY_INLINE void PackBlocks(V flip, V differential, const Fit& a, const Fit& b, i
     store_be64(std::uint64_t(hi_o[k]) << 32 | lo_o[k], out[k0 + k]);
 }
 
-void Etc1FastBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
+void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
   const D d;
   const hn::Rebind<float, D> df;
   const int lanes = int(hn::Lanes(d));
@@ -520,7 +521,7 @@ void Etc1FastBlocks(const std::uint32_t texel[16][kEtcBatch], int count, std::ui
   }
 }
 
-void Etc1NormalBlocks(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
+void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
                       std::int32_t error[]) {
   const D d;
   const hn::Rebind<float, D> df;
@@ -746,18 +747,18 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 namespace texproc::etc {
-HWY_EXPORT(Etc1FastBlocks);
-HWY_EXPORT(Etc1NormalBlocks);
+HWY_EXPORT(Etc1FastLanes);
+HWY_EXPORT(Etc1SearchLanes);
 
-void etc1_fast_blocks(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
-  if (force_scalar()) return ref::etc1_fast_blocks(texel, count, out);
-  HWY_DYNAMIC_DISPATCH(Etc1FastBlocks)(texel, count, out);
+void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
+  if (force_scalar()) return ref::etc1_fast_lanes(texel, count, out);
+  HWY_DYNAMIC_DISPATCH(Etc1FastLanes)(texel, count, out);
 }
 
-void etc1_normal_blocks(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
+void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
                         std::int32_t error[]) {
-  if (force_scalar()) return ref::etc1_normal_blocks(texel, count, high, out, error);
-  HWY_DYNAMIC_DISPATCH(Etc1NormalBlocks)(texel, count, high, out, error);
+  if (force_scalar()) return ref::etc1_search_lanes(texel, count, high, out, error);
+  HWY_DYNAMIC_DISPATCH(Etc1SearchLanes)(texel, count, high, out, error);
 }
 }  // namespace texproc::etc
 #endif

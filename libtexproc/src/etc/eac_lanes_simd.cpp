@@ -1,20 +1,20 @@
 // EAC in lanes: the scalar reference (one block at a time, plainly) and its
 // Highway twin; both fill the same per-block parameters, which one packer
-// writes. See eac_fast.h.
+// writes. See eac_lanes.h.
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "etc/eac_fast_simd.cpp"
+#define HWY_TARGET_INCLUDE "etc/eac_lanes_simd.cpp"
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "etc/eac_fast.h"
+#include "etc/eac_lanes.h"
 #include "etc/etc_tables.h"
 #include "texproc/runtime.h"
 
-#ifndef TEXPROC_EAC_FAST_REF
-#define TEXPROC_EAC_FAST_REF
+#ifndef TEXPROC_EAC_LANES_REF
+#define TEXPROC_EAC_LANES_REF
 namespace texproc::etc {
 namespace eac {
 
@@ -55,7 +55,7 @@ inline void pack(int base, int mult, int table, const int codes[16], std::uint8_
 
 namespace ref {
 
-void eac_blocks(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]) {
+void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]) {
   const eac::Kind K = eac::kind_of(kind);
   for (int k = 0; k < count; ++k) {
     float t[16], lo = K.hi_end, hi = K.lo_end;
@@ -113,7 +113,7 @@ namespace texproc::etc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void EacBlocks(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]) {
+void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]) {
   using DF = hn::CappedTag<float, kEacBatch>;
   const DF df;
   const hn::RebindToSigned<DF> d;
@@ -201,11 +201,11 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 namespace texproc::etc {
-HWY_EXPORT(EacBlocks);
+HWY_EXPORT(EacEncodeLanes);
 
-void eac_blocks(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]) {
-  if (force_scalar()) return ref::eac_blocks(v, count, kind, level, out, error);
-  HWY_DYNAMIC_DISPATCH(EacBlocks)(v, count, kind, level, out, error);
+void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]) {
+  if (force_scalar()) return ref::eac_encode_lanes(v, count, kind, level, out, error);
+  HWY_DYNAMIC_DISPATCH(EacEncodeLanes)(v, count, kind, level, out, error);
 }
 }  // namespace texproc::etc
 #endif

@@ -23,10 +23,10 @@ constexpr int kEacBatch = 16;
 // v[i][k]: value i (row by row) of block k in the format's units (see
 // encode_eac_block; clamped here). level: 0 `fast`, 1 `normal`, 2 `high`.
 // error[k]: the block's squared error in those units.
-void eac_blocks(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]);
+void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]);
 
 namespace ref {
-void eac_blocks(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]);
+void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]);
 }  // namespace ref
 
 }  // namespace texproc::etc

@@ -1,8 +1,8 @@
-// BC1 `fast`, a block per lane: the scalar reference (one block at a time,
-// plainly) and its Highway twin. Both evaluate the same expressions in the
-// same order; see bc1_fast.h.
+// BC1 `fast`, `normal` and `high`, a block per lane: the scalar reference
+// (one block at a time, plainly) and its Highway twin. Both evaluate the same expressions in the
+// same order; see bc1_lanes.h.
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "bc/bc1_fast_simd.cpp"
+#define HWY_TARGET_INCLUDE "bc/bc1_lanes_simd.cpp"
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
 
@@ -10,11 +10,11 @@
 #include <cmath>
 #include <cstring>
 
-#include "bc/bc1_fast.h"
+#include "bc/bc1_lanes.h"
 #include "texproc/runtime.h"
 
-#ifndef TEXPROC_BC1_FAST_REF
-#define TEXPROC_BC1_FAST_REF
+#ifndef TEXPROC_BC1_LANES_REF
+#define TEXPROC_BC1_LANES_REF
 namespace texproc::ref {
 namespace {
 
@@ -115,7 +115,7 @@ inline float variant_shift(int offset, int stretch) {
 
 }  // namespace
 
-void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
+void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
                      std::uint8_t out[][8], bool handled[]) {
   for (int k = 0; k < count; ++k) {
     int rgb[16][3];
@@ -278,7 +278,7 @@ namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
+void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
                    std::uint8_t out[][8], bool handled[]) {
   using D = hn::CappedTag<std::int32_t, kBc1Batch>;
   const D d;
@@ -483,8 +483,8 @@ void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, int leve
       const auto wide = hn::Gt(hi, lo);
       const VF extent = hn::IfThenElse(wide, hn::Sub(hi, lo), one);
       VF e1 = hn::Zero(df), e2 = e1;
-      V have = hn::Zero(d), q1[2][3], q2[2][3];
-      for (int ch = 0; ch < 3; ++ch) q1[0][ch] = q1[1][ch] = q2[0][ch] = q2[1][ch] = hn::Zero(d);
+      V have = hn::Zero(d), kept1[2][3], kept2[2][3];
+      for (int ch = 0; ch < 3; ++ch) kept1[0][ch] = kept1[1][ch] = kept2[0][ch] = kept2[1][ch] = hn::Zero(d);
       for (int o = -offsets; o <= offsets; ++o)
         for (int sv = -stretches; sv <= stretches; ++sv) {
           const VF scale = hn::IfThenElseZero(
@@ -513,8 +513,8 @@ void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, int leve
           for (int k = 0; k < 2; ++k)
             for (int ch = 0; ch < 3; ++ch) {
               const V nq = k ? n.qb[ch] : n.qa[ch];
-              q2[k][ch] = hn::IfThenElse(shift_down, q1[k][ch], hn::IfThenElse(second, nq, q2[k][ch]));
-              q1[k][ch] = hn::IfThenElse(first, nq, q1[k][ch]);
+              kept2[k][ch] = hn::IfThenElse(shift_down, kept1[k][ch], hn::IfThenElse(second, nq, kept2[k][ch]));
+              kept1[k][ch] = hn::IfThenElse(first, nq, kept1[k][ch]);
             }
           e1 = hn::IfThenElse(hn::RebindMask(df, first), e, e1);
           have = hn::Min(hn::Add(have, hn::IfThenElseZero(hn::Or(first, second), hn::Set(d, 1))), hn::Set(d, 2));
@@ -523,7 +523,7 @@ void Bc1FastBlocks(const std::uint32_t texel[16][kBc1Batch], int count, int leve
         const M valid = hn::Gt(have, hn::Set(d, m));
         if (hn::AllFalse(d, valid)) continue;
         State n;
-        for (int ch = 0; ch < 3; ++ch) n.qa[ch] = (m ? q2 : q1)[0][ch], n.qb[ch] = (m ? q2 : q1)[1][ch];
+        for (int ch = 0; ch < 3; ++ch) n.qa[ch] = (m ? kept2 : kept1)[0][ch], n.qb[ch] = (m ? kept2 : kept1)[1][ch];
         nearest(true, n);
         select(hn::And(valid, hn::Lt(n.error, st.error)), n, st);
       }
@@ -586,12 +586,12 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 namespace texproc {
-HWY_EXPORT(Bc1FastBlocks);
+HWY_EXPORT(Bc1EncodeLanes);
 
-void bc1_fast_blocks(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
+void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
                      std::uint8_t out[][8], bool handled[]) {
-  if (force_scalar()) return ref::bc1_fast_blocks(texel, count, level, three, out, handled);
-  HWY_DYNAMIC_DISPATCH(Bc1FastBlocks)(texel, count, level, three, out, handled);
+  if (force_scalar()) return ref::bc1_encode_lanes(texel, count, level, three, out, handled);
+  HWY_DYNAMIC_DISPATCH(Bc1EncodeLanes)(texel, count, level, three, out, handled);
 }
 }  // namespace texproc
 #endif

@@ -1,0 +1,46 @@
+// ETC1's encoders below `max` (also the ETC1 modes of ETC2 RGB and ETC2
+// RGBA's colour), sixteen opaque blocks at a time (a block per SIMD lane),
+// SIMD and scalar twins with identical bytes.
+//
+// `fast`, per block and half block (left, right, top, bottom): the base
+// colour is the half's mean, quantized to 5 bits (and to 4 where the
+// differential delta cannot reach: individual mode); the three intensity
+// tables whose modifiers are nearest the texels' spread about the mean
+// (mean absolute deviation of R + G + B, over 3) are scored with each texel
+// at the modifier nearest a third of its R + G + B offset from the base
+// (unclamped), and the best kept. The flip with less error wins (the first
+// on a tie). Integer arithmetic throughout, and one float division per
+// quantized channel, the same on both twins.
+#pragma once
+
+#include <cstdint>
+
+namespace texproc::etc {
+
+constexpr int kEtcBatch = 16;
+
+// texel[i][k]: texel i (row by row) of block k as R | G << 8 | B << 16
+// (alpha ignored). out: the ETC1 blocks (valid ETC2 RGB blocks too).
+void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]);
+
+// `normal`: per half every table at the mean, exactly (the decoder's
+// clamping, each texel at its best modifier); the best two tables
+// re-centred up to twice (base = mean of the texels minus their modifiers)
+// while that helps. Halves too far apart for the delta try the individual
+// mode (4-bit fits as above) and the differential mode with either base
+// pulled within the delta of the other (that half's best table refitted).
+// `high` (high true): every table seeded from the half's brightest and
+// darkest texels minus the table's extreme modifiers and re-centred up to
+// three times, then the +-1 neighbourhood of the two best bases; the
+// individual mode is always tried.
+// error[k]: block k's squared RGB error as decoded.
+void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
+                        std::int32_t error[]);
+
+namespace ref {
+void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]);
+void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
+                        std::int32_t error[]);
+}  // namespace ref
+
+}  // namespace texproc::etc
