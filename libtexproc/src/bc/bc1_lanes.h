@@ -30,16 +30,21 @@ namespace texproc {
 
 constexpr int kBc1Batch = 16;
 
-// texel[i][k]: texel i (row by row) of block k as R | G << 8 | B << 16
-// (alpha ignored). Blocks of one colour are left to the caller
-// (`handled[k]` false; their bytes are not written): the single-colour
-// tables encode them.
-void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
-                     std::uint8_t out[][8], bool handled[]);
+// texel[i][k]: texel i (row by row) of block k as R | G << 8 | B << 16 |
+// A << 24. `three`: the three-colour mode may be used (BC1, not BC2/BC3's
+// colour). `punch` (BC1 with alpha): texels with alpha under 128 are
+// transparent (index 3 of the three-colour mode, out of every fit and
+// error); a block with any is encoded in the three-colour mode (at `fast`
+// from the extent's ends refitted once, at `normal` twice; images take
+// punch-through `high` block by block, with the cluster fit). Blocks
+// whose opaque texels are all one colour (or that have none) are left to
+// the caller (`handled[k]` false; their bytes are not written).
+void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three, bool punch,
+                      std::uint8_t out[][8], bool handled[]);
 
 namespace ref {
-void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
-                     std::uint8_t out[][8], bool handled[]);
+void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three, bool punch,
+                      std::uint8_t out[][8], bool handled[]);
 }  // namespace ref
 
 }  // namespace texproc

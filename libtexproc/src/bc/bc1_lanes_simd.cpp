@@ -23,7 +23,7 @@ int quantize(float v, int max) { return std::clamp(int(v * (float(max) / 255.0f)
 // The palette of quantized endpoints qa, qb (four colours, or three: the
 // average and no black); each texel's nearest entry (first of equals); the
 // total squared error.
-std::int32_t nearest(const int rgb[16][3], const int qa[3], const int qb[3], bool four, int codes[16]) {
+std::int32_t nearest(const int rgb[16][3], const bool clear[16], const int qa[3], const int qb[3], bool four, int codes[16]) {
   int pal[4][3];
   for (int ch = 0; ch < 3; ++ch) {
     const int ea = ch == 1 ? (qa[ch] << 2 | qa[ch] >> 4) : (qa[ch] << 3 | qa[ch] >> 2);
@@ -33,6 +33,10 @@ std::int32_t nearest(const int rgb[16][3], const int qa[3], const int qb[3], boo
   }
   std::int32_t total = 0;
   for (int i = 0; i < 16; ++i) {
+    if (clear[i]) {  // punch-through: transparent (index 3 of the three-colour mode), no error
+      codes[i] = 3;
+      continue;
+    }
     std::int32_t be = 0;
     for (int k = 0; k < (four ? 4 : 3); ++k) {
       const std::int32_t dr = rgb[i][0] - pal[k][0], dg = rgb[i][1] - pal[k][1], db = rgb[i][2] - pal[k][2];
@@ -59,10 +63,11 @@ struct State {
 // Least-squares endpoints for s's codes (weights by code in thirds, four
 // colours: 0, 3, 1, 2; in halves, three: 0, 2, 1), quantized and scored;
 // kept if better.
-void refit(const int rgb[16][3], bool four, State& s) {
+void refit(const int rgb[16][3], const bool clear[16], bool four, State& s) {
   const int den = four ? 3 : 2;
   std::int32_t aa = 0, ab = 0, bb = 0, at[3] = {}, bt[3] = {};
   for (int i = 0; i < 16; ++i) {
+    if (clear[i] || (!four && s.codes[i] == 3)) continue;
     const int c = s.codes[i], w = c == 1 ? den : c == 0 ? 0 : c - 1, u = den - w;
     aa += u * u, ab += u * w, bb += w * w;
     for (int ch = 0; ch < 3; ++ch) at[ch] += u * rgb[i][ch], bt[ch] += w * rgb[i][ch];
@@ -77,7 +82,7 @@ void refit(const int rgb[16][3], bool four, State& s) {
   }
   State n;
   endpoints(ra, rb, n.qa, n.qb);
-  n.error = nearest(rgb, n.qa, n.qb, four, n.codes);
+  n.error = nearest(rgb, clear, n.qa, n.qb, four, n.codes);
   if (n.error < s.error) s = n;
 }
 
@@ -85,9 +90,10 @@ void refit(const int rgb[16][3], bool four, State& s) {
 // (weights w in thirds on the second endpoint); false if singular. `red`:
 // the fit's reduction of the squared error (sum of squares minus the
 // residual, unquantized).
-bool fit_positions(const int rgb[16][3], const int w[16], float ra[3], float rb[3], float& red) {
+bool fit_positions(const int rgb[16][3], const bool clear[16], const int w[16], float ra[3], float rb[3], float& red) {
   std::int32_t aa = 0, ab = 0, bb = 0, at[3] = {}, bt[3] = {};
   for (int i = 0; i < 16; ++i) {
+    if (clear[i]) continue;
     const int u = 3 - w[i];
     aa += u * u, ab += u * w[i], bb += w[i] * w[i];
     for (int ch = 0; ch < 3; ++ch) at[ch] += u * rgb[i][ch], bt[ch] += w[i] * rgb[i][ch];
@@ -115,21 +121,27 @@ inline float variant_shift(int offset, int stretch) {
 
 }  // namespace
 
-void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
-                     std::uint8_t out[][8], bool handled[]) {
+void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three, bool punch,
+                      std::uint8_t out[][8], bool handled[]) {
   for (int k = 0; k < count; ++k) {
-    int rgb[16][3];
+    int rgb[16][3], n_opaque = 0;
+    bool clear[16];
     std::int32_t s[3] = {}, q[6] = {};
     for (int i = 0; i < 16; ++i) {
       const std::uint32_t t = texel[i][k];
-      const int r = int(t & 255), g = int(t >> 8 & 255), b = int(t >> 16 & 255);
+      clear[i] = punch && (t >> 24) < 128;
+      // Transparent texels count as black in the sums (that is, not at all).
+      const int r = clear[i] ? 0 : int(t & 255), g = clear[i] ? 0 : int(t >> 8 & 255), b = clear[i] ? 0 : int(t >> 16 & 255);
+      n_opaque += clear[i] ? 0 : 1;
       rgb[i][0] = r, rgb[i][1] = g, rgb[i][2] = b;
       s[0] += r, s[1] += g, s[2] += b;
       q[0] += r * r, q[1] += r * g, q[2] += r * b, q[3] += g * g, q[4] += g * b, q[5] += b * b;
     }
-    // Covariance times 256 (exact).
-    const std::int32_t c[6] = {16 * q[0] - s[0] * s[0], 16 * q[1] - s[0] * s[1], 16 * q[2] - s[0] * s[2],
-                               16 * q[3] - s[1] * s[1], 16 * q[4] - s[1] * s[2], 16 * q[5] - s[2] * s[2]};
+    // Covariance of the opaque texels times n^2 (exact).
+    const int no = n_opaque;
+    const std::int32_t c[6] = {no * q[0] - s[0] * s[0], no * q[1] - s[0] * s[1], no * q[2] - s[0] * s[2],
+                               no * q[3] - s[1] * s[1], no * q[4] - s[1] * s[2], no * q[5] - s[2] * s[2]};
+    const bool transparent = no < 16;  // only the three-colour mode can have transparent texels
     handled[k] = !(c[0] == 0 && c[3] == 0 && c[5] == 0);
     if (!handled[k]) continue;
     const float cov[6] = {float(c[0]), float(c[1]), float(c[2]), float(c[3]), float(c[4]), float(c[5])};
@@ -153,10 +165,10 @@ void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int l
     float lo = 1e30f, hi = -1e30f, proj[16];
     for (int i = 0; i < 16; ++i) {
       const float p = float(rgb[i][0]) * axis[0] + float(rgb[i][1]) * axis[1] + float(rgb[i][2]) * axis[2];
-      lo = std::min(lo, p), hi = std::max(hi, p);
+      if (!clear[i]) lo = std::min(lo, p), hi = std::max(hi, p);
       proj[i] = p;
     }
-    const float mean[3] = {float(s[0]) * 0.0625f, float(s[1]) * 0.0625f, float(s[2]) * 0.0625f};
+    const float mean[3] = {float(s[0]) / float(no), float(s[1]) / float(no), float(s[2]) / float(no)};
     const float mean_p = mean[0] * axis[0] + mean[1] * axis[1] + mean[2] * axis[2];
     float a[3], b[3];
     for (int ch = 0; ch < 3; ++ch) {
@@ -173,6 +185,7 @@ void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int l
       const float scale = hi > lo ? 3.0f / (hi - lo) : 0.0f;
       std::int32_t aa = 0, ab = 0, bb = 0, at[3] = {}, bt[3] = {};
       for (int i = 0; i < 16; ++i) {
+        if (clear[i]) continue;
         const int w = std::min(int((hi - proj[i]) * scale + 0.5f), 3), u = 3 - w;
         aa += u * u, ab += u * w, bb += w * w;
         for (int ch = 0; ch < 3; ++ch) at[ch] += u * rgb[i][ch], bt[ch] += w * rgb[i][ch];
@@ -187,11 +200,17 @@ void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int l
         }
         endpoints(ra, rb, st.qa, st.qb);
       }
-      st.error = nearest(rgb, st.qa, st.qb, true, st.codes);
+      st.error = nearest(rgb, clear, st.qa, st.qb, true, st.codes);
+      if (transparent) {  // the three-colour mode from the extent's ends, refitted once
+        State t = start;
+        t.error = nearest(rgb, clear, t.qa, t.qb, false, t.codes);
+        refit(rgb, clear, false, t);
+        st = t, four = false;
+      }
     } else {
-      st.error = nearest(rgb, st.qa, st.qb, true, st.codes);
-      refit(rgb, true, st);
-      refit(rgb, true, st);
+      st.error = nearest(rgb, clear, st.qa, st.qb, true, st.codes);
+      refit(rgb, clear, true, st);
+      refit(rgb, clear, true, st);
       // Partition variants along the axis (a cluster fit's neighbourhood):
       // `normal` ranks 15 by their unquantized error and scores the best
       // two exactly; `high` scores all 45 exactly, each refitted once.
@@ -205,12 +224,12 @@ void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int l
           int w[16];
           for (int i = 0; i < 16; ++i) w[i] = std::clamp(int(std::floor((hi - proj[i]) * scale + shift)), 0, 3);
           float ra[3], rb[3], red;
-          if (!fit_positions(rgb, w, ra, rb, red)) continue;
+          if (!fit_positions(rgb, clear, w, ra, rb, red)) continue;
           State n;
           endpoints(ra, rb, n.qa, n.qb);
           if (level >= 2) {
-            n.error = nearest(rgb, n.qa, n.qb, true, n.codes);
-            refit(rgb, true, n);
+            n.error = nearest(rgb, clear, n.qa, n.qb, true, n.codes);
+            refit(rgb, clear, true, n);
             if (n.error < st.error) st = n;
             continue;
           }
@@ -227,7 +246,7 @@ void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int l
       for (int m = 0; m < have; ++m) {
         State n;
         std::copy((m ? q2 : q1)[0], (m ? q2 : q1)[0] + 3, n.qa), std::copy((m ? q2 : q1)[1], (m ? q2 : q1)[1] + 3, n.qb);
-        n.error = nearest(rgb, n.qa, n.qb, true, n.codes);
+        n.error = nearest(rgb, clear, n.qa, n.qb, true, n.codes);
         if (n.error < st.error) st = n;
       }
       // Each endpoint channel nudged by one step while that helps (at most
@@ -239,16 +258,17 @@ void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int l
           int& v = (m < 6 ? n.qa : n.qb)[m % 6 / 2];
           v += m % 2 ? 1 : -1;
           if (v < 0 || v > (m % 6 / 2 == 1 ? 63 : 31)) continue;
-          n.error = nearest(rgb, n.qa, n.qb, true, n.codes);
+          n.error = nearest(rgb, clear, n.qa, n.qb, true, n.codes);
           if (n.error < st.error) st = n, improved = true;
         }
         if (!improved) break;
       }
-      if (three) {  // the three-colour mode from the principal-axis ends, refitted once
+      if (three || transparent) {  // the three-colour mode from the extent's ends, refitted once
         State t = start;
-        t.error = nearest(rgb, t.qa, t.qb, false, t.codes);
-        refit(rgb, false, t);
-        if (t.error < st.error) st = t, four = false;
+        t.error = nearest(rgb, clear, t.qa, t.qb, false, t.codes);
+        refit(rgb, clear, false, t);
+        if (transparent) refit(rgb, clear, false, t);  // the block's only mode: refitted twice
+        if (transparent || t.error < st.error) st = t, four = false;
       }
     }
     std::uint32_t c0 = std::uint32_t(st.qa[0] << 11 | st.qa[1] << 5 | st.qa[2]);
@@ -278,8 +298,11 @@ namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
-                   std::uint8_t out[][8], bool handled[]) {
+// kPunch: BC1 with punch-through alpha (compiled apart, so opaque BC1 pays
+// nothing for the transparent texels' masks).
+template <bool kPunch>
+HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
+                         std::uint8_t out[][8], bool handled[]) {
   using D = hn::CappedTag<std::int32_t, kBc1Batch>;
   const D d;
   const hn::Rebind<float, D> df;
@@ -290,19 +313,37 @@ void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, int lev
   const int lanes = int(hn::Lanes(d));
   for (int k0 = 0; k0 < count; k0 += lanes) {
     V r[16], g[16], b[16];
-    V s0 = hn::Zero(d), s1 = s0, s2 = s0, q0 = s0, q1 = s0, q2 = s0, q3 = s0, q4 = s0, q5 = s0;
+    M clear[16];  // punch-through: transparent texels (index 3 of the three-colour mode)
+    V s0 = hn::Zero(d), s1 = s0, s2 = s0, q0 = s0, q1 = s0, q2 = s0, q3 = s0, q4 = s0, q5 = s0, n_opaque = s0;
     const V mask8 = hn::Set(d, 255);
     for (int i = 0; i < 16; ++i) {
-      const V t = hn::BitCast(d, hn::LoadU(du, texel[i] + k0));
+      const auto tu = hn::LoadU(du, texel[i] + k0);
+      const V t = hn::BitCast(d, tu);
+      clear[i] = kPunch ? hn::RebindMask(d, hn::Lt(hn::ShiftRight<24>(tu), hn::Set(du, 128u))) : hn::Lt(mask8, mask8);
+      // Transparent texels count as black in the sums (that is, not at all).
       r[i] = hn::And(t, mask8), g[i] = hn::And(hn::ShiftRight<8>(t), mask8), b[i] = hn::And(hn::ShiftRight<16>(t), mask8);
+      if constexpr (kPunch) {
+        r[i] = hn::IfThenZeroElse(clear[i], r[i]), g[i] = hn::IfThenZeroElse(clear[i], g[i]), b[i] = hn::IfThenZeroElse(clear[i], b[i]);
+      }
+      n_opaque = hn::Add(n_opaque, hn::IfThenZeroElse(clear[i], hn::Set(d, 1)));
       s0 = hn::Add(s0, r[i]), s1 = hn::Add(s1, g[i]), s2 = hn::Add(s2, b[i]);
       q0 = hn::Add(q0, hn::Mul(r[i], r[i])), q1 = hn::Add(q1, hn::Mul(r[i], g[i])), q2 = hn::Add(q2, hn::Mul(r[i], b[i]));
       q3 = hn::Add(q3, hn::Mul(g[i], g[i])), q4 = hn::Add(q4, hn::Mul(g[i], b[i])), q5 = hn::Add(q5, hn::Mul(b[i], b[i]));
     }
-    const V k16 = hn::Set(d, 16);
-    const V c0i = hn::Sub(hn::Mul(k16, q0), hn::Mul(s0, s0)), c1i = hn::Sub(hn::Mul(k16, q1), hn::Mul(s0, s1)),
-            c2i = hn::Sub(hn::Mul(k16, q2), hn::Mul(s0, s2)), c3i = hn::Sub(hn::Mul(k16, q3), hn::Mul(s1, s1)),
-            c4i = hn::Sub(hn::Mul(k16, q4), hn::Mul(s1, s2)), c5i = hn::Sub(hn::Mul(k16, q5), hn::Mul(s2, s2));
+    const M transparent = hn::Lt(n_opaque, hn::Set(d, 16));
+    // v where texel i is opaque, else 0 (punch-through only).
+    auto opaque_only = [&](int i, V v) {
+      if constexpr (kPunch) {
+        return hn::IfThenZeroElse(clear[i], v);
+      } else {
+        (void)i;
+        return v;
+      }
+    };  // only the three-colour mode can have transparent texels
+    const V no = n_opaque;
+    const V c0i = hn::Sub(hn::Mul(no, q0), hn::Mul(s0, s0)), c1i = hn::Sub(hn::Mul(no, q1), hn::Mul(s0, s1)),
+            c2i = hn::Sub(hn::Mul(no, q2), hn::Mul(s0, s2)), c3i = hn::Sub(hn::Mul(no, q3), hn::Mul(s1, s1)),
+            c4i = hn::Sub(hn::Mul(no, q4), hn::Mul(s1, s2)), c5i = hn::Sub(hn::Mul(no, q5), hn::Mul(s2, s2));
     const auto flat = hn::And(hn::And(hn::Eq(c0i, hn::Zero(d)), hn::Eq(c3i, hn::Zero(d))), hn::Eq(c5i, hn::Zero(d)));
     HWY_ALIGN std::int32_t flat_out[kBc1Batch];
     hn::Store(hn::VecFromMask(d, flat), d, flat_out);
@@ -331,12 +372,16 @@ void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, int lev
     for (int i = 0; i < 16; ++i) {
       const VF p = hn::Add(hn::Add(hn::Mul(hn::ConvertTo(df, r[i]), ax), hn::Mul(hn::ConvertTo(df, g[i]), ay)),
                            hn::Mul(hn::ConvertTo(df, b[i]), az));
-      lo = hn::Min(lo, p), hi = hn::Max(hi, p);
+      if constexpr (kPunch) {
+        const auto opaque = hn::RebindMask(df, hn::Not(clear[i]));
+        lo = hn::IfThenElse(opaque, hn::Min(lo, p), lo), hi = hn::IfThenElse(opaque, hn::Max(hi, p), hi);
+      } else {
+        lo = hn::Min(lo, p), hi = hn::Max(hi, p);
+      }
       proj[i] = p;
     }
-    const VF sixteenth = hn::Set(df, 0.0625f);
-    const VF m0 = hn::Mul(hn::ConvertTo(df, s0), sixteenth), m1 = hn::Mul(hn::ConvertTo(df, s1), sixteenth),
-             m2 = hn::Mul(hn::ConvertTo(df, s2), sixteenth);
+    const VF fn = hn::ConvertTo(df, hn::Max(n_opaque, hn::Set(d, 1)));  // no opaque texel: a flat lane, skipped
+    const VF m0 = hn::Div(hn::ConvertTo(df, s0), fn), m1 = hn::Div(hn::ConvertTo(df, s1), fn), m2 = hn::Div(hn::ConvertTo(df, s2), fn);
     const VF mean_p = hn::Add(hn::Add(hn::Mul(m0, ax), hn::Mul(m1, ay)), hn::Mul(m2, az));
     const VF zero_f = hn::Zero(df), top = hn::Set(df, 255.0f), half = hn::Set(df, 0.5f);
     auto clamp255 = [&](VF x) { return hn::Min(hn::Max(x, zero_f), top); };
@@ -381,8 +426,8 @@ void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, int lev
           be = hn::IfThenElse(better, e, be);
           best = hn::IfThenElse(better, hn::Set(d, k), best);
         }
-        st.codes[i] = best;
-        total = hn::Add(total, be);
+        st.codes[i] = kPunch ? hn::IfThenElse(clear[i], hn::Set(d, 3), best) : best;
+        total = hn::Add(total, opaque_only(i, be));
       }
       st.error = total;
     };
@@ -393,8 +438,14 @@ void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, int lev
       V aa = hn::Zero(d), ab = aa, bb = aa, at[3] = {aa, aa, aa}, bt[3] = {aa, aa, aa};
       for (int i = 0; i < 16; ++i) {
         const V c = st.codes[i];
-        const V w = hn::IfThenElse(hn::Eq(c, one_i), den, hn::IfThenElseZero(hn::Gt(c, one_i), hn::Sub(c, one_i)));
-        const V u = hn::Sub(den, w);
+        V w = hn::IfThenElse(hn::Eq(c, one_i), den, hn::IfThenElseZero(hn::Gt(c, one_i), hn::Sub(c, one_i)));
+        V u = hn::Sub(den, w);
+        if (kPunch && !four) {  // transparent texels (code 3) are out of the fit
+          const M out_of_fit = hn::Eq(c, hn::Set(d, 3));
+          w = hn::IfThenZeroElse(out_of_fit, w), u = hn::IfThenZeroElse(out_of_fit, u);
+        } else if (kPunch) {
+          w = opaque_only(i, w), u = opaque_only(i, u);
+        }
         aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w)), bb = hn::Add(bb, hn::Mul(w, w));
         at[0] = hn::Add(at[0], hn::Mul(u, r[i])), at[1] = hn::Add(at[1], hn::Mul(u, g[i])), at[2] = hn::Add(at[2], hn::Mul(u, b[i]));
         bt[0] = hn::Add(bt[0], hn::Mul(w, r[i])), bt[1] = hn::Add(bt[1], hn::Mul(w, g[i])), bt[2] = hn::Add(bt[2], hn::Mul(w, b[i]));
@@ -430,10 +481,10 @@ void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, int lev
       const V three_i = hn::Set(d, 3);
       V aa = hn::Zero(d), ab = aa, bb = aa, at[3] = {aa, aa, aa}, bt[3] = {aa, aa, aa};
       for (int i = 0; i < 16; ++i) {
-        const V u = hn::Sub(three_i, w[i]);
-        aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w[i])), bb = hn::Add(bb, hn::Mul(w[i], w[i]));
+        const V wi = opaque_only(i, w[i]), u = opaque_only(i, hn::Sub(three_i, w[i]));
+        aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, wi)), bb = hn::Add(bb, hn::Mul(wi, wi));
         at[0] = hn::Add(at[0], hn::Mul(u, r[i])), at[1] = hn::Add(at[1], hn::Mul(u, g[i])), at[2] = hn::Add(at[2], hn::Mul(u, b[i]));
-        bt[0] = hn::Add(bt[0], hn::Mul(w[i], r[i])), bt[1] = hn::Add(bt[1], hn::Mul(w[i], g[i])), bt[2] = hn::Add(bt[2], hn::Mul(w[i], b[i]));
+        bt[0] = hn::Add(bt[0], hn::Mul(wi, r[i])), bt[1] = hn::Add(bt[1], hn::Mul(wi, g[i])), bt[2] = hn::Add(bt[2], hn::Mul(wi, b[i]));
       }
       const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
       solvable = hn::Ne(det, hn::Zero(d));
@@ -457,8 +508,8 @@ void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, int lev
       const V three_i = hn::Set(d, 3);
       V aa = hn::Zero(d), ab = aa, bb = aa, at[3] = {aa, aa, aa}, bt[3] = {aa, aa, aa};
       for (int i = 0; i < 16; ++i) {
-        const V w = hn::Min(hn::ConvertTo(d, hn::Add(hn::Mul(hn::Sub(hi, proj[i]), scale), half)), three_i);
-        const V u = hn::Sub(three_i, w);
+        const V w = opaque_only(i, hn::Min(hn::ConvertTo(d, hn::Add(hn::Mul(hn::Sub(hi, proj[i]), scale), half)), three_i));
+        const V u = opaque_only(i, hn::Sub(three_i, w));
         aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w)), bb = hn::Add(bb, hn::Mul(w, w));
         at[0] = hn::Add(at[0], hn::Mul(u, r[i])), at[1] = hn::Add(at[1], hn::Mul(u, g[i])), at[2] = hn::Add(at[2], hn::Mul(u, b[i]));
         bt[0] = hn::Add(bt[0], hn::Mul(w, r[i])), bt[1] = hn::Add(bt[1], hn::Mul(w, g[i])), bt[2] = hn::Add(bt[2], hn::Mul(w, b[i]));
@@ -474,6 +525,16 @@ void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, int lev
         st.qb[ch] = hn::IfThenElse(solvable, quantize(clamp255(hn::Mul(hn::ConvertTo(df, nb), inv_det)), max), st.qb[ch]);
       }
       nearest(true, st);
+      if (!hn::AllFalse(d, transparent)) {  // the three-colour mode from the extent's ends, refitted once
+        State t;
+        for (int ch = 0; ch < 3; ++ch) t.qa[ch] = start_qa[ch], t.qb[ch] = start_qb[ch];
+        nearest(false, t);
+        refit(false, t);
+        select(transparent, t, st);
+        four = hn::AndNot(transparent, four);
+      }
+    } else if (kPunch && hn::AllTrue(d, hn::Or(transparent, flat))) {
+      nearest(true, st);  // every lane takes the three-colour mode below
     } else {
       nearest(true, st);
       refit(true, st);
@@ -544,15 +605,20 @@ void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, int lev
         }
         if (hn::AllFalse(d, hn::AndNot(flat, improved))) break;
       }
-      if (three) {
-        State t;
-        for (int ch = 0; ch < 3; ++ch) t.qa[ch] = start_qa[ch], t.qb[ch] = start_qb[ch];
-        nearest(false, t);
-        refit(false, t);
-        const auto take = hn::Lt(t.error, st.error);
-        select(take, t, st);
-        four = hn::AndNot(take, four);
+    }
+    if (level >= 1 && (three || !hn::AllFalse(d, transparent))) {
+      State t;
+      for (int ch = 0; ch < 3; ++ch) t.qa[ch] = start_qa[ch], t.qb[ch] = start_qb[ch];
+      nearest(false, t);
+      refit(false, t);
+      if (kPunch) {  // blocks with transparent texels: their only mode, refitted twice
+        State t2 = t;
+        refit(false, t2);
+        select(transparent, t2, t);
       }
+      const auto take = hn::Or(transparent, three ? hn::Lt(t.error, st.error) : hn::Lt(mask8, mask8));
+      select(take, t, st);
+      four = hn::AndNot(take, four);
     }
     // Pack. Four colours: c0 > c1 (swapping the ends flips the codes' low
     // bit; equal ends: every code 0). Three: c0 <= c1 (swapping exchanges codes 0 and 1).
@@ -580,6 +646,15 @@ void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, int lev
   }
 }
 
+void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three, bool punch,
+                    std::uint8_t out[][8], bool handled[]) {
+  if (punch) {
+    Bc1Lanes<true>(texel, count, level, three, out, handled);
+  } else {
+    Bc1Lanes<false>(texel, count, level, three, out, handled);
+  }
+}
+
 }  // namespace HWY_NAMESPACE
 }  // namespace texproc
 HWY_AFTER_NAMESPACE();
@@ -588,10 +663,10 @@ HWY_AFTER_NAMESPACE();
 namespace texproc {
 HWY_EXPORT(Bc1EncodeLanes);
 
-void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
-                     std::uint8_t out[][8], bool handled[]) {
-  if (force_scalar()) return ref::bc1_encode_lanes(texel, count, level, three, out, handled);
-  HWY_DYNAMIC_DISPATCH(Bc1EncodeLanes)(texel, count, level, three, out, handled);
+void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three, bool punch,
+                      std::uint8_t out[][8], bool handled[]) {
+  if (force_scalar()) return ref::bc1_encode_lanes(texel, count, level, three, punch, out, handled);
+  HWY_DYNAMIC_DISPATCH(Bc1EncodeLanes)(texel, count, level, three, punch, out, handled);
 }
 }  // namespace texproc
 #endif

@@ -140,8 +140,10 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * block_bytes);
   const ColorMode color_mode = bc1 ? ColorMode::bc1 : bc1a ? ColorMode::bc1_punch_through : ColorMode::four_only;
   const bool lanes4 = q != Quality::max;  // BC4 blocks a lane each (bc4_lanes.h)
-  // Opaque BC1 colour a block per lane below `max` (bc1_lanes.h; `max` and punch-through go block by block).
-  const bool batched = q != Quality::max && color_mode != ColorMode::bc1_punch_through;
+  // BC1 colour a block per lane below `max` (bc1_lanes.h); `max`, and `high`
+  // with punch-through alpha (whose three-colour blocks want the cluster
+  // fit: 0.18 dB over the lanes there), go block by block.
+  const bool batched = q != Quality::max && !(bc1a && q == Quality::high);
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::uint8_t rgba[kBc1Batch][16][4];
     std::uint32_t texel[16][kBc1Batch] = {};
@@ -158,11 +160,11 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
           if (rows_direct && bc1) continue;  // gathered below only if the kernel leaves it
           gather_rgba8(img, bx0 + k, by, rgba[k]);
           if (batched && !rows_direct)
-            for (int i = 0; i < 16; ++i) texel[i][k] = pack_rgb(rgba[k][i]);
+            for (int i = 0; i < 16; ++i) texel[i][k] = pack_texel(rgba[k][i]);
         }
         // `fast` and `normal` opaque colour: sixteen blocks at a time (one-colour blocks
         // are left to the single-colour tables below).
-        if (batched) bc1_encode_lanes(texel, count, lane_level(q), bc1, color, handled);
+        if (batched) bc1_encode_lanes(texel, count, lane_level(q), bc1 || bc1a, bc1a, color, handled);
         for (int k = 0; k < count; ++k) {
           std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes;
           std::uint8_t* color_dst = bc1 || bc1a ? dst : dst + 8;

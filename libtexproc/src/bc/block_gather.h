@@ -67,16 +67,16 @@ inline void gather_rgba8(const ImageView& img, int bx, int by, std::uint8_t rgba
 }
 
 // Block encoders that work on sixteen blocks at a time take their texels
-// as texel[i][k]: texel i (row by row) of block k, R | G << 8 | B << 16 (the
-// kernels ignore the top byte).
+// as texel[i][k]: texel i (row by row) of block k, R | G << 8 | B << 16 |
+// A << 24 (only BC1 with punch-through alpha reads A).
 constexpr int kBlockBatch = 16;
 
-inline std::uint32_t pack_rgb(const std::uint8_t px[4]) {
-  return std::uint32_t(px[0]) | std::uint32_t(px[1]) << 8 | std::uint32_t(px[2]) << 16;
+inline std::uint32_t pack_texel(const std::uint8_t px[4]) {
+  return std::uint32_t(px[0]) | std::uint32_t(px[1]) << 8 | std::uint32_t(px[2]) << 16 | std::uint32_t(px[3]) << 24;
 }
 
 // The `count` blocks from (bx0, by) straight from the rows of an RGBA8
-// image (alpha left in the top byte). False, and nothing read, where that
+// image. False, and nothing read, where that
 // does not apply: another layout, or a block past the image's edges.
 inline bool gather_rows_rgba8(const ImageView& img, int bx0, int by, int count, std::uint32_t texel[16][kBlockBatch]) {
   if (img.type != PixelType::u8 || img.channels != 4 || (bx0 + count) * 4 > img.width || by * 4 + 4 > img.height)

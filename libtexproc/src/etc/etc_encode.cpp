@@ -659,7 +659,7 @@ long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err
 long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
   if (etc_blocks_in_lanes(mode, q)) {  // as whole images do: etc_lanes.h
     std::uint32_t texel[16][kEtcBatch] = {};
-    for (int i = 0; i < 16; ++i) texel[i][0] = pack_rgb(rgba[i]);
+    for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
     std::uint8_t block[1][8];
     long err = 0;
     if (q == Quality::fast) {
@@ -842,7 +842,7 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
             encode_eac_block(values, EacKind::alpha8, q, dst);
           }
           if (batched) {
-            for (int i = 0; i < 16; ++i) texel[i][k] = pack_rgb(rgba[k][i]);
+            for (int i = 0; i < 16; ++i) texel[i][k] = pack_texel(rgba[k][i]);
           } else {
             encode_color_block(rgba[k], mode, q, dst + (rgba8 ? 8 : 0));
           }
