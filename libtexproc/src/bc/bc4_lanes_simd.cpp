@@ -44,6 +44,16 @@ float evaluate(const float t[16], int r0, int r1, float lo_code, float hi_code, 
   return error;
 }
 
+// `high`'s partition variants: the values placed on the mode's grid
+// between its starting endpoints, the grid shifted by `offset` steps of
+// 0.15 and stretched by `stretch` steps of 10% about its middle, then a
+// least-squares fit for those positions.
+constexpr int kVariantOffsets = 4, kVariantStretches = 2;
+inline float variant_stretch(int stretch) { return 1.0f + 0.1f * float(stretch); }
+inline float variant_shift(int offset, int stretch, int steps) {
+  return 0.5f + 0.15f * float(offset) - 0.1f * float(stretch) * float(steps) * 0.5f;
+}
+
 }  // namespace
 
 void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]) {
@@ -124,7 +134,31 @@ void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int l
             }
         };
         window_at(m0, m1, window);
-        if (level >= 2) window_at(mode == 0 ? hi : lo6, mode == 0 ? lo : hi6, 8);
+        if (level < 2) continue;
+        // `high`: partition variants from the starting endpoints.
+        const int steps = mode == 0 ? 7 : 5;
+        const float a0 = float(mode == 0 ? hi : lo6), a1 = float(mode == 0 ? lo : hi6);
+        if (a0 == a1) continue;
+        for (int o = -kVariantOffsets; o <= kVariantOffsets; ++o)
+          for (int sv = -kVariantStretches; sv <= kVariantStretches; ++sv) {
+            const float stretch = variant_stretch(sv), shift = variant_shift(o, sv, steps);
+            int aa = 0, ab = 0, bb = 0;
+            float at = 0.0f, bt = 0.0f;
+            for (int i = 0; i < 16; ++i) {
+              if (mode == 1 && (t[i] <= lo_code + 0.5f || t[i] >= hi_code - 0.5f)) continue;  // the free ends
+              const int pos = std::clamp(int(std::floor((a0 - t[i]) / (a0 - a1) * float(steps) * stretch + shift)), 0, steps);
+              const int u = steps - pos;
+              aa += u * u, ab += u * pos, bb += pos * pos;
+              at += float(u) * t[i], bt += float(pos) * t[i];
+            }
+            const int det = aa * bb - ab * ab;
+            if (det == 0) continue;
+            const float fa = float(steps) * (at * float(bb) - bt * float(ab)) / float(det);
+            const float fb = float(steps) * (bt * float(aa) - at * float(ab)) / float(det);
+            int ia = std::clamp(int(std::floor(fa + 0.5f)), lo_int, hi_int), ib = std::clamp(int(std::floor(fb + 0.5f)), lo_int, hi_int);
+            if (mode == 1 && ia > ib) std::swap(ia, ib);
+            window_at(ia, ib, 0);
+          }
       }
     }
     out[k][0] = std::uint8_t(r0 & 255), out[k][1] = std::uint8_t(r1 & 255);  // SNORM: two's complement
@@ -297,7 +331,47 @@ void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, int lev
             }
         };
         window_at(m0, m1, window);
-        if (level >= 2) window_at(mode == 0 ? hi : lo6v, mode == 0 ? lo : hi6v, 8);
+        if (level < 2) continue;
+        // `high`: partition variants from the starting endpoints (see the reference).
+        const int steps_i = mode == 0 ? 7 : 5;
+        const VF a0 = hn::ConvertTo(df, mode == 0 ? hi : lo6v), a1 = hn::ConvertTo(df, mode == 0 ? lo : hi6v);
+        const auto distinct = hn::Ne(a0, a1);
+        const auto lane_ok = hn::And(mode_ok, hn::RebindMask(d, distinct));
+        if (hn::AllFalse(d, lane_ok)) continue;
+        const VF span = hn::IfThenElse(distinct, hn::Sub(a0, a1), hn::Set(df, 1.0f)), fsteps = hn::Set(df, float(steps_i));
+        const V steps = hn::Set(d, steps_i);
+        for (int o = -ref::kVariantOffsets; o <= ref::kVariantOffsets; ++o)
+          for (int sv = -ref::kVariantStretches; sv <= ref::kVariantStretches; ++sv) {
+            const VF stretch = hn::Set(df, ref::variant_stretch(sv)), shift = hn::Set(df, ref::variant_shift(o, sv, steps_i));
+            V aa = hn::Zero(d), ab = aa, bb = aa;
+            VF at = hn::Zero(df), bt = at;
+            for (int i = 0; i < 16; ++i) {
+              const auto in = mode == 0 ? hn::Eq(lo_i, lo_i) : hn::RebindMask(d, hn::And(hn::Gt(t[i], inner_lo), hn::Lt(t[i], inner_hi)));
+              const VF x = hn::Add(hn::Mul(hn::Mul(hn::Div(hn::Sub(a0, t[i]), span), fsteps), stretch), shift);
+              const V pos = hn::IfThenElseZero(in, hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(x)), hn::Zero(d)), steps));
+              const V u = hn::IfThenElseZero(in, hn::Sub(steps, pos));
+              aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, pos)), bb = hn::Add(bb, hn::Mul(pos, pos));
+              at = hn::Add(at, hn::IfThenElseZero(hn::RebindMask(df, in), hn::Mul(hn::ConvertTo(df, u), t[i])));
+              bt = hn::Add(bt, hn::IfThenElseZero(hn::RebindMask(df, in), hn::Mul(hn::ConvertTo(df, pos), t[i])));
+            }
+            const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
+            auto valid = hn::And(lane_ok, hn::Ne(det, hn::Zero(d)));
+            const VF fdet = hn::ConvertTo(df, hn::IfThenElse(valid, det, hn::Set(d, 1)));
+            const VF fa = hn::Div(hn::Mul(fsteps, hn::Sub(hn::Mul(at, hn::ConvertTo(df, bb)), hn::Mul(bt, hn::ConvertTo(df, ab)))), fdet);
+            const VF fb = hn::Div(hn::Mul(fsteps, hn::Sub(hn::Mul(bt, hn::ConvertTo(df, aa)), hn::Mul(at, hn::ConvertTo(df, ab)))), fdet);
+            V ia = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(fa, half))), lo_i), hi_i);
+            V ib = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(fb, half))), lo_i), hi_i);
+            if (mode == 0) {
+              valid = hn::And(valid, hn::Gt(ia, ib));
+            } else {
+              const V lo_end = hn::Min(ia, ib), hi_end = hn::Max(ia, ib);
+              ia = lo_end, ib = hi_end;
+            }
+            if (hn::AllFalse(d, valid)) continue;
+            V cc[16];
+            const VF ce = evaluate(ia, ib, cc, kind);
+            take_where(hn::And(valid, hn::RebindMask(d, hn::Lt(ce, error))), ia, ib, ce, cc);
+          }
       }
     }
     V bits_lo = hn::Zero(d), bits_hi = hn::Zero(d);
