@@ -242,6 +242,17 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
                 for (int x = 0; x < 4; ++x)
                   batch[4 * y + x][k] = u8_value[row[std::min((bx0 + k) * 4 + x, img.width - 1) * img.channels + ch]];
             }
+          } else if (lanes4 && ch < img.channels && img.type != PixelType::u8) {
+            // 16-bit and float texels a row at a time, by value()'s expression.
+            for (int y = 0; y < 4; ++y) {
+              const int sy = std::min(by * 4 + y, img.height - 1);
+              for (int k = 0; k < count; ++k)
+                for (int x = 0; x < 4; ++x) {
+                  const std::size_t at = std::size_t(std::min((bx0 + k) * 4 + x, img.width - 1)) * img.channels + ch;
+                  const float u = img.type == PixelType::u16 ? img.row<const std::uint16_t>(sy)[at] / 65535.0f : img.row<const float>(sy)[at];
+                  batch[4 * y + x][k] = snorm ? (u * 2.0f - 1.0f) * 127.0f : u * 255.0f;
+                }
+            }
           } else {
             for (int k = 0; k < count; ++k)
               for (int i = 0; i < 16; ++i) {
