@@ -274,7 +274,7 @@ void cluster_fit(const std::uint8_t rgb[16][3], const bool transparent[16], cons
 }  // namespace
 
 void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
-  if (q != Quality::max && !(mode == ColorMode::bc1_punch_through && q == Quality::high)) {  // as images: bc1_lanes.h
+  if (q != Quality::max) {  // as whole images do: bc1_lanes.h
     std::uint32_t texel[16][kBc1Batch] = {};
     for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
     std::uint8_t block[1][8];

@@ -35,8 +35,8 @@ constexpr int kBc1Batch = 16;
 // colour). `punch` (BC1 with alpha): texels with alpha under 128 are
 // transparent (index 3 of the three-colour mode, out of every fit and
 // error); a block with any is encoded in the three-colour mode (at `fast`
-// from the extent's ends refitted once, at `normal` twice; images take
-// punch-through `high` block by block, with the cluster fit). Blocks
+// from the extent's ends refitted once, at `normal` twice, at `high` then
+// 45 partition variants on halves of the extent and one-step nudges). Blocks
 // whose opaque texels are all one colour (or that have none) are left to
 // the caller (`handled[k]` false; their bytes are not written).
 void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three, bool punch,

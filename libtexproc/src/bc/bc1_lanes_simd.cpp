@@ -119,6 +119,50 @@ inline float variant_shift(int offset, int stretch) {
   return 0.5f + kVariantStep * float(offset) - kVariantStep * float(stretch) * 1.5f;
 }
 
+// `high` for blocks with transparent texels (their only mode is the
+// three-colour one): partition variants on halves of the extent (45, each a
+// least-squares fit, scored and refitted), then one-step nudges of the
+// quantized endpoints while they help (at most four passes).
+void three_colour_search(const int rgb[16][3], const bool clear[16], float hi, float lo, const float proj[16], State& t) {
+  for (int o = -4; o <= 4; ++o)
+    for (int sv = -2; sv <= 2; ++sv) {
+      const float scale = hi > lo ? 2.0f * (1.0f + kVariantStep * float(sv)) / (hi - lo) : 0.0f;
+      const float shift = 0.5f + kVariantStep * float(o) - kVariantStep * float(sv);
+      std::int32_t aa = 0, ab = 0, bb = 0, at[3] = {}, bt[3] = {};
+      for (int i = 0; i < 16; ++i) {
+        if (clear[i]) continue;
+        const int w = std::clamp(int(std::floor((hi - proj[i]) * scale + shift)), 0, 2), u = 2 - w;
+        aa += u * u, ab += u * w, bb += w * w;
+        for (int ch = 0; ch < 3; ++ch) at[ch] += u * rgb[i][ch], bt[ch] += w * rgb[i][ch];
+      }
+      const std::int32_t det = aa * bb - ab * ab;
+      if (det == 0) continue;
+      const float inv = 1.0f / float(det);
+      float ra[3], rb[3];
+      for (int ch = 0; ch < 3; ++ch) {
+        ra[ch] = std::clamp(float(2 * (at[ch] * bb - bt[ch] * ab)) * inv, 0.0f, 255.0f);
+        rb[ch] = std::clamp(float(2 * (bt[ch] * aa - at[ch] * ab)) * inv, 0.0f, 255.0f);
+      }
+      State n;
+      endpoints(ra, rb, n.qa, n.qb);
+      n.error = nearest(rgb, clear, n.qa, n.qb, false, n.codes);
+      refit(rgb, clear, false, n);
+      if (n.error < t.error) t = n;
+    }
+  for (int pass = 0; pass < 4; ++pass) {
+    bool improved = false;
+    for (int m = 0; m < 12; ++m) {
+      State n = t;
+      int& v = (m < 6 ? n.qa : n.qb)[m % 6 / 2];
+      v += m % 2 ? 1 : -1;
+      if (v < 0 || v > (m % 6 / 2 == 1 ? 63 : 31)) continue;
+      n.error = nearest(rgb, clear, n.qa, n.qb, false, n.codes);
+      if (n.error < t.error) t = n, improved = true;
+    }
+    if (!improved) break;
+  }
+}
+
 }  // namespace
 
 void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three, bool punch,
@@ -268,6 +312,7 @@ void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int l
         t.error = nearest(rgb, clear, t.qa, t.qb, false, t.codes);
         refit(rgb, clear, false, t);
         if (transparent) refit(rgb, clear, false, t);  // the block's only mode: refitted twice
+        if (transparent && level >= 2) three_colour_search(rgb, clear, hi, lo, proj, t);
         if (transparent || t.error < st.error) st = t, four = false;
       }
     }
@@ -615,6 +660,59 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, in
         State t2 = t;
         refit(false, t2);
         select(transparent, t2, t);
+      }
+      if (kPunch && level >= 2 && !hn::AllFalse(d, transparent)) {
+        // Their `high` search (see three_colour_search in the reference):
+        // partition variants on halves of the extent, then nudges.
+        const auto wide = hn::Gt(hi, lo);
+        const VF extent = hn::IfThenElse(wide, hn::Sub(hi, lo), one);
+        const V two_i = hn::Set(d, 2);
+        for (int o = -4; o <= 4; ++o)
+          for (int sv = -2; sv <= 2; ++sv) {
+            const VF scale = hn::IfThenElseZero(wide, hn::Div(hn::Set(df, 2.0f * (1.0f + ref::kVariantStep * float(sv))), extent));
+            const VF shift = hn::Set(df, 0.5f + ref::kVariantStep * float(o) - ref::kVariantStep * float(sv));
+            V aa = hn::Zero(d), ab = aa, bb = aa, at[3] = {aa, aa, aa}, bt[3] = {aa, aa, aa};
+            for (int i = 0; i < 16; ++i) {
+              const V w = opaque_only(i, hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(hn::Mul(hn::Sub(hi, proj[i]), scale), shift))),
+                                                         hn::Zero(d)), two_i));
+              const V u = opaque_only(i, hn::Sub(two_i, w));
+              aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w)), bb = hn::Add(bb, hn::Mul(w, w));
+              at[0] = hn::Add(at[0], hn::Mul(u, r[i])), at[1] = hn::Add(at[1], hn::Mul(u, g[i])), at[2] = hn::Add(at[2], hn::Mul(u, b[i]));
+              bt[0] = hn::Add(bt[0], hn::Mul(w, r[i])), bt[1] = hn::Add(bt[1], hn::Mul(w, g[i])), bt[2] = hn::Add(bt[2], hn::Mul(w, b[i]));
+            }
+            const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
+            const auto solvable = hn::And(transparent, hn::Ne(det, hn::Zero(d)));
+            if (hn::AllFalse(d, solvable)) continue;
+            const VF inv_det = hn::Div(one, hn::ConvertTo(df, hn::IfThenElse(solvable, det, hn::Set(d, 1))));
+            State n;
+            for (int ch = 0; ch < 3; ++ch) {
+              const int max = ch == 1 ? 63 : 31;
+              const V na = hn::Mul(two_i, hn::Sub(hn::Mul(at[ch], bb), hn::Mul(bt[ch], ab)));
+              const V nb = hn::Mul(two_i, hn::Sub(hn::Mul(bt[ch], aa), hn::Mul(at[ch], ab)));
+              n.qa[ch] = quantize(clamp255(hn::Mul(hn::ConvertTo(df, na), inv_det)), max);
+              n.qb[ch] = quantize(clamp255(hn::Mul(hn::ConvertTo(df, nb), inv_det)), max);
+            }
+            nearest(false, n);
+            refit(false, n);
+            select(hn::And(solvable, hn::Lt(n.error, t.error)), n, t);
+          }
+        for (int pass = 0; pass < 4; ++pass) {
+          M improved = hn::Lt(hn::Zero(d), hn::Zero(d));
+          for (int m = 0; m < 12; ++m) {
+            const int ch = m % 6 / 2, max = ch == 1 ? 63 : 31;
+            State n = t;
+            V& v = (m < 6 ? n.qa : n.qb)[ch];
+            v = hn::Add(v, hn::Set(d, m % 2 ? 1 : -1));
+            const auto valid = hn::And(transparent, hn::And(hn::Not(hn::Lt(v, hn::Zero(d))), hn::Not(hn::Gt(v, hn::Set(d, max)))));
+            if (hn::AllFalse(d, valid)) continue;
+            v = hn::Min(hn::Max(v, hn::Zero(d)), hn::Set(d, max));
+            nearest(false, n);
+            const auto take = hn::And(valid, hn::Lt(n.error, t.error));
+            select(take, n, t);
+            improved = hn::Or(improved, take);
+          }
+          if (hn::AllFalse(d, hn::AndNot(flat, improved))) break;
+        }
       }
       const auto take = hn::Or(transparent, three ? hn::Lt(t.error, st.error) : hn::Lt(mask8, mask8));
       select(take, t, st);

@@ -140,10 +140,8 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * block_bytes);
   const ColorMode color_mode = bc1 ? ColorMode::bc1 : bc1a ? ColorMode::bc1_punch_through : ColorMode::four_only;
   const bool lanes4 = q != Quality::max;  // BC4 blocks a lane each (bc4_lanes.h)
-  // BC1 colour a block per lane below `max` (bc1_lanes.h); `max`, and `high`
-  // with punch-through alpha (whose three-colour blocks want the cluster
-  // fit: 0.18 dB over the lanes there), go block by block.
-  const bool batched = q != Quality::max && !(bc1a && q == Quality::high);
+  // BC1 colour a block per lane below `max` (bc1_lanes.h; `max` goes block by block).
+  const bool batched = q != Quality::max;
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::uint8_t rgba[kBc1Batch][16][4];
     std::uint32_t texel[16][kBc1Batch] = {};
