@@ -119,6 +119,23 @@ inline float variant_shift(int offset, int stretch) {
   return 0.5f + kVariantStep * float(offset) - kVariantStep * float(stretch) * 1.5f;
 }
 
+// Each quantized endpoint channel nudged by one step while that lowers the
+// error (at most four passes over the twelve moves).
+void nudge(const int rgb[16][3], const bool clear[16], bool four, State& s) {
+  for (int pass = 0; pass < 4; ++pass) {
+    bool improved = false;
+    for (int m = 0; m < 12; ++m) {
+      State n = s;
+      int& v = (m < 6 ? n.qa : n.qb)[m % 6 / 2];
+      v += m % 2 ? 1 : -1;
+      if (v < 0 || v > (m % 6 / 2 == 1 ? 63 : 31)) continue;
+      n.error = nearest(rgb, clear, n.qa, n.qb, four, n.codes);
+      if (n.error < s.error) s = n, improved = true;
+    }
+    if (!improved) break;
+  }
+}
+
 // `high` for blocks with transparent texels (their only mode is the
 // three-colour one): partition variants on halves of the extent (45, each a
 // least-squares fit, scored and refitted), then one-step nudges of the
@@ -149,18 +166,7 @@ void three_colour_search(const int rgb[16][3], const bool clear[16], float hi, f
       refit(rgb, clear, false, n);
       if (n.error < t.error) t = n;
     }
-  for (int pass = 0; pass < 4; ++pass) {
-    bool improved = false;
-    for (int m = 0; m < 12; ++m) {
-      State n = t;
-      int& v = (m < 6 ? n.qa : n.qb)[m % 6 / 2];
-      v += m % 2 ? 1 : -1;
-      if (v < 0 || v > (m % 6 / 2 == 1 ? 63 : 31)) continue;
-      n.error = nearest(rgb, clear, n.qa, n.qb, false, n.codes);
-      if (n.error < t.error) t = n, improved = true;
-    }
-    if (!improved) break;
-  }
+  nudge(rgb, clear, false, t);
 }
 
 }  // namespace
@@ -293,20 +299,7 @@ void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int l
         n.error = nearest(rgb, clear, n.qa, n.qb, true, n.codes);
         if (n.error < st.error) st = n;
       }
-      // Each endpoint channel nudged by one step while that helps (at most
-      // four passes over the twelve moves).
-      for (int pass = 0; pass < 4; ++pass) {
-        bool improved = false;
-        for (int m = 0; m < 12; ++m) {
-          State n = st;
-          int& v = (m < 6 ? n.qa : n.qb)[m % 6 / 2];
-          v += m % 2 ? 1 : -1;
-          if (v < 0 || v > (m % 6 / 2 == 1 ? 63 : 31)) continue;
-          n.error = nearest(rgb, clear, n.qa, n.qb, true, n.codes);
-          if (n.error < st.error) st = n, improved = true;
-        }
-        if (!improved) break;
-      }
+      nudge(rgb, clear, true, st);
       if (three || transparent) {  // the three-colour mode from the extent's ends, refitted once
         State t = start;
         t.error = nearest(rgb, clear, t.qa, t.qb, false, t.codes);
@@ -547,6 +540,29 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, in
         qb[ch] = quantize(clamp255(hn::Mul(hn::ConvertTo(df, nb), inv_det)), max);
       }
     };
+    // The reference's nudge() in the lanes `moving`: each quantized endpoint
+    // channel moved by one step while that lowers the error (at most four
+    // passes; a lane whose pass found nothing is done, and the loop ends
+    // when every lane is).
+    auto nudge = [&](bool four_colours, M moving, State& s) {
+      for (int pass = 0; pass < 4; ++pass) {
+        M improved = hn::Lt(hn::Zero(d), hn::Zero(d));
+        for (int m = 0; m < 12; ++m) {
+          const int ch = m % 6 / 2, max = ch == 1 ? 63 : 31;
+          State n = s;
+          V& v = (m < 6 ? n.qa : n.qb)[ch];
+          v = hn::Add(v, hn::Set(d, m % 2 ? 1 : -1));
+          const auto valid = hn::And(moving, hn::And(hn::Not(hn::Lt(v, hn::Zero(d))), hn::Not(hn::Gt(v, hn::Set(d, max)))));
+          if (hn::AllFalse(d, valid)) continue;
+          v = hn::Min(hn::Max(v, hn::Zero(d)), hn::Set(d, max));
+          nearest(four_colours, n);
+          const auto take = hn::And(valid, hn::Lt(n.error, s.error));
+          select(take, n, s);
+          improved = hn::Or(improved, take);
+        }
+        if (hn::AllFalse(d, hn::AndNot(flat, improved))) break;
+      }
+    };
     if (level == 0) {
       const auto wide = hn::Gt(hi, lo);
       const VF scale = hn::IfThenElseZero(wide, hn::Div(hn::Set(df, 3.0f), hn::IfThenElse(wide, hn::Sub(hi, lo), one)));
@@ -633,23 +649,7 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, in
         nearest(true, n);
         select(hn::And(valid, hn::Lt(n.error, st.error)), n, st);
       }
-      for (int pass = 0; pass < 4; ++pass) {
-        M improved = hn::Lt(hn::Zero(d), hn::Zero(d));
-        for (int m = 0; m < 12; ++m) {
-          const int ch = m % 6 / 2, max = ch == 1 ? 63 : 31;
-          State n = st;
-          V& v = (m < 6 ? n.qa : n.qb)[ch];
-          v = hn::Add(v, hn::Set(d, m % 2 ? 1 : -1));
-          const auto valid = hn::And(hn::Not(hn::Lt(v, hn::Zero(d))), hn::Not(hn::Gt(v, hn::Set(d, max))));
-          if (hn::AllFalse(d, valid)) continue;
-          v = hn::Min(hn::Max(v, hn::Zero(d)), hn::Set(d, max));
-          nearest(true, n);
-          const auto take = hn::And(valid, hn::Lt(n.error, st.error));
-          select(take, n, st);
-          improved = hn::Or(improved, take);
-        }
-        if (hn::AllFalse(d, hn::AndNot(flat, improved))) break;
-      }
+      nudge(true, hn::Eq(mask8, mask8), st);
     }
     if (level >= 1 && (three || !hn::AllFalse(d, transparent))) {
       State t;
@@ -696,23 +696,7 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, in
             refit(false, n);
             select(hn::And(solvable, hn::Lt(n.error, t.error)), n, t);
           }
-        for (int pass = 0; pass < 4; ++pass) {
-          M improved = hn::Lt(hn::Zero(d), hn::Zero(d));
-          for (int m = 0; m < 12; ++m) {
-            const int ch = m % 6 / 2, max = ch == 1 ? 63 : 31;
-            State n = t;
-            V& v = (m < 6 ? n.qa : n.qb)[ch];
-            v = hn::Add(v, hn::Set(d, m % 2 ? 1 : -1));
-            const auto valid = hn::And(transparent, hn::And(hn::Not(hn::Lt(v, hn::Zero(d))), hn::Not(hn::Gt(v, hn::Set(d, max)))));
-            if (hn::AllFalse(d, valid)) continue;
-            v = hn::Min(hn::Max(v, hn::Zero(d)), hn::Set(d, max));
-            nearest(false, n);
-            const auto take = hn::And(valid, hn::Lt(n.error, t.error));
-            select(take, n, t);
-            improved = hn::Or(improved, take);
-          }
-          if (hn::AllFalse(d, hn::AndNot(flat, improved))) break;
-        }
+        nudge(false, transparent, t);
       }
       const auto take = hn::Or(transparent, three ? hn::Lt(t.error, st.error) : hn::Lt(mask8, mask8));
       select(take, t, st);
