@@ -161,11 +161,8 @@ void write(const Result& r, std::uint8_t out[8]) {
 // (a + b) / 2, b); each split's least-squares endpoints come in closed form
 // from prefix sums. The `keep_best` splits with the least unquantized error
 // are quantized and scored under the exact decoding.
-// window > 0: only the four-cluster splits whose first two boundaries lie
-// within `window` of the range fit's (the texels cut at 1/6 and 1/2 of the
-// extent along the axis): a local cluster fit.
 void cluster_fit(const std::uint8_t rgb[16][3], const bool transparent[16], const double axis[3], bool four,
-                 int keep_best, std::vector<Endpoints>& out, int window = 0) {
+                 int keep_best, std::vector<Endpoints>& out) {
   int order[16], n = 0;
   double proj[16];
   for (int i = 0; i < 16; ++i) {
@@ -232,20 +229,8 @@ void cluster_fit(const std::uint8_t rgb[16][3], const bool transparent[16], cons
   if (four) {
     // The four-cluster splits, a row of k at a time (SIMD twins).
     ClusterRow row;
-    int i_lo = 0, i_hi = n, j_lo = 0, j_hi = n;
-    if (window > 0 && n > 0) {
-      const double lo = proj[order[0]], span = proj[order[n - 1]] - lo;
-      int i0 = 0, j0 = 0;
-      for (int m = 0; m < n; ++m) {
-        const double t = span > 0 ? (proj[order[m]] - lo) / span : 0.0;
-        i0 += t < 1.0 / 6.0;
-        j0 += t < 0.5;
-      }
-      i_lo = std::max(0, i0 - window), i_hi = std::min(n, i0 + window);
-      j_lo = std::max(0, j0 - window), j_hi = std::min(n, j0 + window);
-    }
-    for (int i = i_lo; i <= i_hi; ++i)
-      for (int j = std::max(i, j_lo); j <= j_hi; ++j) {
+    for (int i = 0; i <= n; ++i)
+      for (int j = i; j <= n; ++j) {
         cluster_splits(pre, total_sq, n, i, j, row);
         for (int k = j; k <= n; ++k) {
           const double err = row.err[k - j];
@@ -271,30 +256,9 @@ void cluster_fit(const std::uint8_t rgb[16][3], const bool transparent[16], cons
   for (int k = 0; k < kept; ++k) out.push_back(quantize(best[k].a, best[k].b));
 }
 
-}  // namespace
-
-void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
-  if (q != Quality::max) {  // as whole images do: bc1_lanes.h
-    std::uint32_t texel[16][kBc1Batch] = {};
-    for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
-    std::uint8_t block[1][8];
-    bool handled = false;
-    bc1_encode_lanes(texel, 1, q == Quality::fast ? 0 : q == Quality::normal ? 1 : 2, mode != ColorMode::four_only,
-                     mode == ColorMode::bc1_punch_through, block, &handled);
-    if (handled) {
-      std::memcpy(out, block[0], 8);
-      return;
-    }
-  }
-  Bc1Texels tx;
-  for (int i = 0; i < 16; ++i) {
-    tx.r[i] = rgba[i][0], tx.g[i] = rgba[i][1], tx.b[i] = rgba[i][2];
-    tx.transparent[i] = mode == ColorMode::bc1_punch_through && rgba[i][3] < 128 ? 1 : 0;
-  }
-  encode_bc1_color(tx, mode, q, out);
-}
-
-void encode_bc1_color(const Bc1Texels& tx, ColorMode mode, Quality q, std::uint8_t out[8]) {
+// Block by block: `max`, and the blocks the lanes leave (one opaque colour,
+// with or without transparent texels, or none opaque).
+void encode_block_by_block(const Bc1Texels& tx, ColorMode mode, Quality q, std::uint8_t out[8]) {
   const bool three_allowed = mode != ColorMode::four_only;
   Result best;
   best.error = -1;
@@ -378,18 +342,14 @@ void encode_bc1_color(const Bc1Texels& tx, ColorMode mode, Quality q, std::uint8
   // The slow searches below work on double colours.
   std::uint8_t rgb[16][3];
   bool transparent[16];
-  double daxis[3] = {axis[0], axis[1], axis[2]};
-  if (q != Quality::fast) {
-    for (int i = 0; i < 16; ++i) {
-      rgb[i][0] = std::uint8_t(tx.r[i]), rgb[i][1] = std::uint8_t(tx.g[i]), rgb[i][2] = std::uint8_t(tx.b[i]);
-      transparent[i] = tx.transparent[i] != 0;
-    }
+  const double axis_d[3] = {axis[0], axis[1], axis[2]};
+  for (int i = 0; i < 16; ++i) {
+    rgb[i][0] = std::uint8_t(tx.r[i]), rgb[i][1] = std::uint8_t(tx.g[i]), rgb[i][2] = std::uint8_t(tx.b[i]);
+    transparent[i] = tx.transparent[i] != 0;
   }
-  double* const axis_d = daxis;
   const int refinements = q == Quality::fast ? 1 : q == Quality::normal ? 2 : 4;
   for (int four = 1; four >= 0; --four) {
     if (!four && !three_allowed) continue;
-    if (!four && q == Quality::fast && !any_transparent) continue;
     if (four && any_transparent) continue;  // transparent texels need the three-colour mode
     Result r;
     assign(tx, quantize(a, b), four, false, r);
@@ -400,16 +360,6 @@ void encode_bc1_color(const Bc1Texels& tx, ColorMode mode, Quality q, std::uint8
       assign(tx, quantize(ra, rb), four, false, n2);
       if (n2.error >= r.error) break;
       r = n2;
-    }
-    if (q == Quality::normal && four) {
-      // A local cluster fit: splits near the range fit's, its best two scored exactly.
-      std::vector<Endpoints> cands;
-      cluster_fit(rgb, transparent, axis_d, four, 2, cands, 1);
-      for (const Endpoints& e : cands) {
-        Result n2;
-        assign(tx, e, four, false, n2);
-        if (n2.error < r.error) r = n2;
-      }
     }
     if (q == Quality::high || q == Quality::max) {
       // Cluster fit along the principal axis (and, iterated, along the best
@@ -451,6 +401,33 @@ void encode_bc1_color(const Bc1Texels& tx, ColorMode mode, Quality q, std::uint8
     keep(r);
   }
   write(best, out);
+}
+
+}  // namespace
+
+void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
+  if (q != Quality::max) {  // as whole images do: bc1_lanes.h
+    std::uint32_t texel[16][kBc1Batch] = {};
+    for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
+    std::uint8_t block[1][8];
+    bool handled = false;
+    bc1_encode_lanes(texel, 1, q == Quality::fast ? 0 : q == Quality::normal ? 1 : 2, mode != ColorMode::four_only,
+                     mode == ColorMode::bc1_punch_through, block, &handled);
+    if (handled) {
+      std::memcpy(out, block[0], 8);
+      return;
+    }
+  }
+  encode_bc1_color_block_by_block(rgba, mode, q, out);
+}
+
+void encode_bc1_color_block_by_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
+  Bc1Texels tx;
+  for (int i = 0; i < 16; ++i) {
+    tx.r[i] = rgba[i][0], tx.g[i] = rgba[i][1], tx.b[i] = rgba[i][2];
+    tx.transparent[i] = mode == ColorMode::bc1_punch_through && rgba[i][3] < 128 ? 1 : 0;
+  }
+  encode_block_by_block(tx, mode, q, out);
 }
 
 }  // namespace texproc

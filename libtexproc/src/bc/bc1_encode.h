@@ -3,7 +3,6 @@
 
 #include <cstdint>
 
-#include "bc/bc1_assign.h"
 #include "texproc/block_encode.h"
 
 namespace texproc {
@@ -15,9 +14,10 @@ enum class ColorMode {
 };
 
 // Encodes 16 RGBA8 texels (row by row) into an 8-byte BC1 colour block.
+// Below `max` through the lanes (bc1_lanes.h), as whole images are.
 void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]);
-// The same from texel planes (transparent texels already marked; none for
-// `bc1` and `four_only`).
-void encode_bc1_color(const Bc1Texels& tx, ColorMode mode, Quality q, std::uint8_t out[8]);
+// Block by block: `max`, and the blocks the lanes leave (one opaque colour,
+// with or without transparent texels, or none opaque).
+void encode_bc1_color_block_by_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]);
 
 }  // namespace texproc

@@ -135,13 +135,14 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
   const bool bc1 = format == F::bc1_rgb_unorm || format == F::bc1_rgb_srgb;
   const bool bc1a = format == F::bc1_rgba_unorm || format == F::bc1_rgba_srgb;
   const bool bc2 = format == F::bc2_unorm || format == F::bc2_srgb;
-  const int block_bytes = bc1 || bc1a ? 8 : 16;
+  const int block_bytes = bc1 || bc1a ? 8 : 16;  // colour only, or an alpha block first
   const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * block_bytes);
   const ColorMode color_mode = bc1 ? ColorMode::bc1 : bc1a ? ColorMode::bc1_punch_through : ColorMode::four_only;
-  const bool lanes4 = q != Quality::max;  // BC4 blocks a lane each (bc4_lanes.h)
-  // BC1 colour a block per lane below `max` (bc1_lanes.h; `max` goes block by block).
-  const bool batched = q != Quality::max;
+  // Below `max` the colour (bc1_lanes.h) and BC3's alpha (bc4_lanes.h) go a
+  // block per lane; `max` block by block.
+  const bool lanes = q != Quality::max;
+  const bool colour_only = bc1 || bc1a;  // no alpha block; the lanes read alpha from the texels
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::uint8_t rgba[kBc1Batch][16][4];
     std::uint32_t texel[16][kBc1Batch] = {};
@@ -153,32 +154,32 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
       for (int bx0 = 0; bx0 < bw; bx0 += kBc1Batch) {
         const int count = std::min(kBc1Batch, bw - bx0);
         // RGBA8 texels straight from the rows where they can be.
-        const bool rows_direct = batched && gather_rows_rgba8(img, bx0, by, count, texel);
+        const bool rows_direct = lanes && gather_rows_rgba8(img, bx0, by, count, texel);
         for (int k = 0; k < count; ++k) {
-          if (rows_direct && bc1) continue;  // gathered below only if the kernel leaves it
+          if (rows_direct && colour_only) continue;  // gathered below only if the lanes leave it
           gather_rgba8(img, bx0 + k, by, rgba[k]);
-          if (batched && !rows_direct)
+          if (lanes && !rows_direct)
             for (int i = 0; i < 16; ++i) texel[i][k] = pack_texel(rgba[k][i]);
         }
-        // `fast` and `normal` opaque colour: sixteen blocks at a time (one-colour blocks
-        // are left to the single-colour tables below).
-        if (batched) bc1_encode_lanes(texel, count, lane_level(q), bc1 || bc1a, bc1a, color, handled);
+        // Sixteen blocks at a time; those of one opaque colour (or none) are
+        // left to the block-by-block encoder's single-colour tables.
+        if (lanes) bc1_encode_lanes(texel, count, lane_level(q), colour_only, bc1a, color, handled);
         for (int k = 0; k < count; ++k) {
           std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes;
-          std::uint8_t* color_dst = bc1 || bc1a ? dst : dst + 8;
-          if (batched && handled[k]) {
+          std::uint8_t* color_dst = colour_only ? dst : dst + 8;
+          if (lanes && handled[k]) {
             std::memcpy(color_dst, color[k], 8);
           } else {
-            if (rows_direct && bc1) gather_rgba8(img, bx0 + k, by, rgba[k]);
-            encode_bc1_color(rgba[k], color_mode, q, color_dst);
+            if (rows_direct && colour_only) gather_rgba8(img, bx0 + k, by, rgba[k]);
+            encode_bc1_color_block_by_block(rgba[k], color_mode, q, color_dst);
           }
-          if (bc1 || bc1a) continue;
+          if (colour_only) continue;
           if (bc2) {  // explicit 4-bit alpha, rounded
             for (int i = 0; i < 16; i += 2) {
               const int a0 = (rgba[k][i][3] * 15 + 127) / 255, a1 = (rgba[k][i + 1][3] * 15 + 127) / 255;
               dst[i / 2] = std::uint8_t(a0 | a1 << 4);
             }
-          } else if (lanes4) {  // BC3: the alpha as a BC4 block, batched below
+          } else if (lanes) {  // BC3: the alpha as a BC4 block, in lanes below
             for (int i = 0; i < 16; ++i) alpha[i][k] = rgba[k][i][3];
           } else {
             float a[16];
@@ -186,7 +187,7 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
             encode_bc4_block(a, false, q, dst);
           }
         }
-        if (!bc1 && !bc1a && !bc2 && lanes4) {
+        if (!colour_only && !bc2 && lanes) {
           bc4_encode_lanes(alpha, count, false, lane_level(q), alpha_blocks);
           for (int k = 0; k < count; ++k) std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes, alpha_blocks[k], 8);
         }
@@ -208,6 +209,8 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
   const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
   const int block_bytes = bc5 ? 16 : 8;
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * block_bytes);
+  // A texel in [0, 1] as code units: [0, 255], or [-127, 127] for SNORM.
+  auto code_units = [&](float u) { return snorm ? (u * 2.0f - 1.0f) * 127.0f : u * 255.0f; };
   auto value = [&](int x, int y, int c) -> float {
     if (c >= img.channels) return snorm ? 0.0f : 0.0f;
     float v = 0.0f;
@@ -216,13 +219,12 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
       case PixelType::u16: v = img.row<const std::uint16_t>(y)[x * img.channels + c] / 65535.0f; break;
       case PixelType::f32: v = img.row<const float>(y)[x * img.channels + c]; break;
     }
-    return snorm ? (v * 2.0f - 1.0f) * 127.0f : v * 255.0f;
+    return code_units(v);
   };
-  const bool lanes4 = q != Quality::max;  // a block per lane (bc4_lanes.h)
+  const bool lanes = q != Quality::max;  // a block per lane (bc4_lanes.h)
   float u8_value[256];
   for (int i = 0; i < 256; ++i) {
-    const float v = float(i) / 255.0f;
-    u8_value[i] = snorm ? (v * 2.0f - 1.0f) * 127.0f : v * 255.0f;
+    u8_value[i] = code_units(float(i) / 255.0f);
   }
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     float v[16];
@@ -232,7 +234,7 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
       for (int bx0 = 0; bx0 < bw; bx0 += kBc4Batch) {
         const int count = std::min(kBc4Batch, bw - bx0);
         for (int ch = 0; ch < (bc5 ? 2 : 1); ++ch) {
-          if (lanes4 && img.type == PixelType::u8 && ch < img.channels) {
+          if (lanes && img.type == PixelType::u8 && ch < img.channels) {
             // 8-bit texels through a table of the same values value() gives.
             for (int y = 0; y < 4; ++y) {
               const std::uint8_t* row = img.row<const std::uint8_t>(std::min(by * 4 + y, img.height - 1));
@@ -240,15 +242,15 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
                 for (int x = 0; x < 4; ++x)
                   batch[4 * y + x][k] = u8_value[row[std::min((bx0 + k) * 4 + x, img.width - 1) * img.channels + ch]];
             }
-          } else if (lanes4 && ch < img.channels && img.type != PixelType::u8) {
-            // 16-bit and float texels a row at a time, by value()'s expression.
+          } else if (lanes && ch < img.channels && img.type != PixelType::u8) {
+            // 16-bit and float texels a row at a time (value() without its switch per texel).
             for (int y = 0; y < 4; ++y) {
               const int sy = std::min(by * 4 + y, img.height - 1);
               for (int k = 0; k < count; ++k)
                 for (int x = 0; x < 4; ++x) {
                   const std::size_t at = std::size_t(std::min((bx0 + k) * 4 + x, img.width - 1)) * img.channels + ch;
                   const float u = img.type == PixelType::u16 ? img.row<const std::uint16_t>(sy)[at] / 65535.0f : img.row<const float>(sy)[at];
-                  batch[4 * y + x][k] = snorm ? (u * 2.0f - 1.0f) * 127.0f : u * 255.0f;
+                  batch[4 * y + x][k] = code_units(u);
                 }
             }
           } else {
@@ -256,12 +258,12 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
               for (int i = 0; i < 16; ++i) {
                 // Partial blocks: the edge texels repeat into the missing ones.
                 const int x = std::min((bx0 + k) * 4 + i % 4, img.width - 1), y = std::min(by * 4 + i / 4, img.height - 1);
-                (lanes4 ? batch[i][k] : v[i]) = value(x, y, ch);
-                if (!lanes4 && i == 15)
+                (lanes ? batch[i][k] : v[i]) = value(x, y, ch);
+                if (!lanes && i == 15)
                   encode_bc4_block(v, snorm, q, out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes + 8 * ch);
               }
           }
-          if (!lanes4) continue;
+          if (!lanes) continue;
           bc4_encode_lanes(batch, count, snorm, lane_level(q), blocks);  // sixteen blocks at a time
           for (int k = 0; k < count; ++k)
             std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes + 8 * ch, blocks[k], 8);
