@@ -411,7 +411,7 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q,
     for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
     std::uint8_t block[1][8];
     bool handled = false;
-    bc1_encode_lanes(texel, 1, q == Quality::fast ? 0 : q == Quality::normal ? 1 : 2, mode != ColorMode::four_only,
+    bc1_encode_lanes(texel, 1, lane_level(q), mode != ColorMode::four_only,
                      mode == ColorMode::bc1_punch_through, block, &handled);
     if (handled) {
       std::memcpy(out, block[0], 8);

@@ -85,9 +85,6 @@ void write_block(const Candidate& c, bool snorm, std::uint8_t out[8]) {
   for (int b = 0; b < 6; ++b) out[2 + b] = std::uint8_t(bits >> (8 * b));
 }
 
-// The lanes' level for a quality (bc4_lanes.h); `max` searches block by block.
-int lane_level(Quality q) { return q == Quality::fast ? 0 : q == Quality::normal ? 1 : 2; }
-
 }  // namespace
 
 void encode_bc4_block(const float v[16], bool snorm, Quality q, std::uint8_t out[8]) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "texproc/block_encode.h"
 #include "texproc/image.h"
 
 namespace texproc {
@@ -70,6 +71,10 @@ inline void gather_rgba8(const ImageView& img, int bx, int by, std::uint8_t rgba
 // as texel[i][k]: texel i (row by row) of block k, R | G << 8 | B << 16 |
 // A << 24 (only BC1 with punch-through alpha reads A).
 constexpr int kBlockBatch = 16;
+
+// The lanes' search level for a quality below `max` (which goes block by
+// block): 0 `fast`, 1 `normal`, 2 `high`.
+inline int lane_level(Quality q) { return q == Quality::fast ? 0 : q == Quality::normal ? 1 : 2; }
 
 inline std::uint32_t pack_texel(const std::uint8_t px[4]) {
   return std::uint32_t(px[0]) | std::uint32_t(px[1]) << 8 | std::uint32_t(px[2]) << 16 | std::uint32_t(px[3]) << 24;

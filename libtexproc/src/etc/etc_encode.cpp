@@ -726,7 +726,7 @@ double encode_eac_block(const float targets[16], EacKind kind, Quality q, std::u
     for (int i = 0; i < 16; ++i) v[i][0] = targets[i];
     std::uint8_t block[1][8];
     float err[1];
-    eac_encode_lanes(v, 1, kind, q == Quality::fast ? 0 : q == Quality::normal ? 1 : 2, block, err);
+    eac_encode_lanes(v, 1, kind, lane_level(q), block, err);
     std::memcpy(out, block[0], 8);
     return err[0];
   }
@@ -786,7 +786,6 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
   const bool batched = etc_blocks_in_lanes(mode, q);
   const bool finish = batched && q != Quality::fast && mode != ColorMode::etc1;  // ETC2: planar, T, H per block
   const bool eac_lanes = q != Quality::max;
-  const int eac_level = q == Quality::fast ? 0 : q == Quality::normal ? 1 : 2;
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::int32_t errors[kEtcBatch];
     std::uint8_t rgba[kEtcBatch][16][4];
@@ -797,7 +796,7 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
     std::uint8_t eac_out[kEacBatch][8];
     float eac_err[kEacBatch];
     auto eac_flush = [&](int by, int bx0, int count, EacKind kind, int offset) {
-      eac_encode_lanes(eac_values, count, kind, eac_level, eac_out, eac_err);
+      eac_encode_lanes(eac_values, count, kind, lane_level(q), eac_out, eac_err);
       for (int k = 0; k < count; ++k)
         std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + offset, eac_out[k], 8);
     };
