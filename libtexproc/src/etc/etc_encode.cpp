@@ -795,15 +795,23 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
     float eac_values[16][kEacBatch];  // EAC: sixteen blocks at a time below `max` (eac_lanes.h)
     std::uint8_t eac_out[kEacBatch][8];
     float eac_err[kEacBatch];
-    auto eac_flush = [&](int by, int bx0, int count, EacKind kind, int offset) {
-      eac_encode_lanes(eac_values, count, kind, lane_level(q), eac_out, eac_err);
+    // The EAC blocks of eac_values, written `offset` bytes into their blocks.
+    auto eac_encode = [&](int by, int bx0, int count, EacKind kind, int offset) {
+      if (eac_lanes) {
+        eac_encode_lanes(eac_values, count, kind, lane_level(q), eac_out, eac_err);
+      } else {
+        for (int k = 0; k < count; ++k) {
+          for (int i = 0; i < 16; ++i) values[i] = eac_values[i][k];
+          encode_eac_block(values, kind, q, eac_out[k]);
+        }
+      }
       for (int k = 0; k < count; ++k)
         std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + offset, eac_out[k], 8);
     };
     for (int by = by0; by < by1; ++by)
       for (int bx0 = 0; bx0 < bw; bx0 += kEtcBatch) {
         const int count = std::min(kEtcBatch, bw - bx0);
-        if (eac && eac_lanes) {
+        if (eac) {
           for (int c = 0; c < eac_channels; ++c) {
             for (int k = 0; k < count; ++k)
               for (int i = 0; i < 16; ++i) {
@@ -812,7 +820,7 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
                 const float u = texel_unit(img, x, y, c);
                 eac_values[i][k] = snorm ? (u * 2.0f - 1.0f) * 1023.0f : u * 2047.0f;
               }
-            eac_flush(by, bx0, count, snorm ? EacKind::r11_signed : EacKind::r11, 8 * c);
+            eac_encode(by, bx0, count, snorm ? EacKind::r11_signed : EacKind::r11, 8 * c);
           }
           continue;
         }
@@ -821,33 +829,17 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
         for (int k = 0; k < count && !rows_direct; ++k) {
           const int bx = bx0 + k;
           std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx) * std::size_t(info.block_bytes);
-          if (eac) {
-            for (int c = 0; c < eac_channels; ++c) {
-              for (int i = 0; i < 16; ++i) {
-                // Partial blocks: the edge texels repeat into the missing ones.
-                const int x = std::min(bx * 4 + i % 4, img.width - 1), y = std::min(by * 4 + i / 4, img.height - 1);
-                const float u = texel_unit(img, x, y, c);
-                values[i] = snorm ? (u * 2.0f - 1.0f) * 1023.0f : u * 2047.0f;
-              }
-              encode_eac_block(values, snorm ? EacKind::r11_signed : EacKind::r11, q, dst + 8 * c);
-            }
-            continue;
-          }
           gather_rgba8(img, bx, by, rgba[k]);
-          if (rgba8 && eac_lanes) {
+          if (rgba8)
             for (int i = 0; i < 16; ++i) eac_values[i][k] = rgba[k][i][3];
-          } else if (rgba8) {
-            for (int i = 0; i < 16; ++i) values[i] = rgba[k][i][3];
-            encode_eac_block(values, EacKind::alpha8, q, dst);
-          }
           if (batched) {
             for (int i = 0; i < 16; ++i) texel[i][k] = pack_texel(rgba[k][i]);
           } else {
             encode_color_block(rgba[k], mode, q, dst + (rgba8 ? 8 : 0));
           }
         }
-        if (rgba8 && eac_lanes) eac_flush(by, bx0, count, EacKind::alpha8, 0);
-        if (eac || !batched) continue;
+        if (rgba8) eac_encode(by, bx0, count, EacKind::alpha8, 0);
+        if (!batched) continue;
         if (q == Quality::fast) {
           etc1_fast_lanes(texel, count, color);
         } else {
