@@ -360,8 +360,8 @@ void search_planar(const Texels& tx, Quality q, Candidate& best) {
         }
     o[c] = bo, hq[c] = bh, vq[c] = bv;
     total += be;
+    if (total >= best.err) return;  // errors only add up: planar cannot win
   }
-  if (total >= best.err) return;
   std::uint64_t v = 0;
   put(v, 62, 6, o[0]);
   put(v, 56, 1, o[1] >> 6), put(v, 54, 6, o[1] & 63);

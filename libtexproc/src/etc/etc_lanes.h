@@ -4,13 +4,16 @@
 //
 // `fast`, per block and half block (left, right, top, bottom): the base
 // colour is the half's mean, quantized to 5 bits (and to 4 where the
-// differential delta cannot reach: individual mode); the three intensity
-// tables whose modifiers are nearest the texels' spread about the mean
-// (mean absolute deviation of R + G + B, over 3) are scored with each texel
-// at the modifier nearest a third of its R + G + B offset from the base
-// (unclamped), and the best kept. The flip with less error wins (the first
-// on a tie). Integer arithmetic throughout, and one float division per
-// quantized channel, the same on both twins.
+// differential delta cannot reach: individual mode); three intensity tables
+// are scored with each texel at the modifier nearest a third of its R + G +
+// B offset from the base (unclamped), and the best kept: the two whose
+// modifiers are nearest the texels' spread about the mean (mean absolute
+// deviation of R + G + B, over 3) and the next smaller one, or in its place
+// the table whose far modifier reaches the farthest texel where that is
+// larger still (a dark half with one bright texel). The flip with less
+// error wins (the first on a tie); then each texel takes its best modifier
+// under the decoder's clamping. Integer arithmetic throughout, and one
+// float division per quantized channel, the same on both twins.
 #pragma once
 
 #include <cstdint>

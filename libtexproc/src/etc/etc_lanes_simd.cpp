@@ -91,8 +91,15 @@ HalfFit fit(const int rgb[16][3], int h, int bits, int t0) {
     d2[i] = dr * dr + dg * dg + db * db;
     dl[i] = dr + dg + db;
   }
+  // Beside the tables around the spread's, the one whose far modifier
+  // reaches the farthest texel: a half of dark texels and one bright one
+  // (line art, text) needs a far modifier that the spread does not suggest.
+  int reach = 0, t_far = 0;
+  for (int i = 0; i < 8; ++i) reach = std::max(reach, std::abs(dl[i]));
+  for (int t = 1; t < 8; ++t)
+    if (std::abs(3 * kModifiers[t][1] - reach) < std::abs(3 * kModifiers[t_far][1] - reach)) t_far = t;
   for (int dt = -1; dt <= 1; ++dt) {
-    const int t = std::clamp(t0 + dt, 0, 7), a = kModifiers[t][0], b = kModifiers[t][1];
+    const int t = dt == -1 && t_far > t0 + 1 ? t_far : std::clamp(t0 + dt, 0, 7), a = kModifiers[t][0], b = kModifiers[t][1];
     int err = 0, idx[8];
     for (int i = 0; i < 8; ++i) {
       const bool up = dl[i] >= 0, far = up ? 2 * dl[i] > 3 * (a + b) : 2 * dl[i] < -3 * (a + b);
@@ -106,6 +113,30 @@ HalfFit fit(const int rgb[16][3], int h, int bits, int t0) {
     }
   }
   return best;
+}
+
+// Exact score of base q (4 or 5 bits) with table t for half h: each texel
+// at its best modifier under the decoder's clamping (the first of equals).
+HalfFit eval_exact(const int rgb[16][3], int h, const int q[3], int bits, int t) {
+  HalfFit f{};
+  int pal[4][3];
+  for (int c = 0; c < 3; ++c) {
+    f.q[c] = q[c];
+    const int base = bits == 5 ? extend5(q[c]) : extend4(q[c]);
+    for (int k = 0; k < 4; ++k) pal[k][c] = clamp255(base + kModifiers[t][k]);
+  }
+  f.table = t;
+  for (int i = 0; i < 8; ++i) {
+    const int* px = rgb[fast::kHalf[h][i]];
+    int be = 0;
+    for (int k = 0; k < 4; ++k) {
+      const int dr = px[0] - pal[k][0], dg = px[1] - pal[k][1], db = px[2] - pal[k][2];
+      const int e = dr * dr + dg * dg + db * db;
+      if (k == 0 || e < be) be = e, f.idx[i] = k;
+    }
+    f.err += be;
+  }
+  return f;
 }
 
 }  // namespace
@@ -154,35 +185,18 @@ void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, std::u
         std::copy(f.idx, f.idx + 8, best.idx[s]);
       }
     }
+    // The modifiers again under the decoder's clamping, which the estimate
+    // above leaves out (beside a bright base a black texel wants the far
+    // modifier that clamps to 0, not the near one).
+    for (int s = 0; s < 2; ++s) {
+      const HalfFit f = eval_exact(rgb, 2 * best.flip + s, best.q[s], best.differential ? 5 : 4, best.table[s]);
+      std::copy(f.idx, f.idx + 8, best.idx[s]);
+    }
     fast::pack(best, out[k]);
   }
 }
 
 namespace {
-
-// Exact score of base q (4 or 5 bits) with table t for half h: each texel
-// at its best modifier under the decoder's clamping (the first of equals).
-HalfFit eval_exact(const int rgb[16][3], int h, const int q[3], int bits, int t) {
-  HalfFit f{};
-  int pal[4][3];
-  for (int c = 0; c < 3; ++c) {
-    f.q[c] = q[c];
-    const int base = bits == 5 ? extend5(q[c]) : extend4(q[c]);
-    for (int k = 0; k < 4; ++k) pal[k][c] = clamp255(base + kModifiers[t][k]);
-  }
-  f.table = t;
-  for (int i = 0; i < 8; ++i) {
-    const int* px = rgb[fast::kHalf[h][i]];
-    int be = 0;
-    for (int k = 0; k < 4; ++k) {
-      const int dr = px[0] - pal[k][0], dg = px[1] - pal[k][1], db = px[2] - pal[k][2];
-      const int e = dr * dr + dg * dg + db * db;
-      if (k == 0 || e < be) be = e, f.idx[i] = k;
-    }
-    f.err += be;
-  }
-  return f;
-}
 
 // Every table at the half's mean; the best two re-centred (the base that
 // minimizes the error for their indices: the mean of the texels minus their
@@ -222,17 +236,6 @@ HalfFit fit_normal(const int rgb[16][3], int h, int bits, bool high) {
   HalfFit at_mean[8];
   int err[8];
   for (int t = 0; t < 8; ++t) at_mean[t] = eval_exact(rgb, h, q0, bits, t), err[t] = at_mean[t].err;
-  HalfFit best{};
-  best.err = -1;
-  if (!high) {
-    int t1, t2;
-    best_two(err, t1, t2);
-    for (int t : {t1, t2}) {
-      const HalfFit cur = recentre(at_mean[t], 2);
-      if (best.err < 0 || cur.err < best.err) best = cur;
-    }
-    return best;
-  }
   // Seeds: the brightest and darkest texels (by R + G + B, the first of
   // equals) minus their likely modifiers; in an exact fit they carry the
   // extreme ones.
@@ -245,15 +248,36 @@ HalfFit fit_normal(const int rgb[16][3], int h, int bits, bool high) {
   }
   const int top = bits == 5 ? 31 : 15;
   auto quantize8 = [&](int v) { return std::clamp(int(float(v * top) / 255.0f + 0.5f), 0, top); };
+  // Base = texel minus modifier m for table t, if that beats `start`.
+  auto seed = [&](HalfFit& start, int texel, int m, int t) {
+    const int q[3] = {quantize8(rgb[texel][0] - m), quantize8(rgb[texel][1] - m), quantize8(rgb[texel][2] - m)};
+    const HalfFit f = eval_exact(rgb, h, q, bits, t);
+    if (f.err < start.err) start = f;
+  };
+  HalfFit best{};
+  best.err = -1;
+  if (!high) {
+    int t1, t2;
+    best_two(err, t1, t2);
+    // The best table also from the extreme texels: where the far modifier
+    // clamps (black texels beside one bright one) the base is the bright
+    // texel minus it, far from the mean.
+    HalfFit start = at_mean[t1];
+    seed(start, bright, kModifiers[t1][1], t1);
+    seed(start, dark, -kModifiers[t1][1], t1);
+    best = recentre(start, 2);
+    HalfFit start2 = at_mean[t2];
+    seed(start2, bright, kModifiers[t2][1], t2);
+    seed(start2, dark, -kModifiers[t2][1], t2);
+    const HalfFit second = recentre(start2, 2);
+    if (second.err < best.err) best = second;
+    return best;
+  }
   HalfFit refined[8];
   for (int t = 0; t < 8; ++t) {
     HalfFit start = at_mean[t];
     const int seeds[4][2] = {{bright, kModifiers[t][1]}, {dark, -kModifiers[t][1]}, {bright, kModifiers[t][0]}, {dark, -kModifiers[t][0]}};
-    for (const auto& sd : seeds) {
-      const int q[3] = {quantize8(rgb[sd[0]][0] - sd[1]), quantize8(rgb[sd[0]][1] - sd[1]), quantize8(rgb[sd[0]][2] - sd[1])};
-      const HalfFit f = eval_exact(rgb, h, q, bits, t);
-      if (f.err < start.err) start = f;
-    }
+    for (const auto& sd : seeds) seed(start, sd[0], sd[1], t);
     refined[t] = recentre(start, 3), err[t] = refined[t].err;
     if (best.err < 0 || refined[t].err < best.err) best = refined[t];
   }
@@ -369,6 +393,44 @@ HWY_INLINE V Modifier(V t, int column) {
   return v;
 }
 
+// A 5- or 4-bit base channel extended to 8 bits.
+HWY_INLINE V Extend(V q, int bits) {
+  return bits == 5 ? hn::Or(hn::ShiftLeft<3>(q), hn::ShiftRight<2>(q)) : hn::Or(hn::ShiftLeft<4>(q), q);
+}
+
+// As ref::eval_exact, but for bases given extended to 8 bits (q is left
+// to the caller): tables t for the half whose texels are r, g, b[half[0..7]].
+HWY_INLINE Fit EvalExact(const V r[16], const V g[16], const V b[16], const int half[8], const V base[3], V t) {
+  const D d;
+  const V zero = hn::Zero(d), top8 = hn::Set(d, 255);
+  Fit f;
+  f.table = t;
+  const V ma = Modifier(t, 0), mb = Modifier(t, 1);
+  const V mods[4] = {ma, mb, hn::Neg(ma), hn::Neg(mb)};
+  V pal[4][3];
+  for (int c = 0; c < 3; ++c)
+    for (int m = 0; m < 4; ++m) pal[m][c] = hn::Min(hn::Max(hn::Add(base[c], mods[m]), zero), top8);
+  f.err = zero;
+  for (int i = 0; i < 8; ++i) {
+    const int p = half[i];
+    V be = zero, bi = zero;
+    for (int m = 0; m < 4; ++m) {
+      const V dr = hn::Sub(r[p], pal[m][0]), dg = hn::Sub(g[p], pal[m][1]), db = hn::Sub(b[p], pal[m][2]);
+      const V e = hn::Add(hn::Add(hn::Mul(dr, dr), hn::Mul(dg, dg)), hn::Mul(db, db));
+      if (m == 0) {
+        be = e;
+        continue;
+      }
+      const M better = hn::Lt(e, be);
+      be = hn::IfThenElse(better, e, be);
+      bi = hn::IfThenElse(better, hn::Set(d, m), bi);
+    }
+    f.idx[i] = bi;
+    f.err = hn::Add(f.err, be);
+  }
+  return f;
+}
+
 // Writes the blocks of lanes k0.. (as fast::pack does, in lanes): flip and
 // differential (0/1 per lane), the halves' fits a (first) and b.
 HWY_INLINE void PackBlocks(V flip, V differential, const Fit& a, const Fit& b, int k0, int count, std::uint8_t out[][8]) {
@@ -440,8 +502,7 @@ void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uin
       for (int c = 0; c < 3; ++c) {
         const V num = hn::Add(hn::Mul(hn::Set(d, bits == 5 ? 62 : 30), sum[c]), hn::Set(d, 2040));
         best.q[c] = hn::ConvertTo(d, hn::Div(hn::ConvertTo(df, num), hn::Set(df, 4080.0f)));
-        base[c] = bits == 5 ? hn::Or(hn::ShiftLeft<3>(best.q[c]), hn::ShiftRight<2>(best.q[c]))
-                            : hn::Or(hn::ShiftLeft<4>(best.q[c]), best.q[c]);
+        base[c] = Extend(best.q[c], bits);
       }
       const V zero = hn::Zero(d);
       V d2[8], dl[8];
@@ -451,8 +512,18 @@ void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uin
         d2[i] = hn::Add(hn::Add(hn::Mul(dr, dr), hn::Mul(dg, dg)), hn::Mul(db, db));
         dl[i] = hn::Add(hn::Add(dr, dg), db);
       }
+      V reach = zero, t_far = zero;
+      for (int i = 0; i < 8; ++i) reach = hn::Max(reach, hn::Abs(dl[i]));
+      V far_dist = hn::Abs(hn::Sub(hn::Set(d, 3 * kModifiers[0][1]), reach));
+      for (int t = 1; t < 8; ++t) {
+        const V dist = hn::Abs(hn::Sub(hn::Set(d, 3 * kModifiers[t][1]), reach));
+        const M closer = hn::Lt(dist, far_dist);
+        far_dist = hn::IfThenElse(closer, dist, far_dist);
+        t_far = hn::IfThenElse(closer, hn::Set(d, t), t_far);
+      }
       for (int dt = -1; dt <= 1; ++dt) {
-        const V t = hn::Min(hn::Max(hn::Add(t0[h], hn::Set(d, dt)), zero), hn::Set(d, 7));
+        const V t = dt == -1 ? hn::IfThenElse(hn::Gt(t_far, hn::Add(t0[h], hn::Set(d, 1))), t_far, hn::Max(hn::Sub(t0[h], hn::Set(d, 1)), zero))
+                             : hn::Min(hn::Add(t0[h], hn::Set(d, dt)), hn::Set(d, 7));
         const V ma = Modifier(t, 0), mb = Modifier(t, 1);
         const V edge = hn::Mul(hn::Set(d, 3), hn::Add(ma, mb));
         V err = zero, idx[8];
@@ -517,6 +588,26 @@ void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uin
       f.table = hn::IfThenElse(flip, f1.table, f.table);
       for (int i = 0; i < 8; ++i) f.idx[i] = hn::IfThenElse(flip, f1.idx[i], f.idx[i]);
     }
+    // The modifiers again under the decoder's clamping (as the reference):
+    // each lane's chosen halves gathered into texels 0-7 and 8-15.
+    {
+      V hr[16], hg[16], hb[16];
+      for (int s = 0; s < 2; ++s)
+        for (int i = 0; i < 8; ++i) {
+          const int p0 = fast::kHalf[s][i], p1 = fast::kHalf[2 + s][i];
+          hr[8 * s + i] = hn::IfThenElse(flip, r[p1], r[p0]);
+          hg[8 * s + i] = hn::IfThenElse(flip, g[p1], g[p0]);
+          hb[8 * s + i] = hn::IfThenElse(flip, b[p1], b[p0]);
+        }
+      static constexpr int kFirst[8] = {0, 1, 2, 3, 4, 5, 6, 7}, kSecond[8] = {8, 9, 10, 11, 12, 13, 14, 15};
+      for (int s = 0; s < 2; ++s) {
+        Fit& f = s ? pb : pa;
+        V base[3];
+        for (int c = 0; c < 3; ++c) base[c] = hn::IfThenElse(differential, Extend(f.q[c], 5), Extend(f.q[c], 4));
+        const Fit e = EvalExact(hr, hg, hb, s ? kSecond : kFirst, base, f.table);
+        for (int i = 0; i < 8; ++i) f.idx[i] = e.idx[i];
+      }
+    }
     PackBlocks(hn::IfThenElseZero(flip, hn::Set(d, 1)), hn::IfThenElseZero(differential, hn::Set(d, 1)), pa, pb, k0, count, out);
   }
 }
@@ -526,7 +617,7 @@ void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool h
   const D d;
   const hn::Rebind<float, D> df;
   const int lanes = int(hn::Lanes(d));
-  const V zero = hn::Zero(d), top8 = hn::Set(d, 255);
+  const V zero = hn::Zero(d);
   auto select = [&](M m, const Fit& from, Fit& to) {
     to.err = hn::IfThenElse(m, from.err, to.err);
     to.table = hn::IfThenElse(m, from.table, to.table);
@@ -542,34 +633,9 @@ void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool h
     V r[16], g[16], b[16];
     LoadTexels(texel, k0, r, g, b);
     auto eval = [&](int h, const V q[3], int bits, V t) {
-      Fit f;
-      f.table = t;
-      const V ma = Modifier(t, 0), mb = Modifier(t, 1);
-      const V mods[4] = {ma, mb, hn::Neg(ma), hn::Neg(mb)};
-      V pal[4][3];
-      for (int c = 0; c < 3; ++c) {
-        f.q[c] = q[c];
-        const V base = bits == 5 ? hn::Or(hn::ShiftLeft<3>(q[c]), hn::ShiftRight<2>(q[c])) : hn::Or(hn::ShiftLeft<4>(q[c]), q[c]);
-        for (int m = 0; m < 4; ++m) pal[m][c] = hn::Min(hn::Max(hn::Add(base, mods[m]), zero), top8);
-      }
-      f.err = zero;
-      for (int i = 0; i < 8; ++i) {
-        const int p = fast::kHalf[h][i];
-        V be = zero, bi = zero;
-        for (int m = 0; m < 4; ++m) {
-          const V dr = hn::Sub(r[p], pal[m][0]), dg = hn::Sub(g[p], pal[m][1]), db = hn::Sub(b[p], pal[m][2]);
-          const V e = hn::Add(hn::Add(hn::Mul(dr, dr), hn::Mul(dg, dg)), hn::Mul(db, db));
-          if (m == 0) {
-            be = e;
-            continue;
-          }
-          const M better = hn::Lt(e, be);
-          be = hn::IfThenElse(better, e, be);
-          bi = hn::IfThenElse(better, hn::Set(d, m), bi);
-        }
-        f.idx[i] = bi;
-        f.err = hn::Add(f.err, be);
-      }
+      const V base[3] = {Extend(q[0], bits), Extend(q[1], bits), Extend(q[2], bits)};
+      Fit f = EvalExact(r, g, b, fast::kHalf[h], base, t);
+      for (int c = 0; c < 3; ++c) f.q[c] = q[c];
       return f;
     };
     // Re-centres `cur` (its table per lane) up to `passes` times while that helps.
@@ -626,15 +692,6 @@ void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool h
         for (int j = 1; j < 8; ++j) select(hn::Eq(t, hn::Set(d, j)), fits[j], f);
         return f;
       };
-      Fit best;
-      if (!high) {
-        V t1, t2;
-        best_two(err, t1, t2);
-        best = recentre(h, bits, pick(at_mean, t1), 2);
-        const Fit second = recentre(h, bits, pick(at_mean, t2), 2);
-        select(hn::Lt(second.err, best.err), second, best);
-        return best;
-      }
       // Seeds: the brightest and darkest texels (first of equals) minus the
       // table's extreme modifiers.
       V bright[3], dark[3], bright_sum, dark_sum;
@@ -657,18 +714,34 @@ void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool h
                                              hn::Set(df, 0.5f)));
         return hn::Min(hn::Max(q, zero), hn::Set(d, top));
       };
+      auto seed = [&](Fit& start, const V px[3], V m, V t) {
+        const V q[3] = {quantize8(hn::Sub(px[0], m)), quantize8(hn::Sub(px[1], m)), quantize8(hn::Sub(px[2], m))};
+        const Fit f = eval(h, q, bits, t);
+        select(hn::Lt(f.err, start.err), f, start);
+      };
+      Fit best;
+      if (!high) {
+        V t1, t2;
+        best_two(err, t1, t2);
+        Fit start = pick(at_mean, t1);
+        const V far = Modifier(t1, 1);
+        seed(start, bright, far, t1);
+        seed(start, dark, hn::Neg(far), t1);
+        best = recentre(h, bits, start, 2);
+        Fit start2 = pick(at_mean, t2);
+        const V far2 = Modifier(t2, 1);
+        seed(start2, bright, far2, t2);
+        seed(start2, dark, hn::Neg(far2), t2);
+        const Fit second = recentre(h, bits, start2, 2);
+        select(hn::Lt(second.err, best.err), second, best);
+        return best;
+      }
       Fit refined[8];
       for (int t = 0; t < 8; ++t) {
         Fit start = at_mean[t];
         const V tv = hn::Set(d, t);
         const int seeds[4] = {kModifiers[t][1], -kModifiers[t][1], kModifiers[t][0], -kModifiers[t][0]};
-        for (int sd = 0; sd < 4; ++sd) {
-          const V* px = sd % 2 ? dark : bright;
-          const V m = hn::Set(d, seeds[sd]);
-          const V q[3] = {quantize8(hn::Sub(px[0], m)), quantize8(hn::Sub(px[1], m)), quantize8(hn::Sub(px[2], m))};
-          const Fit f = eval(h, q, bits, tv);
-          select(hn::Lt(f.err, start.err), f, start);
-        }
+        for (int sd = 0; sd < 4; ++sd) seed(start, sd % 2 ? dark : bright, hn::Set(d, seeds[sd]), tv);
         refined[t] = recentre(h, bits, start, 3), err[t] = refined[t].err;
         if (t == 0) {
           best = refined[0];
