@@ -400,6 +400,33 @@ void encode_block_by_block(const Bc1Texels& tx, ColorMode mode, Quality q, std::
     }
     keep(r);
   }
+  if (q == Quality::max) {  // never below `high`: its endpoints compete too
+    std::uint32_t texel[16][kBc1Batch] = {};
+    for (int i = 0; i < 16; ++i) {
+      const std::uint8_t px[4] = {std::uint8_t(tx.r[i]), std::uint8_t(tx.g[i]), std::uint8_t(tx.b[i]),
+                                  std::uint8_t(tx.transparent[i] ? 0 : 255)};
+      texel[i][0] = pack_texel(px);
+    }
+    std::uint8_t block[1][8];
+    bool handled = false;
+    bc1_encode_lanes(texel, 1, lane_level(Quality::high), three_allowed, mode == ColorMode::bc1_punch_through, block, &handled);
+    if (handled) {
+      const std::uint16_t c0 = std::uint16_t(block[0][0] | block[0][1] << 8), c1 = std::uint16_t(block[0][2] | block[0][3] << 8);
+      const bool four = mode == ColorMode::four_only || c0 > c1;
+      if (four || three_allowed) {
+        Endpoints e;
+        for (int k = 0; k < 2; ++k) {
+          const int c = k ? c1 : c0;
+          e.c[k][0] = c >> 11, e.c[k][1] = c >> 5 & 63, e.c[k][2] = c & 31;
+        }
+        if (!(four && any_transparent)) {
+          Result r;
+          assign(tx, e, four, false, r);
+          keep(r);
+        }
+      }
+    }
+  }
   write(best, out);
 }
 

@@ -676,6 +676,15 @@ long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality 
   const Texels tx = make_texels(rgba, mode);
   Candidate best;
   const bool punch = mode == ColorMode::etc2_punch;
+  if (q == Quality::max && !punch) {  // never below `high`: its block is the first candidate
+    std::uint32_t texel[16][kEtcBatch] = {};
+    for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
+    std::uint8_t block[1][8];
+    std::int32_t e[1];
+    etc1_search_lanes(texel, 1, true, block, e);
+    best.err = e[0];
+    best.bits = load_be64(block[0]);
+  }
   const bool non_opaque = punch && tx.any_transparent;
   // Bit 33: the differential flag, or with punch-through the opaque flag.
   const int bit33 = punch ? (non_opaque ? 0 : 1) : 1;

@@ -202,7 +202,7 @@ namespace {
 // minimizes the error for their indices: the mean of the texels minus their
 // modifiers) up to twice while that helps. `high`: every table re-centred
 // up to three times, then the +-1 neighbourhood of the two best bases.
-HalfFit fit_normal(const int rgb[16][3], int h, int bits, bool high) {
+HalfFit fit_normal(const int rgb[16][3], int h, int bits, bool high, HalfFit* per_table = nullptr) {
   int sum[3] = {};
   for (int i = 0; i < 8; ++i)
     for (int c = 0; c < 3; ++c) sum[c] += rgb[fast::kHalf[h][i]][c];
@@ -281,6 +281,7 @@ HalfFit fit_normal(const int rgb[16][3], int h, int bits, bool high) {
     refined[t] = recentre(start, 3), err[t] = refined[t].err;
     if (best.err < 0 || refined[t].err < best.err) best = refined[t];
   }
+  if (per_table) std::copy(refined, refined + 8, per_table);
   int t1, t2;
   best_two(err, t1, t2);
   for (int t : {t1, t2})
@@ -325,8 +326,8 @@ void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool
       const std::uint32_t t = texel[i][k];
       rgb[i][0] = int(t & 255), rgb[i][1] = int(t >> 8 & 255), rgb[i][2] = int(t >> 16 & 255);
     }
-    HalfFit f5[4];
-    for (int h = 0; h < 4; ++h) f5[h] = fit_normal(rgb, h, 5, high);
+    HalfFit f5[4], tables[4][9];
+    for (int h = 0; h < 4; ++h) f5[h] = fit_normal(rgb, h, 5, high, tables[h]), tables[h][8] = f5[h];
     fast::Params best{};
     int best_err = -1;
     auto consider = [&](int flip, bool differential, const HalfFit& a, const HalfFit& b) {
@@ -340,6 +341,17 @@ void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool
       for (int c = 0; c < 3; ++c) fits &= f5[b].q[c] - f5[a].q[c] >= -4 && f5[b].q[c] - f5[a].q[c] <= 3;
       // `high` always tries the individual mode (4-bit bases).
       if (fits) consider(flip, true, f5[a], f5[b]);
+      if (high) {
+        // Every pair of the halves' per-table fits whose bases the delta reaches.
+        for (int ta = 0; ta < 9; ++ta)
+          for (int tb = 0; tb < 9; ++tb) {
+            const HalfFit& A = tables[a][ta];
+            const HalfFit& B = tables[b][tb];
+            bool ok = true;
+            for (int c = 0; c < 3; ++c) ok &= B.q[c] - A.q[c] >= -4 && B.q[c] - A.q[c] <= 3;
+            if (ok) consider(flip, true, A, B);
+          }
+      }
       if (fits && !high) continue;
       consider(flip, false, fit_normal(rgb, a, 4, high), fit_normal(rgb, b, 4, high));
       if (fits) continue;
@@ -347,9 +359,30 @@ void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool
       // the other and its half refitted.
       int qa[3], qb[3];
       for (int c = 0; c < 3; ++c) qa[c] = std::clamp(f5[a].q[c], f5[b].q[c] - 3, f5[b].q[c] + 4);
-      consider(flip, true, fit_fixed(rgb, a, qa), f5[b]);
+      const HalfFit pa = fit_fixed(rgb, a, qa);
+      consider(flip, true, pa, f5[b]);
       for (int c = 0; c < 3; ++c) qb[c] = std::clamp(f5[b].q[c], f5[a].q[c] - 4, f5[a].q[c] + 3);
-      consider(flip, true, f5[a], fit_fixed(rgb, b, qb));
+      const HalfFit pb = fit_fixed(rgb, b, qb);
+      consider(flip, true, f5[a], pb);
+      if (!high) continue;
+      // `high`: the pulled base's neighbours that the delta still reaches,
+      // with the table found for it.
+      for (int n = 0; n < 27; ++n) {
+        const int dd[3] = {n / 9 - 1, n / 3 % 3 - 1, n % 3 - 1};
+        if (n == 13) continue;
+        int q[3];
+        bool ok_a = true, ok_b = true;
+        for (int c = 0; c < 3; ++c) {
+          q[c] = qa[c] + dd[c];
+          ok_a &= q[c] >= 0 && q[c] <= 31 && f5[b].q[c] - q[c] >= -4 && f5[b].q[c] - q[c] <= 3;
+        }
+        if (ok_a) consider(flip, true, eval_exact(rgb, a, q, 5, pa.table), f5[b]);
+        for (int c = 0; c < 3; ++c) {
+          q[c] = qb[c] + dd[c];
+          ok_b &= q[c] >= 0 && q[c] <= 31 && q[c] - f5[a].q[c] >= -4 && q[c] - f5[a].q[c] <= 3;
+        }
+        if (ok_b) consider(flip, true, f5[a], eval_exact(rgb, b, q, 5, pb.table));
+      }
     }
     fast::pack(best, out[k]);
     error[k] = best_err;
@@ -677,7 +710,7 @@ void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool h
         t1 = hn::IfThenElse(first, tv, t1);
       }
     };
-    auto fit_normal = [&](int h, int bits) {
+    auto fit_normal = [&](int h, int bits, Fit* per_table) {
       V sum[3] = {zero, zero, zero};
       for (int i = 0; i < 8; ++i) {
         const int p = fast::kHalf[h][i];
@@ -764,6 +797,10 @@ void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool h
               select(hn::And(valid, hn::Lt(f.err, best.err)), f, best);
             }
       }
+      if (per_table) {
+        std::copy(refined, refined + 8, per_table);
+        per_table[8] = best;
+      }
       return best;
     };
     auto fit_fixed = [&](int h, const V q[3]) {
@@ -774,8 +811,8 @@ void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool h
       }
       return best;
     };
-    Fit f5[4];
-    for (int h = 0; h < 4; ++h) f5[h] = fit_normal(h, 5);
+    Fit f5[4], tables[4][9];
+    for (int h = 0; h < 4; ++h) f5[h] = fit_normal(h, 5, high ? tables[h] : nullptr);
     V best_err = hn::Set(d, 0x7fffffff), best_flip = zero, best_diff = zero;
     Fit best_a = f5[0], best_b = f5[1];
     auto consider = [&](M m, int flip, bool differential, const Fit& a, const Fit& bb) {
@@ -795,17 +832,52 @@ void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool h
         fits = hn::And(fits, hn::And(hn::Not(hn::Lt(delta, hn::Set(d, -4))), hn::Not(hn::Gt(delta, hn::Set(d, 3)))));
       }
       consider(fits, flip, true, f5[a], f5[bh]);
+      // Lanes where the bases q and r are within the delta's reach (r - q in [-4, 3]).
+      auto reach = [&](const V q[3], const V r[3]) {
+        M ok = hn::Eq(zero, zero);
+        for (int c = 0; c < 3; ++c) {
+          const V delta = hn::Sub(r[c], q[c]);
+          ok = hn::And(ok, hn::And(hn::Not(hn::Lt(delta, hn::Set(d, -4))), hn::Not(hn::Gt(delta, hn::Set(d, 3)))));
+        }
+        return ok;
+      };
+      if (high)
+        for (int ta = 0; ta < 9; ++ta)
+          for (int tb = 0; tb < 9; ++tb) {
+            const M ok = reach(tables[a][ta].q, tables[bh][tb].q);
+            if (!hn::AllFalse(d, ok)) consider(ok, flip, true, tables[a][ta], tables[bh][tb]);
+          }
       if (hn::AllTrue(d, fits) && !high) continue;
       const M far = hn::Not(fits);
-      consider(high ? hn::Eq(zero, zero) : far, flip, false, fit_normal(a, 4), fit_normal(bh, 4));  // `high`: always
+      consider(high ? hn::Eq(zero, zero) : far, flip, false, fit_normal(a, 4, nullptr), fit_normal(bh, 4, nullptr));  // `high`: always
       if (hn::AllTrue(d, fits)) continue;
       V qa[3], qb[3];
       for (int c = 0; c < 3; ++c)
         qa[c] = hn::Min(hn::Max(f5[a].q[c], hn::Sub(f5[bh].q[c], hn::Set(d, 3))), hn::Add(f5[bh].q[c], hn::Set(d, 4)));
-      consider(far, flip, true, fit_fixed(a, qa), f5[bh]);
+      const Fit pa = fit_fixed(a, qa);
+      consider(far, flip, true, pa, f5[bh]);
       for (int c = 0; c < 3; ++c)
         qb[c] = hn::Min(hn::Max(f5[bh].q[c], hn::Sub(f5[a].q[c], hn::Set(d, 4))), hn::Add(f5[a].q[c], hn::Set(d, 3)));
-      consider(far, flip, true, f5[a], fit_fixed(bh, qb));
+      const Fit pb = fit_fixed(bh, qb);
+      consider(far, flip, true, f5[a], pb);
+      if (!high) continue;
+      for (int n = 0; n < 27; ++n) {  // as the reference
+        if (n == 13) continue;
+        const int dd[3] = {n / 9 - 1, n / 3 % 3 - 1, n % 3 - 1};
+        const V top5 = hn::Set(d, 31);
+        auto in_range = [&](const V q[3]) {
+          M ok = hn::Eq(zero, zero);
+          for (int c = 0; c < 3; ++c) ok = hn::And(ok, hn::And(hn::Not(hn::Lt(q[c], zero)), hn::Not(hn::Gt(q[c], top5))));
+          return ok;
+        };
+        V q[3];
+        for (int c = 0; c < 3; ++c) q[c] = hn::Add(qa[c], hn::Set(d, dd[c]));
+        M ok = hn::And(far, hn::And(in_range(q), reach(q, f5[bh].q)));
+        if (!hn::AllFalse(d, ok)) consider(ok, flip, true, eval(a, q, 5, pa.table), f5[bh]);
+        for (int c = 0; c < 3; ++c) q[c] = hn::Add(qb[c], hn::Set(d, dd[c]));
+        ok = hn::And(far, hn::And(in_range(q), reach(f5[a].q, q)));
+        if (!hn::AllFalse(d, ok)) consider(ok, flip, true, f5[a], eval(bh, q, 5, pb.table));
+      }
     }
     HWY_ALIGN std::int32_t err_o[kEtcBatch];
     hn::Store(best_err, d, err_o);
