@@ -327,21 +327,18 @@ void search_planar(const Texels& tx, Quality q, Candidate& best) {
   int o[3], hq[3], vq[3];
   long total = 0;
   for (int c = 0; c < 3; ++c) {
+    const std::int32_t* px = c == 0 ? tx.planes.r : c == 1 ? tx.planes.g : tx.planes.b;
     const int bits = c == 1 ? 7 : 6;
-    double mean = 0, sx = 0, sy = 0;
-    for (int y = 0; y < 4; ++y)
-      for (int x = 0; x < 4; ++x) {
-        const double v = tx.rgb[y * 4 + x][c];
-        mean += v / 16;
-        sx += (x - 1.5) * v;
-        sy += (y - 1.5) * v;
-      }
-    const double a = sx / 20.0, b = sy / 20.0, O = mean - 1.5 * a - 1.5 * b;
+    // The plane through the texels' mean with slopes a (x) and b (y):
+    // sums of integers, exact (sx, sy: twice the x and y moments about 1.5).
+    int sum = 0, sx = 0, sy = 0;
+    for (int i = 0; i < 16; ++i) sum += px[i], sx += (2 * (i & 3) - 3) * px[i], sy += (2 * (i >> 2) - 3) * px[i];
+    const double a = sx / 40.0, b = sy / 40.0, O = sum / 16.0 - 1.5 * a - 1.5 * b;
     const int top = (1 << bits) - 1;
     auto qz = [&](double v) { return std::clamp(int(std::lround(v * top / 255.0)), 0, top); };
     auto ex = [&](int v) { return bits == 7 ? extend7(v) : extend6(v); };
     const int c0[3] = {qz(O), qz(O + 4 * a), qz(O + 4 * b)};
-    long be = kNone;
+    int be = std::numeric_limits<int>::max();
     int bo = c0[0], bh = c0[1], bv = c0[2];
     const int r = q == Quality::high || q == Quality::max ? 1 : 0;
     for (int d0 = -r; d0 <= r; ++d0)
@@ -350,12 +347,11 @@ void search_planar(const Texels& tx, Quality q, Candidate& best) {
           const int vo = c0[0] + d0, vh = c0[1] + d1, vv = c0[2] + d2;
           if (std::min({vo, vh, vv}) < 0 || std::max({vo, vh, vv}) > top) continue;
           const int eo = ex(vo), eh = ex(vh), ev = ex(vv);
-          long e = 0;
-          for (int y = 0; y < 4; ++y)
-            for (int x = 0; x < 4; ++x) {
-              const long d = clamp255((x * (eh - eo) + y * (ev - eo) + 4 * eo + 2) >> 2) - tx.rgb[y * 4 + x][c];
-              e += d * d;
-            }
+          int e = 0;
+          for (int i = 0; i < 16; ++i) {
+            const int d = clamp255(((i & 3) * (eh - eo) + (i >> 2) * (ev - eo) + 4 * eo + 2) >> 2) - px[i];
+            e += d * d;
+          }
           if (e < be) be = e, bo = vo, bh = vh, bv = vv;
         }
     o[c] = bo, hq[c] = bh, vq[c] = bv;
