@@ -6,12 +6,12 @@
 // libetc1's decoder bit for bit: test EtcDecode.Etc1MatchesLibEtc1).
 // EAC R11 against BC4 on the corpus heightmaps: PSNR on the [0, 1] scale.
 #include <benchmark/benchmark.h>
-#include <etc1.h>
 
 #include <cmath>
 #include <string>
 
 #include "bench_common.h"
+#include "libetc1_encode.h"
 #include "texproc/block_decode.h"
 #include "texproc/block_encode.h"
 #include "texproc/image_io.h"
@@ -22,27 +22,13 @@ using namespace texproc;
 
 namespace {
 
-
-
-
-std::vector<std::uint8_t> libetc1(const Image& img) {
-  std::vector<std::uint8_t> rgb(std::size_t(img.width()) * img.height() * 3);
-  for (int y = 0; y < img.height(); ++y)
-    for (int x = 0; x < img.width(); ++x)
-      for (int c = 0; c < 3; ++c) rgb[(std::size_t(y) * img.width() + x) * 3 + c] = img.row<std::uint8_t>(y)[4 * x + c];
-  std::vector<std::uint8_t> out(etc1_get_encoded_data_size(etc1_uint32(img.width()), etc1_uint32(img.height())));
-  etc1_encode_image(rgb.data(), etc1_uint32(img.width()), etc1_uint32(img.height()), 3, etc1_uint32(img.width() * 3),
-                    out.data());
-  return out;
-}
-
 void color(benchmark::State& state, bool use_libetc1, TexelFormat f, Quality q) {
   ThreadLimit one(1);
   double psnr_sum = 0, pixels = 0;
   for (auto _ : state) {
     psnr_sum = 0;
     for (const Image& img : bench::color_textures()) {
-      const std::vector<std::uint8_t> blocks = use_libetc1 ? libetc1(img) : compress_image(img.view(), f, q);
+      const std::vector<std::uint8_t> blocks = use_libetc1 ? bench::libetc1_encode(img) : compress_image(img.view(), f, q);
       state.PauseTiming();
       psnr_sum += bench::psnr_rgb(img, f, blocks);
       state.ResumeTiming();

@@ -20,7 +20,6 @@
 // Both use the decoders' exact arithmetic (clamping included); a base
 // outside the ranges searched is beaten by the nearest one inside (all of
 // its palette lies on one side of the texels).
-#include <etc1.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -32,6 +31,7 @@
 
 #include "bench_common.h"
 #include "etc/etc_tables.h"
+#include "libetc1_encode.h"
 #include "texproc/block_encode.h"
 
 using namespace texproc;
@@ -128,15 +128,6 @@ long best_etc1(const int px[16][3]) {
   return best;
 }
 
-std::vector<std::uint8_t> libetc1(const Image& img) {
-  std::vector<std::uint8_t> rgb(std::size_t(img.width()) * img.height() * 3);
-  for (int y = 0; y < img.height(); ++y)
-    for (int x = 0; x < img.width(); ++x)
-      for (int c = 0; c < 3; ++c) rgb[(std::size_t(y) * img.width() + x) * 3 + c] = img.row<std::uint8_t>(y)[4 * x + c];
-  std::vector<std::uint8_t> out(etc1_get_encoded_data_size(etc1_uint32(img.width()), etc1_uint32(img.height())));
-  etc1_encode_image(rgb.data(), etc1_uint32(img.width()), etc1_uint32(img.height()), 3, etc1_uint32(img.width() * 3), out.data());
-  return out;
-}
 
 // Squared RGB error of decoded `d` against `src` over blocks `ids` (block
 // index = by * (width / 4) + bx).
@@ -175,7 +166,7 @@ void etc1_bounds(int stride) {
     auto of = [&](const std::vector<std::uint8_t>& blocks) {
       return psnr(blocks_error(img, bench::decode_blocks(img.width(), img.height(), TexelFormat::etc1_rgb, blocks, PixelType::u8), ids));
     };
-    double p[5] = {of(libetc1(img))};
+    double p[5] = {of(bench::libetc1_encode(img))};
     for (int k = 0; k < 3; ++k) p[k + 1] = of(compress_image(img.view(), TexelFormat::etc1_rgb, levels[k]));
     double se = 0;
     for (long e : best) se += double(e);
