@@ -623,9 +623,16 @@ long block_error(const std::uint8_t rgba[16][4], const std::uint8_t block[8]) {
   return err;
 }
 
-// Opaque colour goes sixteen blocks at a time (etc_lanes.h) at every quality but `max`.
-bool etc_blocks_in_lanes(ColorMode mode, Quality q) {
-  return q != Quality::max && mode != ColorMode::etc2_punch;
+// Opaque colour goes sixteen blocks at a time (etc_lanes.h) at every quality
+// but `max`: every block of ETC1 and ETC2 RGB, and punch-through's opaque
+// blocks (differential mode only: its bit 33 is the opaque flag).
+bool etc_blocks_in_lanes(Quality q) { return q != Quality::max; }
+
+// Punch-through's blocks with a texel of alpha below 128 (transparent).
+bool any_transparent(const std::uint8_t rgba[16][4]) {
+  for (int i = 0; i < 16; ++i)
+    if (rgba[i][3] < 128) return true;
+  return false;
 }
 
 // ETC2 at `normal` and `high`: the planar mode, and the T and H modes (at
@@ -653,17 +660,19 @@ long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err
 }  // namespace
 
 long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
-  if (etc_blocks_in_lanes(mode, q)) {  // as whole images do: etc_lanes.h
+  const bool punch = mode == ColorMode::etc2_punch;
+  const bool opaque = !punch || !any_transparent(rgba);
+  if (etc_blocks_in_lanes(q) && opaque) {  // as whole images do: etc_lanes.h
     std::uint32_t texel[16][kEtcBatch] = {};
     for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
     std::uint8_t block[1][8];
     long err = 0;
     if (q == Quality::fast) {
-      etc1_fast_lanes(texel, 1, block);
+      etc1_fast_lanes(texel, 1, punch, block);
       err = block_error(rgba, block[0]);
     } else {
       std::int32_t e[1];
-      etc1_search_lanes(texel, 1, q == Quality::high, block, e);
+      etc1_search_lanes(texel, 1, q == Quality::high, punch, block, e);
       err = mode == ColorMode::etc1 ? e[0] : finish_etc2_block(texel, 0, e[0], q, block[0]);
     }
     std::memcpy(out, block[0], 8);
@@ -671,13 +680,12 @@ long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality 
   }
   const Texels tx = make_texels(rgba, mode);
   Candidate best;
-  const bool punch = mode == ColorMode::etc2_punch;
-  if (q == Quality::max && !punch) {  // never below `high`: its block is the first candidate
+  if (q == Quality::max && opaque) {  // never below `high`: its block is the first candidate
     std::uint32_t texel[16][kEtcBatch] = {};
     for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
     std::uint8_t block[1][8];
     std::int32_t e[1];
-    etc1_search_lanes(texel, 1, true, block, e);
+    etc1_search_lanes(texel, 1, true, punch, block, e);
     best.err = e[0];
     best.bits = load_be64(block[0]);
   }
@@ -788,7 +796,8 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
                                                                                          : ColorMode::etc2;
   // Opaque colour: sixteen blocks at a time (etc_lanes.h); ETC2 then tries
   // its planar, T and H modes block by block.
-  const bool batched = etc_blocks_in_lanes(mode, q);
+  const bool batched = etc_blocks_in_lanes(q);
+  const bool punch = mode == ColorMode::etc2_punch;
   const bool finish = batched && q != Quality::fast && mode != ColorMode::etc1;  // ETC2: planar, T, H per block
   const bool eac_lanes = q != Quality::max;
   for_each_row_block(bh, 4, [&](int by0, int by1) {
@@ -830,29 +839,32 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
           continue;
         }
         // RGBA8 texels straight from the rows where they can be.
-        const bool rows_direct = batched && !rgba8 && gather_rows_rgba8(img, bx0, by, count, texel);
+        const bool rows_direct = batched && !rgba8 && !punch && gather_rows_rgba8(img, bx0, by, count, texel);
+        bool lanes_block[kEtcBatch];  // punch-through: only opaque blocks take the lanes' block
         for (int k = 0; k < count && !rows_direct; ++k) {
           const int bx = bx0 + k;
           std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx) * std::size_t(info.block_bytes);
           gather_rgba8(img, bx, by, rgba[k]);
           if (rgba8)
             for (int i = 0; i < 16; ++i) eac_values[i][k] = rgba[k][i][3];
-          if (batched) {
+          lanes_block[k] = batched && !(punch && any_transparent(rgba[k]));
+          if (batched)
             for (int i = 0; i < 16; ++i) texel[i][k] = pack_texel(rgba[k][i]);
-          } else {
-            encode_color_block(rgba[k], mode, q, dst + (rgba8 ? 8 : 0));
-          }
+          if (!lanes_block[k]) encode_color_block(rgba[k], mode, q, dst + (rgba8 ? 8 : 0));
         }
         if (rgba8) eac_encode(by, bx0, count, EacKind::alpha8, 0);
         if (!batched) continue;
+        if (rows_direct) std::fill(lanes_block, lanes_block + count, true);
         if (q == Quality::fast) {
-          etc1_fast_lanes(texel, count, color);
+          etc1_fast_lanes(texel, count, punch, color);
         } else {
-          etc1_search_lanes(texel, count, q == Quality::high, color, errors);
-          for (int k = 0; k < count && finish; ++k) finish_etc2_block(texel, k, errors[k], q, color[k]);
+          etc1_search_lanes(texel, count, q == Quality::high, punch, color, errors);
+          for (int k = 0; k < count && finish; ++k)
+            if (lanes_block[k]) finish_etc2_block(texel, k, errors[k], q, color[k]);
         }
         for (int k = 0; k < count; ++k)
-          std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + (rgba8 ? 8 : 0), color[k], 8);
+          if (lanes_block[k])
+            std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + (rgba8 ? 8 : 0), color[k], 8);
       }
   });
   return out;

@@ -24,7 +24,11 @@ constexpr int kEtcBatch = 16;
 
 // texel[i][k]: texel i (row by row) of block k as R | G << 8 | B << 16
 // (alpha ignored). out: the ETC1 blocks (valid ETC2 RGB blocks too).
-void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]);
+// differential_only: no individual-mode blocks (ETC2 punch-through, whose
+// bit 33 is the opaque flag: these are its opaque blocks); where the halves'
+// bases are too far apart, the second is pulled within the delta of the
+// first (`fast`) or either is (`normal`, `high`).
+void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool differential_only, std::uint8_t out[][8]);
 
 // `normal`: per half every table at the mean, exactly (the decoder's
 // clamping, each texel at its best modifier); the best two tables
@@ -37,13 +41,13 @@ void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, std::u
 // three times, then the +-1 neighbourhood of the two best bases; the
 // individual mode is always tried.
 // error[k]: block k's squared RGB error as decoded.
-void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
-                        std::int32_t error[]);
+void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, bool differential_only,
+                       std::uint8_t out[][8], std::int32_t error[]);
 
 namespace ref {
-void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]);
-void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
-                        std::int32_t error[]);
+void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool differential_only, std::uint8_t out[][8]);
+void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, bool differential_only,
+                       std::uint8_t out[][8], std::int32_t error[]);
 }  // namespace ref
 
 }  // namespace texproc::etc

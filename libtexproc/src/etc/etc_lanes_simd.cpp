@@ -70,7 +70,7 @@ struct HalfFit {
   int err, q[3], table, idx[8];
 };
 
-HalfFit fit(const int rgb[16][3], int h, int bits, int t0) {
+HalfFit fit(const int rgb[16][3], int h, int bits, int t0, const int* fixed_q = nullptr) {
   HalfFit best{};
   best.err = -1;
   int sum[3] = {};
@@ -78,7 +78,7 @@ HalfFit fit(const int rgb[16][3], int h, int bits, int t0) {
     for (int c = 0; c < 3; ++c) sum[c] += rgb[fast::kHalf[h][i]][c];
   int base[3];
   for (int c = 0; c < 3; ++c) {
-    best.q[c] = fast::quantize_sum(sum[c], bits);
+    best.q[c] = fixed_q ? fixed_q[c] : fast::quantize_sum(sum[c], bits);
     base[c] = bits == 5 ? extend5(best.q[c]) : extend4(best.q[c]);
   }
   // Each texel's distance from the base (squared) and its R + G + B
@@ -141,7 +141,7 @@ HalfFit eval_exact(const int rgb[16][3], int h, const int q[3], int bits, int t)
 
 }  // namespace
 
-void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
+void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool differential_only, std::uint8_t out[][8]) {
   for (int k = 0; k < count; ++k) {
     int rgb[16][3];
     for (int i = 0; i < 16; ++i) {
@@ -170,14 +170,26 @@ void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, std::u
       for (int c = 0; c < 3; ++c) fits &= f5[b].q[c] - f5[a].q[c] >= -4 && f5[b].q[c] - f5[a].q[c] <= 3;
       const HalfFit* pa = &f5[a];
       const HalfFit* pb = &f5[b];
-      if (!fits) {
+      HalfFit pulled_a, pulled_b;  // differential only: either base pulled within the delta of the other, refitted
+      if (!fits && differential_only) {
+        int qa[3], qb[3];
+        for (int c = 0; c < 3; ++c) {
+          qa[c] = std::clamp(f5[a].q[c], f5[b].q[c] - 3, f5[b].q[c] + 4);
+          qb[c] = std::clamp(f5[b].q[c], f5[a].q[c] - 4, f5[a].q[c] + 3);
+        }
+        pulled_a = fit(rgb, a, 5, t0[a], qa), pulled_b = fit(rgb, b, 5, t0[b], qb);
+        if (pulled_a.err + f5[b].err < f5[a].err + pulled_b.err)
+          pa = &pulled_a;
+        else
+          pb = &pulled_b;
+      } else if (!fits) {
         f4[a] = fit(rgb, a, 4, t0[a]), f4[b] = fit(rgb, b, 4, t0[b]);
         pa = &f4[a], pb = &f4[b];
       }
       const int err = pa->err + pb->err;
       if (best_err >= 0 && err >= best_err) continue;
       best_err = err;
-      best.flip = flip, best.differential = fits ? 1 : 0;
+      best.flip = flip, best.differential = fits || differential_only ? 1 : 0;
       for (int s = 0; s < 2; ++s) {
         const HalfFit& f = s ? *pb : *pa;
         std::copy(f.q, f.q + 3, best.q[s]);
@@ -318,8 +330,8 @@ void take(fast::Params& p, int flip, bool differential, const HalfFit& a, const 
 
 }  // namespace
 
-void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
-                        std::int32_t error[]) {
+void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, bool differential_only,
+                       std::uint8_t out[][8], std::int32_t error[]) {
   for (int k = 0; k < count; ++k) {
     int rgb[16][3];
     for (int i = 0; i < 16; ++i) {
@@ -353,7 +365,7 @@ void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool
           }
       }
       if (fits && !high) continue;
-      consider(flip, false, fit_normal(rgb, a, 4, high), fit_normal(rgb, b, 4, high));
+      if (!differential_only) consider(flip, false, fit_normal(rgb, a, 4, high), fit_normal(rgb, b, 4, high));
       if (fits) continue;
       // Too far apart for the delta: one base pulled within the delta of
       // the other and its half refitted.
@@ -498,7 +510,7 @@ HWY_INLINE void PackBlocks(V flip, V differential, const Fit& a, const Fit& b, i
     store_be64(std::uint64_t(hi_o[k]) << 32 | lo_o[k], out[k0 + k]);
 }
 
-void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
+void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool differential_only, std::uint8_t out[][8]) {
   const D d;
   const hn::Rebind<float, D> df;
   const int lanes = int(hn::Lanes(d));
@@ -525,7 +537,7 @@ void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uin
       }
       t0[h] = best_t;
     }
-    auto fit = [&](int h, int bits, Fit& best) {
+    auto fit = [&](int h, int bits, Fit& best, const V* fixed_q) {
       V sum[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
       for (int i = 0; i < 8; ++i) {
         const int p = fast::kHalf[h][i];
@@ -534,7 +546,7 @@ void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uin
       V base[3];
       for (int c = 0; c < 3; ++c) {
         const V num = hn::Add(hn::Mul(hn::Set(d, bits == 5 ? 62 : 30), sum[c]), hn::Set(d, 2040));
-        best.q[c] = hn::ConvertTo(d, hn::Div(hn::ConvertTo(df, num), hn::Set(df, 4080.0f)));
+        best.q[c] = fixed_q ? fixed_q[c] : hn::ConvertTo(d, hn::Div(hn::ConvertTo(df, num), hn::Set(df, 4080.0f)));
         base[c] = Extend(best.q[c], bits);
       }
       const V zero = hn::Zero(d);
@@ -581,7 +593,7 @@ void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uin
       }
     };
     Fit f5[4], f4[4];
-    for (int h = 0; h < 4; ++h) fit(h, 5, f5[h]);
+    for (int h = 0; h < 4; ++h) fit(h, 5, f5[h], nullptr);
     M fits[2];
     for (int flip = 0; flip < 2; ++flip) {
       const int a = 2 * flip, bb = a + 1;
@@ -601,7 +613,31 @@ void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uin
         const int h = 2 * flip + s;
         chosen[flip][s] = f5[h];
         if (!any4) continue;
-        fit(h, 4, f4[h]);
+        if (differential_only) {  // as the reference: either base pulled within the delta of the other
+          if (s == 0) continue;
+          const int ha = h - 1;
+          V qa[3], qb[3];
+          for (int c = 0; c < 3; ++c) {
+            qa[c] = hn::Min(hn::Max(f5[ha].q[c], hn::Sub(f5[h].q[c], hn::Set(d, 3))), hn::Add(f5[h].q[c], hn::Set(d, 4)));
+            qb[c] = hn::Min(hn::Max(f5[h].q[c], hn::Sub(f5[ha].q[c], hn::Set(d, 4))), hn::Add(f5[ha].q[c], hn::Set(d, 3)));
+          }
+          Fit pulled_a, pulled_b;
+          fit(ha, 5, pulled_a, qa);
+          fit(h, 5, pulled_b, qb);
+          const M far = hn::Not(fits[flip]);
+          const M move_a = hn::And(far, hn::Lt(hn::Add(pulled_a.err, f5[h].err), hn::Add(f5[ha].err, pulled_b.err)));
+          const M move_b = hn::AndNot(move_a, far);
+          Fit& ca = chosen[flip][0];
+          Fit& cb = chosen[flip][1];
+          ca.err = hn::IfThenElse(move_a, pulled_a.err, ca.err), cb.err = hn::IfThenElse(move_b, pulled_b.err, cb.err);
+          ca.table = hn::IfThenElse(move_a, pulled_a.table, ca.table), cb.table = hn::IfThenElse(move_b, pulled_b.table, cb.table);
+          for (int c = 0; c < 3; ++c)
+            ca.q[c] = hn::IfThenElse(move_a, pulled_a.q[c], ca.q[c]), cb.q[c] = hn::IfThenElse(move_b, pulled_b.q[c], cb.q[c]);
+          for (int i = 0; i < 8; ++i)
+            ca.idx[i] = hn::IfThenElse(move_a, pulled_a.idx[i], ca.idx[i]), cb.idx[i] = hn::IfThenElse(move_b, pulled_b.idx[i], cb.idx[i]);
+          continue;
+        }
+        fit(h, 4, f4[h], nullptr);
         Fit& c = chosen[flip][s];
         const M m = fits[flip];
         c.err = hn::IfThenElse(m, f5[h].err, f4[h].err);
@@ -612,7 +648,8 @@ void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uin
       err[flip] = hn::Add(chosen[flip][0].err, chosen[flip][1].err);
     }
     const M flip = hn::Lt(err[1], err[0]);
-    const M differential = hn::Or(hn::And(flip, fits[1]), hn::AndNot(flip, fits[0]));
+    const M differential =
+        differential_only ? hn::Eq(hn::Zero(d), hn::Zero(d)) : hn::Or(hn::And(flip, fits[1]), hn::AndNot(flip, fits[0]));
     Fit pa = chosen[0][0], pb = chosen[0][1];
     for (int s = 0; s < 2; ++s) {
       const Fit& f1 = chosen[1][s];
@@ -645,8 +682,8 @@ void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uin
   }
 }
 
-void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
-                      std::int32_t error[]) {
+void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, bool differential_only,
+                     std::uint8_t out[][8], std::int32_t error[]) {
   const D d;
   const hn::Rebind<float, D> df;
   const int lanes = int(hn::Lanes(d));
@@ -833,10 +870,10 @@ void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool h
       }
       consider(fits, flip, true, f5[a], f5[bh]);
       // Lanes where the bases q and r are within the delta's reach (r - q in [-4, 3]).
-      auto reach = [&](const V q[3], const V r[3]) {
+      auto reach = [&](const V from[3], const V to[3]) {
         M ok = hn::Eq(zero, zero);
         for (int c = 0; c < 3; ++c) {
-          const V delta = hn::Sub(r[c], q[c]);
+          const V delta = hn::Sub(to[c], from[c]);
           ok = hn::And(ok, hn::And(hn::Not(hn::Lt(delta, hn::Set(d, -4))), hn::Not(hn::Gt(delta, hn::Set(d, 3)))));
         }
         return ok;
@@ -849,7 +886,8 @@ void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool h
           }
       if (hn::AllTrue(d, fits) && !high) continue;
       const M far = hn::Not(fits);
-      consider(high ? hn::Eq(zero, zero) : far, flip, false, fit_normal(a, 4, nullptr), fit_normal(bh, 4, nullptr));  // `high`: always
+      if (!differential_only)
+        consider(high ? hn::Eq(zero, zero) : far, flip, false, fit_normal(a, 4, nullptr), fit_normal(bh, 4, nullptr));  // `high`: always
       if (hn::AllTrue(d, fits)) continue;
       V qa[3], qb[3];
       for (int c = 0; c < 3; ++c)
@@ -895,15 +933,15 @@ namespace texproc::etc {
 HWY_EXPORT(Etc1FastLanes);
 HWY_EXPORT(Etc1SearchLanes);
 
-void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, std::uint8_t out[][8]) {
-  if (force_scalar()) return ref::etc1_fast_lanes(texel, count, out);
-  HWY_DYNAMIC_DISPATCH(Etc1FastLanes)(texel, count, out);
+void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool differential_only, std::uint8_t out[][8]) {
+  if (force_scalar()) return ref::etc1_fast_lanes(texel, count, differential_only, out);
+  HWY_DYNAMIC_DISPATCH(Etc1FastLanes)(texel, count, differential_only, out);
 }
 
-void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, std::uint8_t out[][8],
-                        std::int32_t error[]) {
-  if (force_scalar()) return ref::etc1_search_lanes(texel, count, high, out, error);
-  HWY_DYNAMIC_DISPATCH(Etc1SearchLanes)(texel, count, high, out, error);
+void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, bool differential_only,
+                       std::uint8_t out[][8], std::int32_t error[]) {
+  if (force_scalar()) return ref::etc1_search_lanes(texel, count, high, differential_only, out, error);
+  HWY_DYNAMIC_DISPATCH(Etc1SearchLanes)(texel, count, high, differential_only, out, error);
 }
 }  // namespace texproc::etc
 #endif
