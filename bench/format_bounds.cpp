@@ -1,25 +1,35 @@
 // What the formats allow: exhaustive searches that no encoder can beat, to
 // read quality targets against. A plain program, not a timing benchmark
-// (it takes about a minute on two cores):
+// (it takes about two minutes on two cores):
 //
-//   format_bounds [ETC1_STRIDE [EAC_STRIDE]]
+//   format_bounds [BC1_STRIDE [ETC1_STRIDE [EAC_STRIDE]]]
 //
-// ETC1: on every ETC1_STRIDE-th block (default 64) of the benchmarks' colour
-// textures, the least squared error of any ETC1 block: both flips; the
-// individual mode (each half's best 4-bit base and table, found
-// independently); the differential mode (each half's best table for every
-// 5-bit base, then the best pair of bases within the delta's reach). Beside
-// it libetc1 (android-libetc1) and texproc at each quality, on the same
-// blocks. PSNR over RGB.
+// BC1: on every BC1_STRIDE-th block (default 32) of the benchmarks' colour
+// textures, the least squared error of any BC1 block, by branch and bound
+// over boxes of endpoint pairs: a box's bound is each texel's distance to
+// the nearest of the boxes its four palette colours can fall in (the
+// decoder's expansion and interpolation are monotonic in the endpoints), so
+// a box is dropped when that reaches the best error found, starting from
+// texproc `max`'s. Both modes; the three-colour mode's black index (which
+// DXGI's BC1 reads as transparent) separately. Beside it libsquish (range,
+// cluster and iterative cluster fit) and texproc at each quality.
+//
+// ETC1: on every ETC1_STRIDE-th block (default 64), the least squared error
+// of any ETC1 block: both flips; the individual mode (each half's best 4-bit
+// base and table, found independently); the differential mode (each half's
+// best table for every 5-bit base, then the best pair of bases within the
+// delta's reach). Beside it libetc1 (android-libetc1) and texproc at each
+// quality, on the same blocks. PSNR over RGB.
 //
 // EAC R11: on every EAC_STRIDE-th block (default 4) of the six corpus
 // heightmaps and of X and Y of five normal maps, the least error of any R11
 // block (every table, multiplier and base that can matter), beside texproc's
 // R11 `high` and BC4 `normal` and `high`. PSNR over [0, 1].
 //
-// Both use the decoders' exact arithmetic (clamping included); a base
-// outside the ranges searched is beaten by the nearest one inside (all of
-// its palette lies on one side of the texels).
+// All use the decoders' exact arithmetic (clamping and rounding included);
+// a base outside the ranges searched is beaten by the nearest one inside
+// (all of its palette lies on one side of the texels).
+#include <squish.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -145,8 +155,149 @@ double blocks_error(const Image& src, const Image& d, const std::vector<int>& id
   return se;
 }
 
+// A box of BC1 endpoint pairs, in 5-6-5 units (r0 g0 b0 r1 g1 b1), and a
+// lower bound of the error of every pair in it.
+struct EndpointBox {
+  int lo[6], hi[6];
+  long bound;
+};
+
+int expand(int channel, int v) { return channel == 1 ? (v << 2 | v >> 4) : (v << 3 | v >> 2); }
+
+// The least error of any pair in box b (exact for a single pair), as
+// texproc's decoder decodes: `four` colours (2a + b + 1) / 3, or three
+// ((a + b + 1) / 2) with or without `black` as the fourth.
+long box_bound(const int px[16][3], const EndpointBox& b, bool four, bool black) {
+  int lo[4][3], hi[4][3];
+  for (int c = 0; c < 3; ++c) {
+    const int l0 = expand(c, b.lo[c]), h0 = expand(c, b.hi[c]), l1 = expand(c, b.lo[3 + c]), h1 = expand(c, b.hi[3 + c]);
+    lo[0][c] = l0, hi[0][c] = h0, lo[1][c] = l1, hi[1][c] = h1;
+    if (four) {
+      lo[2][c] = (2 * l0 + l1 + 1) / 3, hi[2][c] = (2 * h0 + h1 + 1) / 3;
+      lo[3][c] = (l0 + 2 * l1 + 1) / 3, hi[3][c] = (h0 + 2 * h1 + 1) / 3;
+    } else {
+      lo[2][c] = (l0 + l1 + 1) / 2, hi[2][c] = (h0 + h1 + 1) / 2;
+      lo[3][c] = black ? 0 : lo[2][c], hi[3][c] = black ? 0 : hi[2][c];
+    }
+  }
+  long sum = 0;
+  for (int i = 0; i < 16; ++i) {
+    int best = 1 << 30;
+    for (int k = 0; k < 4; ++k) {
+      int d = 0;
+      for (int c = 0; c < 3; ++c) {
+        const int v = px[i][c], e = v < lo[k][c] ? lo[k][c] - v : v > hi[k][c] ? v - hi[k][c] : 0;
+        d += e * e;
+      }
+      best = std::min(best, d);
+    }
+    sum += best;
+  }
+  return sum;
+}
+
+// The least error of any BC1 block below `known` (an error some block
+// reaches), both modes; the palette is the same for either order of the
+// endpoints, so the order is left free. Depth first, the lower child first.
+long best_bc1(const int px[16][3], long known, bool black) {
+  long best = known;
+  for (int four = 0; four < 2; ++four) {
+    std::vector<EndpointBox> stack;
+    EndpointBox root{{0, 0, 0, 0, 0, 0}, {31, 63, 31, 31, 63, 31}, 0};
+    root.bound = box_bound(px, root, four, black);
+    stack.push_back(root);
+    while (!stack.empty()) {
+      const EndpointBox b = stack.back();
+      stack.pop_back();
+      if (b.bound >= best) continue;
+      int dim = -1, width = 0;
+      for (int k = 0; k < 6; ++k)
+        if (b.hi[k] - b.lo[k] > width) width = b.hi[k] - b.lo[k], dim = k;
+      if (dim < 0) {  // one pair: its bound is its error
+        best = b.bound;
+        continue;
+      }
+      EndpointBox low = b, high = b;
+      low.hi[dim] = (b.lo[dim] + b.hi[dim]) / 2, high.lo[dim] = low.hi[dim] + 1;
+      low.bound = box_bound(px, low, four, black), high.bound = box_bound(px, high, four, black);
+      if (low.bound > high.bound) std::swap(low, high);
+      if (high.bound < best) stack.push_back(high);
+      if (low.bound < best) stack.push_back(low);
+    }
+  }
+  return best;
+}
+
+// Squared RGB error of each block in `ids` (block index = by * (width / 4) + bx).
+std::vector<long> block_errors(const Image& src, const Image& d, const std::vector<int>& ids) {
+  const int bw = src.width() / 4;
+  std::vector<long> out;
+  for (int id : ids) {
+    long se = 0;
+    for (int i = 0; i < 16; ++i) {
+      const int x = id % bw * 4 + i % 4, y = id / bw * 4 + i / 4;
+      for (int c = 0; c < 3; ++c) {
+        const int e = int(d.row<std::uint8_t>(y)[d.channels() * x + c]) - src.row<std::uint8_t>(y)[4 * x + c];
+        se += e * e;
+      }
+    }
+    out.push_back(se);
+  }
+  return out;
+}
+
+void bc1_bounds(int stride) {
+  std::printf("BC1, one block in %d of the colour textures: PSNR (dB)\n", stride);
+  const char* names[9] = {"range", "cluster", "iterative", "fast", "normal", "high", "max", "optimum", "+black"};
+  std::printf("%-7s", "blocks");
+  for (const char* n : names) std::printf(" %9s", n);
+  std::printf("\n");
+  double sum[9] = {};
+  for (const Image& img : bench::color_textures()) {
+    const int w = img.width(), h = img.height(), bw = w / 4, count = bw * (h / 4);
+    std::vector<int> ids;
+    for (int b = 0; b < count; b += stride) ids.push_back(b);
+    auto decoded = [&](const std::vector<std::uint8_t>& blocks) {
+      return block_errors(img, bench::decode_blocks(w, h, TexelFormat::bc1_rgb_unorm, blocks, PixelType::u8), ids);
+    };
+    std::vector<long> err[9];
+    int k = 0;
+    for (int fit : {squish::kColourRangeFit, squish::kColourClusterFit, squish::kColourIterativeClusterFit}) {
+      std::vector<std::uint8_t> blocks(std::size_t(squish::GetStorageRequirements(w, h, squish::kDxt1)));
+      squish::CompressImage(img.data(), w, h, blocks.data(), squish::kDxt1 | fit);  // metric 0: uniform weights
+      err[k++] = decoded(blocks);
+    }
+    for (Quality q : {Quality::fast, Quality::normal, Quality::high, Quality::max})
+      err[k++] = decoded(compress_image(img.view(), TexelFormat::bc1_rgb_unorm, q));
+    err[7].resize(ids.size()), err[8].resize(ids.size());
+    tbb::parallel_for(std::size_t(0), ids.size(), [&](std::size_t j) {
+      int px[16][3];
+      for (int i = 0; i < 16; ++i)
+        for (int c = 0; c < 3; ++c) px[i][c] = img.row<std::uint8_t>(ids[j] / bw * 4 + i / 4)[4 * (ids[j] % bw * 4 + i % 4) + c];
+      err[7][j] = best_bc1(px, err[6][j] + 1, false);
+      err[8][j] = best_bc1(px, err[7][j] + 1, true);
+    });
+    std::printf("%-7zu", ids.size());
+    for (int m = 0; m < 9; ++m) {
+      double se = 0;
+      for (long e : err[m]) se += double(e);
+      const double p = 10 * std::log10(255.0 * 255.0 / (se / (48.0 * double(ids.size()))));
+      std::printf(" %9.3f", p);
+      sum[m] += p;
+    }
+    std::printf("\n");
+  }
+  const double n = double(bench::color_textures().size());
+  std::printf("%-7s", "mean");
+  for (double v : sum) std::printf(" %9.3f", v / n);
+  std::printf("\nagainst iterative cluster fit: high %+.3f, max %+.3f, optimum %+.3f, with black %+.3f dB; "
+              "against cluster fit: normal %+.3f, optimum %+.3f dB\n\n",
+              (sum[5] - sum[2]) / n, (sum[6] - sum[2]) / n, (sum[7] - sum[2]) / n, (sum[8] - sum[2]) / n, (sum[4] - sum[1]) / n,
+              (sum[7] - sum[1]) / n);
+}
+
 void etc1_bounds(int stride) {
-  std::printf("ETC1, every %dth block of the colour textures: PSNR (dB)\n", stride);
+  std::printf("ETC1, one block in %d of the colour textures: PSNR (dB)\n", stride);
   std::printf("%-8s %9s %9s %9s %9s %9s\n", "blocks", "libetc1", "fast", "normal", "high", "optimum");
   const Quality levels[3] = {Quality::fast, Quality::normal, Quality::high};
   double sum[5] = {};
@@ -208,7 +359,7 @@ double best_r11(const double v[16]) {
 }
 
 void eac_bounds(int stride) {
-  std::printf("EAC R11 against BC4, every %dth block: PSNR (dB) over [0, 1]\n", stride);
+  std::printf("EAC R11 against BC4, one block in %d: PSNR (dB) over [0, 1]\n", stride);
   std::printf("%-56s %9s %9s %9s %9s\n", "", "R11 high", "optimum", "BC4 norm", "BC4 high");
   struct Job {
     std::string file;
@@ -260,11 +411,13 @@ void eac_bounds(int stride) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int etc1_stride = argc > 1 ? std::atoi(argv[1]) : 64, eac_stride = argc > 2 ? std::atoi(argv[2]) : 4;
-  if (etc1_stride < 1 || eac_stride < 1) {
-    std::fprintf(stderr, "usage: format_bounds [ETC1_STRIDE [EAC_STRIDE]] (positive block strides)\n");
+  const int bc1_stride = argc > 1 ? std::atoi(argv[1]) : 32, etc1_stride = argc > 2 ? std::atoi(argv[2]) : 64,
+            eac_stride = argc > 3 ? std::atoi(argv[3]) : 4;
+  if (bc1_stride < 1 || etc1_stride < 1 || eac_stride < 1) {
+    std::fprintf(stderr, "usage: format_bounds [BC1_STRIDE [ETC1_STRIDE [EAC_STRIDE]]] (positive block strides)\n");
     return 2;
   }
+  bc1_bounds(bc1_stride);
   etc1_bounds(etc1_stride);
   eac_bounds(eac_stride);
   return 0;
