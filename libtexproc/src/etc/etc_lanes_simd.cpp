@@ -61,6 +61,14 @@ inline int quantize_centre(int sum, int bits) {
   return std::clamp(int(float((bits == 5 ? 62 : 30) * sum + 2040) / 4080.0f), 0, bits == 5 ? 31 : 15);
 }
 
+// Whether the differential mode reaches from base a to base b (5 bits):
+// b - a in [-4, 3] per channel.
+inline bool delta_reaches(const int a[3], const int b[3]) {
+  for (int c = 0; c < 3; ++c)
+    if (b[c] - a[c] < -4 || b[c] - a[c] > 3) return false;
+  return true;
+}
+
 }  // namespace fast
 
 namespace ref {
@@ -166,8 +174,7 @@ void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool d
     int best_err = -1;
     for (int flip = 0; flip < 2; ++flip) {
       const int a = 2 * flip, b = a + 1;
-      bool fits = true;
-      for (int c = 0; c < 3; ++c) fits &= f5[b].q[c] - f5[a].q[c] >= -4 && f5[b].q[c] - f5[a].q[c] <= 3;
+      const bool fits = fast::delta_reaches(f5[a].q, f5[b].q);
       const HalfFit* pa = &f5[a];
       const HalfFit* pb = &f5[b];
       HalfFit pulled_a, pulled_b;  // differential only: either base pulled within the delta of the other, refitted
@@ -349,21 +356,14 @@ void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool
     };
     for (int flip = 0; flip < 2; ++flip) {
       const int a = 2 * flip, b = a + 1;
-      bool fits = true;
-      for (int c = 0; c < 3; ++c) fits &= f5[b].q[c] - f5[a].q[c] >= -4 && f5[b].q[c] - f5[a].q[c] <= 3;
-      // `high` always tries the individual mode (4-bit bases).
+      const bool fits = fast::delta_reaches(f5[a].q, f5[b].q);
       if (fits) consider(flip, true, f5[a], f5[b]);
-      if (high) {
-        // Every pair of the halves' per-table fits whose bases the delta reaches.
-        for (int ta = 0; ta < 9; ++ta)
-          for (int tb = 0; tb < 9; ++tb) {
-            const HalfFit& A = tables[a][ta];
-            const HalfFit& B = tables[b][tb];
-            bool ok = true;
-            for (int c = 0; c < 3; ++c) ok &= B.q[c] - A.q[c] >= -4 && B.q[c] - A.q[c] <= 3;
-            if (ok) consider(flip, true, A, B);
-          }
-      }
+      // `high`: every pair of the halves' per-table fits whose bases the delta reaches.
+      for (int ta = 0; high && ta < 9; ++ta)
+        for (int tb = 0; tb < 9; ++tb)
+          if (fast::delta_reaches(tables[a][ta].q, tables[b][tb].q)) consider(flip, true, tables[a][ta], tables[b][tb]);
+      // The individual mode (4-bit bases): where the delta does not reach,
+      // and always at `high`.
       if (fits && !high) continue;
       if (!differential_only) consider(flip, false, fit_normal(rgb, a, 4, high), fit_normal(rgb, b, 4, high));
       if (fits) continue;
@@ -382,18 +382,10 @@ void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool
       for (int n = 0; n < 27; ++n) {
         const int dd[3] = {n / 9 - 1, n / 3 % 3 - 1, n % 3 - 1};
         if (n == 13) continue;
-        int q[3];
-        bool ok_a = true, ok_b = true;
-        for (int c = 0; c < 3; ++c) {
-          q[c] = qa[c] + dd[c];
-          ok_a &= q[c] >= 0 && q[c] <= 31 && f5[b].q[c] - q[c] >= -4 && f5[b].q[c] - q[c] <= 3;
-        }
-        if (ok_a) consider(flip, true, eval_exact(rgb, a, q, 5, pa.table), f5[b]);
-        for (int c = 0; c < 3; ++c) {
-          q[c] = qb[c] + dd[c];
-          ok_b &= q[c] >= 0 && q[c] <= 31 && q[c] - f5[a].q[c] >= -4 && q[c] - f5[a].q[c] <= 3;
-        }
-        if (ok_b) consider(flip, true, f5[a], eval_exact(rgb, b, q, 5, pb.table));
+        auto in_range = [](const int q[3]) { return std::min({q[0], q[1], q[2]}) >= 0 && std::max({q[0], q[1], q[2]}) <= 31; };
+        const int na[3] = {qa[0] + dd[0], qa[1] + dd[1], qa[2] + dd[2]}, nb[3] = {qb[0] + dd[0], qb[1] + dd[1], qb[2] + dd[2]};
+        if (in_range(na) && fast::delta_reaches(na, f5[b].q)) consider(flip, true, eval_exact(rgb, a, na, 5, pa.table), f5[b]);
+        if (in_range(nb) && fast::delta_reaches(f5[a].q, nb)) consider(flip, true, f5[a], eval_exact(rgb, b, nb, 5, pb.table));
       }
     }
     fast::pack(best, out[k]);
