@@ -2,12 +2,13 @@
 // block per SIMD lane), SIMD and scalar twins with identical bytes.
 //
 // Per block and for each of the 16 modifier tables: the multiplier that
-// spreads the table over the values' range (rounded) and, at `normal` and
-// `high`, the one below and the two above it; for each, the base that
-// centres the table on the range (rounded) and, at `normal` +-1, at `high`
-// +-5 around it (the base matters more than the multiplier: values on a
-// coarse 8-bit grid, skewed within the block, want the palette's entries
-// on their levels, often 3-5 bases from the centred one). Each value takes
+// spreads the table over the values' range (rounded) and, at `normal`, the
+// one above it, at `high` the one below and the two above; for each, the
+// base that centres the table on the range (rounded) and, at `normal` +-2,
+// at `high` +-5 around it (the base matters more than the multiplier:
+// values on a coarse 8-bit grid, skewed within the block, want the
+// palette's entries on their levels, often 3-5 bases from the centred one).
+// Each value takes
 // the nearest palette entry (the palette is monotonic in the modifier, so
 // the entry follows from the value's place among the midpoints); the
 // candidate with the least squared error wins, the first in that order on a

@@ -40,9 +40,9 @@ inline Kind kind_of(EacKind k) {
 
 // The search window by level: multipliers m0 - mult_below .. m0 + mult_above,
 // bases b0 +- base_r.
-inline int mult_below(int level) { return level == 0 ? 0 : 1; }
-inline int mult_above(int level) { return level == 0 ? 0 : 2; }
-inline int base_radius(int level) { return level == 0 ? 0 : level == 1 ? 1 : 5; }
+inline int mult_below(int level) { return level < 2 ? 0 : 1; }
+inline int mult_above(int level) { return level == 0 ? 0 : level == 1 ? 1 : 2; }
+inline int base_radius(int level) { return level == 0 ? 0 : level == 1 ? 2 : 5; }
 
 inline void pack(int base, int mult, int table, const int codes[16], std::uint8_t out[8]) {
   std::uint64_t v = std::uint64_t(base & 255) << 56 | std::uint64_t(mult) << 52 | std::uint64_t(table) << 48;
