@@ -31,15 +31,19 @@ constexpr int kEtcBatch = 16;
 void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool differential_only, std::uint8_t out[][8]);
 
 // `normal`: per half every table at the mean, exactly (the decoder's
-// clamping, each texel at its best modifier); the best two tables
-// re-centred up to twice (base = mean of the texels minus their modifiers)
-// while that helps. Halves too far apart for the delta try the individual
-// mode (4-bit fits as above) and the differential mode with either base
-// pulled within the delta of the other (that half's best table refitted).
+// clamping, each texel at its best modifier); the best two tables also
+// seeded from the half's brightest and darkest texels minus their far
+// modifiers (line art: a dark half with one bright texel), then re-centred
+// up to twice (base = mean of the texels minus their modifiers) while that
+// helps. Halves too far apart for the delta try the individual mode (4-bit
+// fits as above) and the differential mode with either base pulled within
+// the delta of the other (that half's best table refitted).
 // `high` (high true): every table seeded from the half's brightest and
 // darkest texels minus the table's extreme modifiers and re-centred up to
-// three times, then the +-1 neighbourhood of the two best bases; the
-// individual mode is always tried.
+// three times, then the +-1 neighbourhood of the two best bases; every pair
+// of the halves' per-table fits that the delta reaches; where the halves'
+// bases are too far apart, the pulled base's neighbours too; the individual
+// mode is always tried (unless differential_only).
 // error[k]: block k's squared RGB error as decoded.
 void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, bool differential_only,
                        std::uint8_t out[][8], std::int32_t error[]);
