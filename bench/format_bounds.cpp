@@ -138,23 +138,6 @@ long best_etc1(const int px[16][3]) {
   return best;
 }
 
-
-// Squared RGB error of decoded `d` against `src` over blocks `ids` (block
-// index = by * (width / 4) + bx).
-double blocks_error(const Image& src, const Image& d, const std::vector<int>& ids) {
-  const int bw = src.width() / 4;
-  double se = 0;
-  for (int id : ids)
-    for (int i = 0; i < 16; ++i) {
-      const int x = id % bw * 4 + i % 4, y = id / bw * 4 + i / 4;
-      for (int c = 0; c < 3; ++c) {
-        const double e = double(d.row<std::uint8_t>(y)[d.channels() * x + c]) - src.row<std::uint8_t>(y)[4 * x + c];
-        se += e * e;
-      }
-    }
-  return se;
-}
-
 // A box of BC1 endpoint pairs, in 5-6-5 units (r0 g0 b0 r1 g1 b1), and a
 // lower bound of the error of every pair in it.
 struct EndpointBox {
@@ -315,7 +298,10 @@ void etc1_bounds(int stride) {
     const double n = 48.0 * double(ids.size());
     auto psnr = [&](double se) { return 10 * std::log10(255.0 * 255.0 / (se / n)); };
     auto of = [&](const std::vector<std::uint8_t>& blocks) {
-      return psnr(blocks_error(img, bench::decode_blocks(img.width(), img.height(), TexelFormat::etc1_rgb, blocks, PixelType::u8), ids));
+      double se = 0;
+      for (long e : block_errors(img, bench::decode_blocks(img.width(), img.height(), TexelFormat::etc1_rgb, blocks, PixelType::u8), ids))
+        se += double(e);
+      return psnr(se);
     };
     double p[5] = {of(bench::libetc1_encode(img))};
     for (int k = 0; k < 3; ++k) p[k + 1] = of(compress_image(img.view(), TexelFormat::etc1_rgb, levels[k]));
