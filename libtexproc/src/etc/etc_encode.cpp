@@ -637,7 +637,7 @@ bool any_transparent(const std::uint8_t rgba[16][4]) {
 
 // ETC2 at `normal` and `high`: the planar mode, and the T and H modes (at
 // `normal` only where the lanes' ETC1 block, its error `err`, leaves more
-// than 75 per texel, squared RGB), tried against it; the block is replaced
+// than 120 per texel, squared RGB), tried against it; the block is replaced
 // if one wins. The texels come as the lanes took them (row by row,
 // R | G << 8 | B << 16).
 long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err, Quality q, std::uint8_t block[8]) {
@@ -652,7 +652,7 @@ long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err
   best.err = err;
   best.bits = load_be64(block);
   search_planar(tx, q, best);
-  if (q != Quality::normal || best.err > 16 * 75) search_t_h(tx, false, q, best);
+  if (q != Quality::normal || best.err > 16 * 120) search_t_h(tx, false, q, best);
   store_be64(best.bits, block);
   return best.err;
 }
