@@ -24,7 +24,7 @@ constexpr int kBc4Batch = 16;
 // the range; six from the inner range), alternates least-squares endpoints
 // for the codes (rounded) and codes for the endpoints, twice while that
 // helps, and tries the +-1 window around the result in the same mode. 2:
-// `high`, the same with a +-3 window, then 45 partition variants per mode:
+// `high`, the same with a +-2 window, then 45 partition variants per mode:
 // the values placed on the mode's grid between its starting endpoints, the
 // grid shifted (up to +-0.6 of a step) and stretched (up to +-20%), each
 // position set fitted by least squares and scored.

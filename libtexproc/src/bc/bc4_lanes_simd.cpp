@@ -81,7 +81,7 @@ void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int l
       }
     }
     if (level >= 1 && error > 0.0f) {
-      const int window = level >= 2 ? 3 : 1;
+      const int window = level >= 2 ? 2 : 1;
       const bool inner = mn6 <= mx6;
       const int lo6 = inner ? int(std::floor(mn6)) : lo, hi6 = inner ? int(std::ceil(mx6)) : hi;
       for (int mode = 0; mode < 2; ++mode) {  // 0: eight values, 1: six
@@ -119,8 +119,8 @@ void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int l
           error = me, r0 = m0, r1 = m1;
           std::copy(mc, mc + 16, codes);
         }
-        // The window around the refined endpoints (+-1, `high` +-3), in the
-        // same mode; at `high` also +-8 around the starting endpoints.
+        // The window around the refined endpoints (+-1, `high` +-2), in the
+        // same mode.
         auto window_at = [&](int c0, int c1, int w) {
           for (int a = c0 - w; a <= c0 + w; ++a)
             for (int b = c1 - w; b <= c1 + w; ++b) {
@@ -264,7 +264,7 @@ void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, int lev
     }
     const auto need = hn::RebindMask(d, hn::Gt(error, hn::Zero(df)));
     if (level >= 1 && !hn::AllFalse(d, need)) {
-      const int window = level >= 2 ? 3 : 1;
+      const int window = level >= 2 ? 2 : 1;
       const V lo_i = hn::Set(d, snorm ? -127 : 0), hi_i = hn::Set(d, snorm ? 127 : 255);
       const auto inner = hn::RebindMask(d, hn::Le(mn6, mx6));
       const V lo6v = hn::IfThenElse(inner, lo6, lo), hi6v = hn::IfThenElse(inner, hi6, hi);
