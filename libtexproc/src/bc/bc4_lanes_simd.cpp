@@ -54,6 +54,20 @@ inline float variant_shift(int offset, int stretch, int steps) {
   return 0.5f + 0.15f * float(offset) - 0.1f * float(stretch) * float(steps) * 0.5f;
 }
 
+// Least-squares endpoints for the sums of a position set (u = steps - pos
+// and pos weigh the two endpoints), rounded and clamped to [lo, hi]; the
+// six-value mode's (mode 1) in ascending order. False where there is no
+// solution, or where the eight-value mode's (mode 0) fit left that mode.
+inline bool ls_endpoints(int aa, int ab, int bb, float at, float bt, int steps, int mode, int lo, int hi, int& ia, int& ib) {
+  const int det = aa * bb - ab * ab;
+  if (det == 0) return false;
+  const float fa = float(steps) * (at * float(bb) - bt * float(ab)) / float(det);
+  const float fb = float(steps) * (bt * float(aa) - at * float(ab)) / float(det);
+  ia = std::clamp(int(std::floor(fa + 0.5f)), lo, hi), ib = std::clamp(int(std::floor(fb + 0.5f)), lo, hi);
+  if (mode == 1 && ia > ib) std::swap(ia, ib);
+  return mode == 1 || ia > ib;
+}
+
 }  // namespace
 
 void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]) {
@@ -102,13 +116,8 @@ void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int l
             aa += u * u, ab += u * pos, bb += pos * pos;
             at += float(u) * t[i], bt += float(pos) * t[i];
           }
-          const int det = aa * bb - ab * ab;
-          if (det == 0) break;
-          const float fa = float(steps) * (at * float(bb) - bt * float(ab)) / float(det);
-          const float fb = float(steps) * (bt * float(aa) - at * float(ab)) / float(det);
-          int ia = std::clamp(int(std::floor(fa + 0.5f)), lo_int, hi_int), ib = std::clamp(int(std::floor(fb + 0.5f)), lo_int, hi_int);
-          if (mode == 0 && ia <= ib) break;  // the fit left the eight-value mode
-          if (mode == 1 && ia > ib) std::swap(ia, ib);
+          int ia, ib;
+          if (!ls_endpoints(aa, ab, bb, at, bt, steps, mode, lo_int, hi_int, ia, ib)) break;
           int cc[16];
           const float ce = evaluate(t, ia, ib, lo_code, hi_code, cc);
           if (ce >= me) break;
@@ -151,13 +160,8 @@ void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int l
               aa += u * u, ab += u * pos, bb += pos * pos;
               at += float(u) * t[i], bt += float(pos) * t[i];
             }
-            const int det = aa * bb - ab * ab;
-            if (det == 0) continue;
-            const float fa = float(steps) * (at * float(bb) - bt * float(ab)) / float(det);
-            const float fb = float(steps) * (bt * float(aa) - at * float(ab)) / float(det);
-            int ia = std::clamp(int(std::floor(fa + 0.5f)), lo_int, hi_int), ib = std::clamp(int(std::floor(fb + 0.5f)), lo_int, hi_int);
-            if (mode == 1 && ia > ib) std::swap(ia, ib);
-            window_at(ia, ib, 0);
+            int ia, ib;
+            if (ls_endpoints(aa, ab, bb, at, bt, steps, mode, lo_int, hi_int, ia, ib)) window_at(ia, ib, 0);
           }
       }
     }
@@ -268,6 +272,23 @@ void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, int lev
       const V lo_i = hn::Set(d, snorm ? -127 : 0), hi_i = hn::Set(d, snorm ? 127 : 255);
       const auto inner = hn::RebindMask(d, hn::Le(mn6, mx6));
       const V lo6v = hn::IfThenElse(inner, lo6, lo), hi6v = hn::IfThenElse(inner, hi6, hi);
+      // As ref::ls_endpoints, per lane: `valid` loses the lanes without a
+      // solution and, in the eight-value mode, those whose fit left it.
+      auto ls_endpoints = [&](V aa, V ab, V bb, VF at, VF bt, VF fsteps, int mode, hn::Mask<decltype(d)>& valid, V& ia, V& ib) {
+        const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
+        valid = hn::And(valid, hn::Ne(det, hn::Zero(d)));
+        const VF fdet = hn::ConvertTo(df, hn::IfThenElse(valid, det, hn::Set(d, 1)));
+        const VF fa = hn::Div(hn::Mul(fsteps, hn::Sub(hn::Mul(at, hn::ConvertTo(df, bb)), hn::Mul(bt, hn::ConvertTo(df, ab)))), fdet);
+        const VF fb = hn::Div(hn::Mul(fsteps, hn::Sub(hn::Mul(bt, hn::ConvertTo(df, aa)), hn::Mul(at, hn::ConvertTo(df, ab)))), fdet);
+        ia = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(fa, half))), lo_i), hi_i);
+        ib = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(fb, half))), lo_i), hi_i);
+        if (mode == 0) {
+          valid = hn::And(valid, hn::Gt(ia, ib));
+        } else {
+          const V lo_end = hn::Min(ia, ib), hi_end = hn::Max(ia, ib);
+          ia = lo_end, ib = hi_end;
+        }
+      };
       auto take_where = [&](hn::Mask<decltype(d)> m, V a, V b, VF e, const V cc[16]) {
         r0 = hn::IfThenElse(m, a, r0), r1 = hn::IfThenElse(m, b, r1);
         error = hn::IfThenElse(hn::RebindMask(df, m), e, error);
@@ -294,20 +315,8 @@ void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, int lev
             at = hn::Add(at, hn::IfThenElseZero(hn::RebindMask(df, in), hn::Mul(hn::ConvertTo(df, u), t[i])));
             bt = hn::Add(bt, hn::IfThenElseZero(hn::RebindMask(df, in), hn::Mul(hn::ConvertTo(df, w), t[i])));
           }
-          const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
-          active = hn::And(active, hn::Ne(det, hn::Zero(d)));
-          const VF fdet = hn::ConvertTo(df, hn::IfThenElse(active, det, hn::Set(d, 1)));
-          const VF fsteps = hn::ConvertTo(df, steps);
-          const VF fa = hn::Div(hn::Mul(fsteps, hn::Sub(hn::Mul(at, hn::ConvertTo(df, bb)), hn::Mul(bt, hn::ConvertTo(df, ab)))), fdet);
-          const VF fb = hn::Div(hn::Mul(fsteps, hn::Sub(hn::Mul(bt, hn::ConvertTo(df, aa)), hn::Mul(at, hn::ConvertTo(df, ab)))), fdet);
-          V ia = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(fa, half))), lo_i), hi_i);
-          V ib = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(fb, half))), lo_i), hi_i);
-          if (mode == 0) {
-            active = hn::And(active, hn::Gt(ia, ib));
-          } else {
-            const V lo_end = hn::Min(ia, ib), hi_end = hn::Max(ia, ib);
-            ia = lo_end, ib = hi_end;
-          }
+          V ia, ib;
+          ls_endpoints(aa, ab, bb, at, bt, hn::ConvertTo(df, steps), mode, active, ia, ib);
           if (hn::AllFalse(d, active)) break;
           V cc[16];
           const VF ce = evaluate(ia, ib, cc, kind);
@@ -354,19 +363,9 @@ void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, int lev
               at = hn::Add(at, hn::IfThenElseZero(hn::RebindMask(df, in), hn::Mul(hn::ConvertTo(df, u), t[i])));
               bt = hn::Add(bt, hn::IfThenElseZero(hn::RebindMask(df, in), hn::Mul(hn::ConvertTo(df, pos), t[i])));
             }
-            const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
-            auto valid = hn::And(lane_ok, hn::Ne(det, hn::Zero(d)));
-            const VF fdet = hn::ConvertTo(df, hn::IfThenElse(valid, det, hn::Set(d, 1)));
-            const VF fa = hn::Div(hn::Mul(fsteps, hn::Sub(hn::Mul(at, hn::ConvertTo(df, bb)), hn::Mul(bt, hn::ConvertTo(df, ab)))), fdet);
-            const VF fb = hn::Div(hn::Mul(fsteps, hn::Sub(hn::Mul(bt, hn::ConvertTo(df, aa)), hn::Mul(at, hn::ConvertTo(df, ab)))), fdet);
-            V ia = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(fa, half))), lo_i), hi_i);
-            V ib = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(fb, half))), lo_i), hi_i);
-            if (mode == 0) {
-              valid = hn::And(valid, hn::Gt(ia, ib));
-            } else {
-              const V lo_end = hn::Min(ia, ib), hi_end = hn::Max(ia, ib);
-              ia = lo_end, ib = hi_end;
-            }
+            auto valid = lane_ok;
+            V ia, ib;
+            ls_endpoints(aa, ab, bb, at, bt, fsteps, mode, valid, ia, ib);
             if (hn::AllFalse(d, valid)) continue;
             V cc[16];
             const VF ce = evaluate(ia, ib, cc, kind);

@@ -662,9 +662,9 @@ long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err
 long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
   const bool punch = mode == ColorMode::etc2_punch;
   const bool opaque = !punch || !any_transparent(rgba);
+  std::uint32_t texel[16][kEtcBatch] = {};  // lane 0: this block, for the lanes
+  for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
   if (etc_blocks_in_lanes(q) && opaque) {  // as whole images do: etc_lanes.h
-    std::uint32_t texel[16][kEtcBatch] = {};
-    for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
     std::uint8_t block[1][8];
     long err = 0;
     if (q == Quality::fast) {
@@ -681,8 +681,6 @@ long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality 
   const Texels tx = make_texels(rgba, mode);
   Candidate best;
   if (q == Quality::max && opaque) {  // never below `high`: its block is the first candidate
-    std::uint32_t texel[16][kEtcBatch] = {};
-    for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
     std::uint8_t block[1][8];
     std::int32_t e[1];
     etc1_search_lanes(texel, 1, true, punch, block, e);

@@ -379,10 +379,10 @@ void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool
       if (!high) continue;
       // `high`: the pulled base's neighbours that the delta still reaches,
       // with the table found for it.
+      auto in_range = [](const int q[3]) { return std::min({q[0], q[1], q[2]}) >= 0 && std::max({q[0], q[1], q[2]}) <= 31; };
       for (int n = 0; n < 27; ++n) {
         const int dd[3] = {n / 9 - 1, n / 3 % 3 - 1, n % 3 - 1};
         if (n == 13) continue;
-        auto in_range = [](const int q[3]) { return std::min({q[0], q[1], q[2]}) >= 0 && std::max({q[0], q[1], q[2]}) <= 31; };
         const int na[3] = {qa[0] + dd[0], qa[1] + dd[1], qa[2] + dd[2]}, nb[3] = {qb[0] + dd[0], qb[1] + dd[1], qb[2] + dd[2]};
         if (in_range(na) && fast::delta_reaches(na, f5[b].q)) consider(flip, true, eval_exact(rgb, a, na, 5, pa.table), f5[b]);
         if (in_range(nb) && fast::delta_reaches(f5[a].q, nb)) consider(flip, true, f5[a], eval_exact(rgb, b, nb, 5, pb.table));
@@ -891,15 +891,15 @@ void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool h
       const Fit pb = fit_fixed(bh, qb);
       consider(far, flip, true, f5[a], pb);
       if (!high) continue;
+      const V top5 = hn::Set(d, 31);
+      auto in_range = [&](const V q[3]) {
+        M ok = hn::Eq(zero, zero);
+        for (int c = 0; c < 3; ++c) ok = hn::And(ok, hn::And(hn::Not(hn::Lt(q[c], zero)), hn::Not(hn::Gt(q[c], top5))));
+        return ok;
+      };
       for (int n = 0; n < 27; ++n) {  // as the reference
         if (n == 13) continue;
         const int dd[3] = {n / 9 - 1, n / 3 % 3 - 1, n % 3 - 1};
-        const V top5 = hn::Set(d, 31);
-        auto in_range = [&](const V q[3]) {
-          M ok = hn::Eq(zero, zero);
-          for (int c = 0; c < 3; ++c) ok = hn::And(ok, hn::And(hn::Not(hn::Lt(q[c], zero)), hn::Not(hn::Gt(q[c], top5))));
-          return ok;
-        };
         V q[3];
         for (int c = 0; c < 3; ++c) q[c] = hn::Add(qa[c], hn::Set(d, dd[c]));
         M ok = hn::And(far, hn::And(in_range(q), reach(q, f5[bh].q)));
