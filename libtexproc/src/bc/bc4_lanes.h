@@ -6,9 +6,12 @@
 // eight-value mode's endpoints (equal ends: the six-value mode, flat); and,
 // where values lie strictly inside the code range and their own range
 // differs, the six-value mode over those inner values (the range's two ends
-// come free). Each value's code is found by rounding its position between
-// the endpoints (the palette is evenly spaced under the exact decoding); the
-// candidate with less squared error wins (the first on a tie). Float
+// come free). Each value's palette position is found by rounding (to
+// nearest, ties to even) its place between the endpoints, a multiply by the
+// pair's 7 / span or 5 / span (the palette is evenly spaced under the exact
+// decoding); a candidate is scored by its squared error alone, from values
+// taken 7 or 5 times over, and the one with less error wins (the first on a
+// tie). The codes are worked out once, for the pair chosen. Float
 // expressions in the same order on both twins, no FMA.
 #pragma once
 

@@ -17,31 +17,43 @@
 namespace texproc::ref {
 namespace {
 
-// Codes and squared error of endpoints r0, r1 (r0 > r1: eight values, by
-// rounding the position from r0; else six values by rounding from r0, or
-// the code range's ends where nearer).
-float evaluate(const float t[16], int r0, int r1, float lo_code, float hi_code, int codes[16]) {
-  float error = 0.0f;
-  const float f0 = float(r0), f1 = float(r1);
+// A block's values as the candidates' scoring wants them: clamped (t),
+// times 7 and times 5 (the two modes' palettes are multiples of 1/7 and
+// 1/5), and the six-value mode's squared distance (times 25) to the
+// nearer of the code range's ends, which that mode holds for free.
+struct Values {
+  float t[16], t7[16], t5[16], ends5[16];
+};
+
+// Squared error (code units) of the eight-value mode's endpoints r0 > r1:
+// each value's palette position j from r0 by rounding (the palette is
+// evenly spaced under the exact decoding), its error 7 times over, summed,
+// then divided by 49. `pos`, where given, gets each j.
+float error8(const Values& v, int r0, int r1, int* pos) {
+  const float f0 = float(r0), span = float(r0 - r1), k = 7.0f / span, a = 7.0f * f0;
+  float e = 0.0f;
   for (int i = 0; i < 16; ++i) {
-    if (r0 > r1) {
-      const int j = std::clamp(int((f0 - t[i]) * 7.0f / (f0 - f1) + 0.5f), 0, 7);
-      const float d = t[i] - (f0 * float(7 - j) + f1 * float(j)) / 7.0f;
-      error += d * d;
-      codes[i] = j == 0 ? 0 : j == 7 ? 1 : j + 1;
-    } else {
-      const int j = r1 > r0 ? std::clamp(int((t[i] - f0) * 5.0f / (f1 - f0) + 0.5f), 0, 5) : 0;
-      const float d = t[i] - (f0 * float(5 - j) + f1 * float(j)) / 5.0f;
-      const float dl = t[i] - lo_code, dh = t[i] - hi_code;
-      float best = d * d;
-      int code = j == 0 ? 0 : j == 5 ? 1 : j + 1;
-      if (dl * dl < best) best = dl * dl, code = 6;
-      if (dh * dh < best) best = dh * dh, code = 7;
-      error += best;
-      codes[i] = code;
-    }
+    const float j = std::min(std::max(std::nearbyint((f0 - v.t[i]) * k), 0.0f), 7.0f);
+    const float d = (v.t7[i] - a) + span * j;  // 7 * (value - palette entry j)
+    e += d * d;
+    if (pos) pos[i] = int(j);
   }
-  return error;
+  return e / 49.0f;
+}
+
+// The six-value mode's (r0 <= r1), where a value also takes the nearer of
+// the range's ends: 5 times over, then divided by 25. `pos` gets j, or -1
+// where an end was nearer.
+float error6(const Values& v, int r0, int r1, int* pos) {
+  const float f0 = float(r0), span = float(r1 - r0), k = r1 > r0 ? 5.0f / span : 0.0f, a = 5.0f * f0;
+  float e = 0.0f;
+  for (int i = 0; i < 16; ++i) {
+    const float j = std::min(std::max(std::nearbyint((v.t[i] - f0) * k), 0.0f), 5.0f);
+    const float d = (v.t5[i] - a) - span * j;
+    e += std::min(d * d, v.ends5[i]);
+    if (pos) pos[i] = v.ends5[i] < d * d ? -1 : int(j);
+  }
+  return e / 25.0f;
 }
 
 // `high`'s partition variants: the values placed on the mode's grid
@@ -74,95 +86,108 @@ void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int l
   const float lo_code = snorm ? -127.0f : 0.0f, hi_code = snorm ? 127.0f : 255.0f;
   const int lo_int = int(lo_code), hi_int = int(hi_code);
   for (int k = 0; k < count; ++k) {
-    float t[16], mn = hi_code, mx = lo_code, mn6 = hi_code, mx6 = lo_code;
+    Values val;
+    const float* t = val.t;
+    float mn = hi_code, mx = lo_code, mn6 = hi_code, mx6 = lo_code;
     for (int i = 0; i < 16; ++i) {
-      t[i] = std::min(std::max(v[i][k], lo_code), hi_code);
+      val.t[i] = std::min(std::max(v[i][k], lo_code), hi_code);
+      val.t7[i] = 7.0f * t[i], val.t5[i] = 5.0f * t[i];
+      const float dl = val.t5[i] - 5.0f * lo_code, dh = val.t5[i] - 5.0f * hi_code;
+      val.ends5[i] = std::min(dl * dl, dh * dh);
       mn = std::min(mn, t[i]), mx = std::max(mx, t[i]);
       if (t[i] > lo_code + 0.5f && t[i] < hi_code - 0.5f) mn6 = std::min(mn6, t[i]), mx6 = std::max(mx6, t[i]);
     }
+    auto error_of = [&](int a, int b, int* pos = nullptr) { return a > b ? error8(val, a, b, pos) : error6(val, a, b, pos); };
+    // The range (equal ends: one value, exact in the six-value mode).
     const int lo = int(std::floor(mn)), hi = int(std::ceil(mx));
-    int r0 = hi > lo ? hi : lo, r1 = lo, codes[16];
-    float error = evaluate(t, r0, r1, lo_code, hi_code, codes);
-    if (mn6 <= mx6) {
-      const int lo6 = int(std::floor(mn6)), hi6 = int(std::ceil(mx6));
-      if (lo6 != lo || hi6 != hi) {
-        int codes6[16];
-        const float error6 = evaluate(t, lo6, hi6, lo_code, hi_code, codes6);
-        if (error6 < error) {
-          error = error6, r0 = lo6, r1 = hi6;
-          std::copy(codes6, codes6 + 16, codes);
-        }
-      }
+    int r0 = hi > lo ? hi : lo, r1 = lo;
+    float error = hi > lo ? error8(val, r0, r1, nullptr) : 0.0f;
+    const bool inner = mn6 <= mx6;
+    const int lo6 = inner ? int(std::floor(mn6)) : lo, hi6 = inner ? int(std::ceil(mx6)) : hi;
+    if (inner && (lo6 != lo || hi6 != hi)) {
+      const float error6 = error_of(lo6, hi6);
+      if (error6 < error) error = error6, r0 = lo6, r1 = hi6;
     }
     if (level >= 1 && error > 0.0f) {
       const int window = level >= 2 ? 2 : 1;
-      const bool inner = mn6 <= mx6;
-      const int lo6 = inner ? int(std::floor(mn6)) : lo, hi6 = inner ? int(std::ceil(mx6)) : hi;
       for (int mode = 0; mode < 2; ++mode) {  // 0: eight values, 1: six
         if (mode == 0 && hi <= lo) continue;
-        int m0 = mode == 0 ? hi : lo6, m1 = mode == 0 ? lo : std::max(lo6, hi6), mc[16];
-        float me = evaluate(t, m0, m1, lo_code, hi_code, mc);
+        const int steps = mode == 0 ? 7 : 5;
+        int m0 = mode == 0 ? hi : lo6, m1 = mode == 0 ? lo : std::max(lo6, hi6), pos[16];
+        float me = error_of(m0, m1, pos);
         for (int iter = 0; iter < 2; ++iter) {
-          // Least-squares endpoints for these codes (positions in steps of
-          // 1/7 or 1/5 from r0; the six-value mode's fixed ends left out).
-          const bool eight = m0 > m1;
-          const int steps = eight ? 7 : 5;
+          // Least-squares endpoints for these positions (steps of 1/7 or
+          // 1/5 from m0; the six-value mode's ends left out).
           int aa = 0, ab = 0, bb = 0;
           float at = 0.0f, bt = 0.0f;
           for (int i = 0; i < 16; ++i) {
-            const int code = mc[i];
-            if (!eight && code >= 6) continue;
-            const int pos = code == 0 ? 0 : code == 1 ? steps : code - 1, u = steps - pos;
-            aa += u * u, ab += u * pos, bb += pos * pos;
-            at += float(u) * t[i], bt += float(pos) * t[i];
+            if (pos[i] < 0) continue;
+            const int u = steps - pos[i];
+            aa += u * u, ab += u * pos[i], bb += pos[i] * pos[i];
+            at += float(u) * t[i], bt += float(pos[i]) * t[i];
           }
-          int ia, ib;
+          int ia, ib, cp[16];
           if (!ls_endpoints(aa, ab, bb, at, bt, steps, mode, lo_int, hi_int, ia, ib)) break;
-          int cc[16];
-          const float ce = evaluate(t, ia, ib, lo_code, hi_code, cc);
+          const float ce = error_of(ia, ib, cp);
           if (ce >= me) break;
           m0 = ia, m1 = ib, me = ce;
-          std::copy(cc, cc + 16, mc);
+          std::copy(cp, cp + 16, pos);
         }
-        if (me < error) {
-          error = me, r0 = m0, r1 = m1;
-          std::copy(mc, mc + 16, codes);
-        }
+        if (me < error) error = me, r0 = m0, r1 = m1;
         // The window around the refined endpoints (+-1, `high` +-2), in the
         // same mode.
         auto window_at = [&](int c0, int c1, int w) {
           for (int a = c0 - w; a <= c0 + w; ++a)
             for (int b = c1 - w; b <= c1 + w; ++b) {
+              if (w > 0 && a == c0 && b == c1) continue;  // the centre, scored already
               if ((mode == 0) != (a > b) || a < lo_int || a > hi_int || b < lo_int || b > hi_int) continue;
-              int cc[16];
-              const float ce = evaluate(t, a, b, lo_code, hi_code, cc);
-              if (ce < error) {
-                error = ce, r0 = a, r1 = b;
-                std::copy(cc, cc + 16, codes);
-              }
+              const float ce = error_of(a, b);
+              if (ce < error) error = ce, r0 = a, r1 = b;
             }
         };
         window_at(m0, m1, window);
         if (level < 2) continue;
         // `high`: partition variants from the starting endpoints.
-        const int steps = mode == 0 ? 7 : 5;
         const float a0 = float(mode == 0 ? hi : lo6), a1 = float(mode == 0 ? lo : hi6);
         if (a0 == a1) continue;
+        // Each value's place on the grid in steps from a0; the six-value
+        // mode leaves out the values at the range's free ends.
+        float base[16], sum_t = 0.0f;
+        bool in[16];
+        int n_in = 0;
+        for (int i = 0; i < 16; ++i) {
+          base[i] = (a0 - t[i]) / (a0 - a1) * float(steps);
+          in[i] = mode == 0 || (t[i] > lo_code + 0.5f && t[i] < hi_code - 0.5f);
+          if (in[i]) sum_t += t[i], ++n_in;
+        }
         for (int o = -kVariantOffsets; o <= kVariantOffsets; ++o)
           for (int sv = -kVariantStretches; sv <= kVariantStretches; ++sv) {
             const float stretch = variant_stretch(sv), shift = variant_shift(o, sv, steps);
-            int aa = 0, ab = 0, bb = 0;
-            float at = 0.0f, bt = 0.0f;
+            // The sums of the positions p, their squares and p * t (exact
+            // small integers but the last) give the fit's sums, with u =
+            // steps - p.
+            float sp = 0.0f, spp = 0.0f, spt = 0.0f;
             for (int i = 0; i < 16; ++i) {
-              if (mode == 1 && (t[i] <= lo_code + 0.5f || t[i] >= hi_code - 0.5f)) continue;  // the free ends
-              const int pos = std::clamp(int(std::floor((a0 - t[i]) / (a0 - a1) * float(steps) * stretch + shift)), 0, steps);
-              const int u = steps - pos;
-              aa += u * u, ab += u * pos, bb += pos * pos;
-              at += float(u) * t[i], bt += float(pos) * t[i];
+              const float p = in[i] ? std::min(std::max(std::floor(base[i] * stretch + shift), 0.0f), float(steps)) : 0.0f;
+              sp += p, spp += p * p, spt += p * t[i];
             }
+            const int isp = int(sp), ispp = int(spp);
+            const int aa = n_in * steps * steps - 2 * steps * isp + ispp, ab = steps * isp - ispp, bb = ispp;
             int ia, ib;
-            if (ls_endpoints(aa, ab, bb, at, bt, steps, mode, lo_int, hi_int, ia, ib)) window_at(ia, ib, 0);
+            if (ls_endpoints(aa, ab, bb, float(steps) * sum_t - spt, spt, steps, mode, lo_int, hi_int, ia, ib)) window_at(ia, ib, 0);
           }
+      }
+    }
+    // The codes of the chosen endpoints, as their error counted them.
+    int pos[16], codes[16];
+    error_of(r0, r1, pos);
+    const bool eight = r0 > r1;
+    for (int i = 0; i < 16; ++i) {
+      const int top = eight ? 7 : 5;
+      codes[i] = pos[i] == 0 ? 0 : pos[i] == top ? 1 : pos[i] + 1;
+      if (pos[i] < 0) {  // the six-value mode's nearer end: 0 (code 6) or 255 (code 7)
+        const float dl = t[i] - lo_code, dh = t[i] - hi_code;
+        codes[i] = dh * dh < dl * dl ? 7 : 6;
       }
     }
     out[k][0] = std::uint8_t(r0 & 255), out[k][1] = std::uint8_t(r1 & 255);  // SNORM: two's complement
@@ -186,95 +211,75 @@ void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, int lev
   const hn::RebindToSigned<D> d;
   using VF = hn::Vec<D>;
   using V = hn::Vec<decltype(d)>;
+  using M = hn::Mask<decltype(d)>;
   const int lanes = int(hn::Lanes(df));
-  const VF lo_code = hn::Set(df, snorm ? -127.0f : 0.0f), hi_code = hn::Set(df, snorm ? 127.0f : 255.0f);
-  const VF half = hn::Set(df, 0.5f);
+  const float lo_c = snorm ? -127.0f : 0.0f, hi_c = snorm ? 127.0f : 255.0f;
+  const VF lo_code = hn::Set(df, lo_c), hi_code = hn::Set(df, hi_c);
+  const VF half = hn::Set(df, 0.5f), one = hn::Set(df, 1.0f), seven = hn::Set(df, 7.0f), five = hn::Set(df, 5.0f);
+  const V lo_i = hn::Set(d, snorm ? -127 : 0), hi_i = hn::Set(d, snorm ? 127 : 255);
   for (int k0 = 0; k0 < count; k0 += lanes) {
-    VF t[16];
+    VF t[16], t7[16], t5[16], ends5[16];
     VF mn = hi_code, mx = lo_code, mn6 = hi_code, mx6 = lo_code;
     const VF inner_lo = hn::Add(lo_code, half), inner_hi = hn::Sub(hi_code, half);
     for (int i = 0; i < 16; ++i) {
       t[i] = hn::Min(hn::Max(hn::LoadU(df, v[i] + k0), lo_code), hi_code);
+      t7[i] = hn::Mul(seven, t[i]), t5[i] = hn::Mul(five, t[i]);
+      const VF dl = hn::Sub(t5[i], hn::Set(df, 5.0f * lo_c)), dh = hn::Sub(t5[i], hn::Set(df, 5.0f * hi_c));
+      ends5[i] = hn::Min(hn::Mul(dl, dl), hn::Mul(dh, dh));
       mn = hn::Min(mn, t[i]), mx = hn::Max(mx, t[i]);
-      const auto inner = hn::And(hn::Gt(t[i], inner_lo), hn::Lt(t[i], inner_hi));
-      mn6 = hn::IfThenElse(inner, hn::Min(mn6, t[i]), mn6), mx6 = hn::IfThenElse(inner, hn::Max(mx6, t[i]), mx6);
+      const auto in = hn::And(hn::Gt(t[i], inner_lo), hn::Lt(t[i], inner_hi));
+      mn6 = hn::IfThenElse(in, hn::Min(mn6, t[i]), mn6), mx6 = hn::IfThenElse(in, hn::Max(mx6, t[i]), mx6);
     }
-    const V lo = hn::ConvertTo(d, hn::Floor(mn)), hi = hn::ConvertTo(d, hn::Ceil(mx));
-    // kind 8: every lane in the eight-value mode (r0 > r1), 6: every lane in
-    // the six-value mode, 0: either, by lane.
-    auto evaluate = [&](V r0, V r1, V codes[16], int kind = 0) {
-      const VF f0 = hn::ConvertTo(df, r0), f1 = hn::ConvertTo(df, r1);
-      const auto eight = hn::Gt(r0, r1);
-      const auto eight_f = hn::RebindMask(df, eight);
-      const auto wide6 = hn::RebindMask(df, hn::Gt(r1, r0));
-      const VF one = hn::Set(df, 1.0f);
-      const VF span8 = hn::IfThenElse(eight_f, hn::Sub(f0, f1), one), span6 = hn::IfThenElse(wide6, hn::Sub(f1, f0), one);
-      VF error = hn::Zero(df);
+    // As ref::error8 and ref::error6, per lane; lanes outside the mode
+    // (`valid` false) score a harmless pair and are ignored by the caller.
+    auto error8 = [&](V r0, V r1, M valid, V* pos) {
+      const VF f0 = hn::ConvertTo(df, r0), span = hn::IfThenElse(hn::RebindMask(df, valid), hn::ConvertTo(df, hn::Sub(r0, r1)), one);
+      const VF kk = hn::Div(seven, span), a = hn::Mul(seven, f0);
+      VF e = hn::Zero(df);
       for (int i = 0; i < 16; ++i) {
-        VF e8 = hn::Zero(df), e6 = hn::Zero(df);
-        V c8 = hn::Zero(d), c6 = hn::Zero(d);
-        if (kind != 6) {  // eight values
-          const V j8 = hn::Min(hn::Max(hn::ConvertTo(d, hn::Add(hn::Div(hn::Mul(hn::Sub(f0, t[i]), hn::Set(df, 7.0f)), span8), half)),
-                                       hn::Zero(d)), hn::Set(d, 7));
-          const VF fj8 = hn::ConvertTo(df, j8);
-          const VF d8 = hn::Sub(t[i], hn::Div(hn::Add(hn::Mul(f0, hn::Sub(hn::Set(df, 7.0f), fj8)), hn::Mul(f1, fj8)), hn::Set(df, 7.0f)));
-          e8 = hn::Mul(d8, d8);
-          c8 = hn::IfThenElse(hn::Eq(j8, hn::Zero(d)), hn::Zero(d),
-                              hn::IfThenElse(hn::Eq(j8, hn::Set(d, 7)), hn::Set(d, 1), hn::Add(j8, hn::Set(d, 1))));
-        }
-        if (kind != 8) {  // six values and the range's ends
-          const V j6 = hn::IfThenElseZero(
-              hn::RebindMask(d, wide6),
-              hn::Min(hn::Max(hn::ConvertTo(d, hn::Add(hn::Div(hn::Mul(hn::Sub(t[i], f0), hn::Set(df, 5.0f)), span6), half)),
-                              hn::Zero(d)), hn::Set(d, 5)));
-          const VF fj6 = hn::ConvertTo(df, j6);
-          const VF d6 = hn::Sub(t[i], hn::Div(hn::Add(hn::Mul(f0, hn::Sub(hn::Set(df, 5.0f), fj6)), hn::Mul(f1, fj6)), hn::Set(df, 5.0f)));
-          const VF dl = hn::Sub(t[i], lo_code), dh = hn::Sub(t[i], hi_code);
-          e6 = hn::Mul(d6, d6);
-          c6 = hn::IfThenElse(hn::Eq(j6, hn::Zero(d)), hn::Zero(d),
-                              hn::IfThenElse(hn::Eq(j6, hn::Set(d, 5)), hn::Set(d, 1), hn::Add(j6, hn::Set(d, 1))));
-          const VF el = hn::Mul(dl, dl), eh = hn::Mul(dh, dh);
-          const auto use_lo = hn::Lt(el, e6);
-          e6 = hn::IfThenElse(use_lo, el, e6);
-          c6 = hn::IfThenElse(hn::RebindMask(d, use_lo), hn::Set(d, 6), c6);
-          const auto use_hi = hn::Lt(eh, e6);
-          e6 = hn::IfThenElse(use_hi, eh, e6);
-          c6 = hn::IfThenElse(hn::RebindMask(d, use_hi), hn::Set(d, 7), c6);
-        }
-        if (kind == 8) {
-          error = hn::Add(error, e8), codes[i] = c8;
-        } else if (kind == 6) {
-          error = hn::Add(error, e6), codes[i] = c6;
-        } else {
-          error = hn::Add(error, hn::IfThenElse(eight_f, e8, e6));
-          codes[i] = hn::IfThenElse(eight, c8, c6);
-        }
+        const VF j = hn::Min(hn::Max(hn::Round(hn::Mul(hn::Sub(f0, t[i]), kk)), hn::Zero(df)), seven);
+        const VF dd = hn::Add(hn::Sub(t7[i], a), hn::Mul(span, j));
+        e = hn::Add(e, hn::Mul(dd, dd));
+        if (pos) pos[i] = hn::ConvertTo(d, j);
       }
-      return error;
+      return hn::Div(e, hn::Set(df, 49.0f));
     };
-    V r0 = hn::IfThenElse(hn::Gt(hi, lo), hi, lo), r1 = lo, codes[16];
-    VF error = evaluate(r0, r1, codes);
-    const V lo6 = hn::ConvertTo(d, hn::Floor(mn6)), hi6 = hn::ConvertTo(d, hn::Ceil(mx6));
-    const auto try6 = hn::And(hn::RebindMask(d, hn::Le(mn6, mx6)), hn::Or(hn::Ne(lo6, lo), hn::Ne(hi6, hi)));
+    auto error6 = [&](V r0, V r1, V* pos) {
+      const VF f0 = hn::ConvertTo(df, r0), span = hn::ConvertTo(df, hn::Sub(r1, r0));
+      const auto wide = hn::Gt(span, hn::Zero(df));
+      const VF kk = hn::IfThenElseZero(wide, hn::Div(five, hn::IfThenElse(wide, span, one))), a = hn::Mul(five, f0);
+      VF e = hn::Zero(df);
+      for (int i = 0; i < 16; ++i) {
+        const VF j = hn::Min(hn::Max(hn::Round(hn::Mul(hn::Sub(t[i], f0), kk)), hn::Zero(df)), five);
+        const VF dd = hn::Sub(hn::Sub(t5[i], a), hn::Mul(span, j));
+        const VF d2 = hn::Mul(dd, dd);
+        e = hn::Add(e, hn::Min(d2, ends5[i]));
+        if (pos) pos[i] = hn::IfThenElse(hn::RebindMask(d, hn::Lt(ends5[i], d2)), hn::Set(d, -1), hn::ConvertTo(d, j));
+      }
+      return hn::Div(e, hn::Set(df, 25.0f));
+    };
+    // The range (equal ends: one value, exact in the six-value mode).
+    const V lo = hn::ConvertTo(d, hn::Floor(mn)), hi = hn::ConvertTo(d, hn::Ceil(mx));
+    const M spread = hn::Gt(hi, lo);
+    V r0 = hn::IfThenElse(spread, hi, lo), r1 = lo;
+    VF error = hn::IfThenElseZero(hn::RebindMask(df, spread), error8(r0, r1, spread, nullptr));
+    const M inner = hn::RebindMask(d, hn::Le(mn6, mx6));
+    const V lo6 = hn::IfThenElse(inner, hn::ConvertTo(d, hn::Floor(mn6)), lo), hi6 = hn::IfThenElse(inner, hn::ConvertTo(d, hn::Ceil(mx6)), hi);
+    const M try6 = hn::And(inner, hn::Or(hn::Ne(lo6, lo), hn::Ne(hi6, hi)));
+    auto take_where = [&](M m, V a, V b, VF e) {
+      r0 = hn::IfThenElse(m, a, r0), r1 = hn::IfThenElse(m, b, r1);
+      error = hn::IfThenElse(hn::RebindMask(df, m), e, error);
+    };
     if (!hn::AllFalse(d, try6)) {
-      // Lanes not trying it evaluate a harmless pair and ignore the result.
-      const V a = hn::IfThenElse(try6, lo6, lo), b = hn::IfThenElse(try6, hi6, hi);
-      V codes6[16];
-      const VF error6 = evaluate(a, b, codes6);
-      const auto take = hn::And(try6, hn::RebindMask(d, hn::Lt(error6, error)));
-      r0 = hn::IfThenElse(take, a, r0), r1 = hn::IfThenElse(take, b, r1);
-      error = hn::IfThenElse(hn::RebindMask(df, take), error6, error);
-      for (int i = 0; i < 16; ++i) codes[i] = hn::IfThenElse(take, codes6[i], codes[i]);
+      const VF e6 = error6(lo6, hi6, nullptr);
+      take_where(hn::And(try6, hn::RebindMask(d, hn::Lt(e6, error))), lo6, hi6, e6);
     }
-    const auto need = hn::RebindMask(d, hn::Gt(error, hn::Zero(df)));
+    const M need = hn::RebindMask(d, hn::Gt(error, hn::Zero(df)));
     if (level >= 1 && !hn::AllFalse(d, need)) {
       const int window = level >= 2 ? 2 : 1;
-      const V lo_i = hn::Set(d, snorm ? -127 : 0), hi_i = hn::Set(d, snorm ? 127 : 255);
-      const auto inner = hn::RebindMask(d, hn::Le(mn6, mx6));
-      const V lo6v = hn::IfThenElse(inner, lo6, lo), hi6v = hn::IfThenElse(inner, hi6, hi);
       // As ref::ls_endpoints, per lane: `valid` loses the lanes without a
       // solution and, in the eight-value mode, those whose fit left it.
-      auto ls_endpoints = [&](V aa, V ab, V bb, VF at, VF bt, VF fsteps, int mode, hn::Mask<decltype(d)>& valid, V& ia, V& ib) {
+      auto ls_endpoints = [&](V aa, V ab, V bb, VF at, VF bt, VF fsteps, int mode, M& valid, V& ia, V& ib) {
         const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
         valid = hn::And(valid, hn::Ne(det, hn::Zero(d)));
         const VF fdet = hn::ConvertTo(df, hn::IfThenElse(valid, det, hn::Set(d, 1)));
@@ -289,89 +294,97 @@ void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, int lev
           ia = lo_end, ib = hi_end;
         }
       };
-      auto take_where = [&](hn::Mask<decltype(d)> m, V a, V b, VF e, const V cc[16]) {
-        r0 = hn::IfThenElse(m, a, r0), r1 = hn::IfThenElse(m, b, r1);
-        error = hn::IfThenElse(hn::RebindMask(df, m), e, error);
-        for (int i = 0; i < 16; ++i) codes[i] = hn::IfThenElse(m, cc[i], codes[i]);
-      };
       for (int mode = 0; mode < 2; ++mode) {
-        const int kind = mode == 0 ? 8 : 6;
-        const auto mode_ok = mode == 0 ? hn::And(need, hn::Gt(hi, lo)) : need;
+        const int steps_i = mode == 0 ? 7 : 5;
+        const V steps = hn::Set(d, steps_i);
+        const VF fsteps = hn::Set(df, float(steps_i));
+        const M mode_ok = mode == 0 ? hn::And(need, spread) : need;
         if (hn::AllFalse(d, mode_ok)) continue;
-        V m0 = mode == 0 ? hi : lo6v, m1 = mode == 0 ? lo : hn::Max(lo6v, hi6v), mc[16];
-        VF me = evaluate(m0, m1, mc, kind);
-        auto active = mode_ok;
+        auto error_of = [&](V a, V b, M valid, V* pos) { return mode == 0 ? error8(a, b, valid, pos) : error6(a, b, pos); };
+        V m0 = mode == 0 ? hi : lo6, m1 = mode == 0 ? lo : hn::Max(lo6, hi6), pos[16];
+        VF me = error_of(m0, m1, mode_ok, pos);
+        M active = mode_ok;
         for (int iter = 0; iter < 2; ++iter) {
-          const V steps = hn::Set(d, mode == 0 ? 7 : 5);
           V aa = hn::Zero(d), ab = aa, bb = aa;
           VF at = hn::Zero(df), bt = at;
           for (int i = 0; i < 16; ++i) {
-            const V code = mc[i];
-            const V pos = hn::IfThenElse(hn::Eq(code, hn::Zero(d)), hn::Zero(d),
-                                         hn::IfThenElse(hn::Eq(code, hn::Set(d, 1)), steps, hn::Sub(code, hn::Set(d, 1))));
-            const auto in = mode == 0 ? hn::Eq(code, code) : hn::Lt(code, hn::Set(d, 6));
-            const V u = hn::IfThenElseZero(in, hn::Sub(steps, pos)), w = hn::IfThenElseZero(in, pos);
+            const M in = hn::Not(hn::Lt(pos[i], hn::Zero(d)));
+            const V u = hn::IfThenElseZero(in, hn::Sub(steps, pos[i])), w = hn::IfThenElseZero(in, pos[i]);
             aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w)), bb = hn::Add(bb, hn::Mul(w, w));
             at = hn::Add(at, hn::IfThenElseZero(hn::RebindMask(df, in), hn::Mul(hn::ConvertTo(df, u), t[i])));
             bt = hn::Add(bt, hn::IfThenElseZero(hn::RebindMask(df, in), hn::Mul(hn::ConvertTo(df, w), t[i])));
           }
-          V ia, ib;
-          ls_endpoints(aa, ab, bb, at, bt, hn::ConvertTo(df, steps), mode, active, ia, ib);
+          V ia, ib, cp[16];
+          ls_endpoints(aa, ab, bb, at, bt, fsteps, mode, active, ia, ib);
           if (hn::AllFalse(d, active)) break;
-          V cc[16];
-          const VF ce = evaluate(ia, ib, cc, kind);
+          const VF ce = error_of(ia, ib, active, cp);
           active = hn::And(active, hn::RebindMask(d, hn::Lt(ce, me)));
           m0 = hn::IfThenElse(active, ia, m0), m1 = hn::IfThenElse(active, ib, m1);
           me = hn::IfThenElse(hn::RebindMask(df, active), ce, me);
-          for (int i = 0; i < 16; ++i) mc[i] = hn::IfThenElse(active, cc[i], mc[i]);
+          for (int i = 0; i < 16; ++i) pos[i] = hn::IfThenElse(active, cp[i], pos[i]);
         }
-        take_where(hn::And(mode_ok, hn::RebindMask(d, hn::Lt(me, error))), m0, m1, me, mc);
-        auto window_at = [&](V c0, V c1, int w) {
+        take_where(hn::And(mode_ok, hn::RebindMask(d, hn::Lt(me, error))), m0, m1, me);
+        auto window_at = [&](V c0, V c1, int w, M ok) {
           for (int da = -w; da <= w; ++da)
             for (int db = -w; db <= w; ++db) {
+              if (w > 0 && da == 0 && db == 0) continue;  // the centre, scored already
               const V a = hn::Add(c0, hn::Set(d, da)), b = hn::Add(c1, hn::Set(d, db));
-              auto valid = hn::And(mode_ok, mode == 0 ? hn::Gt(a, b) : hn::Not(hn::Gt(a, b)));
+              M valid = hn::And(ok, mode == 0 ? hn::Gt(a, b) : hn::Not(hn::Gt(a, b)));
               valid = hn::And(valid, hn::And(hn::Not(hn::Lt(a, lo_i)), hn::Not(hn::Gt(a, hi_i))));
               valid = hn::And(valid, hn::And(hn::Not(hn::Lt(b, lo_i)), hn::Not(hn::Gt(b, hi_i))));
               if (hn::AllFalse(d, valid)) continue;
-              V cc[16];
-              const VF ce = evaluate(a, b, cc, kind);
-              take_where(hn::And(valid, hn::RebindMask(d, hn::Lt(ce, error))), a, b, ce, cc);
+              const VF ce = error_of(a, b, valid, nullptr);
+              take_where(hn::And(valid, hn::RebindMask(d, hn::Lt(ce, error))), a, b, ce);
             }
         };
-        window_at(m0, m1, window);
+        window_at(m0, m1, window, mode_ok);
         if (level < 2) continue;
         // `high`: partition variants from the starting endpoints (see the reference).
-        const int steps_i = mode == 0 ? 7 : 5;
-        const VF a0 = hn::ConvertTo(df, mode == 0 ? hi : lo6v), a1 = hn::ConvertTo(df, mode == 0 ? lo : hi6v);
+        const VF a0 = hn::ConvertTo(df, mode == 0 ? hi : lo6), a1 = hn::ConvertTo(df, mode == 0 ? lo : hi6);
         const auto distinct = hn::Ne(a0, a1);
-        const auto lane_ok = hn::And(mode_ok, hn::RebindMask(d, distinct));
+        const M lane_ok = hn::And(mode_ok, hn::RebindMask(d, distinct));
         if (hn::AllFalse(d, lane_ok)) continue;
-        const VF span = hn::IfThenElse(distinct, hn::Sub(a0, a1), hn::Set(df, 1.0f)), fsteps = hn::Set(df, float(steps_i));
-        const V steps = hn::Set(d, steps_i);
+        const VF span = hn::IfThenElse(distinct, hn::Sub(a0, a1), one);
+        VF base[16], sum_t = hn::Zero(df);
+        hn::Mask<D> in[16];
+        V n_in = hn::Zero(d);
+        for (int i = 0; i < 16; ++i) {
+          base[i] = hn::Mul(hn::Div(hn::Sub(a0, t[i]), span), fsteps);
+          in[i] = mode == 0 ? hn::Eq(t[i], t[i]) : hn::And(hn::Gt(t[i], inner_lo), hn::Lt(t[i], inner_hi));
+          sum_t = hn::Add(sum_t, hn::IfThenElseZero(in[i], t[i]));
+          n_in = hn::Add(n_in, hn::IfThenElseZero(hn::RebindMask(d, in[i]), hn::Set(d, 1)));
+        }
+        const VF top = hn::Set(df, float(steps_i));
         for (int o = -ref::kVariantOffsets; o <= ref::kVariantOffsets; ++o)
           for (int sv = -ref::kVariantStretches; sv <= ref::kVariantStretches; ++sv) {
             const VF stretch = hn::Set(df, ref::variant_stretch(sv)), shift = hn::Set(df, ref::variant_shift(o, sv, steps_i));
-            V aa = hn::Zero(d), ab = aa, bb = aa;
-            VF at = hn::Zero(df), bt = at;
+            VF sp = hn::Zero(df), spp = sp, spt = sp;
             for (int i = 0; i < 16; ++i) {
-              const auto in = mode == 0 ? hn::Eq(lo_i, lo_i) : hn::RebindMask(d, hn::And(hn::Gt(t[i], inner_lo), hn::Lt(t[i], inner_hi)));
-              const VF x = hn::Add(hn::Mul(hn::Mul(hn::Div(hn::Sub(a0, t[i]), span), fsteps), stretch), shift);
-              const V pos = hn::IfThenElseZero(in, hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(x)), hn::Zero(d)), steps));
-              const V u = hn::IfThenElseZero(in, hn::Sub(steps, pos));
-              aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, pos)), bb = hn::Add(bb, hn::Mul(pos, pos));
-              at = hn::Add(at, hn::IfThenElseZero(hn::RebindMask(df, in), hn::Mul(hn::ConvertTo(df, u), t[i])));
-              bt = hn::Add(bt, hn::IfThenElseZero(hn::RebindMask(df, in), hn::Mul(hn::ConvertTo(df, pos), t[i])));
+              const VF p = hn::IfThenElseZero(in[i], hn::Min(hn::Max(hn::Floor(hn::Add(hn::Mul(base[i], stretch), shift)), hn::Zero(df)), top));
+              sp = hn::Add(sp, p), spp = hn::Add(spp, hn::Mul(p, p)), spt = hn::Add(spt, hn::Mul(p, t[i]));
             }
-            auto valid = lane_ok;
+            const V isp = hn::ConvertTo(d, sp), ispp = hn::ConvertTo(d, spp);
+            const V aa = hn::Add(hn::Sub(hn::Mul(n_in, hn::Set(d, steps_i * steps_i)), hn::Mul(hn::Set(d, 2 * steps_i), isp)), ispp);
+            const V ab = hn::Sub(hn::Mul(steps, isp), ispp);
+            M valid = lane_ok;
             V ia, ib;
-            ls_endpoints(aa, ab, bb, at, bt, fsteps, mode, valid, ia, ib);
+            ls_endpoints(aa, ab, ispp, hn::Sub(hn::Mul(fsteps, sum_t), spt), spt, fsteps, mode, valid, ia, ib);
             if (hn::AllFalse(d, valid)) continue;
-            V cc[16];
-            const VF ce = evaluate(ia, ib, cc, kind);
-            take_where(hn::And(valid, hn::RebindMask(d, hn::Lt(ce, error))), ia, ib, ce, cc);
+            window_at(ia, ib, 0, valid);
           }
       }
+    }
+    // The codes of the chosen endpoints, as their error counted them.
+    const M eight = hn::Gt(r0, r1);
+    V pos8[16], pos6[16], codes[16];
+    error8(r0, r1, eight, pos8);
+    error6(r0, r1, pos6);
+    for (int i = 0; i < 16; ++i) {
+      const V p = hn::IfThenElse(eight, pos8[i], pos6[i]), top = hn::IfThenElse(eight, hn::Set(d, 7), hn::Set(d, 5));
+      V c = hn::IfThenElse(hn::Eq(p, hn::Zero(d)), hn::Zero(d), hn::IfThenElse(hn::Eq(p, top), hn::Set(d, 1), hn::Add(p, hn::Set(d, 1))));
+      const VF dl = hn::Sub(t[i], lo_code), dh = hn::Sub(t[i], hi_code);
+      const V end = hn::IfThenElse(hn::RebindMask(d, hn::Lt(hn::Mul(dh, dh), hn::Mul(dl, dl))), hn::Set(d, 7), hn::Set(d, 6));
+      codes[i] = hn::IfThenElse(hn::Lt(p, hn::Zero(d)), end, c);
     }
     V bits_lo = hn::Zero(d), bits_hi = hn::Zero(d);
     for (int i = 0; i < 8; ++i) {
