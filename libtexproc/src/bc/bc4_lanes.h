@@ -3,7 +3,9 @@
 // bytes.
 //
 // Per block: the values' range, rounded outwards to whole codes, as the
-// eight-value mode's endpoints (equal ends: the six-value mode, flat); and,
+// eight-value mode's endpoints (equal ends: the six-value mode, flat); where
+// that range is narrower than 7 codes, also the eight-value palette of whole
+// code steps over it (exact for 8-bit levels); and,
 // where values lie strictly inside the code range and their own range
 // differs, the six-value mode over those inner values (the range's two ends
 // come free). Each value's palette position is found by rounding (to

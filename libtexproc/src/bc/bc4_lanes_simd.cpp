@@ -102,6 +102,11 @@ void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int l
     const int lo = int(std::floor(mn)), hi = int(std::ceil(mx));
     int r0 = hi > lo ? hi : lo, r1 = lo;
     float error = hi > lo ? error8(val, r0, r1, nullptr) : 0.0f;
+    if (hi > lo && hi - lo < 7) {  // a narrow range: also the palette of whole code steps over it (8-bit levels: exact)
+      const int b = std::min(lo, hi_int - 7);
+      const float e7 = error8(val, b + 7, b, nullptr);
+      if (e7 < error) error = e7, r0 = b + 7, r1 = b;
+    }
     const bool inner = mn6 <= mx6;
     const int lo6 = inner ? int(std::floor(mn6)) : lo, hi6 = inner ? int(std::ceil(mx6)) : hi;
     if (inner && (lo6 != lo || hi6 != hi)) {
@@ -263,13 +268,20 @@ void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, int lev
     const M spread = hn::Gt(hi, lo);
     V r0 = hn::IfThenElse(spread, hi, lo), r1 = lo;
     VF error = hn::IfThenElseZero(hn::RebindMask(df, spread), error8(r0, r1, spread, nullptr));
-    const M inner = hn::RebindMask(d, hn::Le(mn6, mx6));
-    const V lo6 = hn::IfThenElse(inner, hn::ConvertTo(d, hn::Floor(mn6)), lo), hi6 = hn::IfThenElse(inner, hn::ConvertTo(d, hn::Ceil(mx6)), hi);
-    const M try6 = hn::And(inner, hn::Or(hn::Ne(lo6, lo), hn::Ne(hi6, hi)));
     auto take_where = [&](M m, V a, V b, VF e) {
       r0 = hn::IfThenElse(m, a, r0), r1 = hn::IfThenElse(m, b, r1);
       error = hn::IfThenElse(hn::RebindMask(df, m), e, error);
     };
+    const V seven_i = hn::Set(d, 7);
+    const M narrow = hn::And(spread, hn::Lt(hn::Sub(hi, lo), seven_i));
+    if (!hn::AllFalse(d, narrow)) {  // as the reference: whole code steps over a narrow range
+      const V b = hn::Min(lo, hn::Sub(hi_i, seven_i)), a = hn::Add(b, seven_i);
+      const VF e7 = error8(a, b, narrow, nullptr);
+      take_where(hn::And(narrow, hn::RebindMask(d, hn::Lt(e7, error))), a, b, e7);
+    }
+    const M inner = hn::RebindMask(d, hn::Le(mn6, mx6));
+    const V lo6 = hn::IfThenElse(inner, hn::ConvertTo(d, hn::Floor(mn6)), lo), hi6 = hn::IfThenElse(inner, hn::ConvertTo(d, hn::Ceil(mx6)), hi);
+    const M try6 = hn::And(inner, hn::Or(hn::Ne(lo6, lo), hn::Ne(hi6, hi)));
     if (!hn::AllFalse(d, try6)) {
       const VF e6 = error6(lo6, hi6, nullptr);
       take_where(hn::And(try6, hn::RebindMask(d, hn::Lt(e6, error))), lo6, hi6, e6);
