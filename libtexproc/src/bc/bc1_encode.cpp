@@ -266,6 +266,37 @@ void encode_block_by_block(const Bc1Texels& tx, ColorMode mode, Quality q, std::
     if (best.error < 0 || r.error < best.error) best = r;
   };
 
+  // One opaque colour (most of what the lanes leave here): the optimal
+  // single-colour pair through index 2, each mode's palette entry nearest
+  // the colour (the first of equals, as bc1_nearest picks) for all 16.
+  bool one_colour = !tx.transparent[0];
+  for (int i = 1; i < 16 && one_colour; ++i)
+    one_colour = !tx.transparent[i] && tx.r[i] == tx.r[0] && tx.g[i] == tx.g[0] && tx.b[i] == tx.b[0];
+  if (one_colour) {
+    const SingleColorTables& s = single();
+    const int c[3] = {tx.r[0], tx.g[0], tx.b[0]};
+    for (int md = 0; md < (three_allowed ? 2 : 1); ++md) {
+      Result r;
+      for (int k = 0; k < 2; ++k) {
+        r.e.c[k][0] = s.five[md][c[0]][k];
+        r.e.c[k][1] = s.six[md][c[1]][k];
+        r.e.c[k][2] = s.five[md][c[2]][k];
+      }
+      r.four = md == 0;
+      int pal[4][3], nearest = 0, least = -1;
+      palette(r.e, r.four, pal);
+      for (int k = 0; k < (r.four ? 4 : 3); ++k) {
+        const int d = (c[0] - pal[k][0]) * (c[0] - pal[k][0]) + (c[1] - pal[k][1]) * (c[1] - pal[k][1]) + (c[2] - pal[k][2]) * (c[2] - pal[k][2]);
+        if (least < 0 || d < least) least = d, nearest = k;
+      }
+      std::fill(r.idx, r.idx + 16, std::uint8_t(nearest));
+      r.error = 16LL * least;
+      keep(r);
+    }
+    write(best, out);
+    return;
+  }
+
   // Opaque texels only decide the endpoints.
   Bc1Moments m;
   bc1_moments(tx, m);  // SIMD twins
@@ -286,26 +317,6 @@ void encode_block_by_block(const Bc1Texels& tx, ColorMode mode, Quality q, std::
       std::int64_t(m.sq[4]) * n - std::int64_t(m.sum[1]) * m.sum[2], std::int64_t(m.sq[5]) * n - std::int64_t(m.sum[2]) * m.sum[2]};
   float mean[3];
   for (int ch = 0; ch < 3; ++ch) mean[ch] = float(m.sum[ch]) / float(n);
-
-  // One colour: the optimal single-colour pair through index 2.
-  const bool flat = cov_n2[0] == 0 && cov_n2[3] == 0 && cov_n2[5] == 0;
-  if (flat && !any_transparent) {
-    const SingleColorTables& s = single();
-    const int c[3] = {tx.r[0], tx.g[0], tx.b[0]};
-    for (int md = 0; md < (three_allowed ? 2 : 1); ++md) {
-      Endpoints e;
-      for (int k = 0; k < 2; ++k) {
-        e.c[k][0] = s.five[md][c[0]][k];
-        e.c[k][1] = s.six[md][c[1]][k];
-        e.c[k][2] = s.five[md][c[2]][k];
-      }
-      Result r;
-      assign(tx, e, md == 0, false, r);
-      keep(r);
-    }
-    write(best, out);
-    return;
-  }
 
   // Principal axis of the opaque colours: power iteration on the covariance,
   // from its row of greatest variance.

@@ -147,6 +147,9 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
     bool handled[kBc1Batch] = {};
     float alpha[16][kBc4Batch] = {};
     std::uint8_t alpha_blocks[kBc4Batch][8];
+    bool uniform_valid = false;
+    std::uint32_t uniform_texel = 0;
+    std::uint8_t uniform_block[8];
     for (int by = by0; by < by1; ++by)
       for (int bx0 = 0; bx0 < bw; bx0 += kBc1Batch) {
         const int count = std::min(kBc1Batch, bw - bx0);
@@ -168,7 +171,17 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
             std::memcpy(color_dst, color[k], 8);
           } else {
             if (rows_direct && colour_only) gather_rgba8(img, bx0 + k, by, rgba[k]);
-            encode_bc1_color_block_by_block(rgba[k], color_mode, q, color_dst);
+            // A block of one texel value (what the lanes leave, mostly) is
+            // the same block as the last such block of that value.
+            const std::uint32_t first = pack_texel(rgba[k][0]);
+            bool uniform = true;
+            for (int i = 1; i < 16 && uniform; ++i) uniform = pack_texel(rgba[k][i]) == first;
+            if (uniform && uniform_valid && uniform_texel == first) {
+              std::memcpy(color_dst, uniform_block, 8);
+            } else {
+              encode_bc1_color_block_by_block(rgba[k], color_mode, q, color_dst);
+              if (uniform) uniform_valid = true, uniform_texel = first, std::memcpy(uniform_block, color_dst, 8);
+            }
           }
           if (colour_only) continue;
           if (bc2) {  // explicit 4-bit alpha, rounded
