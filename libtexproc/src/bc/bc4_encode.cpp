@@ -156,7 +156,7 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
         // RGBA8 texels straight from the rows where they can be.
         const bool rows_direct = lanes && gather_rows_rgba8(img, bx0, by, count, texel);
         for (int k = 0; k < count; ++k) {
-          if (rows_direct && colour_only) continue;  // gathered below only if the lanes leave it
+          if (rows_direct) continue;  // gathered below only if the lanes leave it
           gather_rgba8(img, bx0 + k, by, rgba[k]);
           if (lanes && !rows_direct)
             for (int i = 0; i < 16; ++i) texel[i][k] = pack_texel(rgba[k][i]);
@@ -170,7 +170,7 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
           if (lanes && handled[k]) {
             std::memcpy(color_dst, color[k], 8);
           } else {
-            if (rows_direct && colour_only) gather_rgba8(img, bx0 + k, by, rgba[k]);
+            if (rows_direct) gather_rgba8(img, bx0 + k, by, rgba[k]);
             // A block of one texel value (what the lanes leave, mostly) is
             // the same block as the last such block of that value.
             const std::uint32_t first = pack_texel(rgba[k][0]);
@@ -184,13 +184,15 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
             }
           }
           if (colour_only) continue;
+          // The lanes' texels hold every block's alpha; `max` has the gathered ones.
+          auto alpha_of = [&](int i) { return lanes ? int(texel[i][k] >> 24) : int(rgba[k][i][3]); };
           if (bc2) {  // explicit 4-bit alpha, rounded
             for (int i = 0; i < 16; i += 2) {
-              const int a0 = (rgba[k][i][3] * 15 + 127) / 255, a1 = (rgba[k][i + 1][3] * 15 + 127) / 255;
+              const int a0 = (alpha_of(i) * 15 + 127) / 255, a1 = (alpha_of(i + 1) * 15 + 127) / 255;
               dst[i / 2] = std::uint8_t(a0 | a1 << 4);
             }
           } else if (lanes) {  // BC3: the alpha as a BC4 block, in lanes below
-            for (int i = 0; i < 16; ++i) alpha[i][k] = rgba[k][i][3];
+            for (int i = 0; i < 16; ++i) alpha[i][k] = float(alpha_of(i));
           } else {
             float a[16];
             for (int i = 0; i < 16; ++i) a[i] = rgba[k][i][3];
