@@ -1,13 +1,14 @@
-// BC4 benchmark: texproc's encoder at each quality against libsquish's BC4
-// (Debian's libsquish-dev 1.15, a scalar build) on the corpus heightmaps,
-// single thread, in one run. PSNR is scored with the specification's exact
-// decoding (texproc's decoder; libsquish's own BC4 decoding is not used).
+// BC4 and BC5 benchmark: texproc's encoder at each quality against
+// libsquish's BC4 and BC5 (Debian's libsquish-dev 1.15, a scalar build) on
+// the corpus heightmaps (BC4) and normal maps' X and Y (BC5), single thread,
+// in one run; and BC4 on two threads. PSNR is scored with the
+// specification's exact decoding (texproc's decoder; libsquish's own BC4/BC5
+// decoding is not used), BC5's as the mean of its two channels'.
 #include <benchmark/benchmark.h>
 #include <squish.h>
 
 #include <cmath>
 #include <cstdio>
-#include <map>
 
 #include "bench_common.h"
 #include "texproc/block_decode.h"
@@ -52,10 +53,58 @@ double psnr(const Image& src, const std::vector<std::uint8_t>& blocks) {
   return 10 * std::log10(255.0 * 255.0 / (se / (double(src.width()) * src.height())));
 }
 
-std::map<std::string, double> g_psnr;
+// BC5: RGBA8 crops of corpus tangent-space normal maps (X in red, Y in green).
+const std::vector<Image>& normal_maps() {
+  static const std::vector<Image> n = [] {
+    std::vector<Image> out;
+    for (const char* f : {"normal_ts/qt3d_copper_brushed_normal.png", "normal_ts/qt3d_water_normal_512.jpg",
+                          "normal_ts/ufoai_door061_nm_alphaheight_512x602.png", "normal_ts/stellarium_stein_mauerwerk_bump_256.png",
+                          "normal_ts/qt3d_moonnormal_1638x819.jpg", "normal_ts/ufoai_rock017_nm_alphaheight.png"})
+      out.push_back(bench::color_crop(f));
+    return out;
+  }();
+  return n;
+}
 
-void run(benchmark::State& state, const std::string& who, Quality q) {
+// The mean of X's and Y's PSNR, each over [0, 255] with the exact decoding.
+double psnr_xy(const Image& src, const std::vector<std::uint8_t>& blocks) {
+  const Image d = bench::decode_blocks(src.width(), src.height(), TexelFormat::bc5_unorm, blocks, PixelType::f32);
+  double p = 0;
+  for (int c = 0; c < 2; ++c) {
+    double se = 0;
+    for (int y = 0; y < src.height(); ++y)
+      for (int x = 0; x < src.width(); ++x) se += std::pow(d.get(x, y, c) * 255.0 - src.row<std::uint8_t>(y)[4 * x + c], 2);
+    p += 10 * std::log10(255.0 * 255.0 / (se / (double(src.width()) * src.height())));
+  }
+  return p / 2;
+}
+
+void run_bc5(benchmark::State& state, const std::string& who, Quality q) {
   ThreadLimit one(1);
+  double pixels = 0, psnr_sum = 0;
+  for (auto _ : state) {
+    psnr_sum = 0;
+    for (const Image& img : normal_maps()) {
+      std::vector<std::uint8_t> blocks;
+      if (who == "libsquish") {  // kBc5: red and green
+        blocks.resize(squish::GetStorageRequirements(img.width(), img.height(), squish::kBc5));
+        squish::CompressImage(img.data(), img.width(), img.height(), blocks.data(), squish::kBc5);
+      } else {
+        blocks = compress_image(img.view(), TexelFormat::bc5_unorm, q);
+      }
+      benchmark::DoNotOptimize(blocks.data());
+      state.PauseTiming();
+      psnr_sum += psnr_xy(img, blocks);
+      state.ResumeTiming();
+    }
+  }
+  for (const Image& img : normal_maps()) pixels += double(img.width()) * img.height();
+  state.counters["MPix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["PSNR"] = psnr_sum / double(normal_maps().size());
+}
+
+void run_threads(benchmark::State& state, const std::string& who, Quality q, int threads) {
+  ThreadLimit limit(threads);
   double pixels = 0, psnr_sum = 0;
   for (auto _ : state) {
     psnr_sum = 0;
@@ -81,11 +130,23 @@ void run(benchmark::State& state, const std::string& who, Quality q) {
   state.counters["PSNR"] = psnr_sum / double(heights().size());
 }
 
+void run(benchmark::State& state, const std::string& who, Quality q) { run_threads(state, who, q, 1); }
+
 }  // namespace
 
 BENCHMARK_CAPTURE(run, libsquish_bc4, std::string("libsquish"), Quality::normal)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(run, texproc_fast, std::string("texproc"), Quality::fast)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(run, texproc_normal, std::string("texproc"), Quality::normal)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(run, texproc_high, std::string("texproc"), Quality::high)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+// Thread scaling (wall-clock time): the heightmaps above on two threads.
+BENCHMARK_CAPTURE(run_threads, texproc_normal_2_threads, std::string("texproc"), Quality::normal, 2)
+    ->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+BENCHMARK_CAPTURE(run_threads, texproc_high_2_threads, std::string("texproc"), Quality::high, 2)
+    ->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+// BC5 on normal maps' X and Y.
+BENCHMARK_CAPTURE(run_bc5, bc5_libsquish, std::string("libsquish"), Quality::normal)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK_CAPTURE(run_bc5, bc5_texproc_fast, std::string("texproc"), Quality::fast)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK_CAPTURE(run_bc5, bc5_texproc_normal, std::string("texproc"), Quality::normal)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK_CAPTURE(run_bc5, bc5_texproc_high, std::string("texproc"), Quality::high)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 
 BENCHMARK_MAIN();

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -11,24 +12,43 @@
 
 namespace texproc::bench {
 
-// RGBA8 crops (multiples of 4) of six corpus colour textures (1.4 MPix).
+// An RGBA8 crop (multiples of 4) of a corpus image's colour, alpha opaque.
+inline Image color_crop(const std::string& corpus_path) {
+  const Image src = read_image(std::string(TEXPROC_CORPUS_DIR) + "/" + corpus_path);
+  const int w = src.width() / 4 * 4, h = src.height() / 4 * 4;
+  Image img(w, h, 4, PixelType::u8);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 4; ++c) img.set(x, y, c, c == 3 ? 1.0f : src.get(x, y, std::min(c, src.channels() - 1)));
+  return img;
+}
+
+// RGBA8 crops of six corpus colour textures (1.4 MPix).
 inline const std::vector<Image>& color_textures() {
   static const std::vector<Image> t = [] {
     std::vector<Image> out;
     for (const char* f : {"albedo_srgb/colobot_desert4.png", "albedo_srgb/ufoai_rock017.png", "photo/skimage_astronaut_512.png",
                           "albedo_srgb/wz2100_terrain_tile10_128_palette.png", "photo/skimage_coffee_600x400.png",
-                          "albedo_srgb/stellarium_stein_mauerwerk_512_rgba_opaque.png"}) {
-      const Image src = read_image(std::string(TEXPROC_CORPUS_DIR) + "/" + f);
-      const int w = src.width() / 4 * 4, h = src.height() / 4 * 4;
-      Image img(w, h, 4, PixelType::u8);
-      for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-          for (int c = 0; c < 4; ++c) img.set(x, y, c, c == 3 ? 1.0f : src.get(x, y, std::min(c, src.channels() - 1)));
-      out.push_back(std::move(img));
-    }
+                          "albedo_srgb/stellarium_stein_mauerwerk_512_rgba_opaque.png"})
+      out.push_back(color_crop(f));
     return out;
   }();
   return t;
+}
+
+// The corpus paths of every albedo and photo in MANIFEST.tsv (15 images,
+// 17 MPix), in its order.
+inline std::vector<std::string> corpus_color_paths() {
+  std::vector<std::string> out;
+  std::ifstream manifest(std::string(TEXPROC_CORPUS_DIR) + "/MANIFEST.tsv");
+  std::string line;
+  while (std::getline(manifest, line)) {
+    const std::size_t tab = line.find('\t'), tab2 = line.find('\t', tab + 1);
+    if (tab == std::string::npos || tab2 == std::string::npos) continue;
+    const std::string category = line.substr(tab + 1, tab2 - tab - 1);
+    if (category == "albedo_srgb" || category == "photo") out.push_back(line.substr(0, tab));
+  }
+  return out;
 }
 
 // One level of `blocks` (format f, width x height texels) decoded to `type`.

@@ -3,6 +3,8 @@
 // (it takes about two minutes on two cores):
 //
 //   format_bounds [BC1_STRIDE [ETC1_STRIDE [EAC_STRIDE]]]
+//   format_bounds --bc1-corpus [STRIDE]   (BC1 alone, every corpus albedo
+//                                          and photo, default one block in 256)
 //
 // BC1: on every BC1_STRIDE-th block (default 32) of the benchmarks' colour
 // textures, the least squared error of any BC1 block, by branch and bound
@@ -229,14 +231,14 @@ std::vector<long> block_errors(const Image& src, const Image& d, const std::vect
   return out;
 }
 
-void bc1_bounds(int stride) {
-  std::printf("BC1, one block in %d of the colour textures: PSNR (dB)\n", stride);
+void bc1_bounds(int stride, const std::vector<Image>& textures) {
+  std::printf("BC1, one block in %d of %zu colour textures: PSNR (dB)\n", stride, textures.size());
   const char* names[9] = {"range", "cluster", "iterative", "fast", "normal", "high", "max", "optimum", "+black"};
   std::printf("%-7s", "blocks");
   for (const char* n : names) std::printf(" %9s", n);
   std::printf("\n");
   double sum[9] = {};
-  for (const Image& img : bench::color_textures()) {
+  for (const Image& img : textures) {
     const int w = img.width(), h = img.height(), bw = w / 4, count = bw * (h / 4);
     std::vector<int> ids;
     for (int b = 0; b < count; b += stride) ids.push_back(b);
@@ -270,7 +272,7 @@ void bc1_bounds(int stride) {
     }
     std::printf("\n");
   }
-  const double n = double(bench::color_textures().size());
+  const double n = double(textures.size());
   std::printf("%-7s", "mean");
   for (double v : sum) std::printf(" %9.3f", v / n);
   std::printf("\nagainst iterative cluster fit: high %+.3f, max %+.3f, optimum %+.3f, with black %+.3f dB; "
@@ -397,13 +399,28 @@ void eac_bounds(int stride) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "--bc1-corpus") {
+    const int stride = argc > 2 ? std::atoi(argv[2]) : 256;
+    if (stride < 1) {
+      std::fprintf(stderr, "usage: format_bounds --bc1-corpus [STRIDE] (a positive block stride)\n");
+      return 2;
+    }
+    std::vector<Image> all;
+    for (const std::string& path : bench::corpus_color_paths()) {
+      std::printf("  %s\n", path.c_str());
+      all.push_back(bench::color_crop(path));
+    }
+    bc1_bounds(stride, all);
+    return 0;
+  }
   const int bc1_stride = argc > 1 ? std::atoi(argv[1]) : 32, etc1_stride = argc > 2 ? std::atoi(argv[2]) : 64,
             eac_stride = argc > 3 ? std::atoi(argv[3]) : 4;
   if (bc1_stride < 1 || etc1_stride < 1 || eac_stride < 1) {
-    std::fprintf(stderr, "usage: format_bounds [BC1_STRIDE [ETC1_STRIDE [EAC_STRIDE]]] (positive block strides)\n");
+    std::fprintf(stderr, "usage: format_bounds [BC1_STRIDE [ETC1_STRIDE [EAC_STRIDE]]] (positive block strides)\n"
+                         "       format_bounds --bc1-corpus [STRIDE] (BC1 alone, on every corpus albedo and photo)\n");
     return 2;
   }
-  bc1_bounds(bc1_stride);
+  bc1_bounds(bc1_stride, bench::color_textures());
   etc1_bounds(etc1_stride);
   eac_bounds(eac_stride);
   return 0;
