@@ -3,7 +3,7 @@
 // the corpus heightmaps (BC4) and normal maps' X and Y (BC5), single thread,
 // in one run; and BC4 on two threads. PSNR is scored with the
 // specification's exact decoding (texproc's decoder; libsquish's own BC4/BC5
-// decoding is not used), BC5's as the mean of its two channels'.
+// decoding is not used); BC5's over both channels, and each channel's.
 #include <benchmark/benchmark.h>
 #include <squish.h>
 
@@ -66,24 +66,25 @@ const std::vector<Image>& normal_maps() {
   return n;
 }
 
-// The mean of X's and Y's PSNR, each over [0, 255] with the exact decoding.
-double psnr_xy(const Image& src, const std::vector<std::uint8_t>& blocks) {
+// PSNR over [0, 255] with the exact decoding: psnr[0] X, psnr[1] Y,
+// psnr[2] both (the squared errors of the two channels pooled, as RGB PSNR
+// pools three: a channel coded losslessly does not run off to infinity).
+void psnr_xy(const Image& src, const std::vector<std::uint8_t>& blocks, double psnr[3]) {
   const Image d = bench::decode_blocks(src.width(), src.height(), TexelFormat::bc5_unorm, blocks, PixelType::f32);
-  double p = 0;
-  for (int c = 0; c < 2; ++c) {
-    double se = 0;
+  const double n = double(src.width()) * src.height();
+  double se[2] = {};
+  for (int c = 0; c < 2; ++c)
     for (int y = 0; y < src.height(); ++y)
-      for (int x = 0; x < src.width(); ++x) se += std::pow(d.get(x, y, c) * 255.0 - src.row<std::uint8_t>(y)[4 * x + c], 2);
-    p += 10 * std::log10(255.0 * 255.0 / (se / (double(src.width()) * src.height())));
-  }
-  return p / 2;
+      for (int x = 0; x < src.width(); ++x) se[c] += std::pow(d.get(x, y, c) * 255.0 - src.row<std::uint8_t>(y)[4 * x + c], 2);
+  for (int c = 0; c < 2; ++c) psnr[c] = 10 * std::log10(255.0 * 255.0 / (se[c] / n));
+  psnr[2] = 10 * std::log10(255.0 * 255.0 / ((se[0] + se[1]) / (2 * n)));
 }
 
 void run_bc5(benchmark::State& state, const std::string& who, Quality q) {
   ThreadLimit one(1);
-  double pixels = 0, psnr_sum = 0;
+  double pixels = 0, psnr_sum[3] = {};
   for (auto _ : state) {
-    psnr_sum = 0;
+    psnr_sum[0] = psnr_sum[1] = psnr_sum[2] = 0;
     for (const Image& img : normal_maps()) {
       std::vector<std::uint8_t> blocks;
       if (who == "libsquish") {  // kBc5: red and green
@@ -94,13 +95,18 @@ void run_bc5(benchmark::State& state, const std::string& who, Quality q) {
       }
       benchmark::DoNotOptimize(blocks.data());
       state.PauseTiming();
-      psnr_sum += psnr_xy(img, blocks);
+      double p[3];
+      psnr_xy(img, blocks, p);
+      for (int k = 0; k < 3; ++k) psnr_sum[k] += p[k];
       state.ResumeTiming();
     }
   }
   for (const Image& img : normal_maps()) pixels += double(img.width()) * img.height();
+  const double n = double(normal_maps().size());
   state.counters["MPix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsIterationInvariantRate);
-  state.counters["PSNR"] = psnr_sum / double(normal_maps().size());
+  state.counters["PSNR"] = psnr_sum[2] / n;
+  state.counters["PSNR_X"] = psnr_sum[0] / n;
+  state.counters["PSNR_Y"] = psnr_sum[1] / n;
 }
 
 void run_threads(benchmark::State& state, const std::string& who, Quality q, int threads) {
