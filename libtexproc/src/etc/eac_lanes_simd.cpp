@@ -44,6 +44,32 @@ inline int mult_below(int level) { return level < 2 ? 0 : 1; }
 inline int mult_above(int level) { return level == 0 ? 0 : level == 1 ? 1 : 2; }
 inline int base_radius(int level) { return level == 0 ? 0 : level == 1 ? 2 : 5; }
 
+// The palette of (base, mult, table) in ascending order of modifier, as
+// floats clamped to the kind's range.
+inline void palette(const Kind& K, int base, int mult, int table, float pal[8]) {
+  for (int j = 0; j < 8; ++j) {
+    const int m = kEacModifiers[table][kAscending[j]];
+    const int value = base * K.unit_i + K.offset_i + (mult == 0 ? m * K.zero_step : m * mult * K.unit_i);
+    pal[j] = std::min(std::max(float(value), K.lo_end), K.hi_end);
+  }
+}
+
+// Each value's place in the ascending palette: how many midpoints between
+// neighbours it lies above (the nearest entry; the lower of two at a tie).
+inline int place(float t, const float pal[8]) {
+  int s = 0;
+  for (int j = 0; j < 7; ++j) s += t > (pal[j] + pal[j + 1]) * 0.5f ? 1 : 0;
+  return s;
+}
+
+// The chosen block's codes (values clamped as the search had them): worked
+// out once, after the search has scored its candidates by error alone.
+inline void codes_of(const Kind& K, const float t[16], int base, int mult, int table, int codes[16]) {
+  float pal[8];
+  palette(K, base, mult, table, pal);
+  for (int i = 0; i < 16; ++i) codes[i] = kAscending[place(t[i], pal)];
+}
+
 inline void pack(int base, int mult, int table, const int codes[16], std::uint8_t out[8]) {
   std::uint64_t v = std::uint64_t(base & 255) << 56 | std::uint64_t(mult) << 52 | std::uint64_t(table) << 48;
   for (int y = 0; y < 4; ++y)
@@ -65,7 +91,7 @@ void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, int
     }
     const float centre = (lo + hi) * 0.5f;
     float best = -1.0f;
-    int best_base = 0, best_mult = 0, best_table = 0, best_codes[16] = {};
+    int best_base = 0, best_mult = 0, best_table = 0;
     for (int table = 0; table < 16; ++table) {
       const int mn = kEacModifiers[table][3], mx = kEacModifiers[table][7];
       const int m0 = int(std::floor((hi - lo) / (float(mx - mn) * K.unit) + 0.5f));
@@ -76,30 +102,20 @@ void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, int
         const int b0 = std::clamp(int(std::floor(bf + 0.5f)), K.base_lo, K.base_hi);
         for (int base = b0 - eac::base_radius(level); base <= b0 + eac::base_radius(level); ++base) {
           if (base < K.base_lo || base > K.base_hi) continue;
-          // The palette in ascending order, and the midpoints between.
           float pal[8];
-          for (int j = 0; j < 8; ++j) {
-            const int m = kEacModifiers[table][eac::kAscending[j]];
-            const int value = base * K.unit_i + K.offset_i + (mult == 0 ? m * K.zero_step : m * mult * K.unit_i);
-            pal[j] = std::min(std::max(float(value), K.lo_end), K.hi_end);
-          }
+          eac::palette(K, base, mult, table, pal);
           float err = 0.0f;
-          int codes[16];
           for (int i = 0; i < 16; ++i) {
-            int s = 0;
-            for (int j = 0; j < 7; ++j) s += t[i] > (pal[j] + pal[j + 1]) * 0.5f ? 1 : 0;
-            const float d = t[i] - pal[s];
+            const float d = t[i] - pal[eac::place(t[i], pal)];
             err += d * d;
-            codes[i] = eac::kAscending[s];
           }
-          if (best < 0.0f || err < best) {
-            best = err, best_base = base, best_mult = mult, best_table = table;
-            std::copy(codes, codes + 16, best_codes);
-          }
+          if (best < 0.0f || err < best) best = err, best_base = base, best_mult = mult, best_table = table;
         }
       }
     }
-    eac::pack(best_base, best_mult, best_table, best_codes, out[k]);
+    int codes[16];
+    eac::codes_of(K, t, best_base, best_mult, best_table, codes);
+    eac::pack(best_base, best_mult, best_table, codes, out[k]);
     error[k] = best;
   }
 }
@@ -130,8 +146,7 @@ void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, int l
     }
     const VF centre = hn::Mul(hn::Add(lo, hi), half);
     VF best = hn::Set(df, -1.0f);
-    V best_base = hn::Zero(d), best_mult = best_base, best_table = best_base, best_codes[16];
-    for (auto& c : best_codes) c = hn::Zero(d);
+    V best_base = hn::Zero(d), best_mult = best_base, best_table = best_base;
     for (int table = 0; table < 16; ++table) {
       const int mn = kEacModifiers[table][3], mx = kEacModifiers[table][7];
       const V m0 = hn::ConvertTo(d, hn::Floor(hn::Add(hn::Div(hn::Sub(hi, lo), hn::Set(df, float(mx - mn) * K.unit)), half)));
@@ -158,37 +173,33 @@ void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, int l
             pal[j] = hn::Min(hn::Max(hn::ConvertTo(df, value), lo_end), hi_end);
           }
           for (int j = 0; j < 7; ++j) mid[j] = hn::Mul(hn::Add(pal[j], pal[j + 1]), half);
+          // The nearest entry: the palette ascends, so the last midpoint a
+          // value lies above picks it (eac::place).
           VF err = hn::Zero(df);
-          V codes[16];
           for (int i = 0; i < 16; ++i) {
             VF p = pal[0];
-            V code = hn::Set(d, eac::kAscending[0]);
-            for (int j = 0; j < 7; ++j) {
-              const auto above = hn::Gt(t[i], mid[j]);
-              p = hn::IfThenElse(above, pal[j + 1], p);
-              code = hn::IfThenElse(hn::RebindMask(d, above), hn::Set(d, eac::kAscending[j + 1]), code);
-            }
+            for (int j = 0; j < 7; ++j) p = hn::IfThenElse(hn::Gt(t[i], mid[j]), pal[j + 1], p);
             const VF diff = hn::Sub(t[i], p);
             err = hn::Add(err, hn::Mul(diff, diff));
-            codes[i] = code;
           }
           const auto take = hn::And(ok, hn::RebindMask(d, hn::Or(hn::Lt(best, hn::Zero(df)), hn::Lt(err, best))));
           best = hn::IfThenElse(hn::RebindMask(df, take), err, best);
           best_base = hn::IfThenElse(take, base, best_base);
           best_mult = hn::IfThenElse(take, mult, best_mult);
           best_table = hn::IfThenElse(take, hn::Set(d, table), best_table);
-          for (int i = 0; i < 16; ++i) best_codes[i] = hn::IfThenElse(take, codes[i], best_codes[i]);
         }
       }
     }
-    HWY_ALIGN std::int32_t base_o[kEacBatch], mult_o[kEacBatch], table_o[kEacBatch], codes_o[16][kEacBatch];
-    HWY_ALIGN float err_o[kEacBatch];
+    HWY_ALIGN std::int32_t base_o[kEacBatch], mult_o[kEacBatch], table_o[kEacBatch];
+    HWY_ALIGN float err_o[kEacBatch], t_o[16][kEacBatch];
     hn::Store(best_base, d, base_o), hn::Store(best_mult, d, mult_o), hn::Store(best_table, d, table_o);
     hn::Store(best, df, err_o);
-    for (int i = 0; i < 16; ++i) hn::Store(best_codes[i], d, codes_o[i]);
+    for (int i = 0; i < 16; ++i) hn::Store(t[i], df, t_o[i]);
     for (int k = 0; k < lanes && k0 + k < count; ++k) {
+      float tk[16];
       int codes[16];
-      for (int i = 0; i < 16; ++i) codes[i] = codes_o[i][k];
+      for (int i = 0; i < 16; ++i) tk[i] = t_o[i][k];
+      eac::codes_of(K, tk, base_o[k], mult_o[k], table_o[k], codes);
       eac::pack(base_o[k], mult_o[k], table_o[k], codes, out[k0 + k]);
       error[k0 + k] = err_o[k];
     }
