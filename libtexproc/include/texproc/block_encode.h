@@ -11,12 +11,15 @@
 namespace texproc {
 
 // How hard the encoders search (per format in docs/compression.md). BC4/BC5:
-// fast = min/max endpoints; normal = + both modes, least-squares refinement,
-// +-1 window; high = +-3 and +-8 windows; max = every endpoint pair. BC1:
-// fast = principal axis; normal = + least squares and a local cluster fit;
-// high = + full cluster fit and endpoint nudging; max = iterated cluster fit. ETC: fast = three tables at
-// the mean; normal = + seeds and re-centring, planar, T/H; high = every
-// table refined, +-1 base search, every T/H distance; max = +-2.
+// fast = the range's ends (and whole code steps over a narrow range);
+// normal = + both modes, least-squares refinement, +-1 window; high = +-2
+// window and 45 partition variants a mode; max = every endpoint pair. BC1:
+// fast = principal axis, one least-squares fit; normal = + refits, 15
+// partition variants along the axis, endpoint nudges, the three-colour
+// mode; high = 45 variants, each refitted; max = iterated full cluster fit.
+// ETC: fast = three tables at the mean; normal = + seeds and re-centring,
+// planar, T/H; high = every table refined, +-1 base search, every T/H
+// distance; max = +-2.
 enum class Quality { fast, normal, high, max };
 Quality parse_quality(std::string_view name);  // throws Error{bad_arguments}
 const char* to_string(Quality q);
