@@ -29,7 +29,7 @@ struct CompressArgs {
   ChainArgs chain;
   std::string format, quality = "normal", wrap = "clamp", dds_header = "auto";
   std::string transparent_color = "keep";
-  bool mips = false, normal_map = false, linear = false, srgb = false, report = false;
+  bool mips = false, normal_map = false, linear = false, srgb = false, report = false, bc1_black = false;
   // From the options, once (validate):
   Quality q = Quality::normal;
   DdsHeader header = DdsHeader::automatic;
@@ -65,6 +65,8 @@ void validate(CompressArgs& a) {
   a.header = parse_dds_header(a.dds_header);
   a.transparent = parse_transparent_color(a.transparent_color);
   format_for(a.format, false);  // a known format, or an error now
+  if (a.bc1_black && a.format != "bc1")
+    throw Error(ErrorCode::bad_arguments, "--bc1-black applies to --format bc1 only (opaque BC1), not '" + a.format + "'");
   a.mip.filter.kind = parse_filter_kind(a.chain.filter);
   a.mip.filter.sigma = a.chain.sigma;
   a.mip.wrap = parse_wrap_mode(a.wrap);
@@ -146,7 +148,9 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
     // premultiplied, so it has no fringes; the GPU's filtering of straight
     // alpha would add them back from the colour under alpha 0).
     if (format_info(format).channels == 4 && !a.normal_map) apply_transparent_color(l, a.transparent);
-    t.images.push_back(compress_image(l.view(), format, a.q));
+    EncodeOptions options;
+    options.bc1_black = a.bc1_black;
+    t.images.push_back(compress_image(l.view(), format, a.q, options));
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   write_texture(output, t, a.header);
@@ -210,6 +214,9 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option("--transparent-color", args->transparent_color,
                   "Colour under alpha 0 (bc1a, bc2, bc3, etc2a1, etc2a): keep, bleed (from the visible texels), zero")
       ->capture_default_str();
+  cmd->add_flag("--bc1-black", args->bc1_black,
+                "bc1: dark texels may take the three-colour mode's black where that lowers the error (Direct3D "
+                "reads alpha 0 there: for KTX2/Vulkan/OpenGL BC1 RGB, or shaders that ignore alpha)");
   cmd->add_flag("--report", args->report, "Decode level 0 again and report its PSNR (all channels, RGB, each channel)");
   add_common_options(*cmd, args->common);
   set_runner(*cmd, [args] {

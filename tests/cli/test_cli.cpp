@@ -683,6 +683,40 @@ TEST(Cli, CompressBc3NormalMapIsDxt5nm) {
   fs::remove_all(dir);
 }
 
+// --bc1-black: opaque BC1 only (an error naming the flag otherwise); on line
+// art it lowers the error of what is written.
+TEST(Cli, Bc1BlackFlag) {
+  const std::string dir = temp_dir("cli_bc1_black");
+  Image img(64, 32, 3, PixelType::u8);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const bool ink = (x + y) % 7 == 0 || x % 9 == 0;
+      img.row<std::uint8_t>(y)[3 * x] = ink ? 0 : std::uint8_t(150 + x);
+      img.row<std::uint8_t>(y)[3 * x + 1] = ink ? 0 : std::uint8_t(80 + 2 * y);
+      img.row<std::uint8_t>(y)[3 * x + 2] = ink ? 0 : 60;
+    }
+  write_image(dir + "/art.png", img.view());
+  RunResult bad = run_texproc("compress " + dir + "/art.png -o " + dir + "/a.dds --format bc3 --bc1-black");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("--bc1-black"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir + "/a.dds"));
+  double se[2] = {};
+  for (int black = 0; black < 2; ++black) {
+    const std::string out = dir + "/art" + std::to_string(black) + ".ktx2";
+    RunResult r = run_texproc("compress " + dir + "/art.png -o " + out + " --format bc1 --linear -q" + (black ? " --bc1-black" : ""));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Image d = decode_texture_image(read_texture(out), 0, 0, 0, PixelType::u8);
+    for (int y = 0; y < 32; ++y)
+      for (int x = 0; x < 64; ++x)
+        for (int c = 0; c < 3; ++c) {
+          const double e = double(d.row<std::uint8_t>(y)[d.channels() * x + c]) - img.row<std::uint8_t>(y)[3 * x + c];
+          se[black] += e * e;
+        }
+  }
+  EXPECT_LT(se[1], se[0] * 0.8);
+  fs::remove_all(dir);
+}
+
 // NVIDIA Texture Tools' nvdecompress (Debian's libnvtt-bin 2.0) decodes
 // texproc's legacy-header BC1-BC5 files to the texels texproc's decoder gives,
 // within one 8-bit level (BC1's interpolation rounding; NVTT rounds RGTC to

@@ -43,4 +43,17 @@ double bc4_block_error(const std::uint8_t block[8], const float values[16], bool
 // Throws Error{unsupported} for formats that are not block formats.
 std::vector<std::uint8_t> compress_image(const ImageView& image, TexelFormat format, Quality q);
 
+// Choices beyond the quality level.
+struct EncodeOptions {
+  // Opaque BC1 (bc1_rgb_*): a texel may take the three-colour mode's black
+  // (index 3) where that lowers the block's error (dark texels beside
+  // colour: line art, text, starfields). Off by default: Direct3D's BC1
+  // decodes that index as transparent black (alpha 0) even in a texture
+  // meant to be opaque, so turn it on only where alpha is not read (Vulkan's
+  // and OpenGL's BC1 RGB formats, KTX2's VK_FORMAT_BC1_RGB_*, return
+  // opaque black there). Other formats ignore it.
+  bool bc1_black = false;
+};
+std::vector<std::uint8_t> compress_image(const ImageView& image, TexelFormat format, Quality q, const EncodeOptions& options);
+
 }  // namespace texproc

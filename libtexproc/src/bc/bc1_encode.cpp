@@ -468,4 +468,73 @@ void encode_bc1_color_block_by_block(const std::uint8_t rgba[16][4], ColorMode m
   encode_block_by_block(tx, mode, q, out);
 }
 
+
+namespace {
+// Each texel's squared RGB error under `block` as the decoder reads it (the
+// three-colour mode's index 3 as black); returns their sum.
+long long block_errors(const std::uint8_t block[8], const std::uint8_t rgba[16][4], int err[16]) {
+  const int c0 = block[0] | block[1] << 8, c1 = block[2] | block[3] << 8;
+  Endpoints e;
+  for (int k = 0; k < 2; ++k) {
+    const int c = k ? c1 : c0;
+    e.c[k][0] = c >> 11, e.c[k][1] = c >> 5 & 63, e.c[k][2] = c & 31;
+  }
+  int pal[4][3];
+  palette(e, c0 > c1, pal);
+  const std::uint32_t bits = std::uint32_t(block[4]) | std::uint32_t(block[5]) << 8 | std::uint32_t(block[6]) << 16 | std::uint32_t(block[7]) << 24;
+  long long total = 0;
+  for (int i = 0; i < 16; ++i) {
+    const int* p = pal[bits >> (2 * i) & 3];
+    err[i] = 0;
+    for (int c = 0; c < 3; ++c) err[i] += (rgba[i][c] - p[c]) * (rgba[i][c] - p[c]);
+    total += err[i];
+  }
+  return total;
+}
+}  // namespace
+
+void bc1_try_black(const std::uint8_t rgba[16][4], Quality q, std::uint8_t block[8]) {
+  int err[16], dark[16];
+  long long total = block_errors(block, rgba, err);
+  for (int i = 0; i < 16; ++i) dark[i] = rgba[i][0] * rgba[i][0] + rgba[i][1] * rgba[i][1] + rgba[i][2] * rgba[i][2];
+  // The texel sets given index 3: those nearer black than to their colour
+  // now, and those within a distance of black (about 4, 8 and 16 levels a
+  // channel); then once more from the best block's colours.
+  std::uint32_t done = 0;  // sets tried, as a bit per texel... (first of each kept below)
+  std::uint32_t tried[8];
+  int n_tried = 0;
+  auto attempt = [&](std::uint32_t set) {
+    if (set == 0 || total == 0) return;
+    for (int t = 0; t < n_tried; ++t)
+      if (tried[t] == set) return;
+    if (n_tried < 8) tried[n_tried++] = set;
+    std::uint8_t marked[16][4];
+    for (int i = 0; i < 16; ++i) {
+      std::memcpy(marked[i], rgba[i], 3);
+      marked[i][3] = set >> i & 1 ? 0 : 255;  // alpha 0: index 3, out of the fit
+    }
+    std::uint8_t candidate[8];
+    encode_bc1_color_block_by_block(marked, ColorMode::bc1_punch_through, q, candidate);
+    int cand_err[16];
+    const long long cand_total = block_errors(candidate, rgba, cand_err);
+    if (cand_total >= total) return;
+    std::memcpy(block, candidate, 8);
+    std::memcpy(err, cand_err, sizeof err);
+    total = cand_total;
+  };
+  auto nearer_black = [&] {
+    std::uint32_t set = 0;
+    for (int i = 0; i < 16; ++i) set |= std::uint32_t(dark[i] < err[i]) << i;
+    return set;
+  };
+  attempt(nearer_black());
+  for (int within : {48, 192, 768}) {
+    std::uint32_t set = 0;
+    for (int i = 0; i < 16; ++i) set |= std::uint32_t(dark[i] <= within) << i;
+    attempt(set);
+  }
+  attempt(nearer_black());
+  (void)done;
+}
+
 }  // namespace texproc

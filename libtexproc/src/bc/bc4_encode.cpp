@@ -127,7 +127,7 @@ double bc4_block_error(const std::uint8_t block[8], const float values[16], bool
 }
 
 namespace {
-std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat format, Quality q) {
+std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
   using F = TexelFormat;
   const bool bc1 = format == F::bc1_rgb_unorm || format == F::bc1_rgb_srgb;
   const bool bc1a = format == F::bc1_rgba_unorm || format == F::bc1_rgba_srgb;
@@ -140,6 +140,7 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
   // block per lane; `max` block by block.
   const bool lanes = q != Quality::max;
   const bool colour_only = bc1 || bc1a;  // no alpha block; the lanes read alpha from the texels
+  const bool black = bc1 && options.bc1_black;
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::uint8_t rgba[kBc1Batch][16][4];
     std::uint32_t texel[16][kBc1Batch] = {};
@@ -149,7 +150,7 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
     std::uint8_t alpha_blocks[kBc4Batch][8];
     bool uniform_valid = false;
     std::uint32_t uniform_texel = 0;
-    std::uint8_t uniform_block[8];
+    std::uint8_t uniform_block[8] = {};
     for (int by = by0; by < by1; ++by)
       for (int bx0 = 0; bx0 < bw; bx0 += kBc1Batch) {
         const int count = std::min(kBc1Batch, bw - bx0);
@@ -183,6 +184,10 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
               if (uniform) uniform_valid = true, uniform_texel = first, std::memcpy(uniform_block, color_dst, 8);
             }
           }
+          if (black) {
+            if (lanes && handled[k] && rows_direct) gather_rgba8(img, bx0 + k, by, rgba[k]);
+            bc1_try_black(rgba[k], q, color_dst);
+          }
           if (colour_only) continue;
           // The lanes' texels hold every block's alpha; `max` has the gathered ones.
           auto alpha_of = [&](int i) { return lanes ? int(texel[i][k] >> 24) : int(rgba[k][i][3]); };
@@ -210,7 +215,11 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
 }  // namespace
 
 std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat format, Quality q) {
-  if (format >= TexelFormat::bc1_rgb_unorm && format <= TexelFormat::bc3_srgb) return compress_color(img, format, q);
+  return compress_image(img, format, q, EncodeOptions{});
+}
+
+std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
+  if (format >= TexelFormat::bc1_rgb_unorm && format <= TexelFormat::bc3_srgb) return compress_color(img, format, q, options);
   if (format >= TexelFormat::etc1_rgb && format <= TexelFormat::eac_rg11_snorm) return etc::compress_etc(img, format, q);
   const bool bc5 = format == TexelFormat::bc5_unorm || format == TexelFormat::bc5_snorm;
   const bool snorm = format == TexelFormat::bc4_snorm || format == TexelFormat::bc5_snorm;
