@@ -101,7 +101,8 @@ TEST(Bc4Encode, NarrowEightBitBlocksAreLosslessInImages) {
 }
 
 // On small images, `high` is never more than 0.05 dB below the exhaustive
-// search over every endpoint pair in both modes.
+// search over every endpoint pair in both modes (the bound); it is
+// held to 0.01 dB here (0.005 measured).
 TEST(Bc4Encode, HighIsWithinAHundredthOfADecibelOfExhaustive) {
   std::mt19937 rng(2);
   std::normal_distribution<float> noise(0.0f, 6.0f);
@@ -120,7 +121,7 @@ TEST(Bc4Encode, HighIsWithinAHundredthOfADecibelOfExhaustive) {
     se_fast += bc4_block_error(b, vals, false);
   }
   auto psnr = [](double se) { return 10 * std::log10(255.0 * 255.0 / (se / (300 * 16))); };
-  EXPECT_GE(psnr(se_high), psnr(se_max) - 0.05);
+  EXPECT_GE(psnr(se_high), psnr(se_max) - 0.01);
   EXPECT_GE(psnr(se_max), psnr(se_high) - 1e-9);  // the exhaustive search is the best there is
   EXPECT_GT(psnr(se_high), psnr(se_fast));
   RecordProperty("psnr_fast_high_max", std::to_string(psnr(se_fast)) + " " + std::to_string(psnr(se_high)) + " " +
