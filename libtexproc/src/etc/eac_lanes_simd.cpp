@@ -70,6 +70,13 @@ inline void codes_of(const Kind& K, const float t[16], int base, int mult, int t
   for (int i = 0; i < 16; ++i) codes[i] = kAscending[place(t[i], pal)];
 }
 
+// 8-bit alpha over a range of at most 5: table 13's modifiers -3..2 at
+// multiplier 1 hold six consecutive levels, so such a block is lossless with
+// its base 3 above the least value (at most 253). The search's centred
+// multiplier rounds to 0 there, a flat palette, so it is tried on its own.
+inline constexpr int kNarrowTable = 13;
+inline int narrow_base(float lo) { return std::min(int(lo) + 3, 253); }
+
 inline void pack(int base, int mult, int table, const int codes[16], std::uint8_t out[8]) {
   std::uint64_t v = std::uint64_t(base & 255) << 56 | std::uint64_t(mult) << 52 | std::uint64_t(table) << 48;
   for (int y = 0; y < 4; ++y)
@@ -112,6 +119,17 @@ void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, int
           if (best < 0.0f || err < best) best = err, best_base = base, best_mult = mult, best_table = table;
         }
       }
+    }
+    if (kind == EacKind::alpha8 && hi > lo && hi - lo <= 5.0f) {
+      const int base = eac::narrow_base(lo);
+      float pal[8];
+      eac::palette(K, base, 1, eac::kNarrowTable, pal);
+      float err = 0.0f;
+      for (int i = 0; i < 16; ++i) {
+        const float d = t[i] - pal[eac::place(t[i], pal)];
+        err += d * d;
+      }
+      if (err < best) best = err, best_base = base, best_mult = 1, best_table = eac::kNarrowTable;
     }
     int codes[16];
     eac::codes_of(K, t, best_base, best_mult, best_table, codes);
@@ -188,6 +206,30 @@ void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, int l
           best_mult = hn::IfThenElse(take, mult, best_mult);
           best_table = hn::IfThenElse(take, hn::Set(d, table), best_table);
         }
+      }
+    }
+    if (kind == EacKind::alpha8) {  // as the reference: a narrow range in table 13 at multiplier 1
+      const auto narrow = hn::RebindMask(d, hn::And(hn::Gt(hi, lo), hn::Le(hn::Sub(hi, lo), hn::Set(df, 5.0f))));
+      if (!hn::AllFalse(d, narrow)) {
+        const V base = hn::Min(hn::Add(hn::ConvertTo(d, lo), hn::Set(d, 3)), hn::Set(d, 253));
+        VF pal[8], mid[7];
+        for (int j = 0; j < 8; ++j) {
+          const V value = hn::Add(base, hn::Set(d, kEacModifiers[eac::kNarrowTable][eac::kAscending[j]]));
+          pal[j] = hn::Min(hn::Max(hn::ConvertTo(df, value), lo_end), hi_end);
+        }
+        for (int j = 0; j < 7; ++j) mid[j] = hn::Mul(hn::Add(pal[j], pal[j + 1]), half);
+        VF err = hn::Zero(df);
+        for (int i = 0; i < 16; ++i) {
+          VF p = pal[0];
+          for (int j = 0; j < 7; ++j) p = hn::IfThenElse(hn::Gt(t[i], mid[j]), pal[j + 1], p);
+          const VF diff = hn::Sub(t[i], p);
+          err = hn::Add(err, hn::Mul(diff, diff));
+        }
+        const auto take = hn::And(narrow, hn::RebindMask(d, hn::Lt(err, best)));
+        best = hn::IfThenElse(hn::RebindMask(df, take), err, best);
+        best_base = hn::IfThenElse(take, base, best_base);
+        best_mult = hn::IfThenElse(take, hn::Set(d, 1), best_mult);
+        best_table = hn::IfThenElse(take, hn::Set(d, eac::kNarrowTable), best_table);
       }
     }
     HWY_ALIGN std::int32_t base_o[kEacBatch], mult_o[kEacBatch], table_o[kEacBatch];
