@@ -468,7 +468,6 @@ void encode_bc1_color_block_by_block(const std::uint8_t rgba[16][4], ColorMode m
   encode_block_by_block(tx, mode, q, out);
 }
 
-
 namespace {
 // Each texel's squared RGB error under `block` as the decoder reads it (the
 // three-colour mode's index 3 as black); returns their sum.
@@ -500,14 +499,13 @@ void bc1_try_black(const std::uint8_t rgba[16][4], Quality q, std::uint8_t block
   // The texel sets given index 3: those nearer black than to their colour
   // now, and those within a distance of black (about 4, 8 and 16 levels a
   // channel); then once more from the best block's colours.
-  std::uint32_t done = 0;  // sets tried, as a bit per texel... (first of each kept below)
-  std::uint32_t tried[8];
+  std::uint32_t tried[5];  // the sets tried, a bit per texel
   int n_tried = 0;
   auto attempt = [&](std::uint32_t set) {
     if (set == 0 || total == 0) return;
     for (int t = 0; t < n_tried; ++t)
       if (tried[t] == set) return;
-    if (n_tried < 8) tried[n_tried++] = set;
+    tried[n_tried++] = set;
     std::uint8_t marked[16][4];
     for (int i = 0; i < 16; ++i) {
       std::memcpy(marked[i], rgba[i], 3);
@@ -534,7 +532,6 @@ void bc1_try_black(const std::uint8_t rgba[16][4], Quality q, std::uint8_t block
     attempt(set);
   }
   attempt(nearer_black());
-  (void)done;
 }
 
 }  // namespace texproc

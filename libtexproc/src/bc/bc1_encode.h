@@ -21,11 +21,12 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q,
 void encode_bc1_color_block_by_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]);
 
 // Opaque BC1 with the three-colour mode's black (EncodeOptions::bc1_black):
-// the texels nearer black than to their colour in `block` take index 3 and
-// the others are fitted in the three-colour mode (the punch-through encoder
-// at `q`, which leaves index-3 texels out of its fit); the result replaces
-// `block` where the block's squared RGB error falls, and the same is tried
-// once more from the new block's colours.
+// a set of texels takes index 3 and the others are fitted in the
+// three-colour mode (the punch-through encoder at `q`, which leaves index-3
+// texels out of its fit); the result replaces `block` where the block's
+// squared RGB error falls. The sets: the texels nearer black than to their
+// colour in `block`; those within about 4, 8 and 16 levels a channel of
+// black; the first again from the best block so far.
 void bc1_try_black(const std::uint8_t rgba[16][4], Quality q, std::uint8_t block[8]);
 
 }  // namespace texproc

@@ -159,7 +159,7 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
         for (int k = 0; k < count; ++k) {
           if (rows_direct) continue;  // gathered below only if the lanes leave it
           gather_rgba8(img, bx0 + k, by, rgba[k]);
-          if (lanes && !rows_direct)
+          if (lanes)
             for (int i = 0; i < 16; ++i) texel[i][k] = pack_texel(rgba[k][i]);
         }
         // Sixteen blocks at a time; those of one opaque colour (or none) are
