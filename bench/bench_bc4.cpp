@@ -3,16 +3,23 @@
 // the corpus heightmaps (BC4) and normal maps' X and Y (BC5), single thread,
 // in one run; and BC4 on two threads. PSNR is scored with the
 // specification's exact decoding (texproc's decoder; libsquish's own BC4/BC5
-// decoding is not used); BC5's over both channels, and each channel's.
+// decoding is not used); BC5's over both channels, and each channel's. And
+// whole processes, TGA in, DDS out: nvcompress (Debian's NVIDIA Texture
+// Tools 2.0) beside `texproc compress --threads 1`.
 #include <benchmark/benchmark.h>
 #include <squish.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
 #include <cstdio>
 
 #include "bench_common.h"
 #include "texproc/block_decode.h"
 #include "texproc/block_encode.h"
+#include "texproc/container.h"
 #include "texproc/image_io.h"
 #include "texproc/normalmap.h"
 #include "texproc/runtime.h"
@@ -138,8 +145,82 @@ void run_threads(benchmark::State& state, const std::string& who, Quality q, int
 
 void run(benchmark::State& state, const std::string& who, Quality q) { run_threads(state, who, q, 1); }
 
+// The inputs as RGBA8 TGA files (what nvcompress reads), written once:
+// heightmaps in every channel, normal maps as they are.
+std::vector<std::string> write_tga_files(bool bc5) {
+  const std::string dir = (std::filesystem::temp_directory_path() / "texproc_bench_bc4").string();
+  std::filesystem::create_directories(dir);
+  std::vector<std::string> out;
+  WriteOptions w;
+  w.color_space = "linear";
+  const std::size_t n = bc5 ? normal_maps().size() : heights().size();
+  for (std::size_t i = 0; i < n; ++i) {
+    out.push_back(dir + (bc5 ? "/n" : "/h") + std::to_string(i) + ".tga");
+    if (bc5) {
+      write_image(out.back(), normal_maps()[i].view(), w);
+      continue;
+    }
+    const Image& h = heights()[i].r8;
+    Image rgba(h.width(), h.height(), 4, PixelType::u8);
+    for (int y = 0; y < h.height(); ++y)
+      for (int x = 0; x < h.width(); ++x)
+        for (int c = 0; c < 4; ++c) rgba.row<std::uint8_t>(y)[4 * x + c] = h.row<std::uint8_t>(y)[x];
+    write_image(out.back(), rgba.view(), w);
+  }
+  return out;
+}
+
+const std::vector<std::string>& tga_files(bool bc5) {
+  static const std::vector<std::string> h = write_tga_files(false), n = write_tga_files(true);
+  return bc5 ? n : h;
+}
+
+// One whole process per texture, TGA in, DDS out: nvcompress (Debian's
+// NVIDIA Texture Tools 2.0, -nocuda) or `texproc compress --threads 1`; the
+// DDS decoded with texproc for the PSNR (BC5's over both channels).
+void process(benchmark::State& state, const std::string& tool, bool bc5) {
+  double psnr_sum = 0, pixels = 0;
+  const char* f = bc5 ? "bc5" : "bc4";
+  for (auto _ : state) {
+    double seconds = 0;
+    psnr_sum = 0;
+    for (std::size_t i = 0; i < tga_files(bc5).size(); ++i) {
+      const std::string in = tga_files(bc5)[i], out = in + "." + tool + ".dds";
+      const std::string cmd = tool == "nvcompress" ? "nvcompress -" + std::string(f) + " -nomips -nocuda " + in + " " + out
+                                                   : std::string(TEXPROC_CLI_PATH) + " compress " + in + " -o " + out +
+                                                         " --format " + f + " --threads 1 -f -q";
+      const auto t0 = std::chrono::steady_clock::now();
+      if (std::system((cmd + " >/dev/null 2>&1").c_str()) != 0) {
+        state.SkipWithError(("failed: " + cmd).c_str());
+        return;
+      }
+      seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const Texture t = read_texture(out);
+      if (bc5) {
+        double p[3];
+        psnr_xy(normal_maps()[i], t.image(0), p);
+        psnr_sum += p[2];
+      } else {
+        psnr_sum += psnr(heights()[i].r8, t.image(0));
+      }
+    }
+    state.SetIterationTime(seconds);
+  }
+  const std::size_t n = bc5 ? normal_maps().size() : heights().size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Image& img = bc5 ? normal_maps()[i] : heights()[i].r8;
+    pixels += double(img.width()) * img.height();
+  }
+  state.counters["MPix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["PSNR"] = psnr_sum / double(n);
+}
+
 }  // namespace
 
+BENCHMARK_CAPTURE(process, bc4_nvcompress_process, std::string("nvcompress"), false)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(3);
+BENCHMARK_CAPTURE(process, bc4_texproc_process, std::string("texproc"), false)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(3);
+BENCHMARK_CAPTURE(process, bc5_nvcompress_process, std::string("nvcompress"), true)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(3);
+BENCHMARK_CAPTURE(process, bc5_texproc_process, std::string("texproc"), true)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(3);
 BENCHMARK_CAPTURE(run, libsquish_bc4, std::string("libsquish"), Quality::normal)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(run, texproc_fast, std::string("texproc"), Quality::fast)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(run, texproc_normal, std::string("texproc"), Quality::normal)->Unit(benchmark::kMillisecond)->MinTime(1.0);
