@@ -497,6 +497,31 @@ TEST(BlockEncode, QualityLevelsAreOrdered) {
   }
 }
 
+// The one-block API writes, for every block format and quality below `max`,
+// the bytes compress_image writes for that block inside a larger image (a
+// block's bytes depend on its texels alone), and says how many.
+TEST(BlockEncode, OneBlockApiMatchesImages) {
+  const Image img = random_image(12, 8, 4, PixelType::u8, 21);
+  for (TexelFormat f : {TexelFormat::bc1_rgb_unorm, TexelFormat::bc1_rgba_srgb, TexelFormat::bc2_unorm, TexelFormat::bc3_srgb,
+                        TexelFormat::bc4_unorm, TexelFormat::bc4_snorm, TexelFormat::bc5_snorm, TexelFormat::etc1_rgb,
+                        TexelFormat::etc2_rgb_unorm, TexelFormat::etc2_rgba1_unorm, TexelFormat::etc2_rgba8_srgb,
+                        TexelFormat::eac_r11_unorm, TexelFormat::eac_rg11_snorm})
+    for (Quality q : {Quality::fast, Quality::normal, Quality::high}) {
+      const std::vector<std::uint8_t> whole = compress_image(img.view(), f, q);
+      const int bytes = format_info(f).block_bytes;
+      for (int b = 0; b < 6; ++b) {
+        std::uint8_t texels[16][4], out[16];
+        for (int i = 0; i < 16; ++i)
+          std::memcpy(texels[i], img.row<std::uint8_t>(b / 3 * 4 + i / 4) + 4 * (b % 3 * 4 + i % 4), 4);
+        ASSERT_EQ(encode_block(f, texels, q, out), bytes) << format_info(f).name;
+        EXPECT_EQ(std::memcmp(out, whole.data() + b * bytes, std::size_t(bytes)), 0)
+            << format_info(f).name << " " << to_string(q) << " block " << b;
+      }
+    }
+  std::uint8_t texels[16][4] = {}, out[16];
+  EXPECT_THROW(encode_block(TexelFormat::rgba8_unorm, texels, Quality::fast, out), Error);
+}
+
 // The lanes and every other SIMD twin give the scalar reference's bytes on
 // real textures too (crops of corpus images: a photo, an albedo with
 // alpha-like detail, a normal map and a heightmap), for every block format

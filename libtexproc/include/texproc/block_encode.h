@@ -56,4 +56,13 @@ struct EncodeOptions {
 };
 std::vector<std::uint8_t> compress_image(const ImageView& image, TexelFormat format, Quality q, const EncodeOptions& options);
 
+// One block of any block format (BC1-BC5, ETC1, ETC2, EAC) from 16 RGBA8
+// texels, row by row, taken as compress_image takes an RGBA8 image (BC4/EAC
+// R11 read red, BC5/EAC RG11 red and green). Writes format_info(format).
+// block_bytes bytes (8 or 16) to `out` and returns that count: the same
+// bytes compress_image writes for that block in any image. Throws
+// Error{unsupported} for formats that are not block formats.
+int encode_block(TexelFormat format, const std::uint8_t rgba[16][4], Quality q, std::uint8_t* out,
+                 const EncodeOptions& options = {});
+
 }  // namespace texproc

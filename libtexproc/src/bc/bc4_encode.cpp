@@ -218,6 +218,20 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
   return compress_image(img, format, q, EncodeOptions{});
 }
 
+int encode_block(TexelFormat format, const std::uint8_t rgba[16][4], Quality q, std::uint8_t* out, const EncodeOptions& options) {
+  std::uint8_t texels[16][4];
+  std::memcpy(texels, rgba, sizeof texels);
+  ImageView view;
+  view.data = texels;
+  view.width = view.height = 4;
+  view.channels = 4;
+  view.type = PixelType::u8;
+  view.row_stride = 16;
+  const std::vector<std::uint8_t> block = compress_image(view, format, q, options);
+  std::memcpy(out, block.data(), block.size());
+  return int(block.size());
+}
+
 std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
   if (format >= TexelFormat::bc1_rgb_unorm && format <= TexelFormat::bc3_srgb) return compress_color(img, format, q, options);
   if (format >= TexelFormat::etc1_rgb && format <= TexelFormat::eac_rg11_snorm) return etc::compress_etc(img, format, q);
