@@ -305,6 +305,7 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
               [&](std::size_t i) {
                 FileReport& r = reports[i];
                 progress.started(r.input);
+                r.progress = [&progress, &r](double done) { progress.fraction(r.input, done); };
                 const auto t0 = std::chrono::steady_clock::now();
                 try {
                   c.run(r.input, outputs[i], r);

@@ -62,6 +62,10 @@ struct FileReport {
   std::string line;                  // the human summary ("a.png -> a.dds: ..."), printed unless --quiet
   Json::Value details{Json::objectValue};  // format, sizes, levels, quality figures (--report)
   double seconds = 0;
+  // Set by run_batch before `run`: how far the work on this file has got,
+  // in [0, 1], for the progress line (callable from any thread, one call
+  // at a time).
+  std::function<void(double)> progress;
 };
 
 // A command that maps each input file to output files.

@@ -143,6 +143,8 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   t.height = std::uint32_t(levels[0].height());
   t.levels = std::uint32_t(levels.size());
   const auto t0 = std::chrono::steady_clock::now();
+  double texels = 0.0, texels_before = 0.0;  // for the progress line: the levels weighed by size
+  for (const Image& l : levels) texels += double(l.width()) * double(l.height());
   for (Image& l : levels) {
     // The policy applies to each stored level (the chain itself was filtered
     // premultiplied, so it has no fringes; the GPU's filtering of straight
@@ -150,7 +152,11 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
     if (format_info(format).channels == 4 && !a.normal_map) apply_transparent_color(l, a.transparent);
     EncodeOptions options;
     options.bc1_black = a.bc1_black;
+    const double level_texels = double(l.width()) * double(l.height());
+    if (r.progress)
+      options.progress = [&](double done) { r.progress((texels_before + done * level_texels) / texels); };
     t.images.push_back(compress_image(l.view(), format, a.q, options));
+    texels_before += level_texels;
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   write_texture(output, t, a.header);

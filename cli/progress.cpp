@@ -38,7 +38,17 @@ void Progress::close() {
 void Progress::started(const std::string& file) {
   if (!enabled_) return;
   std::lock_guard lock(mutex_);
-  in_flight_.push_back(file);
+  in_flight_.emplace_back(file, 0.0);
+}
+
+void Progress::fraction(const std::string& file, double done) {
+  if (!enabled_) return;
+  std::lock_guard lock(mutex_);
+  for (auto& f : in_flight_)
+    if (f.first == file) {
+      f.second = std::clamp(done, 0.0, 1.0);
+      return;
+    }
 }
 
 void Progress::finished(const std::string& file, const std::function<void()>& print) {
@@ -48,7 +58,7 @@ void Progress::finished(const std::string& file, const std::function<void()>& pr
   print();
   std::cout.flush();
   ++done_;
-  auto it = std::find(in_flight_.begin(), in_flight_.end(), file);
+  auto it = std::find_if(in_flight_.begin(), in_flight_.end(), [&](const auto& f) { return f.first == file; });
   if (it != in_flight_.end()) in_flight_.erase(it);
   if (enabled_ && !closed_) draw_locked();
 }
@@ -75,9 +85,11 @@ std::string clock_text(double seconds) {
 
 void Progress::draw_locked() {
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  double partial = 0.0;  // the files in work, by how far they have got
+  for (const auto& f : in_flight_) partial += f.second;
   char head[160];
   std::snprintf(head, sizeof head, "texproc %s [%zu/%zu] %3d%% %s", command_.c_str(), done_, total_,
-                int(100.0 * double(done_) / double(total_)), clock_text(elapsed).c_str());
+                int(100.0 * (double(done_) + partial) / double(total_)), clock_text(elapsed).c_str());
   std::string line = head;
   if (done_ > 0 && elapsed > 0) {
     char rate[96];
@@ -87,7 +99,12 @@ void Progress::draw_locked() {
     line += rate;
   }
   if (!in_flight_.empty()) {
-    line += ", " + in_flight_.front();
+    line += ", " + in_flight_.front().first;
+    if (in_flight_.front().second > 0.0) {
+      char percent[16];
+      std::snprintf(percent, sizeof percent, " %d%%", int(100.0 * in_flight_.front().second));
+      line += percent;
+    }
     if (in_flight_.size() > 1) line += " +" + std::to_string(in_flight_.size() - 1);
   }
   int columns = 100;

@@ -11,6 +11,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace texproc::cli {
@@ -23,6 +24,9 @@ class Progress {
   Progress& operator=(const Progress&) = delete;
 
   void started(const std::string& file);
+  // How far the work on `file` (started, not finished) has got, in [0, 1]:
+  // counted into the total and shown beside the file's name.
+  void fraction(const std::string& file, double done);
   // Clears the progress line, runs `print` (which writes whole lines to
   // stdout or stderr), counts `file` done and redraws.
   void finished(const std::string& file, const std::function<void()>& print);
@@ -38,7 +42,7 @@ class Progress {
   bool enabled_;
   bool closed_ = false;
   bool drawn_ = false;
-  std::vector<std::string> in_flight_;
+  std::vector<std::pair<std::string, double>> in_flight_;  // file, fraction done
   std::chrono::steady_clock::time_point start_;
   std::mutex mutex_;
   std::condition_variable wake_;

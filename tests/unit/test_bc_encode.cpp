@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -520,6 +521,32 @@ TEST(BlockEncode, OneBlockApiMatchesImages) {
     }
   std::uint8_t texels[16][4] = {}, out[16];
   EXPECT_THROW(encode_block(TexelFormat::rgba8_unorm, texels, Quality::fast, out), Error);
+}
+
+// EncodeOptions::progress hears the fraction of block rows done, one call at
+// a time, rising to exactly 1, on two threads, for each encoder family; the
+// bytes are those written without it.
+TEST(BlockEncode, ProgressRisesToOne) {
+  ThreadLimit two(2);
+  const Image img = random_image(64, 72, 4, PixelType::u8, 23);
+  for (TexelFormat f : {TexelFormat::bc1_rgb_unorm, TexelFormat::bc3_unorm, TexelFormat::bc5_unorm, TexelFormat::etc2_rgba8_unorm}) {
+    std::vector<double> seen;
+    std::atomic<int> inside{0};
+    bool overlapped = false;
+    EncodeOptions options;
+    options.progress = [&](double done) {
+      overlapped = overlapped || inside.fetch_add(1) != 0;
+      seen.push_back(done);
+      inside.fetch_sub(1);
+    };
+    EXPECT_EQ(compress_image(img.view(), f, Quality::normal, options), compress_image(img.view(), f, Quality::normal));
+    ASSERT_FALSE(seen.empty()) << format_info(f).name;
+    EXPECT_FALSE(overlapped) << format_info(f).name;
+    EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end())) << format_info(f).name;
+    EXPECT_GT(seen.front(), 0.0);
+    EXPECT_EQ(seen.back(), 1.0) << format_info(f).name;
+    EXPECT_EQ(seen.size(), 5u) << format_info(f).name;  // 18 block rows in groups of 4
+  }
 }
 
 // The lanes and every other SIMD twin give the scalar reference's bytes on

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string_view>
 
 #include "texproc/image.h"
@@ -53,6 +54,9 @@ struct EncodeOptions {
   // and OpenGL's BC1 RGB formats, KTX2's VK_FORMAT_BC1_RGB_*, return
   // opaque black there). Other formats ignore it.
   bool bc1_black = false;
+  // Where set: the fraction of the image's block rows done, after each group
+  // of rows, one call at a time (from worker threads), rising to 1.
+  std::function<void(double)> progress;
 };
 std::vector<std::uint8_t> compress_image(const ImageView& image, TexelFormat format, Quality q, const EncodeOptions& options);
 

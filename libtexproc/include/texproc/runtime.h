@@ -30,6 +30,11 @@ int hardware_threads();
 // a kernel that writes only its own rows gives the same bytes on any number
 // of threads. Exceptions thrown by fn are rethrown (the first one).
 void for_each_row_block(int rows, int block_rows, const std::function<void(int, int)>& fn);
+// The same, and `progress` (where set) hears the fraction of rows done after
+// each block of rows: one call at a time, from whichever thread finished the
+// block, the fractions rising to 1.
+void for_each_row_block(int rows, int block_rows, const std::function<void(int, int)>& fn,
+                        const std::function<void(double)>& progress);
 
 // Forces the scalar reference kernels instead of the SIMD ones (also set by
 // the environment variable TEXPROC_FORCE_SCALAR=1). Both give identical bytes.

@@ -209,7 +209,7 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
           for (int k = 0; k < count; ++k) std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes, alpha_blocks[k], 8);
         }
       }
-  });
+  }, options.progress);
   return out;
 }
 }  // namespace
@@ -234,7 +234,7 @@ int encode_block(TexelFormat format, const std::uint8_t rgba[16][4], Quality q, 
 
 std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
   if (format >= TexelFormat::bc1_rgb_unorm && format <= TexelFormat::bc3_srgb) return compress_color(img, format, q, options);
-  if (format >= TexelFormat::etc1_rgb && format <= TexelFormat::eac_rg11_snorm) return etc::compress_etc(img, format, q);
+  if (format >= TexelFormat::etc1_rgb && format <= TexelFormat::eac_rg11_snorm) return etc::compress_etc(img, format, q, options);
   const bool bc5 = format == TexelFormat::bc5_unorm || format == TexelFormat::bc5_snorm;
   const bool snorm = format == TexelFormat::bc4_snorm || format == TexelFormat::bc5_snorm;
   if (!bc5 && format != TexelFormat::bc4_unorm && format != TexelFormat::bc4_snorm) {
@@ -304,7 +304,7 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
             std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes + 8 * ch, blocks[k], 8);
         }
       }
-  });
+  }, options.progress);
   return out;
 }
 

@@ -5,6 +5,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
 
+#include <mutex>
+
 #include "texproc/runtime.h"
 
 namespace texproc {
@@ -41,6 +43,19 @@ void for_each_row_block(int rows, int block_rows, const std::function<void(int, 
         }
       },
       tbb::simple_partitioner());
+}
+
+void for_each_row_block(int rows, int block_rows, const std::function<void(int, int)>& fn,
+                        const std::function<void(double)>& progress) {
+  if (!progress) return for_each_row_block(rows, block_rows, fn);
+  std::mutex mutex;
+  int done = 0;
+  for_each_row_block(rows, block_rows, [&](int begin, int end) {
+    fn(begin, end);
+    std::lock_guard lock(mutex);
+    done += end - begin;
+    progress(double(done) / double(rows));
+  });
 }
 
 }  // namespace texproc

@@ -780,7 +780,7 @@ double encode_eac_block(const float targets[16], EacKind kind, Quality q, std::u
   return best.err;
 }
 
-std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format, Quality q) {
+std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
   using F = TexelFormat;
   const FormatInfo& info = format_info(format);
   const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
@@ -864,7 +864,7 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
           if (lanes_block[k])
             std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + (rgba8 ? 8 : 0), color[k], 8);
       }
-  });
+  }, options.progress);
   return out;
 }
 
