@@ -121,8 +121,8 @@ void encode_bc4_block(const float v[16], bool snorm, Quality q, std::uint8_t out
     return be;
   };
   int best_a = lo_code, best_b = lo_code;
-  for (int a = lo_code; a <= hi_code; ++a)
-    for (int b = lo_code; b <= hi_code; ++b) {
+  for (int a = lo_code; a <= hi_code && least > 0.0; ++a)
+    for (int b = lo_code; b <= hi_code && least > 0.0; ++b) {  // after an exact pair nothing is less
       double quick[8];
       quick[0] = a, quick[1] = b;
       if (a > b) {
