@@ -30,6 +30,7 @@ struct CompressArgs {
   std::string format, quality = "normal", wrap = "clamp", dds_header = "auto";
   std::string transparent_color = "keep";
   bool mips = false, normal_map = false, linear = false, srgb = false, report = false, bc1_black = false;
+  float alpha_coverage = -1.0f;  // with --mips: the alpha reference whose coverage each level keeps
   // From the options, once (validate):
   Quality q = Quality::normal;
   DdsHeader header = DdsHeader::automatic;
@@ -73,6 +74,11 @@ void validate(CompressArgs& a) {
   a.mip.max_levels = a.chain.levels;
   a.mip.min_size = a.chain.min_size;
   a.mip.normal_map = a.normal_map;
+  if (a.alpha_coverage >= 0.0f && !a.mips)
+    throw Error(ErrorCode::bad_arguments, "--alpha-coverage applies to the mip chain: add --mips");
+  if (a.alpha_coverage >= 0.0f && !(a.alpha_coverage > 0.0f && a.alpha_coverage <= 1.0f))
+    throw Error(ErrorCode::bad_arguments, "--alpha-coverage " + std::to_string(a.alpha_coverage) + " is not in (0, 1]");
+  a.mip.alpha_coverage_ref = a.alpha_coverage;
 }
 
 // The encoded level and its decoding as f32 images with the format's
@@ -215,6 +221,9 @@ void add_compress_command(CLI::App& app) {
                 "The input is a normal map: linear, renormalized mips; bc5/eac-rg11 store X and Y, bc3 the DXT5nm "
                 "layout (X in alpha, Y in green, red 1, blue 0)");
   cmd->add_option("--wrap", args->wrap, "Mip filter taps past the edges: clamp, repeat, mirror")->capture_default_str();
+  cmd->add_option("--alpha-coverage", args->alpha_coverage,
+                  "With --mips: keep the fraction of texels with alpha >= REF equal to level 0's in every level "
+                  "(cutouts; 0.5 for bc1a and etc2a1, whose alpha is cut at 128), 0 < REF <= 1");
   add_chain_options(*cmd, args->chain);
   cmd->add_option("--dds-header", args->dds_header, "auto, dx9, dx10")->capture_default_str();
   cmd->add_option("--transparent-color", args->transparent_color,
