@@ -31,6 +31,7 @@ struct CompressArgs {
   std::string transparent_color = "keep";
   bool mips = false, normal_map = false, linear = false, srgb = false, report = false, bc1_black = false;
   float alpha_coverage = -1.0f;  // with --mips: the alpha reference whose coverage each level keeps
+  bool no_premultiply = false;   // with --mips: alpha is data, not coverage
   // From the options, once (validate):
   Quality q = Quality::normal;
   DdsHeader header = DdsHeader::automatic;
@@ -79,6 +80,8 @@ void validate(CompressArgs& a) {
   if (a.alpha_coverage >= 0.0f && !(a.alpha_coverage > 0.0f && a.alpha_coverage <= 1.0f))
     throw Error(ErrorCode::bad_arguments, "--alpha-coverage " + std::to_string(a.alpha_coverage) + " is not in (0, 1]");
   a.mip.alpha_coverage_ref = a.alpha_coverage;
+  if (a.no_premultiply && !a.mips) throw Error(ErrorCode::bad_arguments, "--no-premultiply applies to the mip chain: add --mips");
+  a.mip.premultiplied_alpha = !a.no_premultiply;
 }
 
 // The encoded level and its decoding as f32 images with the format's
@@ -224,6 +227,8 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option("--alpha-coverage", args->alpha_coverage,
                   "With --mips: keep the fraction of texels with alpha >= REF equal to level 0's in every level "
                   "(cutouts; 0.5 for bc1a and etc2a1, whose alpha is cut at 128), 0 < REF <= 1");
+  cmd->add_flag("--no-premultiply", args->no_premultiply,
+                "With --mips: filter colour without weighting it by alpha (an alpha channel that holds data)");
   add_chain_options(*cmd, args->chain);
   cmd->add_option("--dds-header", args->dds_header, "auto, dx9, dx10")->capture_default_str();
   cmd->add_option("--transparent-color", args->transparent_color,

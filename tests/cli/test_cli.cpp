@@ -723,6 +723,35 @@ TEST(Cli, CompressKeepsAlphaCoverage) {
   fs::remove_all(dir);
 }
 
+// --no-premultiply with --mips: an alpha channel that holds data leaves the
+// colour alone (a colour under alpha 0 keeps its weight in level 1; the
+// default weighs it by alpha, so level 1 is the opaque texels' colour).
+TEST(Cli, CompressNoPremultiply) {
+  const std::string dir = temp_dir("cli_compress_nopremul");
+  Image img(8, 8, 4, PixelType::u8);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) {
+      std::uint8_t* p = img.row<std::uint8_t>(y) + 4 * x;
+      const bool left = x < 4;
+      p[0] = left ? 255 : 0, p[1] = 0, p[2] = left ? 0 : 255, p[3] = left ? 255 : 0;
+    }
+  write_image(dir + "/data.png", img.view());
+  double blue[2] = {};
+  for (int plain = 0; plain < 2; ++plain) {
+    const std::string out = dir + "/d" + std::to_string(plain) + ".ktx2";
+    RunResult r = run_texproc("compress " + dir + "/data.png -o " + out + " --format bc3 --linear --mips --filter box -q" +
+                              (plain ? " --no-premultiply" : ""));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Image d = decode_texture_image(read_texture(out), 3, 0, 0, PixelType::f32);  // 1x1: the average
+    blue[plain] = d.get(0, 0, 2);
+  }
+  EXPECT_LT(blue[0], 0.05);        // weighed by alpha: only the opaque red half counts
+  EXPECT_NEAR(blue[1], 0.5, 0.05);  // data: both halves
+  RunResult bad = run_texproc("compress " + dir + "/data.png -o " + dir + "/x.dds --format bc3 --no-premultiply");
+  EXPECT_EQ(bad.exit_code, 1);
+  fs::remove_all(dir);
+}
+
 // --bc1-black: opaque BC1 only (an error naming the flag otherwise); on line
 // art it lowers the error of what is written.
 TEST(Cli, Bc1BlackFlag) {
