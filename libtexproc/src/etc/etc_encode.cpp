@@ -321,6 +321,8 @@ void search_etc1_modes(const Texels& tx, Quality q, bool allow_individual, bool 
   }
 }
 
+std::uint64_t pack_planar(const int o[3], const int hq[3], const int vq[3]);
+
 // Planar: per channel a least-squares plane, quantized (6/7/6 bits), with a
 // +-1 search of each of O, H, V (channels are scored independently).
 void search_planar(const Texels& tx, Quality q, Candidate& best) {
@@ -358,6 +360,11 @@ void search_planar(const Texels& tx, Quality q, Candidate& best) {
     total += be;
     if (total >= best.err) return;  // errors only add up: planar cannot win
   }
+  keep(best, total, pack_planar(o, hq, vq));
+}
+
+// A planar block's bits for O, H and V (6/7/6 bits a channel).
+std::uint64_t pack_planar(const int o[3], const int hq[3], const int vq[3]) {
   std::uint64_t v = 0;
   put(v, 62, 6, o[0]);
   put(v, 56, 1, o[1] >> 6), put(v, 54, 6, o[1] & 63);
@@ -380,7 +387,7 @@ void search_planar(const Texels& tx, Quality q, Candidate& best) {
   } else {
     put(v, 47, 3, 0), put(v, 42, 1, 1);
   }
-  keep(best, total, v);
+  return v;
 }
 
 // T and H modes: two clusters along the principal axis.
@@ -613,10 +620,14 @@ Texels make_texels(const std::uint8_t rgba[16][4], ColorMode mode) {
   return tx;
 }
 
-// Squared RGB error of an ETC1 block.
-long block_error(const std::uint8_t rgba[16][4], const std::uint8_t block[8]) {
+// Squared RGB error of a block (ETC1, or ETC2 in `mode`).
+long block_error(const std::uint8_t rgba[16][4], const std::uint8_t block[8], ColorMode mode = ColorMode::etc1) {
   Rgba8Block decoded;
-  decode_etc1(block, decoded);
+  if (mode == ColorMode::etc1) {
+    decode_etc1(block, decoded);
+  } else {
+    decode_etc2(block, mode == ColorMode::etc2_punch, decoded);
+  }
   long err = 0;
   for (int i = 0; i < 16; ++i)
     for (int c = 0; c < 3; ++c) err += long(rgba[i][c] - decoded[i][c]) * (rgba[i][c] - decoded[i][c]);
@@ -657,6 +668,107 @@ long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err
   return best.err;
 }
 
+// One colour: the least error of each channel value under a base of `bits`
+// (4 or 5) plus each of the 32 modifiers (the tables' entries, clamped as
+// the decoder does), and the base that reaches it (the first of equals);
+// and in a planar channel of 6 or 7 bits: O, H and V within 2 of the
+// nearest level (a slightly tilted plane rounds to values on both sides of
+// the colour, less error in all than one flat level).
+struct FlatTables {
+  int err[2][32][256], base[2][32][256];  // [bits 4, 5][table * 4 + index][value]
+  int planar_err[2][256], planar_ohv[2][256][3];  // [6 bits, 7 bits][value]
+};
+const FlatTables& flat_tables() {
+  static const FlatTables* t = [] {
+    auto* f = new FlatTables;
+    for (int b = 0; b < 2; ++b)
+      for (int m = 0; m < 32; ++m)
+        for (int v = 0; v < 256; ++v) {
+          int best = std::numeric_limits<int>::max(), base = 0;
+          for (int q = 0; q < (b ? 32 : 16); ++q) {
+            const int d = v - clamp255(expand(q, b ? 5 : 4) + kModifiers[m / 4][m % 4]);
+            if (d * d < best) best = d * d, base = q;
+          }
+          f->err[b][m][v] = best, f->base[b][m][v] = base;
+        }
+    for (int b = 0; b < 2; ++b)
+      for (int v = 0; v < 256; ++v) {
+        const int top = b ? 127 : 63;
+        auto ex = [&](int q) { return b ? extend7(q) : extend6(q); };
+        int q0 = 0;
+        for (int q = 1; q <= top; ++q)
+          if (std::abs(v - ex(q)) < std::abs(v - ex(q0))) q0 = q;
+        int best = std::numeric_limits<int>::max();
+        for (int o = std::max(0, q0 - 2); o <= std::min(top, q0 + 2); ++o)
+          for (int h = std::max(0, q0 - 2); h <= std::min(top, q0 + 2); ++h)
+            for (int w = std::max(0, q0 - 2); w <= std::min(top, q0 + 2); ++w) {
+              int e = 0;
+              for (int i = 0; i < 16; ++i) {  // as the decoder's plane
+                const int d = clamp255(((i & 3) * (ex(h) - ex(o)) + (i >> 2) * (ex(w) - ex(o)) + 4 * ex(o) + 2) >> 2) - v;
+                e += d * d;
+              }
+              if (e < best) best = e, f->planar_ohv[b][v][0] = o, f->planar_ohv[b][v][1] = h, f->planar_ohv[b][v][2] = w;
+            }
+        f->planar_err[b][v] = best;
+      }
+    return f;
+  }();
+  return *t;
+}
+
+// An opaque block of one colour (all 16 texels `rgb`): the least error the
+// format allows it. Both halves share a base, a table and one modifier for
+// every texel (the differential mode at 5 bits; the individual mode at 4,
+// not with punch-through, whose bit 33 is the opaque flag), or, in ETC2, a
+// flat plane. `block` is replaced where that beats its error.
+void best_flat_block(const int rgb[3], ColorMode mode, std::uint8_t block[8]) {
+  const FlatTables& f = flat_tables();
+  Candidate best;
+  for (int b = 1; b >= 0; --b) {
+    if (b == 0 && mode == ColorMode::etc2_punch) continue;
+    for (int m = 0; m < 32; ++m) {
+      const long err = 16L * (f.err[b][m][rgb[0]] + f.err[b][m][rgb[1]] + f.err[b][m][rgb[2]]);
+      if (err >= best.err) continue;
+      HalfFit h;
+      for (int c = 0; c < 3; ++c) h.q[c] = f.base[b][m][rgb[c]];
+      h.table = m / 4;
+      std::fill(h.idx, h.idx + 8, std::uint8_t(m % 4));
+      keep(best, err, pack_halves(h, h, false, b == 1, b == 1 ? 1 : 0));
+    }
+  }
+  if (mode != ColorMode::etc1) {
+    int o[3], h[3], w[3];
+    long err = 0;
+    for (int c = 0; c < 3; ++c) {
+      const int b = c == 1 ? 1 : 0;
+      const int* ohv = f.planar_ohv[b][rgb[c]];
+      o[c] = ohv[0], h[c] = ohv[1], w[c] = ohv[2], err += f.planar_err[b][rgb[c]];
+    }
+    keep(best, err, pack_planar(o, h, w));
+  }
+  Rgba8Block decoded;
+  if (mode == ColorMode::etc1) {
+    decode_etc1(block, decoded);
+  } else {
+    decode_etc2(block, mode == ColorMode::etc2_punch, decoded);
+  }
+  long current = 0;
+  for (int i = 0; i < 16; ++i)
+    for (int c = 0; c < 3; ++c) current += long(rgb[c] - decoded[i][c]) * (rgb[c] - decoded[i][c]);
+  if (best.err < current) store_be64(best.bits, block);
+}
+
+// Whether the 16 texels (R | G << 8 | B << 16 | A << 24) are one colour,
+// opaque where `mode` reads alpha (punch-through); `rgb` gets it.
+bool flat_colour(const std::uint32_t texel[16][kEtcBatch], int k, ColorMode mode, int rgb[3]) {
+  const bool punch = mode == ColorMode::etc2_punch;
+  const std::uint32_t first = texel[0][k];
+  for (int i = 0; i < 16; ++i)
+    if ((texel[i][k] & 0xFFFFFF) != (first & 0xFFFFFF) || (punch && (texel[i][k] >> 24) < 128)) return false;
+  rgb[0] = int(first & 255), rgb[1] = int(first >> 8 & 255), rgb[2] = int(first >> 16 & 255);
+  return true;
+}
+
 }  // namespace
 
 long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
@@ -674,6 +786,11 @@ long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality 
       std::int32_t e[1];
       etc1_search_lanes(texel, 1, q == Quality::high, punch, block, e);
       err = mode == ColorMode::etc1 ? e[0] : finish_etc2_block(texel, 0, e[0], q, block[0]);
+    }
+    int rgb[3];
+    if (flat_colour(texel, 0, mode, rgb)) {
+      best_flat_block(rgb, mode, block[0]);
+      err = block_error(rgba, block[0], mode);
     }
     std::memcpy(out, block[0], 8);
     return err;
@@ -696,6 +813,11 @@ long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality 
     search_t_h(tx, non_opaque, q, best);
   }
   store_be64(best.bits, out);
+  int rgb[3];
+  if (flat_colour(texel, 0, mode, rgb)) {
+    best_flat_block(rgb, mode, out);
+    return block_error(rgba, out, mode);
+  }
   return best.err;
 }
 
@@ -860,9 +982,12 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
           for (int k = 0; k < count && finish; ++k)
             if (lanes_block[k]) finish_etc2_block(texel, k, errors[k], q, color[k]);
         }
-        for (int k = 0; k < count; ++k)
-          if (lanes_block[k])
-            std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + (rgba8 ? 8 : 0), color[k], 8);
+        for (int k = 0; k < count; ++k) {
+          if (!lanes_block[k]) continue;
+          int rgb[3];
+          if (flat_colour(texel, k, mode, rgb)) best_flat_block(rgb, mode, color[k]);  // one colour: the format's best
+          std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + (rgba8 ? 8 : 0), color[k], 8);
+        }
       }
   }, options.progress);
   return out;
