@@ -70,7 +70,10 @@ void validate(ConeArgs& a) {
 }
 
 void run_conemap(const ConeArgs& a, const std::string& input, const std::string& output, FileReport& r) {
-  const ConeMapOptions& o = a.options;
+  ConeMapOptions o = a.options;
+  // The progress line: the map, and with a preview the other kind of map as the second half.
+  const double share = r.outputs.size() > 1 ? 0.5 : 1.0;
+  if (r.progress) o.progress = [&r, share](double done) { r.progress(done * share); };
   const WriteOptions& w = a.write;
   ImageFileInfo info;
   const Image img = read_image(input, &info);
@@ -87,6 +90,7 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
     ConeMapOptions other = o;
     other.mode = o.mode == ConeMode::relaxed ? ConeMode::conservative : ConeMode::relaxed;
     other.bilinear_safe = false;  // relaxed cones are texel-centre cones
+    if (r.progress) other.progress = [&r](double done) { r.progress(0.5 + 0.5 * done); };
     const std::vector<float> second = cone_ratios(h, img.width(), img.height(), other);
     const bool relaxed = o.mode == ConeMode::relaxed;
     write_image(preview, render_preview(h, relaxed ? second : ratios, img.width(), img.height(), o, a.preview_size,

@@ -2,12 +2,14 @@
 // cone stepping against a dense linear search.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
 
 #include "support/images.h"
 #include "support/targets.h"
+#include "support/threads.h"
 #include "texproc/conemap.h"
 #include "texproc/error.h"
 #include "texproc/image_io.h"
@@ -80,6 +82,26 @@ TEST(ConeMap, FastEqualsBruteForceExactly) {
         }
       }
     }
+  }
+}
+
+// ConeMapOptions::progress: one call at a time, rising to exactly 1, for the
+// pyramid search and brute force alike, on two threads; the cones are the
+// same as without it.
+TEST(ConeMap, ProgressRisesToOne) {
+  ThreadLimit two(2);
+  const std::vector<float> f = field(64, 48, "random", 5u);
+  for (bool brute : {false, true}) {
+    ConeMapOptions o;
+    std::vector<double> seen;
+    o.progress = [&](double done) { seen.push_back(done); };
+    const std::vector<float> with = brute ? cone_ratios_brute_force(f, 64, 48, o) : cone_ratios(f, 64, 48, o);
+    o.progress = nullptr;
+    EXPECT_EQ(with, brute ? cone_ratios_brute_force(f, 64, 48, o) : cone_ratios(f, 64, 48, o));
+    ASSERT_FALSE(seen.empty());
+    EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+    EXPECT_EQ(seen.back(), 1.0);
+    EXPECT_EQ(seen.size(), brute ? 48u : 6u);  // texel rows; rows of 8x8 cells
   }
 }
 

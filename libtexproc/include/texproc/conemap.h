@@ -8,6 +8,7 @@
 // capped by max_ratio: the widest upward cone at p that no texel centre enters.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "texproc/filters.h"
@@ -39,6 +40,9 @@ struct ConeMapOptions {
   // Conservative cones that stay safe when a renderer interpolates the
   // heights and the ratios bilinearly (see cone_ratios). Not with relaxed.
   bool bilinear_safe = false;
+  // Where set: the fraction of the search done (rows of cells; brute force:
+  // rows of texels), one call at a time from worker threads, rising to 1.
+  std::function<void(double)> progress;
 };
 
 // Exact cone ratios (conservative or relaxed, o.mode) of a width x height

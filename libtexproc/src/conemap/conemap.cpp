@@ -459,7 +459,7 @@ std::vector<float> cell_cones(const std::vector<float>& heights, const std::vect
         for (int r = 0; r < h; ++r)
           for (int l = 0; l < w; ++l) out[std::size_t(c.y0 + r) * W + c.x0 + l] = c.best[r][l];
       }
-  });
+  }, o.progress);
   return out;
 }
 
@@ -587,7 +587,7 @@ std::vector<float> cone_ratios_brute_force(const std::vector<float>& heights, in
           }
         r2[std::size_t(py) * W + px] = best;
       }
-  });
+  }, o.progress);
   if (o.bilinear_safe) bilinear_local(heights, apex, W, H, o, r2);
   return square_roots(std::move(r2));
 }
