@@ -259,6 +259,55 @@ TEST(Bc1Encode, SingleColourBlocksAreOptimal) {
   }
 }
 
+// BC1 with alpha: one opaque colour among transparent texels (a flat sprite
+// with holes) gets the least error the three-colour mode allows, at every
+// quality. The oracle here: every pair of 5- or 6-bit ends per channel, the
+// colour at an end or at their rounded average, one choice for all three
+// channels. `fast` and `normal` had five times that error before, `high`
+// 1.3 times.
+TEST(Bc1Encode, PunchThroughOneColourIsOptimal) {
+  std::mt19937 rng(12);
+  for (int n = 0; n < 150; ++n) {
+    const int c[3] = {int(rng() % 256), int(rng() % 256), int(rng() % 256)};
+    std::uint8_t px[16][4];
+    int opaque = 0;
+    for (int i = 0; i < 16; ++i) {
+      px[i][0] = std::uint8_t(c[0]), px[i][1] = std::uint8_t(c[1]), px[i][2] = std::uint8_t(c[2]);
+      px[i][3] = (i * 7 + n) % 5 == 0 ? 0 : 255;
+      opaque += px[i][3] == 255;
+    }
+    long least = -1;
+    for (int at_average = 0; at_average < 2; ++at_average) {
+      long e = 0;
+      for (int ch = 0; ch < 3; ++ch) {
+        const int bits = ch == 1 ? 6 : 5;
+        long be = -1;
+        for (int a = 0; a < (1 << bits); ++a)
+          for (int b = 0; b < (1 << bits); ++b) {
+            const int ea = expand(a, bits), eb = expand(b, bits), v = at_average ? (ea + eb + 1) / 2 : ea;
+            const long d = long(v - c[ch]) * (v - c[ch]);
+            if (be < 0 || d < be) be = d;
+          }
+        e += be;
+      }
+      if (least < 0 || e < least) least = e;
+    }
+    for (Quality q : {Quality::fast, Quality::normal, Quality::high, Quality::max}) {
+      std::uint8_t block[8];
+      encode_block(TexelFormat::bc1_rgba_unorm, px, q, block);
+      float t[16][4];
+      decode_bc_block(TexelFormat::bc1_rgba_unorm, block, t);
+      long e = 0;
+      for (int i = 0; i < 16; ++i) {
+        EXPECT_EQ(t[i][3], px[i][3] == 255 ? 1.0f : 0.0f) << i;
+        if (px[i][3] == 255)
+          for (int ch = 0; ch < 3; ++ch) e += (std::lround(t[i][ch] * 255.0f) - c[ch]) * (std::lround(t[i][ch] * 255.0f) - c[ch]);
+      }
+      EXPECT_EQ(e, least * opaque) << c[0] << "," << c[1] << "," << c[2] << " " << to_string(q);
+    }
+  }
+}
+
 // Two colours exactly on the 565 grid are lossless.
 TEST(Bc1Encode, TwoGridColoursAreLossless) {
   std::mt19937 rng(7);

@@ -318,6 +318,36 @@ void encode_block_by_block(const Bc1Texels& tx, ColorMode mode, Quality q, std::
   float mean[3];
   for (int ch = 0; ch < 3; ++ch) mean[ch] = float(m.sum[ch]) / float(n);
 
+  // One opaque colour among transparent texels (punch-through: the
+  // three-colour mode): the single-colour pair through the average (index
+  // 2), or both ends at the colour's nearest 5:6:5 value (index 0),
+  // whichever leaves less error; the holes take index 3.
+  if (cov_n2[0] == 0 && cov_n2[3] == 0 && cov_n2[5] == 0 && any_transparent) {
+    int first = 0;
+    while (tx.transparent[first]) ++first;
+    const int c[3] = {tx.r[first], tx.g[first], tx.b[first]};
+    const SingleColorTables& s = single();
+    Endpoints through, ends;
+    for (int k = 0; k < 2; ++k) {
+      through.c[k][0] = s.five[1][c[0]][k], through.c[k][1] = s.six[1][c[1]][k], through.c[k][2] = s.five[1][c[2]][k];
+      for (int ch = 0; ch < 3; ++ch) {
+        const int bits = ch == 1 ? 6 : 5;
+        int level = 0;
+        for (int v = 1; v < (1 << bits); ++v)
+          if (std::abs((bits == 6 ? expand6(v) : expand5(v)) - c[ch]) < std::abs((bits == 6 ? expand6(level) : expand5(level)) - c[ch]))
+            level = v;
+        ends.c[k][ch] = level;
+      }
+    }
+    for (const Endpoints& e : {through, ends}) {
+      Result r;
+      assign(tx, e, false, false, r);
+      keep(r);
+    }
+    write(best, out);
+    return;
+  }
+
   // Principal axis of the opaque colours: power iteration on the covariance,
   // from its row of greatest variance.
   const float cov[6] = {float(cov_n2[0]), float(cov_n2[1]), float(cov_n2[2]),
