@@ -709,6 +709,59 @@ TEST(EtcEncode, FlatBlocksAreOptimal) {
   }
 }
 
+// Punch-through: one visible colour among holes. The holes stay holes, and
+// every level reaches at least the best differential block with the opaque
+// flag clear (modifiers 0 and +-b, worked out here exhaustively), the same
+// error at every level. `fast` had 2.5 times `high`'s error before.
+TEST(EtcEncode, PunchThroughOneColourWithHoles) {
+  static const int kB[8] = {8, 17, 29, 42, 60, 80, 106, 183};
+  std::mt19937 rng(14);
+  for (int n = 0; n < 100; ++n) {
+    const int c[3] = {int(rng() % 256), int(rng() % 256), int(rng() % 256)};
+    Image img(4, 4, 4, PixelType::u8);
+    int visible = 0;
+    for (int i = 0; i < 16; ++i) {
+      std::uint8_t* p = img.row<std::uint8_t>(i / 4) + 4 * (i % 4);
+      p[0] = std::uint8_t(c[0]), p[1] = std::uint8_t(c[1]), p[2] = std::uint8_t(c[2]);
+      p[3] = (i * 5 + n) % 4 == 0 ? 0 : 255;
+      visible += p[3] == 255;
+    }
+    long oracle = -1;
+    for (int option = 0; option < 17; ++option) {
+      const int m = option == 0 ? 0 : (option % 2 ? kB[(option - 1) / 2] : -kB[(option - 1) / 2]);
+      long e = 0;
+      for (int ch = 0; ch < 3; ++ch) {
+        long be = -1;
+        for (int q = 0; q < 32; ++q) {
+          const long d = c[ch] - std::clamp((q << 3 | q >> 2) + m, 0, 255);
+          if (be < 0 || d * d < be) be = d * d;
+        }
+        e += be;
+      }
+      if (oracle < 0 || e < oracle) oracle = e;
+    }
+    long first = -1;
+    for (Quality q : {Quality::fast, Quality::normal, Quality::high, Quality::max}) {
+      Texture t;
+      t.format = TexelFormat::etc2_rgba1_unorm;
+      t.width = t.height = 4;
+      t.images.push_back(compress_image(img.view(), t.format, q));
+      const Image d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
+      long e = 0;
+      for (int i = 0; i < 16; ++i) {
+        const std::uint8_t* p = d.row<std::uint8_t>(i / 4) + d.channels() * (i % 4);
+        const bool hole = img.row<std::uint8_t>(i / 4)[4 * (i % 4) + 3] == 0;
+        EXPECT_EQ(p[3], hole ? 0 : 255) << i;
+        if (!hole)
+          for (int ch = 0; ch < 3; ++ch) e += long(p[ch] - c[ch]) * (p[ch] - c[ch]);
+      }
+      EXPECT_LE(e, oracle * visible) << c[0] << "," << c[1] << "," << c[2] << " " << to_string(q);
+      if (first < 0) first = e;
+      EXPECT_EQ(e, first) << to_string(q);
+    }
+  }
+}
+
 // An ETC1 stream is an ETC2 stream: the ETC2 decoder reads every block the
 // ETC1 encoder writes as the ETC1 decoder does; and bytes do not depend on
 // the thread count.

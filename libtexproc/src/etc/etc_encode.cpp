@@ -758,6 +758,54 @@ void best_flat_block(const int rgb[3], ColorMode mode, std::uint8_t block[8]) {
   if (best.err < current) store_be64(best.bits, block);
 }
 
+// Punch-through with holes (the opaque flag clear) and one visible colour:
+// the differential mode's modifiers are then 0 (index 0) and +-b (indices 1
+// and 3), index 2 a hole. The best base for each of those, both halves
+// alike; `block` is replaced where that beats its error over the visible
+// texels, whose error it returns.
+long best_flat_holes_block(const std::uint8_t rgba[16][4], const int rgb[3], std::uint8_t block[8]) {
+  const FlatTables& f = flat_tables();
+  int visible = 0;
+  for (int i = 0; i < 16; ++i) visible += rgba[i][3] >= 128;
+  Candidate best;
+  for (int option = 0; option < 17; ++option) {  // 0: modifier 0; then table t's +b and -b
+    const int t = option == 0 ? 0 : (option - 1) / 2, idx = option == 0 ? 0 : (option - 1) % 2 ? 3 : 1;
+    int q[3];
+    long per_texel = 0;
+    for (int c = 0; c < 3; ++c) {
+      if (option == 0) {
+        int e = std::numeric_limits<int>::max();
+        for (int v = 0; v < 32; ++v) {
+          const int d = rgb[c] - extend5(v);
+          if (d * d < e) e = d * d, q[c] = v;
+        }
+        per_texel += e;
+      } else {
+        q[c] = f.base[1][t * 4 + idx][rgb[c]], per_texel += f.err[1][t * 4 + idx][rgb[c]];
+      }
+    }
+    const long err = per_texel * visible;
+    if (err >= best.err) continue;
+    HalfFit h[2];
+    for (int s = 0; s < 2; ++s) {
+      std::memcpy(h[s].q, q, sizeof q);
+      h[s].table = t;
+      const HalfLayout& L = halves()[std::size_t(s)];
+      for (int i = 0; i < 8; ++i) h[s].idx[i] = std::uint8_t(rgba[L.y[i] * 4 + L.x[i]][3] >= 128 ? idx : 2);
+    }
+    keep(best, err, pack_halves(h[0], h[1], false, true, 0));
+  }
+  Rgba8Block decoded;
+  decode_etc2(block, true, decoded);
+  long current = 0;
+  for (int i = 0; i < 16; ++i)
+    if (rgba[i][3] >= 128)
+      for (int c = 0; c < 3; ++c) current += long(rgb[c] - decoded[i][c]) * (rgb[c] - decoded[i][c]);
+  if (best.err >= current) return current;
+  store_be64(best.bits, block);
+  return best.err;
+}
+
 // Whether the 16 texels (R | G << 8 | B << 16 | A << 24) are one colour,
 // opaque where `mode` reads alpha (punch-through); `rgb` gets it.
 bool flat_colour(const std::uint32_t texel[16][kEtcBatch], int k, ColorMode mode, int rgb[3]) {
@@ -817,6 +865,17 @@ long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality 
   if (flat_colour(texel, 0, mode, rgb)) {
     best_flat_block(rgb, mode, out);
     return block_error(rgba, out, mode);
+  }
+  if (non_opaque) {  // holes: one visible colour?
+    int first = 0;
+    while (first < 16 && rgba[first][3] < 128) ++first;
+    bool one = first < 16;
+    for (int i = first; i < 16 && one; ++i)
+      one = rgba[i][3] < 128 || (rgba[i][0] == rgba[first][0] && rgba[i][1] == rgba[first][1] && rgba[i][2] == rgba[first][2]);
+    if (one) {
+      const int c[3] = {rgba[first][0], rgba[first][1], rgba[first][2]};
+      return best_flat_holes_block(rgba, c, out);
+    }
   }
   return best.err;
 }
