@@ -308,6 +308,63 @@ TEST(Bc1Encode, PunchThroughOneColourIsOptimal) {
   }
 }
 
+// Blocks of exactly two colours (text, line art) at `normal` and above reach
+// the least error of any block that puts each colour at one palette entry:
+// the oracle here tries every pair of entries in both modes and every pair
+// of 5- or 6-bit ends per channel. `fast`, `normal` and `high` had 1.9, 1.3
+// and 1.2 times that before (and `max` 1.06).
+TEST(Bc1Encode, TwoColoursReachTheirBestPalettePositions) {
+  std::mt19937 rng(13);
+  for (int n = 0; n < 60; ++n) {
+    int c[2][3];
+    for (auto& cc : c)
+      for (int& v : cc) v = int(rng() % 256);
+    if (n % 2)
+      for (int ch = 0; ch < 3; ++ch) c[1][ch] = std::clamp(c[0][ch] + int(rng() % 21) - 10, 0, 255);  // near colours
+    std::uint8_t px[16][4];
+    int nb = 0;
+    for (int i = 0; i < 16; ++i) {
+      const bool second = (i * 3 + n) % 4 == 0;
+      nb += second;
+      for (int ch = 0; ch < 3; ++ch) px[i][ch] = std::uint8_t(c[second][ch]);
+      px[i][3] = 255;
+    }
+    const int na = 16 - nb;
+    long oracle = -1;
+    for (int four = 0; four < 2; ++four) {
+      const int den = four ? 3 : 2;
+      for (int ta = 0; ta <= den; ++ta)
+        for (int tb = 0; tb <= den; ++tb) {
+          if (ta == tb) continue;
+          long total = 0;
+          for (int ch = 0; ch < 3; ++ch) {
+            const int bits = ch == 1 ? 6 : 5;
+            long best = -1;
+            for (int e0 = 0; e0 < (1 << bits); ++e0)
+              for (int e1 = 0; e1 < (1 << bits); ++e1) {
+                const int x = expand(e0, bits), y = expand(e1, bits);
+                auto at = [&](int pos) {
+                  if (pos == 0) return x;
+                  if (pos == den) return y;
+                  return four ? (pos == 1 ? (2 * x + y + 1) / 3 : (x + 2 * y + 1) / 3) : (x + y + 1) / 2;
+                };
+                const long da = c[0][ch] - at(ta), db = c[1][ch] - at(tb);
+                const long e = na * da * da + nb * db * db;
+                if (best < 0 || e < best) best = e;
+              }
+            total += best;
+          }
+          if (oracle < 0 || total < oracle) oracle = total;
+        }
+    }
+    for (Quality q : {Quality::normal, Quality::high, Quality::max}) {
+      std::uint8_t block[8];
+      encode_block(TexelFormat::bc1_rgb_unorm, px, q, block);
+      EXPECT_LE(bc1_error(block, px), oracle) << n << " " << to_string(q);
+    }
+  }
+}
+
 // Two colours exactly on the 565 grid are lossless.
 TEST(Bc1Encode, TwoGridColoursAreLossless) {
   std::mt19937 rng(7);

@@ -522,6 +522,68 @@ long long block_errors(const std::uint8_t block[8], const std::uint8_t rgba[16][
 }
 }  // namespace
 
+void bc1_try_two_colours(const std::uint8_t rgba[16][4], ColorMode mode, std::uint8_t block[8]) {
+  // Exactly two colours, every texel opaque where alpha matters.
+  const int a[3] = {rgba[0][0], rgba[0][1], rgba[0][2]};
+  int b[3] = {-1, -1, -1}, nb = 0;
+  bool is_b[16] = {};
+  for (int i = 0; i < 16; ++i) {
+    if (mode == ColorMode::bc1_punch_through && rgba[i][3] < 128) return;
+    if (rgba[i][0] == a[0] && rgba[i][1] == a[1] && rgba[i][2] == a[2]) continue;
+    if (b[0] < 0) b[0] = rgba[i][0], b[1] = rgba[i][1], b[2] = rgba[i][2];
+    if (rgba[i][0] != b[0] || rgba[i][1] != b[1] || rgba[i][2] != b[2]) return;  // a third colour
+    is_b[i] = true, ++nb;
+  }
+  if (nb == 0) return;
+  const int na = 16 - nb;
+  Result best;
+  best.error = -1;
+  for (int four = 1; four >= 0; --four) {
+    if (!four && mode == ColorMode::four_only) continue;
+    const int den = four ? 3 : 2;
+    // Palette positions in steps of 1/den from the first end, and their indices.
+    auto index_of = [&](int pos) { return four ? (pos == 0 ? 0 : pos == 3 ? 1 : pos == 1 ? 2 : 3) : (pos == 0 ? 0 : pos == 2 ? 1 : 2); };
+    for (int ta = 0; ta <= den; ++ta)
+      for (int tb = ta + 1; tb <= den; ++tb) {
+        Result r;
+        r.four = four != 0;
+        r.error = 0;
+        for (int c = 0; c < 3; ++c) {
+          const int bits = c == 1 ? 6 : 5, top = (1 << bits) - 1;
+          auto ex = [&](int v) { return bits == 6 ? expand6(v) : expand5(v); };
+          auto value = [&](int e0, int e1, int pos) {  // the decoder's palette entry
+            const int x = ex(e0), y = ex(e1);
+            if (pos == 0) return x;
+            if (pos == den) return y;
+            return four ? (pos == 1 ? (2 * x + y + 1) / 3 : (x + 2 * y + 1) / 3) : (x + y + 1) / 2;
+          };
+          // The ends that put a at ta and b at tb exactly, then the quantized
+          // neighbours of each.
+          const double span = double(b[c] - a[c]) * den / (tb - ta), e0 = a[c] - ta * span / den, e1 = e0 + span;
+          const int q0 = std::clamp(int(std::lround(e0 * top / 255.0)), 0, top), q1 = std::clamp(int(std::lround(e1 * top / 255.0)), 0, top);
+          long channel = -1;
+          for (int d0 = -1; d0 <= 1; ++d0)
+            for (int d1 = -1; d1 <= 1; ++d1) {
+              const int v0 = q0 + d0, v1 = q1 + d1;
+              if (v0 < 0 || v0 > top || v1 < 0 || v1 > top) continue;
+              const long da = a[c] - value(v0, v1, ta), db = b[c] - value(v0, v1, tb);
+              const long e = na * da * da + nb * db * db;
+              if (channel < 0 || e < channel) channel = e, r.e.c[0][c] = v0, r.e.c[1][c] = v1;
+            }
+          r.error += channel;
+        }
+        if (best.error >= 0 && r.error >= best.error) continue;
+        for (int i = 0; i < 16; ++i) r.idx[i] = std::uint8_t(index_of(is_b[i] ? tb : ta));
+        best = r;
+      }
+  }
+  std::uint8_t candidate[8];
+  write(best, candidate);
+  int err[16];
+  const long long current = block_errors(block, rgba, err), mine = block_errors(candidate, rgba, err);
+  if (mine < current) std::memcpy(block, candidate, 8);
+}
+
 void bc1_try_black(const std::uint8_t rgba[16][4], Quality q, std::uint8_t block[8]) {
   int err[16], dark[16];
   long long total = block_errors(block, rgba, err);

@@ -20,6 +20,13 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q,
 // with or without transparent texels, or none opaque).
 void encode_bc1_color_block_by_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]);
 
+// A block of exactly two colours (and, with punch-through, no hole): every
+// pair of palette positions for them (either mode where `mode` allows it),
+// the ends that put them there exactly, each channel's quantized ends within
+// one step; `block` is replaced where that lowers its error. Texts, line art
+// and UI edges; `normal` and above.
+void bc1_try_two_colours(const std::uint8_t rgba[16][4], ColorMode mode, std::uint8_t block[8]);
+
 // Opaque BC1 with the three-colour mode's black (EncodeOptions::bc1_black):
 // a set of texels takes index 3 and the others are fitted in the
 // three-colour mode (the punch-through encoder at `q`, which leaves index-3

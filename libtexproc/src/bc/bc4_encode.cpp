@@ -165,6 +165,24 @@ double bc4_block_error(const std::uint8_t block[8], const float values[16], bool
 }
 
 namespace {
+// Whether a block's texels hold exactly two RGB colours (alpha aside).
+bool two_colours(const std::uint32_t texel[16][kBc1Batch], int k) {
+  const std::uint32_t a = texel[0][k] & 0xFFFFFF;
+  std::uint32_t b = a;
+  for (int i = 1; i < 16; ++i) {
+    const std::uint32_t t = texel[i][k] & 0xFFFFFF;
+    if (t == a || t == b) continue;
+    if (b != a) return false;
+    b = t;
+  }
+  return b != a;
+}
+bool two_colours(const std::uint8_t rgba[16][4]) {
+  std::uint32_t texel[16][kBc1Batch];
+  for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
+  return two_colours(texel, 0);
+}
+
 std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
   using F = TexelFormat;
   const bool bc1 = format == F::bc1_rgb_unorm || format == F::bc1_rgb_srgb;
@@ -221,6 +239,12 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
               encode_bc1_color_block_by_block(rgba[k], color_mode, q, color_dst);
               if (uniform) uniform_valid = true, uniform_texel = first, std::memcpy(uniform_block, color_dst, 8);
             }
+          }
+          // Two colours exactly (text, line art): their best palette positions
+          // (above `fast`, which keeps its speed: a palette texture at half of it).
+          if (q != Quality::fast && (lanes && handled[k] ? two_colours(texel, k) : two_colours(rgba[k]))) {
+            if (lanes && handled[k] && rows_direct) gather_rgba8(img, bx0 + k, by, rgba[k]);
+            bc1_try_two_colours(rgba[k], color_mode, color_dst);
           }
           if (black) {
             if (lanes && handled[k] && rows_direct) gather_rgba8(img, bx0 + k, by, rgba[k]);
