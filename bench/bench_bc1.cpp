@@ -7,9 +7,7 @@
 #include <benchmark/benchmark.h>
 #include <squish.h>
 
-#include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -100,12 +98,12 @@ void process(benchmark::State& state, const std::string& tool) {
       const std::string cmd = tool == "nvcompress" ? "nvcompress -bc1 -nomips -nocuda -color " + in + " " + out
                                                    : std::string(TEXPROC_CLI_PATH) + " compress " + in + " -o " + out +
                                                          " --format bc1 --linear --threads 1 -f -q";
-      const auto t0 = std::chrono::steady_clock::now();
-      if (std::system((cmd + " >/dev/null 2>&1").c_str()) != 0) {
+      const double took = bench::timed_command(cmd);
+      if (took < 0) {
         state.SkipWithError(("failed: " + cmd).c_str());
         return;
       }
-      seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      seconds += took;
       const Texture t = read_texture(out);
       psnr_sum += bench::psnr_rgb(bench::color_textures()[i], TexelFormat::bc1_rgb_unorm, t.image(0));
     }

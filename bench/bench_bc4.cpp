@@ -9,9 +9,7 @@
 #include <benchmark/benchmark.h>
 #include <squish.h>
 
-#include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <cstdio>
@@ -189,12 +187,12 @@ void process(benchmark::State& state, const std::string& tool, bool bc5) {
       const std::string cmd = tool == "nvcompress" ? "nvcompress -" + std::string(f) + " -nomips -nocuda " + in + " " + out
                                                    : std::string(TEXPROC_CLI_PATH) + " compress " + in + " -o " + out +
                                                          " --format " + f + " --threads 1 -f -q";
-      const auto t0 = std::chrono::steady_clock::now();
-      if (std::system((cmd + " >/dev/null 2>&1").c_str()) != 0) {
+      const double took = bench::timed_command(cmd);
+      if (took < 0) {
         state.SkipWithError(("failed: " + cmd).c_str());
         return;
       }
-      seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      seconds += took;
       const Texture t = read_texture(out);
       if (bc5) {
         double p[3];

@@ -2,7 +2,9 @@
 // they encode, and RGB PSNR under texproc's decoders.
 #pragma once
 
+#include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -11,6 +13,14 @@
 #include "texproc/image_io.h"
 
 namespace texproc::bench {
+
+// Runs a shell command, its output discarded; its wall-clock seconds, or -1
+// where it failed (whole-process comparisons with other tools).
+inline double timed_command(const std::string& command) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (std::system((command + " >/dev/null 2>&1").c_str()) != 0) return -1.0;
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
 
 // An RGBA8 crop (multiples of 4) of a corpus image's colour, alpha opaque.
 inline Image color_crop(const std::string& corpus_path) {

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <random>
 
+#include "support/blocks.h"
 #include "support/images.h"
 #include "support/targets.h"
 #include "support/threads.h"
@@ -119,13 +120,8 @@ TEST(Bc4Encode, NarrowEightBitBlocksAreLosslessInImages) {
       }
   for (TexelFormat f : {TexelFormat::bc4_unorm, TexelFormat::bc5_unorm})
     for (Quality q : {Quality::fast, Quality::normal, Quality::high}) {
-      Texture t;
-      t.format = f;
-      t.width = 64;
-      t.height = 32;
-      t.images.push_back(compress_image(img.view(), f, q));
       // Exact decoding (an 8-bit decode would round small errors away).
-      const Image d = decode_texture_image(t, 0, 0, 0, PixelType::f32);
+      const Image d = round_trip(img, f, q, PixelType::f32);
       int wrong = 0;
       for (int y = 0; y < 32; ++y)
         for (int x = 0; x < 64; ++x)
@@ -187,12 +183,7 @@ TEST(Bc5Encode, ImagesDeterministicAndClose) {
       smooth.set(x, y, 0, 0.5f + 0.4f * std::sin(x * 0.2f));
       smooth.set(x, y, 1, 0.5f + 0.4f * std::cos(y * 0.3f));
     }
-  Texture t;
-  t.format = TexelFormat::bc5_unorm;
-  t.width = 37;
-  t.height = 22;
-  t.images.push_back(compress_image(smooth.view(), TexelFormat::bc5_unorm, Quality::high));
-  const Image back = decode_texture_image(t, 0, 0, 0, PixelType::f32);
+  const Image back = round_trip(smooth, TexelFormat::bc5_unorm, Quality::high, PixelType::f32);
   for (int y = 0; y < 22; ++y)
     for (int x = 0; x < 37; ++x)
       for (int c = 0; c < 2; ++c) ASSERT_NEAR(back.get(x, y, c), smooth.get(x, y, c), 7.0 / 255) << x << "," << y;
@@ -440,12 +431,7 @@ TEST(Bc1Encode, BlackIndexOnLineArt) {
   EncodeOptions black;
   black.bc1_black = true;
   auto psnr = [&](const std::vector<std::uint8_t>& blocks) {
-    Texture t;
-    t.format = TexelFormat::bc1_rgb_unorm;
-    t.width = 96;
-    t.height = 96;
-    t.images.push_back(blocks);
-    const Image d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
+    const Image d = decode_blocks(96, 96, TexelFormat::bc1_rgb_unorm, blocks, PixelType::u8);
     double se = 0;
     for (int y = 0; y < 96; ++y)
       for (int x = 0; x < 96; ++x)
@@ -610,13 +596,8 @@ TEST(BlockEncode, QualityLevelsAreOrdered) {
       for (int x = 0; x < 96; ++x) src.row<std::uint8_t>(y)[4 * x + 3] = (x % 12 < 3 && y % 8 < 3) ? 0 : 255;
     double previous = 0.0, fast = 0.0;
     for (Quality q : {Quality::fast, Quality::normal, Quality::high, Quality::max}) {
-      Texture t;
-      t.format = f;
-      t.width = 96;
-      t.height = 64;
-      t.images.push_back(compress_image(src.view(), f, q));
       // PSNR over the channels the format stores (the decoded image's).
-      const Image d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
+      const Image d = round_trip(src, f, q, PixelType::u8);
       const int channels = punch ? 3 : d.channels();
       double sq = 0.0, n = 0.0;
       for (int y = 0; y < 64; ++y)
@@ -740,12 +721,7 @@ TEST(Bc1Encode, HighIsNeverBelowLibsquishClusterFit) {
         for (int c = 0; c < 4; ++c)
           img.set(x, y, c, c == 3 ? 1.0f : src.get(x0 + x, y0 + y, src.channels() < 3 ? 0 : c));
     auto psnr = [&](const std::vector<std::uint8_t>& blocks) {
-      Texture t;
-      t.format = TexelFormat::bc1_rgb_unorm;
-      t.width = std::uint32_t(w);
-      t.height = std::uint32_t(h);
-      t.images.push_back(blocks);
-      const Image d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
+      const Image d = decode_blocks(w, h, TexelFormat::bc1_rgb_unorm, blocks, PixelType::u8);
       double se = 0.0;
       for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)

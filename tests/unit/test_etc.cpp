@@ -13,6 +13,7 @@
 #include <random>
 #include <vector>
 
+#include "support/blocks.h"
 #include "support/images.h"
 #include "support/targets.h"
 #include "support/threads.h"
@@ -600,11 +601,7 @@ TEST(EtcEncode, PunchThroughKeepsTheCutout) {
       p[0] = std::uint8_t(x * 16), p[1] = std::uint8_t(y * 16), p[2] = 128;
       p[3] = (x + y) % 3 == 0 ? 0 : (x * y) % 5 == 0 ? 100 : 255;
     }
-  Texture t;
-  t.format = TexelFormat::etc2_rgba1_unorm;
-  t.width = t.height = 16;
-  t.images.push_back(compress_image(img.view(), t.format, Quality::normal));
-  const Image d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
+  const Image d = round_trip(img, TexelFormat::etc2_rgba1_unorm, Quality::normal, PixelType::u8);
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x) {
       const bool visible = img.row<std::uint8_t>(y)[x * 4 + 3] >= 128;
@@ -630,12 +627,7 @@ TEST(EtcEncode, NarrowAlphaIsLossless) {
       }
     }
   for (Quality q : {Quality::fast, Quality::normal, Quality::high}) {
-    Texture t;
-    t.format = TexelFormat::etc2_rgba8_unorm;
-    t.width = 64;
-    t.height = 32;
-    t.images.push_back(compress_image(img.view(), t.format, q));
-    const Image d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
+    const Image d = round_trip(img, TexelFormat::etc2_rgba8_unorm, q, PixelType::u8);
     int wrong = 0;
     for (int y = 0; y < 32; ++y)
       for (int x = 0; x < 64; ++x) wrong += d.row<std::uint8_t>(y)[4 * x + 3] != img.row<std::uint8_t>(y)[4 * x + 3];
@@ -686,11 +678,7 @@ TEST(EtcEncode, FlatBlocksAreOptimal) {
       const long limit = oracle(c, f != TexelFormat::etc2_rgba1_unorm);
       long first = -1;
       for (Quality q : {Quality::fast, Quality::normal, Quality::high}) {
-        Texture t;
-        t.format = f;
-        t.width = t.height = 4;
-        t.images.push_back(compress_image(img.view(), f, q));
-        const Image d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
+        const Image d = round_trip(img, f, q, PixelType::u8);
         long e = 0;
         for (int i = 0; i < 16; ++i)
           for (int ch = 0; ch < 3; ++ch) {
@@ -742,11 +730,7 @@ TEST(EtcEncode, PunchThroughOneColourWithHoles) {
     }
     long first = -1;
     for (Quality q : {Quality::fast, Quality::normal, Quality::high, Quality::max}) {
-      Texture t;
-      t.format = TexelFormat::etc2_rgba1_unorm;
-      t.width = t.height = 4;
-      t.images.push_back(compress_image(img.view(), t.format, q));
-      const Image d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
+      const Image d = round_trip(img, TexelFormat::etc2_rgba1_unorm, q, PixelType::u8);
       long e = 0;
       for (int i = 0; i < 16; ++i) {
         const std::uint8_t* p = d.row<std::uint8_t>(i / 4) + d.channels() * (i % 4);
@@ -880,11 +864,7 @@ TEST(EtcEncode, LineArtFindsClampedModifiers) {
       p[0] = p[1] = p[2] = std::uint8_t(pick(rng, 120, 255));
     }
     auto squared_error = [&](const std::vector<std::uint8_t>& blocks) {
-      Texture t;
-      t.format = TexelFormat::etc1_rgb;
-      t.width = t.height = 64;
-      t.images.push_back(blocks);
-      const Image d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
+      const Image d = decode_blocks(64, 64, TexelFormat::etc1_rgb, blocks, PixelType::u8);
       double se = 0;
       for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x)

@@ -165,20 +165,9 @@ double bc4_block_error(const std::uint8_t block[8], const float values[16], bool
 }
 
 namespace {
-// Whether a block's texels hold exactly two RGB colours (alpha aside).
-bool two_colours(const std::uint32_t texel[16][kBc1Batch], int k) {
-  const std::uint32_t a = texel[0][k] & 0xFFFFFF;
-  std::uint32_t b = a;
-  for (int i = 1; i < 16; ++i) {
-    const std::uint32_t t = texel[i][k] & 0xFFFFFF;
-    if (t == a || t == b) continue;
-    if (b != a) return false;
-    b = t;
-  }
-  return b != a;
-}
-bool two_colours(const std::uint8_t rgba[16][4]) {
-  std::uint32_t texel[16][kBc1Batch];
+// block_gather.h's two_colours for 16 RGBA8 texels (`max`, which has no lanes).
+bool two_colours_rgba(const std::uint8_t rgba[16][4]) {
+  std::uint32_t texel[16][kBlockBatch];
   for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
   return two_colours(texel, 0);
 }
@@ -242,14 +231,16 @@ std::vector<std::uint8_t> compress_color(const ImageView& img, TexelFormat forma
           }
           // Two colours exactly (text, line art): their best palette positions
           // (above `fast`, which keeps its speed: a palette texture at half of it).
-          if (q != Quality::fast && (lanes && handled[k] ? two_colours(texel, k) : two_colours(rgba[k]))) {
-            if (lanes && handled[k] && rows_direct) gather_rgba8(img, bx0 + k, by, rgba[k]);
-            bc1_try_two_colours(rgba[k], color_mode, color_dst);
-          }
-          if (black) {
-            if (lanes && handled[k] && rows_direct) gather_rgba8(img, bx0 + k, by, rgba[k]);
-            bc1_try_black(rgba[k], q, color_dst);
-          }
+          // The passes below read rgba[k], which a block the lanes took from
+          // the rows does not have yet: gathered once, where a pass needs it.
+          bool gathered = !(lanes && handled[k] && rows_direct);
+          auto texels = [&]() -> const std::uint8_t(&)[16][4] {
+            if (!gathered) gather_rgba8(img, bx0 + k, by, rgba[k]), gathered = true;
+            return rgba[k];
+          };
+          if (q != Quality::fast && (lanes ? two_colours(texel, k) : two_colours_rgba(rgba[k])))
+            bc1_try_two_colours(texels(), color_mode, color_dst);
+          if (black) bc1_try_black(texels(), q, color_dst);
           if (colour_only) continue;
           // The lanes' texels hold every block's alpha; `max` has the gathered ones.
           auto alpha_of = [&](int i) { return lanes ? int(texel[i][k] >> 24) : int(rgba[k][i][3]); };

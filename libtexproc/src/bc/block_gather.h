@@ -76,6 +76,22 @@ constexpr int kBlockBatch = 16;
 // block): 0 `fast`, 1 `normal`, 2 `high`.
 inline int lane_level(Quality q) { return q == Quality::fast ? 0 : q == Quality::normal ? 1 : 2; }
 
+// Whether block k's texels (R | G << 8 | B << 16 | A << 24) hold exactly
+// two RGB colours, alpha aside; `a` gets texel 0's, `b` the other.
+inline bool two_colours(const std::uint32_t texel[16][kBlockBatch], int k, std::uint32_t* a = nullptr, std::uint32_t* b = nullptr) {
+  const std::uint32_t first = texel[0][k] & 0xFFFFFF;
+  std::uint32_t second = first;
+  for (int i = 1; i < 16; ++i) {
+    const std::uint32_t t = texel[i][k] & 0xFFFFFF;
+    if (t == first || t == second) continue;
+    if (second != first) return false;  // a third colour
+    second = t;
+  }
+  if (a) *a = first;
+  if (b) *b = second;
+  return second != first;
+}
+
 inline std::uint32_t pack_texel(const std::uint8_t px[4]) {
   return std::uint32_t(px[0]) | std::uint32_t(px[1]) << 8 | std::uint32_t(px[2]) << 16 | std::uint32_t(px[3]) << 24;
 }

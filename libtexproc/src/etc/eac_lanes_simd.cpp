@@ -62,6 +62,18 @@ inline int place(float t, const float pal[8]) {
   return s;
 }
 
+// The squared error of (base, mult, table) for the 16 clamped values.
+inline float candidate_error(const Kind& K, const float t[16], int base, int mult, int table) {
+  float pal[8];
+  palette(K, base, mult, table, pal);
+  float err = 0.0f;
+  for (int i = 0; i < 16; ++i) {
+    const float d = t[i] - pal[place(t[i], pal)];
+    err += d * d;
+  }
+  return err;
+}
+
 // The chosen block's codes (values clamped as the search had them): worked
 // out once, after the search has scored its candidates by error alone.
 inline void codes_of(const Kind& K, const float t[16], int base, int mult, int table, int codes[16]) {
@@ -109,26 +121,14 @@ void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, int
         const int b0 = std::clamp(int(std::floor(bf + 0.5f)), K.base_lo, K.base_hi);
         for (int base = b0 - eac::base_radius(level); base <= b0 + eac::base_radius(level); ++base) {
           if (base < K.base_lo || base > K.base_hi) continue;
-          float pal[8];
-          eac::palette(K, base, mult, table, pal);
-          float err = 0.0f;
-          for (int i = 0; i < 16; ++i) {
-            const float d = t[i] - pal[eac::place(t[i], pal)];
-            err += d * d;
-          }
+          const float err = eac::candidate_error(K, t, base, mult, table);
           if (best < 0.0f || err < best) best = err, best_base = base, best_mult = mult, best_table = table;
         }
       }
     }
     if (kind == EacKind::alpha8 && hi > lo && hi - lo <= 5.0f) {
       const int base = eac::narrow_base(lo);
-      float pal[8];
-      eac::palette(K, base, 1, eac::kNarrowTable, pal);
-      float err = 0.0f;
-      for (int i = 0; i < 16; ++i) {
-        const float d = t[i] - pal[eac::place(t[i], pal)];
-        err += d * d;
-      }
+      const float err = eac::candidate_error(K, t, base, 1, eac::kNarrowTable);
       if (err < best) best = err, best_base = base, best_mult = 1, best_table = eac::kNarrowTable;
     }
     int codes[16];
@@ -165,6 +165,32 @@ void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, int l
     const VF centre = hn::Mul(hn::Add(lo, hi), half);
     VF best = hn::Set(df, -1.0f);
     V best_base = hn::Zero(d), best_mult = best_base, best_table = best_base;
+    // As eac::candidate_error, per lane: the palette of table `table` from
+    // `at` (base * unit + offset) in steps of `scale`, clamped; each value
+    // at its entry by the seven midpoints (the palette ascends, so the last
+    // midpoint a value lies above picks it).
+    auto candidate_error = [&](V at, V scale, int table) {
+      VF pal[8], mid[7];
+      for (int j = 0; j < 8; ++j) {
+        const V value = hn::Add(at, hn::Mul(hn::Set(d, kEacModifiers[table][eac::kAscending[j]]), scale));
+        pal[j] = hn::Min(hn::Max(hn::ConvertTo(df, value), lo_end), hi_end);
+      }
+      for (int j = 0; j < 7; ++j) mid[j] = hn::Mul(hn::Add(pal[j], pal[j + 1]), half);
+      VF err = hn::Zero(df);
+      for (int i = 0; i < 16; ++i) {
+        VF p = pal[0];
+        for (int j = 0; j < 7; ++j) p = hn::IfThenElse(hn::Gt(t[i], mid[j]), pal[j + 1], p);
+        const VF diff = hn::Sub(t[i], p);
+        err = hn::Add(err, hn::Mul(diff, diff));
+      }
+      return err;
+    };
+    auto take_where = [&](hn::Mask<decltype(d)> take, VF err, V base, V mult, int table) {
+      best = hn::IfThenElse(hn::RebindMask(df, take), err, best);
+      best_base = hn::IfThenElse(take, base, best_base);
+      best_mult = hn::IfThenElse(take, mult, best_mult);
+      best_table = hn::IfThenElse(take, hn::Set(d, table), best_table);
+    };
     for (int table = 0; table < 16; ++table) {
       const int mn = kEacModifiers[table][3], mx = kEacModifiers[table][7];
       const V m0 = hn::ConvertTo(d, hn::Floor(hn::Add(hn::Div(hn::Sub(hi, lo), hn::Set(df, float(mx - mn) * K.unit)), half)));
@@ -185,26 +211,8 @@ void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, int l
           const auto ok = hn::And(valid, hn::And(hn::Not(hn::Lt(base, hn::Set(d, K.base_lo))), hn::Not(hn::Gt(base, hn::Set(d, K.base_hi)))));
           if (hn::AllFalse(d, ok)) continue;
           const V at = hn::Add(hn::Mul(base, hn::Set(d, K.unit_i)), hn::Set(d, K.offset_i));
-          VF pal[8], mid[7];
-          for (int j = 0; j < 8; ++j) {
-            const V value = hn::Add(at, hn::Mul(hn::Set(d, kEacModifiers[table][eac::kAscending[j]]), scale));
-            pal[j] = hn::Min(hn::Max(hn::ConvertTo(df, value), lo_end), hi_end);
-          }
-          for (int j = 0; j < 7; ++j) mid[j] = hn::Mul(hn::Add(pal[j], pal[j + 1]), half);
-          // The nearest entry: the palette ascends, so the last midpoint a
-          // value lies above picks it (eac::place).
-          VF err = hn::Zero(df);
-          for (int i = 0; i < 16; ++i) {
-            VF p = pal[0];
-            for (int j = 0; j < 7; ++j) p = hn::IfThenElse(hn::Gt(t[i], mid[j]), pal[j + 1], p);
-            const VF diff = hn::Sub(t[i], p);
-            err = hn::Add(err, hn::Mul(diff, diff));
-          }
-          const auto take = hn::And(ok, hn::RebindMask(d, hn::Or(hn::Lt(best, hn::Zero(df)), hn::Lt(err, best))));
-          best = hn::IfThenElse(hn::RebindMask(df, take), err, best);
-          best_base = hn::IfThenElse(take, base, best_base);
-          best_mult = hn::IfThenElse(take, mult, best_mult);
-          best_table = hn::IfThenElse(take, hn::Set(d, table), best_table);
+          const VF err = candidate_error(at, scale, table);
+          take_where(hn::And(ok, hn::RebindMask(d, hn::Or(hn::Lt(best, hn::Zero(df)), hn::Lt(err, best)))), err, base, mult, table);
         }
       }
     }
@@ -212,24 +220,9 @@ void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, int l
       const auto narrow = hn::RebindMask(d, hn::And(hn::Gt(hi, lo), hn::Le(hn::Sub(hi, lo), hn::Set(df, 5.0f))));
       if (!hn::AllFalse(d, narrow)) {
         const V base = hn::Min(hn::Add(hn::ConvertTo(d, lo), hn::Set(d, 3)), hn::Set(d, 253));
-        VF pal[8], mid[7];
-        for (int j = 0; j < 8; ++j) {
-          const V value = hn::Add(base, hn::Set(d, kEacModifiers[eac::kNarrowTable][eac::kAscending[j]]));
-          pal[j] = hn::Min(hn::Max(hn::ConvertTo(df, value), lo_end), hi_end);
-        }
-        for (int j = 0; j < 7; ++j) mid[j] = hn::Mul(hn::Add(pal[j], pal[j + 1]), half);
-        VF err = hn::Zero(df);
-        for (int i = 0; i < 16; ++i) {
-          VF p = pal[0];
-          for (int j = 0; j < 7; ++j) p = hn::IfThenElse(hn::Gt(t[i], mid[j]), pal[j + 1], p);
-          const VF diff = hn::Sub(t[i], p);
-          err = hn::Add(err, hn::Mul(diff, diff));
-        }
-        const auto take = hn::And(narrow, hn::RebindMask(d, hn::Lt(err, best)));
-        best = hn::IfThenElse(hn::RebindMask(df, take), err, best);
-        best_base = hn::IfThenElse(take, base, best_base);
-        best_mult = hn::IfThenElse(take, hn::Set(d, 1), best_mult);
-        best_table = hn::IfThenElse(take, hn::Set(d, eac::kNarrowTable), best_table);
+        const V one = hn::Set(d, 1);  // alpha8: unit 1, offset 0, so `at` is the base and the step 1
+        const VF err = candidate_error(base, one, eac::kNarrowTable);
+        take_where(hn::And(narrow, hn::RebindMask(d, hn::Lt(err, best))), err, base, one, eac::kNarrowTable);
       }
     }
     HWY_ALIGN std::int32_t base_o[kEacBatch], mult_o[kEacBatch], table_o[kEacBatch];

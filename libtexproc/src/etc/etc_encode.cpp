@@ -620,14 +620,19 @@ Texels make_texels(const std::uint8_t rgba[16][4], ColorMode mode) {
   return tx;
 }
 
+// A colour block as `mode`'s decoder reads it (ETC1, ETC2, punch-through).
+void decode_colour(const std::uint8_t block[8], ColorMode mode, Rgba8Block out) {
+  if (mode == ColorMode::etc1) {
+    decode_etc1(block, out);
+  } else {
+    decode_etc2(block, mode == ColorMode::etc2_punch, out);
+  }
+}
+
 // Squared RGB error of a block (ETC1, or ETC2 in `mode`).
 long block_error(const std::uint8_t rgba[16][4], const std::uint8_t block[8], ColorMode mode = ColorMode::etc1) {
   Rgba8Block decoded;
-  if (mode == ColorMode::etc1) {
-    decode_etc1(block, decoded);
-  } else {
-    decode_etc2(block, mode == ColorMode::etc2_punch, decoded);
-  }
+  decode_colour(block, mode, decoded);
   long err = 0;
   for (int i = 0; i < 16; ++i)
     for (int c = 0; c < 3; ++c) err += long(rgba[i][c] - decoded[i][c]) * (rgba[i][c] - decoded[i][c]);
@@ -747,11 +752,7 @@ void best_flat_block(const int rgb[3], ColorMode mode, std::uint8_t block[8]) {
     keep(best, err, pack_planar(o, h, w));
   }
   Rgba8Block decoded;
-  if (mode == ColorMode::etc1) {
-    decode_etc1(block, decoded);
-  } else {
-    decode_etc2(block, mode == ColorMode::etc2_punch, decoded);
-  }
+  decode_colour(block, mode, decoded);
   long current = 0;
   for (int i = 0; i < 16; ++i)
     for (int c = 0; c < 3; ++c) current += long(rgb[c] - decoded[i][c]) * (rgb[c] - decoded[i][c]);
@@ -796,7 +797,7 @@ long best_flat_holes_block(const std::uint8_t rgba[16][4], const int rgb[3], std
     keep(best, err, pack_halves(h[0], h[1], false, true, 0));
   }
   Rgba8Block decoded;
-  decode_etc2(block, true, decoded);
+  decode_colour(block, ColorMode::etc2_punch, decoded);
   long current = 0;
   for (int i = 0; i < 16; ++i)
     if (rgba[i][3] >= 128)
@@ -812,15 +813,7 @@ long best_flat_holes_block(const std::uint8_t rgba[16][4], const int rgb[3], std
 // leaves such blocks far off (44 times the error of `normal` on random
 // pairs). The block is replaced where one wins.
 void two_colour_t_h(const std::uint32_t texel[16][kEtcBatch], int k, ColorMode mode, std::uint8_t block[8]) {
-  const std::uint32_t a = texel[0][k] & 0xFFFFFF;
-  std::uint32_t b = a;
-  for (int i = 1; i < 16; ++i) {
-    const std::uint32_t t = texel[i][k] & 0xFFFFFF;
-    if (t == a) continue;
-    if (b == a) b = t;
-    if (t != b) return;  // a third colour
-  }
-  if (b == a) return;  // one colour: best_flat_block's
+  if (!two_colours(texel, k)) return;
   Texels tx;
   for (int i = 0; i < 16; ++i) {
     const std::uint32_t t = texel[i][k];
