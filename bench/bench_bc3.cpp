@@ -46,7 +46,7 @@ const std::vector<Image>& alpha_textures() {
 }
 
 double psnr_rgba(const Image& src, TexelFormat f, const std::vector<std::uint8_t>& blocks) {
-  const Image d = bench::decode_blocks(src.width(), src.height(), f, blocks, PixelType::u8);
+  const Image d = decompress_image(blocks, src.width(), src.height(), f, PixelType::u8);
   double se = 0;
   for (int y = 0; y < src.height(); ++y)
     for (int x = 0; x < 4 * src.width(); ++x) {

@@ -51,7 +51,7 @@ const std::vector<Height>& heights() {
 }
 
 double psnr(const Image& src, const std::vector<std::uint8_t>& blocks) {
-  const Image d = bench::decode_blocks(src.width(), src.height(), TexelFormat::bc4_unorm, blocks, PixelType::f32);
+  const Image d = decompress_image(blocks, src.width(), src.height(), TexelFormat::bc4_unorm, PixelType::f32);
   double se = 0;
   for (int y = 0; y < src.height(); ++y)
     for (int x = 0; x < src.width(); ++x) se += std::pow(d.get(x, y, 0) * 255.0 - src.row<std::uint8_t>(y)[x], 2);
@@ -75,7 +75,7 @@ const std::vector<Image>& normal_maps() {
 // psnr[2] both (the squared errors of the two channels pooled, as RGB PSNR
 // pools three: a channel coded losslessly does not run off to infinity).
 void psnr_xy(const Image& src, const std::vector<std::uint8_t>& blocks, double psnr[3]) {
-  const Image d = bench::decode_blocks(src.width(), src.height(), TexelFormat::bc5_unorm, blocks, PixelType::f32);
+  const Image d = decompress_image(blocks, src.width(), src.height(), TexelFormat::bc5_unorm, PixelType::f32);
   const double n = double(src.width()) * src.height();
   double se[2] = {};
   for (int c = 0; c < 2; ++c)

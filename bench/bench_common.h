@@ -61,19 +61,9 @@ inline std::vector<std::string> corpus_color_paths() {
   return out;
 }
 
-// One level of `blocks` (format f, width x height texels) decoded to `type`.
-inline Image decode_blocks(int width, int height, TexelFormat f, std::vector<std::uint8_t> blocks, PixelType type) {
-  Texture t;
-  t.format = f;
-  t.width = std::uint32_t(width);
-  t.height = std::uint32_t(height);
-  t.images.push_back(std::move(blocks));
-  return decode_texture_image(t, 0, 0, 0, type);
-}
-
 // PSNR over RGB of `blocks` (format f) against the RGBA8 source.
 inline double psnr_rgb(const Image& src, TexelFormat f, const std::vector<std::uint8_t>& blocks) {
-  const Image d = decode_blocks(src.width(), src.height(), f, blocks, PixelType::u8);
+  const Image d = decompress_image(blocks, src.width(), src.height(), f, PixelType::u8);
   double se = 0;
   for (int y = 0; y < src.height(); ++y)
     for (int x = 0; x < src.width(); ++x)

@@ -63,7 +63,7 @@ void height(benchmark::State& state, TexelFormat f, Quality q) {
     for (const Image& img : heightmaps()) {
       std::vector<std::uint8_t> blocks = compress_image(img.view(), f, q);
       state.PauseTiming();
-      const Image d = bench::decode_blocks(img.width(), img.height(), f, std::move(blocks), PixelType::f32);
+      const Image d = decompress_image(std::move(blocks), img.width(), img.height(), f, PixelType::f32);
       Image src(img.width(), img.height(), 1, PixelType::f32);
       for (int y = 0; y < img.height(); ++y)
         for (int x = 0; x < img.width(); ++x) src.set(x, y, 0, img.get(x, y, 0));

@@ -243,7 +243,7 @@ void bc1_bounds(int stride, const std::vector<Image>& textures) {
     std::vector<int> ids;
     for (int b = 0; b < count; b += stride) ids.push_back(b);
     auto decoded = [&](const std::vector<std::uint8_t>& blocks) {
-      return block_errors(img, bench::decode_blocks(w, h, TexelFormat::bc1_rgb_unorm, blocks, PixelType::u8), ids);
+      return block_errors(img, decompress_image(blocks, w, h, TexelFormat::bc1_rgb_unorm, PixelType::u8), ids);
     };
     std::vector<long> err[9];
     int k = 0;
@@ -301,7 +301,7 @@ void etc1_bounds(int stride) {
     auto psnr = [&](double se) { return 10 * std::log10(255.0 * 255.0 / (se / n)); };
     auto of = [&](const std::vector<std::uint8_t>& blocks) {
       double se = 0;
-      for (long e : block_errors(img, bench::decode_blocks(img.width(), img.height(), TexelFormat::etc1_rgb, blocks, PixelType::u8), ids))
+      for (long e : block_errors(img, decompress_image(blocks, img.width(), img.height(), TexelFormat::etc1_rgb, PixelType::u8), ids))
         se += double(e);
       return psnr(se);
     };
@@ -379,7 +379,7 @@ void eac_bounds(int stride) {
     const double n = 16.0 * double(ids.size());
     auto psnr = [&](double se) { return 10 * std::log10(1.0 / (se / n)); };
     auto of = [&](TexelFormat f, Quality q) {
-      const Image d = bench::decode_blocks(img.width(), img.height(), f, compress_image(img.view(), f, q), PixelType::f32);
+      const Image d = decompress_image(compress_image(img.view(), f, q), img.width(), img.height(), f, PixelType::f32);
       double se = 0;
       for (int id : ids)
         for (int i = 0; i < 16; ++i) {

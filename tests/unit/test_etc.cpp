@@ -864,7 +864,7 @@ TEST(EtcEncode, LineArtFindsClampedModifiers) {
       p[0] = p[1] = p[2] = std::uint8_t(pick(rng, 120, 255));
     }
     auto squared_error = [&](const std::vector<std::uint8_t>& blocks) {
-      const Image d = decode_blocks(64, 64, TexelFormat::etc1_rgb, blocks, PixelType::u8);
+      const Image d = decompress_image(blocks, 64, 64, TexelFormat::etc1_rgb, PixelType::u8);
       double se = 0;
       for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x)

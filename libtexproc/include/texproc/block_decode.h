@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "texproc/image.h"
 #include "texproc/texture.h"
@@ -29,5 +30,9 @@ void decode_bc_block(TexelFormat format, const std::uint8_t* block, float texels
 // for BC1 RGB and ETC1/ETC2 RGB).
 Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t layer, std::uint32_t face,
                            PixelType type);
+
+// compress_image's inverse: `blocks` (a width x height image in `format`)
+// decoded to `type`, as decode_texture_image decodes a level.
+Image decompress_image(std::vector<std::uint8_t> blocks, int width, int height, TexelFormat format, PixelType type);
 
 }  // namespace texproc

@@ -200,4 +200,13 @@ Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t 
   return out;
 }
 
+Image decompress_image(std::vector<std::uint8_t> blocks, int width, int height, TexelFormat format, PixelType type) {
+  Texture t;
+  t.format = format;
+  t.width = std::uint32_t(width);
+  t.height = std::uint32_t(height);
+  t.images.push_back(std::move(blocks));
+  return decode_texture_image(t, 0, 0, 0, type);
+}
+
 }  // namespace texproc
