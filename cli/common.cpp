@@ -214,7 +214,7 @@ void write_levels(const std::string& output, const std::vector<Image>& levels, c
 
 const std::vector<std::string>& image_extensions() {
   static const std::vector<std::string> e = {".png", ".jpg", ".jpeg", ".tga", ".tif", ".tiff", ".exr", ".hdr",
-                                             ".bmp", ".psd", ".webp", ".gif", ".ppm", ".pgm", ".pnm", ".dds"};
+                                             ".bmp", ".psd", ".webp", ".gif", ".ppm", ".pgm", ".pnm", ".dds", ".ktx2", ".ktx", ".pkm"};
   return e;
 }
 const std::vector<std::string>& texture_extensions() {

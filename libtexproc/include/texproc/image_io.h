@@ -1,4 +1,11 @@
-// texproc/image_io.h: reading and writing image files (through OpenImageIO).
+// texproc/image_io.h: reading and writing image files.
+//
+// PNG (libspng), JPEG (libjpeg-turbo), TGA, TIFF (libtiff), OpenEXR and the
+// GPU containers (DDS, KTX2, KTX1, PKM) are read and written directly.
+// Every other format OpenImageIO reads (PSD, BMP, Radiance HDR, WebP, JPEG
+// 2000, ...) goes through texproc_oiio, a module loaded with dlopen the first
+// time a file needs it: a process that never reads such a file never loads
+// OpenImageIO. See docs/formats.md.
 #pragma once
 
 #include <string>
@@ -10,7 +17,7 @@
 namespace texproc {
 
 struct ImageFileInfo {
-  std::string format;       // OpenImageIO's format name: "png", "tiff", "openexr", ...
+  std::string format;       // OpenImageIO's format name: "png", "tiff", "openexr", ...; "dds", "ktx2", "ktx1", "pkm"
   int width = 0, height = 0;
   int channels = 0;         // channels in the file (texproc reads at most 4)
   std::string file_type;    // element type in the file: "uint8", "uint16", "half", "float", ...
@@ -19,12 +26,37 @@ struct ImageFileInfo {
   int subimages = 1;
   int mip_levels = 1;
   std::vector<std::pair<int, int>> level_sizes;  // probe_image: width, height of each MIP level
+  bool via_module = false;  // read through the OpenImageIO module
 };
 
-// Reads subimage 0, level 0 of any format OpenImageIO reads, with at most
-// 4 channels: 8-bit files give u8, 16-bit u16, everything else f32.
-// Throws Error{io} if the file cannot be opened, Error{invalid_file} if it
-// cannot be decoded. Messages start with the path.
+// Where image files go. direct (the default): texproc's own readers and
+// writers for the formats above, the module for the rest. oiio: the module
+// for every format OpenImageIO handles (GPU containers still go through
+// texproc's readers), for comparisons and as a fallback. The environment
+// variable TEXPROC_IMAGE_IO=oiio sets it at start-up.
+enum class ImageIoPath { direct, oiio };
+void set_image_io_path(ImageIoPath path);
+ImageIoPath image_io_path();
+
+// Declared sizes past these are refused (Error{invalid_file}) before any
+// pixel memory is allocated. The defaults hold a 16384 x 8192 image;
+// TEXPROC_MAX_IMAGE_PIXELS overrides max_pixels at start-up.
+struct ImageReadLimits {
+  long long max_dimension = 65536;
+  long long max_pixels = 16384LL * 8192;
+};
+void set_image_read_limits(const ImageReadLimits& limits);
+ImageReadLimits image_read_limits();
+
+// True once this process has loaded the OpenImageIO module.
+bool image_module_loaded();
+
+// Reads subimage 0, level 0 (of a GPU container: level 0, layer 0, face 0,
+// decoded when block-compressed), with at most 4 channels: 8-bit files give
+// u8, 16-bit u16, everything else f32. Throws Error{io} if the file cannot
+// be opened, Error{invalid_file} if it cannot be decoded or declares a size
+// past image_read_limits(), Error{unsupported} if it needs the OpenImageIO
+// module and that cannot be loaded. Messages start with the path.
 Image read_image(const std::string& path, ImageFileInfo* info = nullptr);
 
 // Header facts without reading pixels. Throws as read_image.
@@ -32,7 +64,8 @@ ImageFileInfo probe_image(const std::string& path);
 
 struct WriteOptions {
   bool half = false;        // store f32 pixels as 16-bit half floats (EXR, TIFF)
-  std::string compression;  // OpenImageIO compression name; empty: the format's default
+  std::string compression;  // PNG zip:N (1-9); TIFF none, zip[:N], lzw, packbits; EXR none, rle, zips, zip, piz,
+                            // pxr24, b44, b44a, dwaa, dwab; empty: the format's default
   std::string color_space;  // tag to record: "srgb" or "linear"; empty: none
   int quality = 95;         // JPEG quality
 };

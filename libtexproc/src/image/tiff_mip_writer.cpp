@@ -26,7 +26,7 @@ struct CompressorFree {
   void operator()(libdeflate_compressor* c) const { libdeflate_free_compressor(c); }
 };
 
-// -1: not handled here; 0: no compression; 1..12: deflate level.
+// -1: not deflate; 0: no compression; 1..12: deflate level.
 int deflate_level(const std::string& c) {
   if (c.empty()) return kDefaultZipLevel;
   if (c == "none") return 0;
@@ -49,27 +49,33 @@ int deflate_level(const std::string& c) {
   throw Error(ErrorCode::io, path + ": cannot write: " + what);
 }
 
-void set_level_fields(TIFF* tif, const Image& im, int level, int compression_tag) {
+int other_compression(const std::string& c) {
+  if (c == "lzw") return COMPRESSION_LZW;
+  if (c == "packbits") return COMPRESSION_PACKBITS;
+  return -1;
+}
+
+void set_level_fields(TIFF* tif, const ImageView& im, int level, bool mip_file, int compression_tag) {
   TIFFSetField(tif, TIFFTAG_SUBFILETYPE, level == 0 ? 0 : FILETYPE_REDUCEDIMAGE);
-  TIFFSetField(tif, TIFFTAG_IMAGEWIDTH, std::uint32_t(im.width()));
-  TIFFSetField(tif, TIFFTAG_IMAGELENGTH, std::uint32_t(im.height()));
+  TIFFSetField(tif, TIFFTAG_IMAGEWIDTH, std::uint32_t(im.width));
+  TIFFSetField(tif, TIFFTAG_IMAGELENGTH, std::uint32_t(im.height));
   TIFFSetField(tif, TIFFTAG_TILEWIDTH, std::uint32_t(kTile));
   TIFFSetField(tif, TIFFTAG_TILELENGTH, std::uint32_t(kTile));
-  TIFFSetField(tif, TIFFTAG_SAMPLESPERPIXEL, std::uint16_t(im.channels()));
-  TIFFSetField(tif, TIFFTAG_BITSPERSAMPLE, std::uint16_t(8 * bytes_per_channel(im.type())));
-  TIFFSetField(tif, TIFFTAG_SAMPLEFORMAT, is_float(im.type()) ? SAMPLEFORMAT_IEEEFP : SAMPLEFORMAT_UINT);
-  TIFFSetField(tif, TIFFTAG_PHOTOMETRIC, im.channels() >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK);
+  TIFFSetField(tif, TIFFTAG_SAMPLESPERPIXEL, std::uint16_t(im.channels));
+  TIFFSetField(tif, TIFFTAG_BITSPERSAMPLE, std::uint16_t(8 * bytes_per_channel(im.type)));
+  TIFFSetField(tif, TIFFTAG_SAMPLEFORMAT, is_float(im.type) ? SAMPLEFORMAT_IEEEFP : SAMPLEFORMAT_UINT);
+  TIFFSetField(tif, TIFFTAG_PHOTOMETRIC, im.channels >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK);
   TIFFSetField(tif, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
   TIFFSetField(tif, TIFFTAG_ORIENTATION, ORIENTATION_TOPLEFT);
   TIFFSetField(tif, TIFFTAG_COMPRESSION, compression_tag);
-  if (im.channels() == 2 || im.channels() == 4) {
+  if (im.channels == 2 || im.channels == 4) {
     const std::uint16_t extra = EXTRASAMPLE_UNASSALPHA;
     TIFFSetField(tif, TIFFTAG_EXTRASAMPLES, 1, &extra);
   }
   TIFFSetField(tif, TIFFTAG_SOFTWARE, "texproc");
   // What maketx writes, and what tells OpenImageIO the subimages are MIP levels.
-  TIFFSetField(tif, TIFFTAG_PIXAR_TEXTUREFORMAT, "Plain Texture");
-  if (compression_tag != COMPRESSION_NONE && !is_float(im.type())) {
+  if (mip_file) TIFFSetField(tif, TIFFTAG_PIXAR_TEXTUREFORMAT, "Plain Texture");
+  if (compression_tag != COMPRESSION_NONE && !is_float(im.type)) {
     TIFFSetField(tif, TIFFTAG_PREDICTOR, PREDICTOR_HORIZONTAL);
   }
 }
@@ -86,22 +92,45 @@ void horizontal_difference(std::uint8_t* tile, int channels) {
 
 }  // namespace
 
-bool tiff_mips_supported(const std::string& compression) { return deflate_level(compression) >= 0; }
+bool tiff_levels_supported(const std::string& compression) {
+  return other_compression(compression) >= 0 || deflate_level(compression) >= 0;
+}
 
-void write_tiff_mips(const std::string& file, const std::string& error_path, const std::vector<Image>& levels,
-                     const std::string& compression, const std::string& color_space) {
-  const int level_of_deflate = deflate_level(compression);
+void write_tiff_levels(const std::string& file, const std::string& error_path, const std::vector<ImageView>& levels,
+                       bool mip_file, const std::string& compression) {
+  const int other = other_compression(compression);
+  const int level_of_deflate = other >= 0 ? -1 : deflate_level(compression);
   std::unique_ptr<TIFF, TiffCloser> tif(TIFFOpen(file.c_str(), "w"));
   if (!tif) fail(error_path, "cannot create the file");
-  const int tag = level_of_deflate == 0 ? COMPRESSION_NONE : COMPRESSION_ADOBE_DEFLATE;
+  const int tag = other >= 0 ? other : level_of_deflate == 0 ? COMPRESSION_NONE : COMPRESSION_ADOBE_DEFLATE;
 
   for (std::size_t l = 0; l < levels.size(); ++l) {
-    const Image& im = levels[l];
-    set_level_fields(tif.get(), im, int(l), tag);
-    (void)color_space;  // OpenImageIO's TIFF reader takes no color space tag from libtiff fields
-    const int tiles_x = (im.width() + kTile - 1) / kTile, tiles_y = (im.height() + kTile - 1) / kTile;
-    const std::size_t px = std::size_t(im.channels()) * bytes_per_channel(im.type());
+    const ImageView& im = levels[l];
+    set_level_fields(tif.get(), im, int(l), mip_file, tag);
+    const int tiles_x = (im.width + kTile - 1) / kTile, tiles_y = (im.height + kTile - 1) / kTile;
+    const std::size_t px = std::size_t(im.channels) * bytes_per_channel(im.type);
     const std::size_t tile_bytes = std::size_t(kTile) * kTile * px;
+    auto fill_tile = [&](std::vector<std::uint8_t>& raw, int tx, int ty) {
+      // Edge tiles are padded with zeros, never with stale memory.
+      std::fill(raw.begin(), raw.end(), std::uint8_t(0));
+      const int w = std::min(kTile, im.width - tx * kTile), h = std::min(kTile, im.height - ty * kTile);
+      for (int y = 0; y < h; ++y) {
+        std::memcpy(raw.data() + std::size_t(y) * kTile * px,
+                    im.row<std::uint8_t>(ty * kTile + y) + std::size_t(tx) * kTile * px, std::size_t(w) * px);
+      }
+    };
+    if (other >= 0) {  // libtiff's own encoder, one tile after another
+      std::vector<std::uint8_t> raw(tile_bytes);
+      for (int ty = 0; ty < tiles_y; ++ty) {
+        for (int tx = 0; tx < tiles_x; ++tx) {
+          fill_tile(raw, tx, ty);
+          const ttile_t index = TIFFComputeTile(tif.get(), std::uint32_t(tx * kTile), std::uint32_t(ty * kTile), 0, 0);
+          if (TIFFWriteEncodedTile(tif.get(), index, raw.data(), tmsize_t(tile_bytes)) < 0) fail(error_path, "tile write failed");
+        }
+      }
+      if (!TIFFWriteDirectory(tif.get())) fail(error_path, "directory write failed");
+      continue;
+    }
     std::vector<std::vector<std::uint8_t>> out(std::size_t(tiles_x) * tiles_y);
 
     // One task per row of tiles; each writes only its own tiles' buffers.
@@ -117,20 +146,14 @@ void write_tiff_mips(const std::string& file, const std::string& error_path, con
       }
       for (int ty = ty0; ty < ty1; ++ty) {
         for (int tx = 0; tx < tiles_x; ++tx) {
-          // Edge tiles are padded with zeros, never with stale memory.
-          std::fill(raw.begin(), raw.end(), std::uint8_t(0));
-          const int w = std::min(kTile, im.width() - tx * kTile), h = std::min(kTile, im.height() - ty * kTile);
-          for (int y = 0; y < h; ++y) {
-            std::memcpy(raw.data() + std::size_t(y) * kTile * px,
-                        im.row<std::uint8_t>(ty * kTile + y) + std::size_t(tx) * kTile * px, std::size_t(w) * px);
-          }
+          fill_tile(raw, tx, ty);
           std::vector<std::uint8_t>& dst = out[std::size_t(ty) * tiles_x + tx];
           if (level_of_deflate == 0) {
             dst = raw;
             continue;
           }
-          if (im.type() == PixelType::u8) horizontal_difference<std::uint8_t>(raw.data(), im.channels());
-          if (im.type() == PixelType::u16) horizontal_difference<std::uint16_t>(raw.data(), im.channels());
+          if (im.type == PixelType::u8) horizontal_difference<std::uint8_t>(raw.data(), im.channels);
+          if (im.type == PixelType::u16) horizontal_difference<std::uint16_t>(raw.data(), im.channels);
           dst.resize(libdeflate_zlib_compress_bound(comp.get(), tile_bytes));
           const std::size_t n = libdeflate_zlib_compress(comp.get(), raw.data(), tile_bytes, dst.data(), dst.size());
           dst.resize(n);

@@ -1,0 +1,81 @@
+// The image formats texproc reads and writes itself, each in its own file
+// beside this header, behind one shape: probe (header facts only), read
+// (pixels), write (one image into a temporary file). image_io.cpp picks the
+// codec by the file's signature when reading and by the extension when
+// writing; everything else goes to the OpenImageIO module.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "texproc/image.h"
+#include "texproc/image_io.h"
+
+namespace texproc::codecs {
+
+// A whole input file in memory (mapped when it can be, read otherwise).
+class FileBytes {
+ public:
+  explicit FileBytes(const std::string& path);  // throws Error{io}
+  ~FileBytes();
+  FileBytes(const FileBytes&) = delete;
+  FileBytes& operator=(const FileBytes&) = delete;
+  const std::uint8_t* data() const { return data_; }
+  std::size_t size() const { return size_; }
+
+ private:
+  const std::uint8_t* data_ = nullptr;
+  std::size_t size_ = 0;
+  bool mapped_ = false;
+  std::uint8_t* owned_ = nullptr;
+};
+
+// Thrown by a direct reader for a valid file in a layout it leaves to
+// OpenImageIO (a CMYK JPEG, a palette TIFF, ...): image_io.cpp then asks the
+// module, as for a format with no direct reader.
+struct LeaveToModule {
+  std::string why;
+};
+
+// Refuses (Error{invalid_file}) a declared size past the process's
+// ImageReadLimits before anything is allocated for it.
+void check_size(const std::string& path, long long width, long long height, int channels);
+
+// [[noreturn]] helpers for the readers' messages: "PATH: what".
+[[noreturn]] void invalid(const std::string& path, const std::string& what);
+[[noreturn]] void write_error(const std::string& path, const std::string& what);
+
+// PNG (libspng reads; texproc's writer filters and deflates strips of rows
+// in parallel with zlib).
+ImageFileInfo png_probe(const std::string& path, const FileBytes& f);
+Image png_read(const std::string& path, const FileBytes& f, ImageFileInfo& info);
+void png_write(const std::string& file, const std::string& path, const ImageView& v, const WriteOptions& o);
+
+// JPEG (libjpeg-turbo).
+ImageFileInfo jpeg_probe(const std::string& path, const FileBytes& f);
+Image jpeg_read(const std::string& path, const FileBytes& f, ImageFileInfo& info);
+void jpeg_write(const std::string& file, const std::string& path, const ImageView& v, const WriteOptions& o);
+
+// Truevision TGA (texproc's own: the format is a header and rows).
+ImageFileInfo tga_probe(const std::string& path, const FileBytes& f);
+Image tga_read(const std::string& path, const FileBytes& f, ImageFileInfo& info);
+void tga_write(const std::string& file, const std::string& path, const ImageView& v, const WriteOptions& o);
+
+// OpenEXR (its own C++ API; chunks decoded on OpenEXR's thread pool).
+ImageFileInfo exr_probe(const std::string& path);
+Image exr_read(const std::string& path, ImageFileInfo& info);
+// One image, or with mip_file a tiled MIPMAP_LEVELS file (round down).
+void exr_write(const std::string& file, const std::string& path, const std::vector<ImageView>& levels, bool mip_file,
+               const WriteOptions& o);
+
+// TIFF (libtiff; deflate strips and tiles inflated in parallel).
+ImageFileInfo tiff_probe(const std::string& path);
+Image tiff_read(const std::string& path, ImageFileInfo& info);
+
+// GPU containers as images: level 0, layer 0, face 0 (decoded if compressed).
+ImageFileInfo container_probe(const std::string& path);
+Image container_read(const std::string& path, ImageFileInfo& info);
+
+}  // namespace texproc::codecs

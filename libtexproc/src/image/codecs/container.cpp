@@ -1,0 +1,81 @@
+// GPU containers (DDS, KTX2, KTX1, PKM) read as images: level 0, layer 0,
+// face 0, through texproc's own container readers; block-compressed formats
+// are decoded. (read_texture keeps every level, face and layer.)
+#include <cstring>
+
+#include "image/codecs/codecs.h"
+#include "texproc/block_decode.h"
+#include "texproc/container.h"
+#include "texproc/error.h"
+#include "texproc/texture.h"
+
+namespace texproc::codecs {
+namespace {
+
+const char* container_name(const std::string& path, const FileBytes& f) {
+  (void)path;
+  if (f.size() >= 4 && std::memcmp(f.data(), "DDS ", 4) == 0) return "dds";
+  if (f.size() >= 4 && std::memcmp(f.data(), "PKM ", 4) == 0) return "pkm";
+  if (f.size() >= 8 && std::memcmp(f.data(), "\xABKTX 20\xBB", 8) == 0) return "ktx2";
+  return "ktx1";
+}
+
+// The type a texture's texels decode to without loss: 16-bit and float
+// formats keep their precision (EAC's 11 bits in u16), the rest are 8-bit.
+PixelType natural_type(TexelFormat f) {
+  const FormatInfo& i = format_info(f);
+  if (i.is_float) return PixelType::f32;
+  switch (f) {
+    case TexelFormat::r16_unorm:
+    case TexelFormat::rg16_unorm:
+    case TexelFormat::rgba16_unorm:
+    case TexelFormat::eac_r11_unorm:
+    case TexelFormat::eac_r11_snorm:
+    case TexelFormat::eac_rg11_unorm:
+    case TexelFormat::eac_rg11_snorm: return PixelType::u16;
+    default: return PixelType::u8;
+  }
+}
+
+ImageFileInfo info_of(const std::string& path, const Texture& t, const char* name) {
+  const FormatInfo& fi = format_info(t.format);
+  ImageFileInfo info;
+  info.format = name;
+  info.width = int(t.width);
+  info.height = int(t.height);
+  info.channels = fi.channels;
+  info.file_type = fi.name;
+  info.type = natural_type(t.format);
+  info.color_space_tag = fi.srgb ? "sRGB" : "Linear";
+  info.subimages = int(t.faces * t.layers);
+  info.mip_levels = int(t.levels);
+  for (std::uint32_t l = 0; l < t.levels; ++l) info.level_sizes.emplace_back(int(t.level_width(l)), int(t.level_height(l)));
+  check_size(path, info.width, info.height, info.channels);
+  return info;
+}
+
+}  // namespace
+
+ImageFileInfo container_probe(const std::string& path) {
+  const FileBytes f(path);
+  return info_of(path, read_texture(path), container_name(path, f));
+}
+
+Image container_read(const std::string& path, ImageFileInfo& info) {
+  const char* name;
+  {
+    const FileBytes f(path);
+    name = container_name(path, f);
+  }
+  const Texture t = read_texture(path);
+  info = info_of(path, t, name);
+  try {
+    return decode_texture_image(t, 0, 0, 0, info.type);
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    if (msg.rfind(path, 0) == 0) throw;
+    throw Error(e.code(), path + ": " + msg);
+  }
+}
+
+}  // namespace texproc::codecs
