@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -317,6 +318,20 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
                   fail(r, ErrorCode::runtime, r.input + ": " + e.what());
                 }
                 r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                if (r.phases.read >= 0) {
+                  Json::Value ph(Json::objectValue);
+                  ph["read_ms"] = r.phases.read;
+                  ph["compute_ms"] = r.phases.compute;
+                  ph["write_ms"] = r.phases.write;
+                  r.details["phases"] = ph;
+                  if (common.verbose && !r.line.empty()) {
+                    char buf[160];
+                    std::snprintf(buf, sizeof buf, "\n  read %.1f ms, compute %.1f ms, write %.1f ms", r.phases.read,
+                                  r.phases.compute, r.phases.write);
+                    const std::size_t nl = r.line.find('\n');
+                    r.line.insert(nl == std::string::npos ? r.line.size() : nl, buf);
+                  }
+                }
                 return i;
               }) &
           tbb::make_filter<std::size_t, void>(tbb::filter_mode::serial_in_order, [&](std::size_t i) {

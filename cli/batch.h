@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 #include <json/value.h>
 
+#include <chrono>
 #include <functional>
 #include <string>
 #include <vector>
@@ -62,10 +63,37 @@ struct FileReport {
   std::string line;                  // the human summary ("a.png -> a.dds: ..."), printed unless --quiet
   Json::Value details{Json::objectValue};  // format, sizes, levels, quality figures (--report)
   double seconds = 0;
+  // Wall time of the file's phases in milliseconds, set by the command
+  // (PhaseTimer); --verbose prints them and --json reports them. -1: none.
+  struct Phases {
+    double read = -1, compute = -1, write = -1;
+  } phases;
   // Set by run_batch before `run`: how far the work on this file has got,
   // in [0, 1], for the progress line (callable from any thread, one call
   // at a time).
   std::function<void(double)> progress;
+};
+
+// Times a command's phases into FileReport::phases: construct it before
+// reading; read_done(), compute_done() and write_done() each add the time
+// since the last call to their phase (a command that decodes and writes
+// level by level calls them in turn).
+class PhaseTimer {
+ public:
+  explicit PhaseTimer(FileReport& r) : r_(r), last_(std::chrono::steady_clock::now()) { r_.phases = {0, 0, 0}; }
+  void read_done() { r_.phases.read += lap(); }
+  void compute_done() { r_.phases.compute += lap(); }
+  void write_done() { r_.phases.write += lap(); }
+
+ private:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - last_).count();
+    last_ = now;
+    return ms;
+  }
+  FileReport& r_;
+  std::chrono::steady_clock::time_point last_;
 };
 
 // A command that maps each input file to output files.

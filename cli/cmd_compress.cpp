@@ -116,7 +116,9 @@ ImageDifference encoding_error(const Image& level, const Texture& t) {
 Json::Value number_or_null(double v) { return std::isfinite(v) ? Json::Value(v) : Json::Value(); }
 
 void run_compress(const CompressArgs& a, const std::string& input, const std::string& output, FileReport& r) {
+  PhaseTimer phases(r);
   Image img = read_image(input);
+  phases.read_done();
   // Colour is sRGB unless --linear, a normal map, or float input.
   const bool srgb = a.srgb || (!a.linear && !a.normal_map && img.type() != PixelType::f32);
   const TexelFormat format = format_for(a.format, srgb);
@@ -164,11 +166,14 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
     const double level_texels = double(l.width()) * double(l.height());
     if (r.progress)
       options.progress = [&](double done) { r.progress((texels_before + done * level_texels) / texels); };
-    t.images.push_back(compress_image(l.view(), format, a.q, options));
+    const std::vector<std::uint8_t> blocks = compress_image(l.view(), format, a.q, options);
+    t.images.emplace_back(blocks.begin(), blocks.end());
     texels_before += level_texels;
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  phases.compute_done();
   write_texture(output, t, a.header);
+  phases.write_done();
   std::ostringstream line;
   line << input << " -> " << output << ": " << format_info(format).name << ", " << t.levels << " level(s), quality "
        << a.quality << ", encoded in " << s << " s";

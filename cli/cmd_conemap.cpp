@@ -75,15 +75,20 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
   const double share = r.outputs.size() > 1 ? 0.5 : 1.0;
   if (r.progress) o.progress = [&r, share](double done) { r.progress(done * share); };
   const WriteOptions& w = a.write;
+  PhaseTimer phases(r);
   ImageFileInfo info;
   const Image img = read_image(input, &info);
+  phases.read_done();
   const std::vector<float> h = extract_height(img.view(), a.channel, a.invert);
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<float> ratios = a.brute_force ? cone_ratios_brute_force(h, img.width(), img.height(), o)
                                                   : cone_ratios(h, img.width(), img.height(), o);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const PixelType out_type = a.type_choice ? *a.type_choice : (img.type() == PixelType::u8 ? PixelType::u8 : PixelType::u16);
-  write_image(output, cone_map_image(h, ratios, img.width(), img.height(), o, out_type, int(a.channels.size())).view(), w);
+  const Image map = cone_map_image(h, ratios, img.width(), img.height(), o, out_type, int(a.channels.size()));
+  phases.compute_done();
+  write_image(output, map.view(), w);
+  phases.write_done();
   const std::string preview = r.outputs.size() > 1 ? r.outputs[1] : "";
   if (!preview.empty()) {
     // The preview shows both kinds side by side: the other map is computed too.
@@ -93,9 +98,11 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
     if (r.progress) other.progress = [&r](double done) { r.progress(0.5 + 0.5 * done); };
     const std::vector<float> second = cone_ratios(h, img.width(), img.height(), other);
     const bool relaxed = o.mode == ConeMode::relaxed;
-    write_image(preview, render_preview(h, relaxed ? second : ratios, img.width(), img.height(), o, a.preview_size,
-                                        a.view_angle, relaxed ? ratios : second)
-                             .view());
+    const Image shown = render_preview(h, relaxed ? second : ratios, img.width(), img.height(), o, a.preview_size,
+                                       a.view_angle, relaxed ? ratios : second);
+    phases.compute_done();
+    write_image(preview, shown.view());
+    phases.write_done();
   }
   std::ostringstream line;
   line << input << " -> " << output << ": " << img.width() << "x" << img.height() << " " << a.mode

@@ -53,7 +53,9 @@ void run_decompress(const DecompressArgs& a, const std::string& input, const std
     type = exr ? PixelType::f32 : PixelType::u8;
     w.half = exr;
   }
+  PhaseTimer phases(r);
   const Texture t = read_texture(input);
+  phases.read_done();
   check_index(input, "--level", a.level, t.levels);
   check_index(input, "--layer", a.layer, t.layers);
   check_index(input, "--face", a.face, t.faces);
@@ -61,7 +63,9 @@ void run_decompress(const DecompressArgs& a, const std::string& input, const std
   w.color_space = format_info(t.format).srgb ? "srgb" : "linear";
   for (std::uint32_t l = first; l < last; ++l) {
     const Image img = decode_texture_image(t, l, std::uint32_t(a.layer), std::uint32_t(a.face), *type);
+    phases.compute_done();
     write_image(a.all_levels ? r.outputs.at(l) : output, img.view(), w);
+    phases.write_done();
   }
   r.line = input + " -> " + r.outputs[0] + (r.outputs.size() > 1 ? " ..." : "") + ": " + format_info(t.format).name +
            ", " + std::to_string(last - first) + " level(s)";

@@ -76,28 +76,28 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
     o.output_type = PixelType::f32;  // OpenEXR holds floats: write half
     w.half = true;
   }
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
+  PhaseTimer phases(r);
   ImageFileInfo info;
   Image image = read_image(input, &info);
-  const auto t1 = Clock::now();
+  phases.read_done();
   MipChain chain = generate_mips(std::move(image), o);
-  const auto t2 = Clock::now();
+  phases.compute_done();
   w.color_space = chain.color_space == "srgb" ? "srgb" : chain.color_space == "linear" ? "linear" : "";
+  const std::size_t level_count = chain.levels.size();
+  const PixelType level_type = chain.levels[0].type();
   if (container) {
-    // Uncompressed GPU formats: r8/rg8/rgba8 (sRGB when the chain is), 16-bit, half or float.
-    write_texture(output, texture_from_levels(chain.levels, chain.color_space == "srgb", w.half), a.header);
+    // Uncompressed GPU formats: r8/rg8/rgba8 (sRGB when the chain is), 16-bit, half or float;
+    // the chain's pixel memory becomes the texture's.
+    write_texture(output, texture_from_levels(std::move(chain.levels), chain.color_space == "srgb", w.half), a.header);
   } else {
     write_levels(output, chain.levels, w);
   }
-  const auto t3 = Clock::now();
-  auto ms = [](Clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
+  phases.write_done();
   std::ostringstream line;
-  line << input << " -> " << (r.outputs.size() == 1 ? output : r.outputs[0] + " ...") << ": " << chain.levels.size()
-       << " levels, " << info.width << "x" << info.height << " " << to_string(chain.levels[0].type()) << " "
+  line << input << " -> " << (r.outputs.size() == 1 ? output : r.outputs[0] + " ...") << ": " << level_count
+       << " levels, " << info.width << "x" << info.height << " " << to_string(level_type) << " "
        << chain.color_space << ", filter " << a.chain.filter << ", wrap " << a.wrap;
   if (a.common.verbose) {
-    line << "\n  read " << ms(t1 - t0) << " ms, mips " << ms(t2 - t1) << " ms, write " << ms(t3 - t2) << " ms";
     for (std::size_t l = 0; l < chain.alpha_coverage.size(); ++l) {
       line << "\n  level " << l << ": alpha coverage " << chain.alpha_coverage[l] << " (alpha x "
            << chain.alpha_scale[l] << ")";
@@ -106,8 +106,8 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
   r.line = line.str();
   r.details["width"] = info.width;
   r.details["height"] = info.height;
-  r.details["levels"] = Json::UInt(chain.levels.size());
-  r.details["type"] = to_string(chain.levels[0].type());
+  r.details["levels"] = Json::UInt(level_count);
+  r.details["type"] = to_string(level_type);
   r.details["color_space"] = chain.color_space;
   if (a.report && !chain.alpha_coverage.empty()) {
     Json::Value cov(Json::arrayValue), scale(Json::arrayValue);

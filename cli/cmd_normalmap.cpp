@@ -72,8 +72,10 @@ std::vector<std::string> plan(const NormalMapArgs& a, const std::string& input, 
 void run_normalmap(const NormalMapArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   const NormalMapOptions& o = a.options;
   WriteOptions w = a.write;
+  PhaseTimer phases(r);
   ImageFileInfo info;
   const Image heights = read_image(input, &info);
+  phases.read_done();
   std::optional<PixelType> type = a.type_choice;
   if (!type) type = info.type == PixelType::u8 ? PixelType::u8 : PixelType::u16;
   if (a.type.empty() && std::filesystem::path(output).extension() == ".exr") {
@@ -112,22 +114,25 @@ void run_normalmap(const NormalMapArgs& a, const std::string& input, const std::
       chain.push_back(std::move(xy));
     }
   }
+  phases.compute_done();
+  const std::size_t level_count = chain.size();
   if (container) {
     // Uncompressed rg8/rgba8/16-bit/half/float (block compression in the same
     // call comes with `compress`); normals are data: linear formats.
-    write_texture(output, texture_from_levels(chain, false, w.half), a.header);
+    write_texture(output, texture_from_levels(std::move(chain), false, w.half), a.header);
   } else if (a.mips) {
     write_levels(output, chain, w);
   } else {
     write_image(output, chain[0].view(), w);
   }
+  phases.write_done();
   std::ostringstream line;
   line << input << " -> " << r.outputs[0] << (r.outputs.size() > 1 ? " ..." : "") << ": " << a.kernel << ", "
-       << a.channels << ", " << chain.size() << " level(s), " << info.width << "x" << info.height;
+       << a.channels << ", " << level_count << " level(s), " << info.width << "x" << info.height;
   r.line = line.str();
   r.details["width"] = info.width;
   r.details["height"] = info.height;
-  r.details["levels"] = Json::UInt(chain.size());
+  r.details["levels"] = Json::UInt(level_count);
   r.details["kernel"] = a.kernel;
   r.details["channels"] = a.channels;
 }

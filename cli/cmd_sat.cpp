@@ -53,10 +53,13 @@ std::vector<std::string> plan_build(const std::string& output) {
 void run_build(const SatArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   std::optional<SatPrecision> requested;
   if (!a.precision.empty()) requested = parse_sat_precision(a.precision);
+  PhaseTimer phases(r);
   ImageFileInfo info;
   const Image img = read_image(input, &info);
+  phases.read_done();
   const SatPrecision p = requested ? *requested : default_sat_precision(img.type(), img.width(), img.height());
   const SummedAreaTable t = build_sat(img.view(), p);
+  phases.compute_done();
   if (fs::path(output).extension() == ".sat") {
     write_sat_file(output, t);
   } else {
@@ -70,8 +73,10 @@ void run_build(const SatArgs& a, const std::string& input, const std::string& ou
           for (int c = 0; c < t.channels; ++c) view.row<float>(y)[x * t.channels + c] = float(s[c]);
         }
     });
+    phases.compute_done();
     write_image(output, view.view());
   }
+  phases.write_done();
   std::ostringstream line;
   line << input << " -> " << output << ": " << t.width << "x" << t.height << "x" << t.channels << " " << to_string(p);
   if (t.max_exact_box() > 0) line << ", exact for boxes up to " << t.max_exact_box() << " texels";
@@ -131,12 +136,16 @@ void validate_blur(SatArgs& a) {
 }
 
 void run_blur(const SatArgs& a, const std::string& input, const std::string& output, FileReport& r) {
+  PhaseTimer phases(r);
   const Image img = read_image(input);
+  phases.read_done();
   BoxBlurOptions o = a.blur;
   const ImageView mv = a.map.view();
   if (!a.map.empty()) o.radius_map = &mv;
   const Image out = box_blur(img.view(), o);
+  phases.compute_done();
   write_image(output, out.view(), WriteOptions{});
+  phases.write_done();
   r.line = input + " -> " + output + ": box blur radius " + number(a.radius) +
            (a.radius_map.empty() ? "" : " x " + a.radius_map) + ", wrap " + a.wrap;
   r.details["width"] = img.width();

@@ -1,6 +1,7 @@
 // texproc/image.h: pixel types, a non-owning image view and an owning image.
 #pragma once
 
+#include <algorithm>
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
@@ -84,6 +85,26 @@ struct DefaultInitAllocator {
 };
 }  // namespace detail
 
+// Pixel or texel bytes in pixel memory (see allocate_pixels): what Image
+// holds and what Texture's images are, so one can become the other without
+// a copy.
+// Converts to and from std::vector<std::uint8_t> (with a copy) for callers
+// that hold bytes that way.
+struct PixelBytes : std::vector<std::uint8_t, detail::DefaultInitAllocator<std::uint8_t>> {
+  using Base = std::vector<std::uint8_t, detail::DefaultInitAllocator<std::uint8_t>>;
+  using Base::Base;
+  PixelBytes() = default;
+  PixelBytes(Base&& b) noexcept : Base(std::move(b)) {}
+  PixelBytes(const std::vector<std::uint8_t>& v) : Base(v.begin(), v.end()) {}
+  operator std::vector<std::uint8_t>() const { return std::vector<std::uint8_t>(begin(), end()); }
+  friend bool operator==(const PixelBytes& a, const PixelBytes& b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin());
+  }
+  friend bool operator==(const PixelBytes& a, const std::vector<std::uint8_t>& b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin());
+  }
+};
+
 // An owning image with tightly packed rows.
 class Image {
  public:
@@ -115,6 +136,12 @@ class Image {
     return {const_cast<std::uint8_t*>(data_.data()), width_, height_, channels_, type_, row_stride()};
   }
 
+  // Gives up the pixel bytes (rows tightly packed), leaving the image empty.
+  PixelBytes release() && {
+    width_ = height_ = channels_ = 0;
+    return std::move(data_);
+  }
+
   // Channel c of pixel (x, y) as a float: integers are scaled to [0, 1].
   float get(int x, int y, int c) const;
   // Sets channel c of pixel (x, y): integers are rounded and clamped.
@@ -123,7 +150,7 @@ class Image {
  private:
   int width_ = 0, height_ = 0, channels_ = 0;
   PixelType type_ = PixelType::u8;
-  std::vector<std::uint8_t, detail::DefaultInitAllocator<std::uint8_t>> data_;
+  PixelBytes::Base data_;
 };
 
 }  // namespace texproc

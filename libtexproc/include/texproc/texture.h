@@ -57,14 +57,14 @@ struct Texture {
   std::uint32_t layers = 1;  // array layers (1 for a plain texture)
   bool is_array = false;     // an array texture even with one layer
   // One image per (level, layer, face), index (level * layers + layer) * faces + face.
-  std::vector<std::vector<std::uint8_t>> images;
+  std::vector<PixelBytes> images;
 
   std::uint32_t level_width(std::uint32_t level) const { return width >> level ? width >> level : 1; }
   std::uint32_t level_height(std::uint32_t level) const { return height >> level ? height >> level : 1; }
-  std::vector<std::uint8_t>& image(std::uint32_t level, std::uint32_t layer = 0, std::uint32_t face = 0) {
+  PixelBytes& image(std::uint32_t level, std::uint32_t layer = 0, std::uint32_t face = 0) {
     return images[(std::size_t(level) * layers + layer) * faces + face];
   }
-  const std::vector<std::uint8_t>& image(std::uint32_t level, std::uint32_t layer = 0, std::uint32_t face = 0) const {
+  const PixelBytes& image(std::uint32_t level, std::uint32_t layer = 0, std::uint32_t face = 0) const {
     return images[(std::size_t(level) * layers + layer) * faces + face];
   }
 };
@@ -78,6 +78,9 @@ void validate(const Texture& t);
 // rg16/rgba16 unorm, rgba16_float (half = true) or rgba32_float. Gray+alpha
 // goes to rg8 (rg16); float with fewer than 4 channels is padded to RGBA.
 Texture texture_from_levels(const std::vector<Image>& levels, bool srgb, bool half = false);
+// The same, taking the levels' pixel memory where the layout is already the
+// texture's (no copy); `levels` is left empty.
+Texture texture_from_levels(std::vector<Image>&& levels, bool srgb, bool half = false);
 // One image of an uncompressed texture back as an Image (bgra swizzled to
 // rgba, half widened to f32). Throws Error{unsupported} for block formats.
 Image image_from_texture(const Texture& t, std::uint32_t level, std::uint32_t layer = 0, std::uint32_t face = 0);

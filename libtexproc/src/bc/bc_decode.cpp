@@ -181,7 +181,7 @@ Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t 
   const int w = int(t.level_width(level)), h = int(t.level_height(level));
   const int C = info.channels;
   Image out = Image::uninitialized(w, h, C, type);
-  const std::vector<std::uint8_t>& data = t.image(level, layer, face);
+  const PixelBytes& data = t.image(level, layer, face);
   const int bw = (w + 3) / 4, bh = (h + 3) / 4;
   float texels[16][4];
   for (int by = 0; by < bh; ++by)
@@ -205,7 +205,7 @@ Image decompress_image(std::vector<std::uint8_t> blocks, int width, int height, 
   t.format = format;
   t.width = std::uint32_t(width);
   t.height = std::uint32_t(height);
-  t.images.push_back(std::move(blocks));
+  t.images.emplace_back(blocks.begin(), blocks.end());
   return decode_texture_image(t, 0, 0, 0, type);
 }
 

@@ -10,6 +10,10 @@
 
 namespace texproc {
 
+// A file's bytes as written: fields and padding owned here, and large
+// payloads (a texture's images) by reference, so a file can go to disk
+// without first being copied into one buffer. Offsets are logical (the
+// file's); put_*_at may patch only owned bytes.
 class ByteWriter {
  public:
   void u8(std::uint8_t v) { out_.push_back(v); }
@@ -20,17 +24,58 @@ class ByteWriter {
     const auto* b = static_cast<const std::uint8_t*>(p);
     out_.insert(out_.end(), b, b + n);
   }
+  // `n` bytes at `p`, which must stay valid while this writer is used.
+  void ref(const void* p, std::size_t n) {
+    if (n < 4096) return raw(p, n);
+    refs_.push_back({out_.size(), static_cast<const std::uint8_t*>(p), n});
+    referenced_ += n;
+  }
   void zeros(std::size_t n) { out_.insert(out_.end(), n, 0); }
   void pad_to(std::size_t alignment) {
-    while (out_.size() % alignment) out_.push_back(0);
+    while (size() % alignment) out_.push_back(0);
   }
-  void put_u32_at(std::size_t at, std::uint32_t v) { std::memcpy(out_.data() + at, &v, 4); }
-  void put_u64_at(std::size_t at, std::uint64_t v) { std::memcpy(out_.data() + at, &v, 8); }
-  std::size_t size() const { return out_.size(); }
-  std::vector<std::uint8_t>& bytes() { return out_; }
+  void put_u32_at(std::size_t at, std::uint32_t v) { std::memcpy(out_.data() + owned_offset(at, 4), &v, 4); }
+  void put_u64_at(std::size_t at, std::uint64_t v) { std::memcpy(out_.data() + owned_offset(at, 8), &v, 8); }
+  std::size_t size() const { return out_.size() + referenced_; }
+  // The whole file in one buffer.
+  std::vector<std::uint8_t> bytes() && {
+    if (refs_.empty()) return std::move(out_);
+    std::vector<std::uint8_t> all;
+    all.reserve(size());
+    write_to([&](const std::uint8_t* p, std::size_t n) { all.insert(all.end(), p, p + n); });
+    return all;
+  }
+  // Calls sink(pointer, length) for the file's bytes in order.
+  template <typename Sink>
+  void write_to(Sink&& sink) const {
+    std::size_t owned = 0;
+    for (const Ref& r : refs_) {
+      if (r.owned_at > owned) sink(out_.data() + owned, r.owned_at - owned);
+      owned = r.owned_at;
+      sink(r.data, r.size);
+    }
+    if (out_.size() > owned) sink(out_.data() + owned, out_.size() - owned);
+  }
 
  private:
+  struct Ref {
+    std::size_t owned_at;  // owned bytes before it
+    const std::uint8_t* data;
+    std::size_t size;
+  };
+  std::size_t owned_offset(std::size_t at, std::size_t n) const {
+    std::size_t before = 0;  // referenced bytes before `at`
+    for (const Ref& r : refs_) {
+      const std::size_t logical = r.owned_at + before;
+      if (at + n <= logical) break;
+      if (at < logical + r.size) throw Error(ErrorCode::runtime, "container writer: a patch inside a referenced payload");
+      before += r.size;
+    }
+    return at - before;
+  }
   std::vector<std::uint8_t> out_;
+  std::vector<Ref> refs_;
+  std::size_t referenced_ = 0;
 };
 
 // Reads fields at checked offsets: every read names its field, and a read

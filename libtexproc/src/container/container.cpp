@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "container/streams.h"
+#include "core/fd_writer.h"
 #include "texproc/container.h"
 #include "texproc/error.h"
 #include "texproc/file_io.h"
@@ -32,20 +34,25 @@ const char* to_string(ContainerKind k) {
 }
 
 void write_texture(const std::string& path, const Texture& t, DdsHeader dds_header) {
-  std::vector<std::uint8_t> bytes;
+  ByteWriter stream;
   try {
     switch (container_for_path(path)) {
-      case ContainerKind::dds: bytes = encode_dds(t, dds_header); break;
-      case ContainerKind::ktx2: bytes = encode_ktx2(t); break;
-      case ContainerKind::ktx1: bytes = encode_ktx1(t); break;
-      case ContainerKind::pkm: bytes = encode_pkm(t); break;
+      case ContainerKind::dds: stream = encode_dds_stream(t, dds_header); break;
+      case ContainerKind::ktx2: stream = encode_ktx2_stream(t, ""); break;
+      case ContainerKind::ktx1: stream = encode_ktx1_stream(t); break;
+      case ContainerKind::pkm: stream = encode_pkm_stream(t); break;
     }
   } catch (const Error& e) {
     const std::string msg = e.what();
     if (msg.rfind(path, 0) == 0) throw;
     throw Error(e.code(), path + ": " + msg);
   }
-  write_file_atomic(path, std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  // Headers and images go to the file as they lie: no copy of the texture.
+  AtomicFile file(path);
+  FdWriter out(file.temp_path(), path);
+  stream.write_to([&](const std::uint8_t* p, std::size_t n) { out.write(p, n); });
+  out.close();
+  file.commit();
 }
 
 namespace {

@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "container/bytes.h"
+#include "container/streams.h"
 #include "texproc/container.h"
 
 namespace texproc {
@@ -74,7 +75,7 @@ std::uint32_t dxgi_for(TexelFormat f) { return format_info(f).dxgi_format; }
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_dds(const Texture& t, DdsHeader header) {
+ByteWriter encode_dds_stream(const Texture& t, DdsHeader header) {
   validate(t);
   const FormatInfo& info = format_info(t.format);
   if (info.dxgi_format == 0) {
@@ -137,10 +138,12 @@ std::vector<std::uint8_t> encode_dds(const Texture& t, DdsHeader header) {
     for (std::uint32_t f = 0; f < t.faces; ++f)
       for (std::uint32_t l = 0; l < t.levels; ++l) {
         const auto& img = t.image(l, a, f);
-        w.raw(img.data(), img.size());
+        w.ref(img.data(), img.size());
       }
-  return std::move(w.bytes());
+  return w;
 }
+
+std::vector<std::uint8_t> encode_dds(const Texture& t, DdsHeader header) { return encode_dds_stream(t, header).bytes(); }
 
 Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& limits) {
   ByteReader r(data, size, name);

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "texproc/error.h"
+#include "texproc/runtime.h"
 #include "texproc/texture.h"
 
 namespace texproc {
@@ -140,7 +141,8 @@ void validate(const Texture& t) {
   }
 }
 
-Texture texture_from_levels(const std::vector<Image>& levels, bool srgb, bool half) {
+namespace {
+Texture from_levels(const std::vector<Image>& levels, std::vector<Image>* steal, bool srgb, bool half) {
   if (levels.empty()) throw Error(ErrorCode::bad_arguments, "no levels");
   const Image& top = levels[0];
   const int C = top.channels();
@@ -157,9 +159,19 @@ Texture texture_from_levels(const std::vector<Image>& levels, bool srgb, bool ha
   }
   const FormatInfo& info = format_info(t.format);
   for (const Image& im : levels) {
-    std::vector<std::uint8_t> bytes(std::size_t(im.width()) * im.height() * info.block_bytes);
     const int out_c = info.channels;
-    for (int y = 0; y < im.height(); ++y)
+    if (out_c == C && !(top.type() == PixelType::f32 && half)) {
+      // Stored as in memory: the buffer itself, or one copy with no zero-fill first.
+      if (steal) {
+        t.images.emplace_back(std::move((*steal)[std::size_t(&im - levels.data())]).release());
+      } else {
+        t.images.emplace_back(im.data(), im.data() + im.byte_size());
+      }
+      continue;
+    }
+    PixelBytes bytes(std::size_t(im.width()) * im.height() * info.block_bytes);
+    for_each_row_block(im.height(), 64, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
       for (int x = 0; x < im.width(); ++x) {
         const std::size_t o = (std::size_t(y) * im.width() + x) * out_c;
         for (int c = 0; c < out_c; ++c) {
@@ -191,9 +203,24 @@ Texture texture_from_levels(const std::vector<Image>& levels, bool srgb, bool ha
           }
         }
       }
+    });
     t.images.push_back(std::move(bytes));
   }
   validate(t);
+  return t;
+}
+}  // namespace
+
+Texture texture_from_levels(const std::vector<Image>& levels, bool srgb, bool half) {
+  return from_levels(levels, nullptr, srgb, half);
+}
+
+Texture texture_from_levels(std::vector<Image>&& levels, bool srgb, bool half) {
+  if (levels.empty()) throw Error(ErrorCode::bad_arguments, "no levels");
+  // The fast path reads sizes from `levels` before taking each buffer.
+  const std::vector<Image>& view = levels;
+  Texture t = from_levels(view, &levels, srgb, half);
+  levels.clear();
   return t;
 }
 
@@ -203,7 +230,7 @@ Image image_from_texture(const Texture& t, std::uint32_t level, std::uint32_t la
     throw Error(ErrorCode::unsupported, std::string(info.name) + " is block-compressed: decompress it first");
   }
   const int w = int(t.level_width(level)), h = int(t.level_height(level)), C = info.channels;
-  const std::vector<std::uint8_t>& src = t.image(level, layer, face);
+  const PixelBytes& src = t.image(level, layer, face);
   const PixelType type = info.is_float ? PixelType::f32 : info.type_size == 2 ? PixelType::u16 : PixelType::u8;
   Image out = Image::uninitialized(w, h, C, type);
   const bool bgra = t.format == F::bgra8_unorm || t.format == F::bgra8_srgb;

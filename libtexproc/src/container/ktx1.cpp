@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "container/bytes.h"
+#include "container/streams.h"
 #include "texproc/container.h"
 
 namespace texproc {
@@ -34,7 +35,7 @@ std::uint64_t stored_image(const FormatInfo& i, std::uint32_t w, std::uint32_t h
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_ktx1(const Texture& t) {
+ByteWriter encode_ktx1_stream(const Texture& t) {
   validate(t);
   const FormatInfo& info = format_info(t.format);
   if (info.gl_internal_format == 0) {
@@ -64,7 +65,7 @@ std::vector<std::uint8_t> encode_ktx1(const Texture& t) {
       for (std::uint32_t f = 0; f < t.faces; ++f) {
         const auto& img = t.image(l, a, f);
         if (info.compressed) {
-          w.raw(img.data(), img.size());
+          w.ref(img.data(), img.size());
         } else {
           const std::size_t row = std::size_t(lw) * info.block_bytes;
           for (std::uint32_t y = 0; y < lh; ++y) {
@@ -76,8 +77,10 @@ std::vector<std::uint8_t> encode_ktx1(const Texture& t) {
       }
     w.pad_to(4);  // mipPadding
   }
-  return std::move(w.bytes());
+  return w;
 }
+
+std::vector<std::uint8_t> encode_ktx1(const Texture& t) { return encode_ktx1_stream(t).bytes(); }
 
 Texture decode_ktx1(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& limits) {
   ByteReader r(data, size, name);

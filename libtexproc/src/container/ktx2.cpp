@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "container/bytes.h"
+#include "container/streams.h"
 #include "texproc/container.h"
 #include "texproc/version.h"
 
@@ -20,7 +21,7 @@ std::uint32_t level_alignment(const FormatInfo& i) { return std::lcm(std::uint32
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_ktx2(const Texture& t, const std::string& writer) {
+ByteWriter encode_ktx2_stream(const Texture& t, const std::string& writer) {
   validate(t);
   const FormatInfo& info = format_info(t.format);
   ByteWriter w;
@@ -71,15 +72,17 @@ std::vector<std::uint8_t> encode_ktx2(const Texture& t, const std::string& write
     for (std::uint32_t a = 0; a < t.layers; ++a)
       for (std::uint32_t f = 0; f < t.faces; ++f) {
         const auto& img = t.image(l, a, f);
-        w.raw(img.data(), img.size());
+        w.ref(img.data(), img.size());
       }
     const std::uint64_t length = w.size() - offset;
     w.put_u64_at(level_index_at + 24 * l, offset);
     w.put_u64_at(level_index_at + 24 * l + 8, length);
     w.put_u64_at(level_index_at + 24 * l + 16, length);
   }
-  return std::move(w.bytes());
+  return w;
 }
+
+std::vector<std::uint8_t> encode_ktx2(const Texture& t, const std::string& writer) { return encode_ktx2_stream(t, writer).bytes(); }
 
 Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& limits) {
   ByteReader r(data, size, name);

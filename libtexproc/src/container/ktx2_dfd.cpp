@@ -49,7 +49,7 @@ std::vector<std::uint8_t> block(std::uint32_t model, bool srgb, std::uint32_t di
     w.u32(s.lower);
     w.u32(s.upper);
   }
-  return std::move(w.bytes());
+  return std::move(w).bytes();
 }
 
 // Uncompressed, little-endian, one sample per channel (createDFDUnpacked).

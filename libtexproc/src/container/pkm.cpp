@@ -2,6 +2,7 @@
 // big-endian header ("PKM ", version "10" for ETC1 or "20" for ETC2, data
 // type, extended and original sizes) and one level of blocks.
 #include "container/bytes.h"
+#include "container/streams.h"
 #include "texproc/container.h"
 
 namespace texproc {
@@ -16,7 +17,7 @@ std::uint32_t get_be16(const ByteReader& r, std::size_t at, const char* field) {
 }
 }  // namespace
 
-std::vector<std::uint8_t> encode_pkm(const Texture& t) {
+ByteWriter encode_pkm_stream(const Texture& t) {
   validate(t);
   if (t.format != TexelFormat::etc1_rgb && t.format != TexelFormat::etc2_rgb_unorm) {
     throw Error(ErrorCode::unsupported, std::string("PKM holds ETC1 and ETC2 RGB only, not ") + format_info(t.format).name +
@@ -36,8 +37,10 @@ std::vector<std::uint8_t> encode_pkm(const Texture& t) {
   be16(w, t.width);
   be16(w, t.height);
   w.raw(t.images[0].data(), t.images[0].size());
-  return std::move(w.bytes());
+  return w;
 }
+
+std::vector<std::uint8_t> encode_pkm(const Texture& t) { return encode_pkm_stream(t).bytes(); }
 
 Texture decode_pkm(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& limits) {
   ByteReader r(data, size, name);
