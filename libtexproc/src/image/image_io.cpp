@@ -13,7 +13,7 @@
 #include <mutex>
 
 #include "image/codecs/codecs.h"
-#include "image/oiio/module_loader.h"
+#include "image/modules/image_modules.h"
 #include "image/tiff_mip_writer.h"
 #include "texproc/error.h"
 #include "texproc/file_io.h"
@@ -73,19 +73,7 @@ void check_exists(const std::string& path) {
   if (fs::is_directory(path, ec)) throw Error(ErrorCode::io, path + ": is a directory, not an image");
 }
 
-ImageFileInfo module_probe(const std::string& path) {
-  ImageFileInfo info = oiio::probe(path);
-  codecs::check_size(path, info.width, info.height, info.channels);
-  return info;
-}
-
-Image module_read(const std::string& path, ImageFileInfo& info) {
-  info = module_probe(path);
-  const int channels = std::min(info.channels, 4);
-  Image img = Image::uninitialized(info.width, info.height, channels, info.type);
-  oiio::read(path, img.view());
-  return img;
-}
+using modules::Module;
 
 template <typename Direct>
 auto direct_or_module(const std::string& path, Direct&& direct, bool& left) -> decltype(direct()) {
@@ -125,7 +113,7 @@ ImageReadLimits image_read_limits() {
   return g_limits;
 }
 
-bool image_module_loaded() { return oiio::loaded(); }
+bool image_module_loaded() { return modules::loaded(Module::oiio); }
 
 ImageFileInfo probe_image(const std::string& path) {
   check_exists(path);
@@ -141,7 +129,7 @@ ImageFileInfo probe_image(const std::string& path) {
             case Kind::png: return codecs::png_probe(path, f);
             case Kind::jpeg: return codecs::jpeg_probe(path, f);
             case Kind::tga: return codecs::tga_probe(path, f);
-            case Kind::exr: return codecs::exr_probe(path);
+            case Kind::exr: return modules::probe(Module::exr, path);
             case Kind::tiff: return codecs::tiff_probe(path);
             case Kind::container: return codecs::container_probe(path);
             case Kind::module: throw codecs::LeaveToModule{"no direct reader"};
@@ -151,7 +139,7 @@ ImageFileInfo probe_image(const std::string& path) {
         left);
     if (!left) return info;
   }
-  return module_probe(path);
+  return modules::probe(Module::oiio, path);
 }
 
 Image read_image(const std::string& path, ImageFileInfo* info_out) {
@@ -169,7 +157,7 @@ Image read_image(const std::string& path, ImageFileInfo* info_out) {
             case Kind::png: return codecs::png_read(path, f, info);
             case Kind::jpeg: return codecs::jpeg_read(path, f, info);
             case Kind::tga: return codecs::tga_read(path, f, info);
-            case Kind::exr: return codecs::exr_read(path, info);
+            case Kind::exr: return modules::read(Module::exr, path, info);
             case Kind::tiff: return codecs::tiff_read(path, info);
             case Kind::container: return codecs::container_read(path, info);
             case Kind::module: throw codecs::LeaveToModule{"no direct reader"};
@@ -178,7 +166,7 @@ Image read_image(const std::string& path, ImageFileInfo* info_out) {
         },
         left);
   }
-  if (left) img = module_read(path, info);
+  if (left) img = modules::read(Module::oiio, path, info);
   if (info_out) *info_out = info;
   return img;
 }
@@ -189,7 +177,7 @@ void write_image(const std::string& path, const ImageView& image, const WriteOpt
   AtomicFile file(path);
   const bool tiff = e == ".tif" || e == ".tiff";
   if (module_writes(e) || (tiff && (options.half || !tiff_levels_supported(options.compression)))) {
-    oiio::write(file.temp_path(), path, {image}, false, options);
+    modules::write(Module::oiio, file.temp_path(), path, {image}, false, options);
   } else if (e == ".png") {
     codecs::png_write(file.temp_path(), path, image, options);
   } else if (e == ".tga") {
@@ -197,7 +185,7 @@ void write_image(const std::string& path, const ImageView& image, const WriteOpt
   } else if (e == ".jpg" || e == ".jpeg") {
     codecs::jpeg_write(file.temp_path(), path, image, options);
   } else if (e == ".exr") {
-    codecs::exr_write(file.temp_path(), path, {image}, false, options);
+    modules::write(Module::exr, file.temp_path(), path, {image}, false, options);
   } else {
     write_tiff_levels(file.temp_path(), path, {image}, false, options.compression);
   }
@@ -227,9 +215,9 @@ void write_mip_file(const std::string& path, const std::vector<Image>& levels, c
   for (const Image& l : levels) views.push_back(l.view());
   AtomicFile file(path);
   if (g_path == ImageIoPath::oiio || (!exr && (options.half || !tiff_levels_supported(options.compression)))) {
-    oiio::write(file.temp_path(), path, views, true, options);
+    modules::write(Module::oiio, file.temp_path(), path, views, true, options);
   } else if (exr) {
-    codecs::exr_write(file.temp_path(), path, views, true, options);
+    modules::write(Module::exr, file.temp_path(), path, views, true, options);
   } else {
     write_tiff_levels(file.temp_path(), path, views, true, options.compression);
   }

@@ -1,180 +1,87 @@
-// OpenColorIO glue. Without $OCIO, texproc uses the small built-in config
-// below (OCIO 2.1, as Debian 12 ships it, has no built-in configs of its own).
+// OcioTransform over texproc_ocio, the OpenColorIO module: loaded the first
+// time a colour space other than the built-in linear and sRGB is asked for
+// (image/ocio/ocio_module.h), so no other run maps OpenColorIO, yaml-cpp and
+// their dependencies.
 #include "image/ocio.h"
 
-#include <OpenColorIO/OpenColorIO.h>
-
-#include <cstdlib>
 #include <mutex>
-#include <sstream>
 
+#include "core/module.h"
+#include "image/ocio/ocio_module.h"
 #include "texproc/error.h"
-
-namespace OCIO = OCIO_NAMESPACE;
 
 namespace texproc {
 namespace {
 
-// Reference space: linear Rec.709 primaries, D65 (scene_linear). Every other
-// space says how to get to it. Matrices: XYZ(D65) to linear Rec.709 from
-// IEC 61966-2-1; Display P3 to Rec.709 derived from the P3-D65 primaries.
-constexpr const char* kBuiltinConfig = R"ocio(ocio_profile_version: 2.1
-name: texproc-builtin
-description: texproc built-in config (see docs/color.md)
-roles:
-  default: lin_rec709
-  scene_linear: lin_rec709
-  reference: lin_rec709
-  data: raw
-  color_picking: sRGB
-file_rules:
-  - !<Rule> {name: Default, colorspace: default}
-displays:
-  sRGB:
-    - !<View> {name: Raw, colorspace: raw}
-colorspaces:
-  - !<ColorSpace>
-    name: lin_rec709
-    aliases: [lin_srgb, "Linear Rec.709 (sRGB)"]
-    family: linear
-    encoding: scene-linear
-  - !<ColorSpace>
-    name: sRGB
-    aliases: ["sRGB - Texture", srgb_tx, srgb_texture]
-    encoding: sdr-video
-    to_scene_reference: !<ExponentWithLinearTransform> {gamma: 2.4, offset: 0.055}
-  - !<ColorSpace>
-    name: g22_rec709
-    aliases: ["Gamma 2.2 Rec.709", gamma22]
-    encoding: sdr-video
-    to_scene_reference: !<ExponentTransform> {value: 2.2, style: pass_thru}
-  - !<ColorSpace>
-    name: g24_rec709
-    aliases: ["Gamma 2.4 Rec.709", rec1886, gamma24]
-    encoding: sdr-video
-    to_scene_reference: !<ExponentTransform> {value: 2.4, style: pass_thru}
-  - !<ColorSpace>
-    name: ACEScg
-    aliases: ["ACES - ACEScg", lin_ap1]
-    family: linear
-    encoding: scene-linear
-    to_scene_reference: !<BuiltinTransform> {style: "UTILITY - ACES-AP1_to_LINEAR-REC709_BFD"}
-  - !<ColorSpace>
-    name: ACES2065-1
-    aliases: ["ACES - ACES2065-1", lin_ap0]
-    family: linear
-    encoding: scene-linear
-    to_scene_reference: !<GroupTransform>
-      children:
-        - !<BuiltinTransform> {style: "UTILITY - ACES-AP0_to_CIE-XYZ-D65_BFD"}
-        - !<MatrixTransform> {matrix: [3.2409699419, -1.5373831776, -0.4986107603, 0, -0.9692436363, 1.8759675015, 0.0415550574, 0, 0.0556300797, -0.2039769589, 1.0569715142, 0, 0, 0, 0, 1]}
-  - !<ColorSpace>
-    name: ACEScct
-    aliases: ["ACES - ACEScct", acescct_ap1]
-    encoding: log
-    to_scene_reference: !<GroupTransform>
-      children:
-        - !<BuiltinTransform> {style: "ACEScct_to_ACES2065-1"}
-        - !<BuiltinTransform> {style: "UTILITY - ACES-AP0_to_CIE-XYZ-D65_BFD"}
-        - !<MatrixTransform> {matrix: [3.2409699419, -1.5373831776, -0.4986107603, 0, -0.9692436363, 1.8759675015, 0.0415550574, 0, 0.0556300797, -0.2039769589, 1.0569715142, 0, 0, 0, 0, 1]}
-  - !<ColorSpace>
-    name: display_p3
-    aliases: ["Display P3", srgb_p3]
-    encoding: sdr-video
-    to_scene_reference: !<GroupTransform>
-      children:
-        - !<ExponentWithLinearTransform> {gamma: 2.4, offset: 0.055}
-        - !<MatrixTransform> {matrix: [1.2249401763, -0.2249404378, 0, 0, -0.0420569547, 1.0420571574, 0, 0, -0.0196375546, -0.0786360454, 1.0982736000, 0, 0, 0, 0, 1]}
-  - !<ColorSpace>
-    name: raw
-    aliases: [Raw, "Utility - Raw", non-color]
-    family: data
-    isdata: true
-)ocio";
-
-struct ActiveConfig {
-  OCIO::ConstConfigRcPtr config;
-  std::string path;  // "" for the built-in one
-};
-
-const ActiveConfig& active_config() {
+const TpOcioModule& ocio_module() {
   static std::once_flag once;
-  static ActiveConfig active;
-  static std::string load_error;
+  static const TpOcioModule* module = nullptr;
+  static std::string why;
   std::call_once(once, [] {
-    try {
-      const char* env = std::getenv("OCIO");
-      if (env && *env) {
-        active.path = env;
-        active.config = OCIO::Config::CreateFromFile(env);
-      } else {
-        std::istringstream in(kBuiltinConfig);
-        active.config = OCIO::Config::CreateFromStream(in);
-      }
-    } catch (const OCIO::Exception& e) {
-      load_error = e.what();
-      active.config.reset();
+#ifdef TEXPROC_OCIO_MODULE_BUILD_PATH
+    const char* build = TEXPROC_OCIO_MODULE_BUILD_PATH;
+#else
+    const char* build = "";
+#endif
+    const ModuleSpec spec{"texproc_ocio.so", "TEXPROC_OCIO_MODULE", "texproc_ocio_module", build};
+    module = static_cast<const TpOcioModule*>(load_module(spec, why));
+    if (module && module->abi != TP_OCIO_MODULE_ABI) {
+      why = "texproc_ocio is of another version";
+      module = nullptr;
     }
   });
-  if (!active.config) {
-    throw Error(ErrorCode::invalid_file, std::string(std::getenv("OCIO") ? std::getenv("OCIO") : "<built-in>") +
-                                             ": cannot load the OpenColorIO config: " + load_error);
+  if (!module) {
+    throw Error(ErrorCode::unsupported,
+                "colour spaces other than linear and srgb come from OpenColorIO, and texproc's OpenColorIO module "
+                "could not be loaded (" + why + ")");
   }
-  return active;
+  return *module;
 }
 
-class OcioTransformImpl final : public OcioTransform {
+class ModuleTransform final : public OcioTransform {
  public:
-  OcioTransformImpl(OCIO::ConstCPUProcessorRcPtr to, OCIO::ConstCPUProcessorRcPtr from, std::string path)
-      : to_(std::move(to)), from_(std::move(from)), path_(std::move(path)) {}
-
-  void to_linear(float* pixels, int channels, int width) const override { apply(*to_, pixels, channels, width); }
-  void from_linear(float* pixels, int channels, int width) const override { apply(*from_, pixels, channels, width); }
+  ModuleTransform(const TpOcioModule& m, void* t, std::string path) : m_(m), t_(t), path_(std::move(path)) {}
+  ~ModuleTransform() override { m_.destroy(t_); }
+  void to_linear(float* pixels, int channels, int width) const override { m_.to_linear(t_, pixels, channels, width); }
+  void from_linear(float* pixels, int channels, int width) const override { m_.from_linear(t_, pixels, channels, width); }
   const std::string& config_path() const override { return path_; }
 
  private:
-  static void apply(const OCIO::CPUProcessor& p, float* px, int channels, int width) {
-    if (channels >= 3) {
-      OCIO::PackedImageDesc desc(px, width, 1, channels);
-      p.apply(desc);
-      return;
-    }
-    // Gray (+alpha): through as R=G=B, keep G.
-    for (int x = 0; x < width; ++x) {
-      float rgb[3] = {px[x * channels], px[x * channels], px[x * channels]};
-      p.applyRGB(rgb);
-      px[x * channels] = rgb[1];
-    }
-  }
-
-  OCIO::ConstCPUProcessorRcPtr to_, from_;
+  const TpOcioModule& m_;
+  void* t_;
   std::string path_;
 };
 
 }  // namespace
 
-std::vector<std::string> OcioTransform::names() {
-  const auto& cfg = *active_config().config;
-  std::vector<std::string> out;
-  for (int i = 0; i < cfg.getNumColorSpaces(); ++i) out.emplace_back(cfg.getColorSpaceNameByIndex(i));
-  return out;
+std::shared_ptr<const OcioTransform> OcioTransform::create(const std::string& space) {
+  const TpOcioModule& m = ocio_module();
+  char path[4096] = {}, err[2048] = {};
+  int code = 0;
+  void* t = m.create(space.c_str(), path, sizeof path, &code, err, sizeof err);
+  if (!t) throw Error(ErrorCode(code), err);
+  return std::make_shared<ModuleTransform>(m, t, path);
 }
 
-std::shared_ptr<const OcioTransform> OcioTransform::create(const std::string& space) {
-  const ActiveConfig& active = active_config();
-  if (!active.config->getColorSpace(space.c_str())) {
-    std::string valid = "linear, srgb";
-    for (const auto& n : names()) valid += ", " + n;
-    throw Error(ErrorCode::bad_arguments, "unknown color space '" + space + "' (valid: " + valid + ")");
+std::vector<std::string> OcioTransform::names() {
+  const TpOcioModule& m = ocio_module();
+  std::string buf(4096, '\0');
+  char err[2048] = {};
+  int code = 0;
+  long n = m.names(buf.data(), buf.size(), &code, err, sizeof err);
+  if (n < 0) throw Error(ErrorCode(code), err);
+  if (std::size_t(n) > buf.size()) {
+    buf.assign(std::size_t(n), '\0');
+    n = m.names(buf.data(), buf.size(), &code, err, sizeof err);
+    if (n < 0) throw Error(ErrorCode(code), err);
   }
-  try {
-    auto to = active.config->getProcessor(space.c_str(), OCIO::ROLE_SCENE_LINEAR)->getDefaultCPUProcessor();
-    auto from = active.config->getProcessor(OCIO::ROLE_SCENE_LINEAR, space.c_str())->getDefaultCPUProcessor();
-    return std::make_shared<OcioTransformImpl>(std::move(to), std::move(from), active.path);
-  } catch (const OCIO::Exception& e) {
-    throw Error(ErrorCode::bad_arguments,
-                "color space '" + space + "': OpenColorIO cannot convert it to scene_linear: " + e.what());
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < std::size_t(n);) {
+    const std::size_t end = buf.find('\0', i);
+    out.push_back(buf.substr(i, end - i));
+    i = end + 1;
   }
+  return out;
 }
 
 }  // namespace texproc

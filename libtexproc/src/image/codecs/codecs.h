@@ -63,12 +63,7 @@ ImageFileInfo tga_probe(const std::string& path, const FileBytes& f);
 Image tga_read(const std::string& path, const FileBytes& f, ImageFileInfo& info);
 void tga_write(const std::string& file, const std::string& path, const ImageView& v, const WriteOptions& o);
 
-// OpenEXR (its own C++ API; chunks decoded on OpenEXR's thread pool).
-ImageFileInfo exr_probe(const std::string& path);
-Image exr_read(const std::string& path, ImageFileInfo& info);
-// One image, or with mip_file a tiled MIPMAP_LEVELS file (round down).
-void exr_write(const std::string& file, const std::string& path, const std::vector<ImageView>& levels, bool mip_file,
-               const WriteOptions& o);
+// OpenEXR: the texproc_exr module (image/modules/), loaded on first use.
 
 // TIFF (libtiff; deflate strips and tiles inflated in parallel).
 ImageFileInfo tiff_probe(const std::string& path);

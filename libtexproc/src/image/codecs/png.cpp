@@ -142,51 +142,63 @@ void chunk(std::vector<std::uint8_t>& out, const char type[4], const std::uint8_
   put32(out, std::uint32_t(crc32(0, out.data() + start, uInt(n + 4))));
 }
 
-// Filters one row of `n` bytes (`prev` the row above, or null) into
-// out[0] (the filter type) and out[1..n]: every filter is scored in one pass
-// (the sum of the filtered bytes taken as signed, libpng's heuristic), then
-// only the best one is written.
-void filter_row(const std::uint8_t* row, const std::uint8_t* prev, std::size_t n, int bpp, std::uint8_t* out) {
-  auto paeth = [](int a, int b, int c) {
-    const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
-    return pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
-  };
-  auto mag = [](int v) { return unsigned(std::abs(int(std::int8_t(std::uint8_t(v))))); };
-  const std::size_t B = std::size_t(bpp);
-  std::uint64_t s[5] = {0, 0, 0, 0, 0};
-  // The first pixel has no left neighbour; without `prev` the row above is zero.
-  if (!prev) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const int x = row[i], a = i >= B ? row[i - B] : 0;
-      s[0] += mag(x), s[1] += mag(x - a), s[2] += mag(x), s[3] += mag(x - (a >> 1)), s[4] += mag(x - a);
-    }
-  } else {
-    for (std::size_t i = 0; i < B && i < n; ++i) {
-      const int x = row[i], b = prev[i];
-      s[0] += mag(x), s[1] += mag(x), s[2] += mag(x - b), s[3] += mag(x - (b >> 1)), s[4] += mag(x - b);
-    }
-    for (std::size_t i = B; i < n; ++i) {
-      const int x = row[i], a = row[i - B], b = prev[i], c = prev[i - B];
-      s[0] += mag(x), s[1] += mag(x - a), s[2] += mag(x - b), s[3] += mag(x - ((a + b) >> 1)), s[4] += mag(x - paeth(a, b, c));
-    }
+// PNG's filters on byte i of a row: x the byte, a the one bpp bytes left, b
+// the one above, c above-left (0 outside the image).
+inline int paeth(int a, int b, int c) {
+  const int pa = std::abs(b - c), pb = std::abs(a - c), pc = std::abs(a + b - 2 * c);
+  return pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
+}
+inline unsigned magnitude(int filtered) {  // the byte read as signed, libpng's measure
+  const int v = std::int8_t(std::uint8_t(filtered));
+  return unsigned(v < 0 ? -v : v);
+}
+
+// The five filters' scores over a row (loops the compiler vectorizes).
+void score_filters(const std::uint8_t* x, const std::uint8_t* b, std::size_t n, std::size_t B, std::uint64_t s[5]) {
+  unsigned none = 0, sub = 0, up = 0, avg = 0, pae = 0;
+  for (std::size_t i = 0; i < std::min(B, n); ++i) {  // no left neighbour
+    none += magnitude(x[i]), sub += magnitude(x[i]), up += magnitude(x[i] - b[i]);
+    avg += magnitude(x[i] - (b[i] >> 1)), pae += magnitude(x[i] - b[i]);
   }
+  s[0] = none, s[1] = sub, s[2] = up, s[3] = avg, s[4] = pae;
+  // Chunks keep the unsigned sums from overflowing.
+  for (std::size_t i0 = B; i0 < n; i0 += 1 << 16) {
+    const std::size_t i1 = std::min(n, i0 + (std::size_t(1) << 16));
+    none = sub = up = avg = pae = 0;
+    for (std::size_t i = i0; i < i1; ++i) none += magnitude(x[i]);
+    for (std::size_t i = i0; i < i1; ++i) sub += magnitude(x[i] - x[i - B]);
+    for (std::size_t i = i0; i < i1; ++i) up += magnitude(x[i] - b[i]);
+    for (std::size_t i = i0; i < i1; ++i) avg += magnitude(x[i] - ((x[i - B] + b[i]) >> 1));
+    for (std::size_t i = i0; i < i1; ++i) pae += magnitude(x[i] - paeth(x[i - B], b[i], b[i - B]));
+    s[0] += none, s[1] += sub, s[2] += up, s[3] += avg, s[4] += pae;
+  }
+}
+
+// Filters one row of `n` bytes (`prev` the row above, all zeros for the
+// first row) into out[0] (the filter type) and out[1..n]: the filter with
+// the least score, libpng's heuristic.
+void filter_row(const std::uint8_t* row, const std::uint8_t* prev, std::size_t n, int bpp, std::uint8_t* out) {
+  const std::size_t B = std::size_t(bpp);
+  std::uint64_t s[5];
+  score_filters(row, prev, n, B, s);
   int best = 0;
   for (int k = 1; k < 5; ++k)
     if (s[k] < s[best]) best = k;
   out[0] = std::uint8_t(best);
   std::uint8_t* o = out + 1;
-  const std::uint8_t* up = prev ? prev : nullptr;
-  for (std::size_t i = 0; i < n; ++i) {
-    const int x = row[i], a = i >= B ? row[i - B] : 0, b = up ? up[i] : 0, c = up && i >= B ? up[i - B] : 0;
-    int f = x;
-    switch (best) {
-      case 1: f = x - a; break;
-      case 2: f = x - b; break;
-      case 3: f = x - ((a + b) >> 1); break;
-      case 4: f = x - paeth(a, b, c); break;
-      default: break;
-    }
-    o[i] = std::uint8_t(f);
+  const std::size_t head = std::min(B, n);
+  for (std::size_t i = 0; i < head; ++i) {
+    const int x = row[i], b = prev[i];
+    o[i] = std::uint8_t(best == 0 || best == 1 ? x : best == 3 ? x - (b >> 1) : x - b);
+  }
+  switch (best) {
+    case 0: std::memcpy(o + head, row + head, n - head); break;
+    case 1: for (std::size_t i = B; i < n; ++i) o[i] = std::uint8_t(row[i] - row[i - B]); break;
+    case 2: for (std::size_t i = B; i < n; ++i) o[i] = std::uint8_t(row[i] - prev[i]); break;
+    case 3: for (std::size_t i = B; i < n; ++i) o[i] = std::uint8_t(row[i] - ((row[i - B] + prev[i]) >> 1)); break;
+    default:
+      for (std::size_t i = B; i < n; ++i) o[i] = std::uint8_t(row[i] - paeth(row[i - B], prev[i], prev[i - B]));
+      break;
   }
 }
 
@@ -246,14 +258,14 @@ void png_write(const std::string& file, const std::string& path, const ImageView
   std::vector<uLong> adler(static_cast<std::size_t>(strips));
   std::vector<uLong> lengths(static_cast<std::size_t>(strips));
   for_each_row_block(strips, 1, [&](int s0, int s1) {
-    std::vector<std::uint8_t> prev(row_bytes), cur(row_bytes);
+    std::vector<std::uint8_t> prev(row_bytes, 0), cur(row_bytes);
     for (int s = s0; s < s1; ++s) {
       const int y0 = s * strip_rows, y1 = std::min(v.height, y0 + strip_rows);
       std::vector<std::uint8_t> filtered(std::size_t(y1 - y0) * (row_bytes + 1));
       if (y0 > 0) png_row(y0 - 1, prev.data());
       for (int y = y0; y < y1; ++y) {
         png_row(y, cur.data());
-        filter_row(cur.data(), y > 0 ? prev.data() : nullptr, row_bytes, bpp,
+        filter_row(cur.data(), prev.data(), row_bytes, bpp,
                    filtered.data() + std::size_t(y - y0) * (row_bytes + 1));
         std::swap(prev, cur);
       }

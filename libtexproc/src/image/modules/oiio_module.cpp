@@ -2,7 +2,7 @@
 // direct reader for (PSD, BMP, Radiance HDR, WebP, JPEG 2000, ...), behind
 // the C boundary of oiio_module.h. Built as a separate shared object and
 // loaded on first use; nothing in libtexproc links OpenImageIO.
-#include "image/oiio/oiio_module.h"
+#include "image/modules/image_module.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -169,7 +169,7 @@ void probe(const std::string& path, TpImageSpec& out) {
   int mips = 0;
   while (in->seek_subimage(0, mips + 1)) {
     ++mips;
-    if (mips < TP_OIIO_MAX_LEVELS) {
+    if (mips < TP_IMAGE_MAX_LEVELS) {
       out.level_width[mips] = in->spec().width;
       out.level_height[mips] = in->spec().height;
     }
@@ -249,8 +249,8 @@ int write_c(const char* file, const char* path, const TpImageLevel* levels, int 
   return guarded(err, err_size, [&] { write(file, path, levels, count, mip_file != 0, *o); });
 }
 
-const TpOiioModule kModule = {TP_OIIO_MODULE_ABI, probe_c, read_c, write_c};
+const TpImageModule kModule = {TP_IMAGE_MODULE_ABI, probe_c, read_c, write_c};
 
 }  // namespace
 
-extern "C" __attribute__((visibility("default"))) const TpOiioModule* texproc_oiio_module(void) { return &kModule; }
+extern "C" __attribute__((visibility("default"))) const TpImageModule* texproc_oiio_module(void) { return &kModule; }

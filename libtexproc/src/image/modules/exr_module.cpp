@@ -1,7 +1,9 @@
-// OpenEXR through its own C++ API: scan-line and tiled files, any
-// compression, chunks decoded and encoded on OpenEXR's thread pool. Channels
-// come in OpenImageIO's order (R, G, B, A first, then the rest as stored),
-// as f32; the data window is the image.
+// texproc_exr: OpenEXR through its own C++ API, behind the C boundary of
+// image_module.h (loaded on first use: OpenEXR's four libraries cost every
+// process about 3 ms to map). Scan-line and tiled files, any compression,
+// chunks decoded and encoded on OpenEXR's thread pool. Channels come in
+// OpenImageIO's order (colour, luminance, alpha, depth, then the rest as
+// stored), as f32; the data window is the image.
 #include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -19,16 +21,34 @@
 #include <mutex>
 #include <vector>
 
-#include "image/codecs/codecs.h"
-#include "texproc/error.h"
-#include "texproc/runtime.h"
+#include <cstring>
+#include <string>
+#include <thread>
 
-namespace texproc::codecs {
+#include "image/modules/image_module.h"
+#include "texproc/error.h"
+#include "texproc/image.h"
+#include "texproc/image_io.h"
+
 namespace {
+
+// texproc::ErrorCode values (error.h).
+enum : int { kOk = 0, kBadArguments = 1, kIo = 2, kInvalidFile = 3 };
+
+struct Failure {
+  int code;
+  std::string message;
+};
 
 void start_threads() {
   static std::once_flag once;
-  std::call_once(once, [] { Imf::setGlobalThreadCount(std::max(1, hardware_threads())); });
+  std::call_once(once, [] { Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency()))); });
+}
+
+void copy_string(char* dst, size_t size, const std::string& s) {
+  const size_t n = std::min(size - 1, s.size());
+  std::memcpy(dst, s.data(), n);
+  dst[n] = '\0';
 }
 
 struct Channel {
@@ -60,70 +80,58 @@ std::string file_type_of(const std::vector<Channel>& ch) {
   return fl ? "float" : ui ? "uint" : "half";
 }
 
-ImageFileInfo info_of(const std::string& path, const Imf::Header& h) {
+void info_of(const Imf::Header& h, TpImageSpec& out) {
   const Imath::Box2i dw = h.dataWindow();
   const std::vector<Channel> ch = ordered_channels(h);
-  ImageFileInfo info;
-  info.format = "openexr";
-  info.width = dw.max.x - dw.min.x + 1;
-  info.height = dw.max.y - dw.min.y + 1;
-  info.channels = int(ch.size());
-  info.file_type = file_type_of(ch);
-  info.type = PixelType::f32;
-  info.color_space_tag = "Linear";
-  check_size(path, info.width, info.height, info.channels);
-  return info;
+  out = TpImageSpec{};
+  copy_string(out.format, sizeof out.format, "openexr");
+  out.width = dw.max.x - dw.min.x + 1;
+  out.height = dw.max.y - dw.min.y + 1;
+  out.channels = int(ch.size());
+  copy_string(out.file_type, sizeof out.file_type, file_type_of(ch));
+  out.type = TP_F32;
+  copy_string(out.color_space, sizeof out.color_space, "Linear");
+  out.subimages = 1;
+  out.mip_levels = 1;
+  out.level_width[0] = out.width;
+  out.level_height[0] = out.height;
 }
 
-template <typename Fn>
-auto guarded(const std::string& path, const char* what, Fn&& fn) -> decltype(fn()) {
-  try {
-    return fn();
-  } catch (const Error&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw Error(ErrorCode::invalid_file, path + ": " + what + ": " + e.what());
+void probe(const std::string& path, TpImageSpec& out) {
+  start_threads();
+  Imf::InputFile in(path.c_str());
+  info_of(in.header(), out);
+  if (in.header().hasTileDescription() && in.header().tileDescription().mode == Imf::MIPMAP_LEVELS) {
+    Imf::TiledInputFile tiled(path.c_str());
+    out.mip_levels = tiled.numLevels();
+    for (int l = 1; l < std::min(tiled.numLevels(), int(TP_IMAGE_MAX_LEVELS)); ++l) {
+      out.level_width[l] = tiled.levelWidth(l);
+      out.level_height[l] = tiled.levelHeight(l);
+    }
   }
+}
+
+void read(const std::string& path, int C, void* data, size_t row_stride) {
+  start_threads();
+  Imf::InputFile in(path.c_str());
+  const std::vector<Channel> ch = ordered_channels(in.header());
+  const Imath::Box2i dw = in.header().dataWindow();
+  Imf::FrameBuffer fb;
+  for (int c = 0; c < std::min(C, int(ch.size())); ++c) {
+    auto* base = static_cast<char*>(data) + sizeof(float) * c;
+    fb.insert(ch[std::size_t(c)].name, Imf::Slice::Make(Imf::FLOAT, base, dw, sizeof(float) * C, row_stride));
+  }
+  in.setFrameBuffer(fb);
+  in.readPixels(dw.min.y, dw.max.y);
 }
 
 }  // namespace
 
-ImageFileInfo exr_probe(const std::string& path) {
-  start_threads();
-  return guarded(path, "not a valid OpenEXR file", [&] {
-    Imf::InputFile in(path.c_str());
-    ImageFileInfo info = info_of(path, in.header());
-    info.level_sizes.emplace_back(info.width, info.height);
-    if (in.header().hasTileDescription() && in.header().tileDescription().mode == Imf::MIPMAP_LEVELS) {
-      Imf::TiledInputFile tiled(path.c_str());
-      info.mip_levels = tiled.numLevels();
-      for (int l = 1; l < tiled.numLevels(); ++l) info.level_sizes.emplace_back(tiled.levelWidth(l), tiled.levelHeight(l));
-    }
-    return info;
-  });
-}
-
-Image exr_read(const std::string& path, ImageFileInfo& info) {
-  start_threads();
-  return guarded(path, "cannot decode OpenEXR", [&] {
-    Imf::InputFile in(path.c_str());
-    info = info_of(path, in.header());
-    info.level_sizes.emplace_back(info.width, info.height);
-    const std::vector<Channel> ch = ordered_channels(in.header());
-    const int C = std::min(int(ch.size()), 4);
-    Image img = Image::uninitialized(info.width, info.height, C, PixelType::f32);
-    const Imath::Box2i dw = in.header().dataWindow();
-    Imf::FrameBuffer fb;
-    for (int c = 0; c < C; ++c) {
-      auto* base = reinterpret_cast<char*>(img.data() + sizeof(float) * c);
-      fb.insert(ch[std::size_t(c)].name,
-                Imf::Slice::Make(Imf::FLOAT, base, dw, sizeof(float) * C, img.row_stride()));
-    }
-    in.setFrameBuffer(fb);
-    in.readPixels(dw.min.y, dw.max.y);
-    return img;
-  });
-}
+using texproc::Error;
+using texproc::ErrorCode;
+using texproc::ImageView;
+using texproc::PixelType;
+using texproc::WriteOptions;
 
 namespace {
 
@@ -227,8 +235,10 @@ void fill_frame_buffer(Imf::FrameBuffer& fb, const ImageView& v, const Stored& s
 
 }  // namespace
 
-void exr_write(const std::string& file, const std::string& path, const std::vector<ImageView>& levels, bool mip_file,
-               const WriteOptions& o) {
+namespace {
+
+void write(const std::string& file, const std::string& path, const std::vector<ImageView>& levels, bool mip_file,
+           const WriteOptions& o) {
   start_threads();
   const Imf::Compression comp = compression_of(path, o.compression);
   try {
@@ -260,8 +270,55 @@ void exr_write(const std::string& file, const std::string& path, const std::vect
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {
-    write_error(path, e.what());
+    throw Error(ErrorCode::io, path + ": cannot write: " + e.what());
   }
 }
 
-}  // namespace texproc::codecs
+int report(int code, const std::string& message, char* err, size_t err_size) {
+  if (err && err_size) copy_string(err, err_size, message);
+  return code;
+}
+
+template <typename Fn>
+int guarded(const std::string& path, const char* what, char* err, size_t err_size, Fn&& fn) {
+  try {
+    fn();
+    return kOk;
+  } catch (const Error& e) {
+    return report(int(e.code()), e.what(), err, err_size);
+  } catch (const std::exception& e) {
+    return report(kInvalidFile, path + ": " + what + ": " + e.what(), err, err_size);
+  }
+}
+
+int probe_c(const char* path, TpImageSpec* spec, char* err, size_t err_size) {
+  return guarded(path, "not a valid OpenEXR file", err, err_size, [&] { probe(path, *spec); });
+}
+int read_c(const char* path, int channels, int type, void* data, size_t row_stride, char* err, size_t err_size) {
+  return guarded(path, "cannot decode OpenEXR", err, err_size, [&] {
+    if (type != TP_F32) throw Error(ErrorCode::runtime, std::string(path) + ": OpenEXR reads as f32 only");
+    read(path, channels, data, row_stride);
+  });
+}
+int write_c(const char* file, const char* path, const TpImageLevel* levels, int count, int mip_file,
+            const TpWriteOptions* o, char* err, size_t err_size) {
+  return guarded(path, "cannot write", err, err_size, [&] {
+    std::vector<ImageView> views;
+    for (int i = 0; i < count; ++i) {
+      views.push_back({const_cast<void*>(levels[i].data), levels[i].width, levels[i].height, levels[i].channels,
+                       PixelType(levels[i].type), levels[i].row_stride});
+    }
+    WriteOptions w;
+    w.half = o->half != 0;
+    w.compression = o->compression ? o->compression : "";
+    w.color_space = o->color_space ? o->color_space : "";
+    w.quality = o->quality;
+    write(file, path, views, mip_file != 0, w);
+  });
+}
+
+const TpImageModule kModule = {TP_IMAGE_MODULE_ABI, probe_c, read_c, write_c};
+
+}  // namespace
+
+extern "C" __attribute__((visibility("default"))) const TpImageModule* texproc_exr_module(void) { return &kModule; }

@@ -1,0 +1,24 @@
+// Shared objects of texproc's own that libtexproc loads with dlopen the
+// first time they are needed (texproc_oiio for OpenImageIO's formats,
+// texproc_ocio for OpenColorIO), so that a process that never needs them
+// never maps those libraries and their dependencies at start-up.
+#pragma once
+
+#include <string>
+
+namespace texproc {
+
+struct ModuleSpec {
+  const char* file;        // "texproc_oiio.so"
+  const char* env;         // a variable that names the file to use instead (and nowhere else)
+  const char* entry;       // the exported function that returns the module's table
+  const char* build_path;  // where the build tree puts it ("" for none)
+};
+
+// Where it looks, in order: $env when set; beside the binary or shared
+// library that holds libtexproc; ../lib/texproc/ from there; build_path.
+// Returns what `entry` returns, or nullptr with `why` saying every place
+// tried and what failed. Never unloads.
+const void* load_module(const ModuleSpec& spec, std::string& why);
+
+}  // namespace texproc

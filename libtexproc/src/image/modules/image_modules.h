@@ -1,0 +1,26 @@
+// Loads the image modules (image_module.h) on first use and wraps their C
+// calls in texproc's types and errors. Where it looks: core/module.h, with
+// $TEXPROC_OIIO_MODULE / $TEXPROC_EXR_MODULE naming the file to use instead.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "texproc/image.h"
+#include "texproc/image_io.h"
+
+namespace texproc::modules {
+
+enum class Module { oiio, exr };
+
+bool loaded(Module m);
+// Each throws Error: the module's own code and message, or Error{unsupported}
+// naming `path` and every place looked in when the module cannot be loaded.
+// probe checks the size against image_read_limits().
+ImageFileInfo probe(Module m, const std::string& path);
+// probe, then the pixels: at most 4 channels of the type probe gave.
+Image read(Module m, const std::string& path, ImageFileInfo& info);
+void write(Module m, const std::string& file, const std::string& path, const std::vector<ImageView>& levels,
+           bool mip_file, const WriteOptions& options);
+
+}  // namespace texproc::modules
