@@ -222,6 +222,21 @@ TEST(ImageCodecs, CliStartsWithoutOpenImageIO) {
   EXPECT_NE(ld.find("libspng"), std::string::npos) << "LD_DEBUG gave no list";
   EXPECT_EQ(ld.find("OpenImageIO"), std::string::npos);
   EXPECT_EQ(ld.find("texproc_oiio"), std::string::npos);
+  // Nor OpenEXR or OpenColorIO: their modules load when a file or a colour space needs them.
+  EXPECT_EQ(ld.find("OpenEXR"), std::string::npos);
+  EXPECT_EQ(ld.find("OpenColorIO"), std::string::npos);
+  auto loads = [&](const std::string& args, const std::string& object) {
+    const std::string c = "LD_DEBUG=files " + std::string(TEXPROC_CLI_PATH) + " " + args + " >/dev/null 2>" + dir + "/ld3.txt";
+    EXPECT_EQ(std::system(c.c_str()), 0) << args;
+    return slurp(dir + "/ld3.txt").find(object) != std::string::npos;
+  };
+  EXPECT_TRUE(loads("info '" + corpus_dir() + "/hdr/blender_world_city.exr'", "texproc_exr"));
+  EXPECT_FALSE(loads("info '" + corpus_dir() + "/hdr/blender_world_city.exr'", "texproc_oiio"));
+  EXPECT_TRUE(loads("mip '" + corpus_dir() + "/photo/skimage_astronaut_512.png' -o '" + dir +
+                        "/c.dds' --colorspace ACEScg -q --force",
+                    "OpenColorIO"));
+  EXPECT_FALSE(loads("mip '" + corpus_dir() + "/photo/skimage_astronaut_512.png' -o '" + dir + "/d.dds' -q --force",
+                     "OpenColorIO"));
   const std::string bmp = "LD_DEBUG=files " + std::string(TEXPROC_CLI_PATH) + " info '" + corpus_dir() +
                           "/albedo_srgb/scorched3d_f18_512.bmp' >/dev/null 2>" + dir + "/ld2.txt";
   ASSERT_EQ(std::system(bmp.c_str()), 0);
