@@ -117,20 +117,26 @@ Json::Value number_or_null(double v) { return std::isfinite(v) ? Json::Value(v) 
 
 void run_compress(const CompressArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   PhaseTimer phases(r);
-  Image img = read_image(input);
+  ImageArray in = read_image_array(input);
   phases.read_done();
+  const PixelType input_type = in.images[0].type();
   // Colour is sRGB unless --linear, a normal map, or float input.
-  const bool srgb = a.srgb || (!a.linear && !a.normal_map && img.type() != PixelType::f32);
+  const bool srgb = a.srgb || (!a.linear && !a.normal_map && input_type != PixelType::f32);
   const TexelFormat format = format_for(a.format, srgb);
-  std::vector<Image> levels;
-  if (a.mips) {
-    MipOptions m = a.mip;
-    m.color_space = format_info(format).srgb ? "srgb" : "linear";
-    MipChain c = generate_mips(std::move(img), m);
-    levels = std::move(c.levels);
-  } else {
-    levels.push_back(std::move(img));
+  // One chain per surface: a cubemap's faces and an array's layers (index layer * faces + face).
+  std::vector<std::vector<Image>> chains;
+  for (Image& img : in.images) {
+    if (a.mips) {
+      MipOptions m = a.mip;
+      m.color_space = format_info(format).srgb ? "srgb" : "linear";
+      chains.push_back(generate_mips(std::move(img), m).levels);
+    } else {
+      chains.emplace_back();
+      chains.back().push_back(std::move(img));
+    }
   }
+  const std::size_t surfaces = chains.size();
+  for (std::vector<Image>& levels : chains) {
   // BC3 normal maps take the DXT5nm layout for platforms without BC5: X in
   // alpha (coded by the 8-value alpha block), Y in green (the colour block's
   // 6-bit channel), red 1 and blue 0 constant so the colour endpoints spend
@@ -148,15 +154,24 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
       l = std::move(nm);
     }
   }
+  }
+  const std::vector<Image>& levels = chains[0];
   Texture t;
   t.format = format;
   t.width = std::uint32_t(levels[0].width());
   t.height = std::uint32_t(levels[0].height());
   t.levels = std::uint32_t(levels.size());
+  t.faces = in.faces;
+  t.layers = in.layers;
+  t.is_array = in.is_array;
+  t.images.resize(std::size_t(t.levels) * surfaces);
   const auto t0 = std::chrono::steady_clock::now();
   double texels = 0.0, texels_before = 0.0;  // for the progress line: the levels weighed by size
-  for (const Image& l : levels) texels += double(l.width()) * double(l.height());
-  for (Image& l : levels) {
+  for (const auto& c : chains)
+    for (const Image& l : c) texels += double(l.width()) * double(l.height());
+  for (std::size_t s = 0; s < surfaces; ++s)
+  for (std::size_t li = 0; li < chains[s].size(); ++li) {
+    Image& l = chains[s][li];
     // The policy applies to each stored level (the chain itself was filtered
     // premultiplied, so it has no fringes; the GPU's filtering of straight
     // alpha would add them back from the colour under alpha 0).
@@ -167,7 +182,7 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
     if (r.progress)
       options.progress = [&](double done) { r.progress((texels_before + done * level_texels) / texels); };
     const std::vector<std::uint8_t> blocks = compress_image(l.view(), format, a.q, options);
-    t.images.emplace_back(blocks.begin(), blocks.end());
+    t.images[li * surfaces + s] = PixelBytes(blocks);
     texels_before += level_texels;
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -78,14 +78,27 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
   }
   PhaseTimer phases(r);
   ImageFileInfo info;
-  Image image = read_image(input, &info);
+  ImageArray in = read_image_array(input, &info);
   phases.read_done();
-  MipChain chain = generate_mips(std::move(image), o);
+  check_surfaces_fit(input, in, output);
+  // A half-float texture stays half float.
+  if (!o.output_type && container && info.file_type == "rgba16_float") w.half = true;
+  // A cubemap's faces and an array's layers are each mipped on their own.
+  std::vector<std::vector<Image>> more;
+  for (std::size_t s = 1; s < in.images.size(); ++s) more.push_back(generate_mips(std::move(in.images[s]), o).levels);
+  MipChain chain = generate_mips(std::move(in.images[0]), o);
   phases.compute_done();
   w.color_space = chain.color_space == "srgb" ? "srgb" : chain.color_space == "linear" ? "linear" : "";
   const std::size_t level_count = chain.levels.size();
   const PixelType level_type = chain.levels[0].type();
-  if (container) {
+  if (container && !more.empty()) {
+    std::vector<std::vector<Image>> chains;
+    chains.push_back(std::move(chain.levels));
+    for (auto& c : more) chains.push_back(std::move(c));
+    write_texture(output, texture_from_surfaces(std::move(chains), in.faces, in.layers, in.is_array,
+                                                chain.color_space == "srgb", w.half),
+                  a.header);
+  } else if (container) {
     // Uncompressed GPU formats: r8/rg8/rgba8 (sRGB when the chain is), 16-bit, half or float;
     // the chain's pixel memory becomes the texture's.
     write_texture(output, texture_from_levels(std::move(chain.levels), chain.color_space == "srgb", w.half), a.header);

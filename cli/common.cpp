@@ -212,6 +212,14 @@ void write_levels(const std::string& output, const std::vector<Image>& levels, c
   for (std::size_t l = 0; l < levels.size(); ++l) write_image(names[l], levels[l].view(), options);
 }
 
+void check_surfaces_fit(const std::string& input, const ImageArray& in, const std::string& output) {
+  if (in.images.size() <= 1 || is_container_path(output)) return;
+  const std::string what = in.faces == 6 ? (in.layers > 1 ? std::to_string(in.layers) + " cubemaps" : std::string("a cubemap"))
+                                         : std::to_string(in.layers) + " array layers";
+  throw Error(ErrorCode::unsupported, input + ": holds " + what + "; write it to .dds, .ktx2 or .ktx, which keep them (" +
+                                          output + " holds one image)");
+}
+
 const std::vector<std::string>& image_extensions() {
   static const std::vector<std::string> e = {".png", ".jpg", ".jpeg", ".tga", ".tif", ".tiff", ".exr", ".hdr",
                                              ".bmp", ".psd", ".webp", ".gif", ".ppm", ".pgm", ".pnm", ".dds", ".ktx2", ".ktx", ".pkm"};

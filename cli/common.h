@@ -76,6 +76,9 @@ void write_levels(const std::string& output, const std::vector<texproc::Image>& 
 // File extensions (lower case, with the dot) that folder inputs pick: the
 // image formats texproc reads, and the texture containers.
 const std::vector<std::string>& image_extensions();
+// A cubemap or array input (more than one surface) can only go to a GPU
+// container: Error{unsupported} naming `input` otherwise.
+void check_surfaces_fit(const std::string& input, const ImageArray& in, const std::string& output);
 const std::vector<std::string>& texture_extensions();
 
 // True for .dds, .ktx2, .ktx, .pkm outputs.

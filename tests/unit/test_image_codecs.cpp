@@ -12,6 +12,7 @@
 
 #include "support/images.h"
 #include "support/run.h"
+#include "texproc/block_encode.h"
 #include "texproc/container.h"
 #include "texproc/error.h"
 #include "texproc/image_io.h"
@@ -148,7 +149,9 @@ TEST(ImageCodecs, WrittenFilesReadTheSameBothWays) {
         expect_same(path);
         ImageFileInfo info;
         const Image back = read_image(path, &info);
-        if (e == ".exr") EXPECT_EQ(back.type(), PixelType::f32);  // OpenEXR holds floats
+        if (e == ".exr") {
+          EXPECT_EQ(back.type(), PixelType::f32);  // OpenEXR holds floats
+        }
         if (e != ".jpg" && e != ".exr") {
           ASSERT_EQ(back.byte_size(), img.byte_size()) << path << " came back with " << back.channels() << " channels of " << to_string(back.type());
           EXPECT_EQ(0, std::memcmp(back.data(), img.data(), img.byte_size())) << path;
@@ -348,5 +351,42 @@ TEST(ImageCodecs, ContainersAreInputs) {
   const ImageFileInfo info = probe_image(dir + "/bc1.dds");
   EXPECT_EQ(info.format, "dds");
   EXPECT_EQ(info.file_type.rfind("bc1_", 0), 0u) << info.file_type;
+  fs::remove_all(dir);
+}
+
+// A cubemap input keeps its six faces through mip and compress: each face
+// of the output is that face processed alone; an image output is refused.
+TEST(ImageCodecs, CubemapInputsKeepTheirFaces) {
+  if (!have_corpus()) GTEST_SKIP() << "no corpus at " << corpus_dir();
+  const std::string dir = temp_dir("cube_in");
+  const std::string cube = corpus_dir() + "/hdr/qt3d_default_specular_cube_rgba16f.dds";
+  ImageArray in = read_image_array(cube);
+  ASSERT_EQ(in.images.size(), 6u);
+  ASSERT_EQ(in.faces, 6u);
+  RunResult r = run_texproc("mip '" + cube + "' -o '" + dir + "/m.ktx2' -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Texture m = read_texture(dir + "/m.ktx2");
+  EXPECT_EQ(m.faces, 6u);
+  EXPECT_EQ(m.format, TexelFormat::rgba16_float);  // a half-float texture stays half
+  for (std::uint32_t f = 0; f < 6; ++f) {
+    MipOptions o;
+    o.output_type = PixelType::f32;
+    const Texture alone = texture_from_levels(generate_mips(in.images[f].view(), o).levels, false, true);
+    ASSERT_EQ(alone.levels, m.levels);
+    for (std::uint32_t l = 0; l < m.levels; ++l) EXPECT_TRUE(m.image(l, 0, f) == alone.image(l)) << "face " << f << " level " << l;
+  }
+  // compress: the faces' level 0 as compress_image encodes each alone.
+  r = run_texproc("compress '" + cube + "' -o '" + dir + "/c.dds' --format bc4 --linear -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Texture c = read_texture(dir + "/c.dds");
+  EXPECT_EQ(c.faces, 6u);
+  for (std::uint32_t f = 0; f < 6; ++f) {
+    const std::vector<std::uint8_t> alone = compress_image(in.images[f].view(), TexelFormat::bc4_unorm, Quality::normal);
+    EXPECT_TRUE(c.image(0, 0, f) == alone) << "face " << f;
+  }
+  r = run_texproc("mip '" + cube + "' -o '" + dir + "/m.png' -q");
+  EXPECT_EQ(r.exit_code, 5);
+  EXPECT_NE(r.err.find("cubemap"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/m_mip0.png"));
   fs::remove_all(dir);
 }

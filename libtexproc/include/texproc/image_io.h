@@ -59,6 +59,16 @@ bool image_module_loaded();
 // module and that cannot be loaded. Messages start with the path.
 Image read_image(const std::string& path, ImageFileInfo* info = nullptr);
 
+// Every face and layer of a GPU container (level 0 of each, decoded as
+// read_image decodes it), or the one image of any other file. images holds
+// layers * faces images, index layer * faces + face (+X, -X, +Y, -Y, +Z, -Z).
+struct ImageArray {
+  std::vector<Image> images;
+  std::uint32_t faces = 1, layers = 1;
+  bool is_array = false;  // an array texture, even with one layer
+};
+ImageArray read_image_array(const std::string& path, ImageFileInfo* info = nullptr);
+
 // Header facts without reading pixels. Throws as read_image.
 ImageFileInfo probe_image(const std::string& path);
 

@@ -81,6 +81,12 @@ Texture texture_from_levels(const std::vector<Image>& levels, bool srgb, bool ha
 // The same, taking the levels' pixel memory where the layout is already the
 // texture's (no copy); `levels` is left empty.
 Texture texture_from_levels(std::vector<Image>&& levels, bool srgb, bool half = false);
+// Cubemaps and arrays: one mip chain per surface (index layer * faces +
+// face), each converted as texture_from_levels converts one chain; every
+// chain must have the same sizes and layout. The chains are left empty.
+Texture texture_from_surfaces(std::vector<std::vector<Image>>&& chains, std::uint32_t faces, std::uint32_t layers,
+                              bool is_array, bool srgb, bool half = false);
+
 // One image of an uncompressed texture back as an Image (bgra swizzled to
 // rgba, half widened to f32). Throws Error{unsupported} for block formats.
 Image image_from_texture(const Texture& t, std::uint32_t level, std::uint32_t layer = 0, std::uint32_t face = 0);

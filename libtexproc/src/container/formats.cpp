@@ -215,6 +215,30 @@ Texture texture_from_levels(const std::vector<Image>& levels, bool srgb, bool ha
   return from_levels(levels, nullptr, srgb, half);
 }
 
+Texture texture_from_surfaces(std::vector<std::vector<Image>>&& chains, std::uint32_t faces, std::uint32_t layers,
+                              bool is_array, bool srgb, bool half) {
+  if (chains.empty() || chains.size() != std::size_t(faces) * layers) {
+    throw Error(ErrorCode::bad_arguments, "texture_from_surfaces: " + std::to_string(chains.size()) + " chains for " +
+                                              std::to_string(faces) + " faces x " + std::to_string(layers) + " layers");
+  }
+  std::vector<Texture> each;
+  for (auto& c : chains) each.push_back(texture_from_levels(std::move(c), srgb, half));
+  Texture t = each[0];
+  t.images.clear();
+  t.faces = faces;
+  t.layers = layers;
+  t.is_array = is_array;
+  for (const Texture& e : each) {
+    if (e.format != t.format || e.width != t.width || e.height != t.height || e.levels != t.levels) {
+      throw Error(ErrorCode::bad_arguments, "texture_from_surfaces: the surfaces differ in size or format");
+    }
+  }
+  for (std::uint32_t l = 0; l < t.levels; ++l)
+    for (auto& e : each) t.images.push_back(std::move(e.images[l]));
+  validate(t);
+  return t;
+}
+
 Texture texture_from_levels(std::vector<Image>&& levels, bool srgb, bool half) {
   if (levels.empty()) throw Error(ErrorCode::bad_arguments, "no levels");
   // The fast path reads sizes from `levels` before taking each buffer.

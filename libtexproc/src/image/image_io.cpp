@@ -171,6 +171,24 @@ Image read_image(const std::string& path, ImageFileInfo* info_out) {
   return img;
 }
 
+ImageArray read_image_array(const std::string& path, ImageFileInfo* info_out) {
+  check_exists(path);
+  bool container;
+  {
+    const codecs::FileBytes f(path);
+    container = sniff(path, f) == Kind::container;
+  }
+  ImageFileInfo info;
+  ImageArray out;
+  if (container) {
+    out = codecs::container_read_all(path, info);
+  } else {
+    out.images.push_back(read_image(path, &info));
+  }
+  if (info_out) *info_out = info;
+  return out;
+}
+
 void write_image(const std::string& path, const ImageView& image, const WriteOptions& options) {
   check_writable_extension(path);
   const std::string e = lower_ext(path);

@@ -72,5 +72,6 @@ Image tiff_read(const std::string& path, ImageFileInfo& info);
 // GPU containers as images: level 0, layer 0, face 0 (decoded if compressed).
 ImageFileInfo container_probe(const std::string& path);
 Image container_read(const std::string& path, ImageFileInfo& info);
+ImageArray container_read_all(const std::string& path, ImageFileInfo& info);
 
 }  // namespace texproc::codecs

@@ -61,6 +61,29 @@ ImageFileInfo container_probe(const std::string& path) {
   return info_of(path, read_texture(path), container_name(path, f));
 }
 
+ImageArray container_read_all(const std::string& path, ImageFileInfo& info) {
+  const char* name;
+  {
+    const FileBytes f(path);
+    name = container_name(path, f);
+  }
+  const Texture t = read_texture(path);
+  info = info_of(path, t, name);
+  ImageArray out;
+  out.faces = t.faces;
+  out.layers = t.layers;
+  out.is_array = t.is_array || t.layers > 1;
+  try {
+    for (std::uint32_t a = 0; a < t.layers; ++a)
+      for (std::uint32_t f = 0; f < t.faces; ++f) out.images.push_back(decode_texture_image(t, 0, a, f, info.type));
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    if (msg.rfind(path, 0) == 0) throw;
+    throw Error(e.code(), path + ": " + msg);
+  }
+  return out;
+}
+
 Image container_read(const std::string& path, ImageFileInfo& info) {
   const char* name;
   {

@@ -17,6 +17,7 @@ namespace {
 #endif
 
 struct Slot {
+  Slot(ModuleSpec s, const char* w) : spec(s), what(w) {}
   ModuleSpec spec;
   const char* what;  // for messages
   std::once_flag once;
@@ -29,10 +30,10 @@ Slot& slot(Module m) {
   static const std::string dir = TEXPROC_MODULE_BUILD_DIR;
   static const std::string oiio_path = dir.empty() ? "" : dir + "/texproc_oiio.so";
   static const std::string exr_path = dir.empty() ? "" : dir + "/texproc_exr.so";
-  static Slot oiio{{"texproc_oiio.so", "TEXPROC_OIIO_MODULE", "texproc_oiio_module", oiio_path.c_str()},
-                   "this format is read and written through OpenImageIO, and texproc's OpenImageIO module"};
-  static Slot exr{{"texproc_exr.so", "TEXPROC_EXR_MODULE", "texproc_exr_module", exr_path.c_str()},
-                  "OpenEXR files are read and written through texproc's OpenEXR module, which"};
+  static Slot oiio(ModuleSpec{"texproc_oiio.so", "TEXPROC_OIIO_MODULE", "texproc_oiio_module", oiio_path.c_str()},
+                   "this format is read and written through OpenImageIO, and texproc's OpenImageIO module");
+  static Slot exr(ModuleSpec{"texproc_exr.so", "TEXPROC_EXR_MODULE", "texproc_exr_module", exr_path.c_str()},
+                  "OpenEXR files are read and written through texproc's OpenEXR module, which");
   return m == Module::oiio ? oiio : exr;
 }
 
