@@ -1,7 +1,10 @@
 #include "batch.h"
 
+#include "texproc/file_io.h"
+
 #include <json/writer.h>
 #include <tbb/parallel_pipeline.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -207,6 +210,11 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
   const std::vector<std::string> outputs = name_outputs(c, b, files);
   if (s.check_only) return 0;
 
+  // Without --force (or --write-if-changed), an output that appears between
+  // the check below and the end of the work is not replaced either: the
+  // final rename refuses it atomically (two processes, one output).
+  if (!write_if_changed()) set_commit_policy(common.force ? CommitPolicy::replace : CommitPolicy::no_replace);
+
   // Plan every file (names, existence, overwrites) before any work.
   std::vector<FileReport> reports(files.size());
   std::error_code ec;
@@ -224,13 +232,43 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
       fail(r, e.code(), e.what());
     }
   }
+  // No output may be a file that any input of this run is (the same file
+  // through a symlink, "..", or a hard link: compared by device and inode),
+  // checked before any work, whatever --force says.
+  {
+    std::map<std::pair<dev_t, ino_t>, std::string> input_files;
+    for (const FileReport& r : reports) {
+      for (const std::string& in : r.inputs) {
+        struct stat st {};
+        if (::stat(in.c_str(), &st) == 0) input_files.emplace(std::pair{st.st_dev, st.st_ino}, in);
+      }
+    }
+    for (std::size_t i = 0; i < reports.size(); ++i) {
+      const std::vector<std::string> claimed = reports[i].outputs.empty() ? std::vector{outputs[i]} : reports[i].outputs;
+      for (const auto& o : claimed) {
+        struct stat st {};
+        std::error_code wc;
+        if (::stat(o.c_str(), &st) != 0) continue;
+        const auto it = input_files.find({st.st_dev, st.st_ino});
+        if (it == input_files.end()) continue;
+        const bool own = fs::equivalent(reports[i].input, it->second, wc);
+        throw Error(ErrorCode::bad_arguments,
+                    o + ": output would overwrite the input " + it->second +
+                        (own ? "" : " (another input of this run: " + reports[i].input + " writes here)") +
+                        "; outputs never overwrite inputs: choose another name or folder");
+      }
+    }
+  }
   // One writer per output (extra outputs such as a preview included),
-  // before any folder is made.
+  // before any folder is made; names compared after symlinks and "..".
   std::map<std::string, std::size_t> writer;
   for (std::size_t i = 0; i < reports.size(); ++i) {
     const std::vector<std::string> claimed = reports[i].outputs.empty() ? std::vector{outputs[i]} : reports[i].outputs;
     for (const auto& o : claimed) {
-      auto [it, fresh] = writer.emplace(fs::path(o).lexically_normal().string(), i);
+      std::error_code wc;
+      fs::path key = fs::weakly_canonical(fs::absolute(o, wc), wc);
+      if (wc) key = fs::path(o).lexically_normal();
+      auto [it, fresh] = writer.emplace(key.string(), i);
       if (!fresh && it->second != i) {
         throw Error(ErrorCode::bad_arguments, o + ": both " + reports[it->second].input + " and " + reports[i].input +
                                                   " would write this output; name outputs with a template ({stem}, "

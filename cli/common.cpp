@@ -125,7 +125,7 @@ void write_depfile_if_requested() {
   std::error_code ec;
   const fs::path parent = fs::path(d.path).parent_path();
   if (!parent.empty()) fs::create_directories(parent, ec);  // a failure is reported by the write
-  write_file_atomic(d.path, make_rule(d.outputs, d.inputs));
+  write_file_atomic(d.path, make_rule(d.outputs, d.inputs), CommitPolicy::replace);  // the rule of this run replaces the last
 }
 
 namespace {

@@ -5,41 +5,56 @@
 
 namespace texproc {
 
-// Write to temp_path(), then commit() renames it over `path` in one step, so a
+// Process-wide: what commit() does when the output exists with the same
+// bytes. replace (the default) renames anyway; keep_identical leaves the old
+// file, so build systems that check time stamps (Ninja's restat, Make) see no
+// change. Set it before work starts, not while files are being written.
+// no_replace never replaces an existing file: commit() fails atomically if
+// path() exists at that moment (what the CLI does without --force).
+enum class CommitPolicy { replace, keep_identical, no_replace };
+// Write to temp_path(), then commit() puts it under `path` in one step, so a
 // reader (or a build system) never sees a half-written file. If the object is
 // destroyed without commit() (an exception, an error), the temporary file is
-// removed and `path` is left as it was.
+// gone and `path` is left as it was.
+//
+// Where the file system allows it (ext4, XFS, Btrfs, tmpfs), the temporary
+// is an unnamed file in path()'s folder (O_TMPFILE) that temp_path() names
+// as /proc/self/fd/N: a process killed at any moment leaves nothing behind.
+// Elsewhere it is a hidden file beside path().
 class AtomicFile {
  public:
   explicit AtomicFile(std::string path);
+  // The same, committed under `policy` whatever the process's policy is.
+  AtomicFile(std::string path, CommitPolicy policy);
   ~AtomicFile();
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
 
   const std::string& path() const { return path_; }
-  // In the same folder as path() (so the rename cannot cross file systems),
-  // hidden, unique to this process, ending in path()'s extension.
+  // A path that writers may open (and truncate) by name: on the same file
+  // system as path(). A named temporary is hidden and ends in path()'s
+  // extension; its name is cut to fit the folder's name limit.
   const std::string& temp_path() const { return temp_; }
-  // Renames temp_path() to path(). Under CommitPolicy::keep_identical, when
-  // path() already holds exactly these bytes, removes temp_path() instead and
-  // leaves path() untouched (its time stamp too). Returns whether path() was
-  // replaced. Throws Error{io} on failure.
+  // Puts the file under path(). Under CommitPolicy::keep_identical, when
+  // path() already holds exactly these bytes, drops the temporary instead and
+  // leaves path() untouched (its time stamp too); under no_replace an
+  // existing path() (even one created since the caller checked) is an error
+  // and is left as it was. Returns whether path() was written. Throws
+  // Error{io} on failure, naming path() and the OS error.
   bool commit();
 
  private:
   std::string path_, temp_;
+  int fd_ = -1;         // the unnamed temporary, or -1 for a named one
+  int policy_ = -1;     // a CommitPolicy of its own, or -1 for the process's
   bool committed_ = false;
 };
 
-// Process-wide: what commit() does when the output exists with the same
-// bytes. replace (the default) renames anyway; keep_identical leaves the old
-// file, so build systems that check time stamps (Ninja's restat, Make) see no
-// change. Set it before work starts, not while files are being written.
-enum class CommitPolicy { replace, keep_identical };
 void set_commit_policy(CommitPolicy policy);
 CommitPolicy commit_policy();
 
 // Writes `bytes` to `path` atomically. Throws Error{io}.
 void write_file_atomic(const std::string& path, const std::string& bytes);
+void write_file_atomic(const std::string& path, const std::string& bytes, CommitPolicy policy);
 
 }  // namespace texproc

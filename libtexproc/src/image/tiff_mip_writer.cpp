@@ -8,9 +8,11 @@
 #include <tiffio.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
 #include <memory>
 
+#include "image/codecs/codecs.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
 
@@ -45,8 +47,12 @@ int deflate_level(const std::string& c) {
   return -1;
 }
 
+// The OS error when there is one (a full disk, a failed device), else
+// libtiff's own message.
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw Error(ErrorCode::io, path + ": cannot write: " + what);
+  const int err = errno;
+  const std::string why = err ? std::strerror(err) : codecs::libtiff_last_error();
+  throw Error(ErrorCode::io, path + ": cannot write: " + what + (why.empty() ? "" : ": " + why));
 }
 
 int other_compression(const std::string& c) {
@@ -100,6 +106,8 @@ void write_tiff_levels(const std::string& file, const std::string& error_path, c
                        bool mip_file, const std::string& compression) {
   const int other = other_compression(compression);
   const int level_of_deflate = other >= 0 ? -1 : deflate_level(compression);
+  codecs::quiet_libtiff();
+  errno = 0;
   std::unique_ptr<TIFF, TiffCloser> tif(TIFFOpen(file.c_str(), "w"));
   if (!tif) fail(error_path, "cannot create the file");
   const int tag = other >= 0 ? other : level_of_deflate == 0 ? COMPRESSION_NONE : COMPRESSION_ADOBE_DEFLATE;

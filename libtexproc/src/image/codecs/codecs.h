@@ -69,6 +69,10 @@ void tga_write(const std::string& file, const std::string& path, const ImageView
 ImageFileInfo tiff_probe(const std::string& path);
 Image tiff_read(const std::string& path, ImageFileInfo& info);
 
+// libtiff's messages go to the thread's last-error string instead of stderr.
+void quiet_libtiff();
+std::string libtiff_last_error();
+
 // GPU containers as images: level 0, layer 0, face 0 (decoded if compressed).
 ImageFileInfo container_probe(const std::string& path);
 Image container_read(const std::string& path, ImageFileInfo& info);

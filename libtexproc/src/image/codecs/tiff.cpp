@@ -32,6 +32,9 @@ void on_error(const char* module, const char* fmt, va_list ap) {
 }
 void on_warning(const char*, const char*, va_list) {}
 
+
+}  // namespace
+
 void quiet_libtiff() {
   static std::once_flag once;
   std::call_once(once, [] {
@@ -39,6 +42,10 @@ void quiet_libtiff() {
     TIFFSetWarningHandler(on_warning);
   });
 }
+
+std::string libtiff_last_error() { return t_last_error; }
+
+namespace {
 
 struct TiffClose {
   void operator()(TIFF* t) const { TIFFClose(t); }

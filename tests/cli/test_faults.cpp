@@ -1,0 +1,211 @@
+// Faults: a full disk, a read-only folder, a process killed mid-batch, an
+// output that is another input, two processes writing one output, a long
+// output name. Every failure exits 2 (or 1 for a refused plan) naming the
+// file, leaves no file under the final name and no temporary behind.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/mount.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "support/images.h"
+#include "support/run.h"
+#include "texproc/image_io.h"
+
+using namespace texproc;
+using namespace texproc::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A tmpfs of `kib` KiB at a fresh folder, or "" where this process may not
+// mount one (not root, no CAP_SYS_ADMIN).
+struct SmallDisk {
+  std::string dir;
+  explicit SmallDisk(int kib, bool read_only = false) {
+    const std::string d = temp_dir("smalldisk");
+    const std::string opts = "size=" + std::to_string(kib) + "k";
+    if (::mount("tmpfs", d.c_str(), "tmpfs", read_only ? MS_RDONLY : 0, opts.c_str()) == 0) dir = d;
+  }
+  ~SmallDisk() {
+    if (!dir.empty()) ::umount2(dir.c_str(), MNT_DETACH);
+  }
+};
+
+std::vector<std::string> entries(const std::string& dir) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+TEST(Faults, FullDiskLeavesNoFileUnderTheFinalName) {
+  SmallDisk disk(64);
+  if (disk.dir.empty()) GTEST_SKIP() << "cannot mount a tmpfs here (not root?)";
+  const std::string src = temp_dir("fullsrc");
+  write_image(src + "/h.png", random_image(256, 256, 1, PixelType::u8, 4).view());
+  write_image(src + "/a.png", random_image(128, 128, 4, PixelType::u8, 5).view());
+  write_image(src + "/b.png", random_image(256, 256, 4, PixelType::u8, 7).view());
+  {
+    std::ofstream filler(disk.dir + "/filler", std::ios::binary);
+    filler << std::string(32 * 1024, 'x');
+  }
+  struct Case {
+    std::string args, output;
+  };
+  const std::vector<Case> cases = {
+      {"normalmap '" + src + "/h.png' -o '" + disk.dir + "/n16.png' --type u16", "n16.png"},
+      {"normalmap '" + src + "/h.png' -o '" + disk.dir + "/n.tga'", "n.tga"},
+      {"mip '" + src + "/a.png' -o '" + disk.dir + "/a.exr' --type f32", "a.exr"},
+      {"mip '" + src + "/a.png' -o '" + disk.dir + "/a.tif' --type f32", "a.tif"},
+      {"mip '" + src + "/a.png' -o '" + disk.dir + "/a.dds' --type f32", "a.dds"},
+      {"compress '" + src + "/b.png' -o '" + disk.dir + "/b.ktx2' --format bc3 --mips", "b.ktx2"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.args);
+    // `timeout` turns a hang (OpenEXR's tiled writer after a failed write, before) into a failure.
+    const std::string cmd = "timeout 60 " + std::string(TEXPROC_CLI_PATH) + " " + c.args + " -q >/dev/null 2>'" + src +
+                            "/err.txt'";
+    const int status = std::system(cmd.c_str());
+    const std::string err = slurp(src + "/err.txt");
+    EXPECT_EQ(WEXITSTATUS(status), 2) << err;
+    EXPECT_NE(err.find(c.output), std::string::npos) << err;
+    EXPECT_NE(err.find("No space left"), std::string::npos) << err;
+    EXPECT_EQ(entries(disk.dir), std::vector<std::string>{"filler"}) << "something was left on the disk";
+  }
+  // A batch: the file that fits is written, the one that does not is not.
+  write_image(src + "/tiny.png", random_image(8, 8, 3, PixelType::u8, 6).view());
+  const RunResult r = run_texproc("mip '" + src + "/tiny.png' '" + src + "/a.png' -o '" + disk.dir +
+                                  "/{stem}.dds' --type f32 -q");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(fs::exists(disk.dir + "/tiny.dds"));
+  EXPECT_FALSE(fs::exists(disk.dir + "/a.dds"));
+  EXPECT_EQ(entries(disk.dir), (std::vector<std::string>{"filler", "tiny.dds"}));
+  fs::remove_all(src);
+}
+
+TEST(Faults, ReadOnlyFolderExitsTwo) {
+  SmallDisk disk(64, true);
+  if (disk.dir.empty()) GTEST_SKIP() << "cannot mount a tmpfs here (not root?)";
+  const std::string src = temp_dir("rosrc");
+  write_image(src + "/a.png", random_image(32, 32, 3, PixelType::u8, 5).view());
+  for (const char* out : {"a.png", "a.dds", "a.exr", "a.tif"}) {
+    const RunResult r = run_texproc("mip '" + src + "/a.png' -o '" + disk.dir + "/" + out + "' -q");
+    EXPECT_EQ(r.exit_code, 2) << out << ": " << r.err;
+    EXPECT_NE(r.err.find("Read-only"), std::string::npos) << r.err;
+  }
+  EXPECT_TRUE(entries(disk.dir).empty());
+  fs::remove_all(src);
+}
+
+// SIGKILL at any moment of a batch: every file under a final name is
+// complete, and nothing else is in the folder (the temporaries are unnamed
+// files that vanish with the process).
+TEST(Faults, KilledBatchLeavesNoTemporaries) {
+  const std::string dir = temp_dir("killbatch");
+  fs::create_directories(dir + "/in");
+  for (int i = 0; i < 6; ++i) {
+    write_image(dir + "/in/img" + std::to_string(i) + ".png", random_image(700, 700, 4, PixelType::u8, 20 + i).view());
+  }
+  const std::string args = "mip '" + dir + "/in' -o '" + dir + "/out/' --type f32 -q -f -j 2";
+  const auto t0 = std::chrono::steady_clock::now();
+  ASSERT_EQ(run_texproc(args + " --write-if-changed").exit_code, 0);
+  const auto full = std::chrono::steady_clock::now() - t0;
+  std::map<std::string, std::string> reference;
+  for (const auto& f : entries(dir + "/out")) reference[f] = slurp(dir + "/out/" + f);
+  ASSERT_EQ(reference.size(), 6u);
+  for (int trial = 0; trial < 6; ++trial) {
+    fs::remove_all(dir + "/out");
+    const pid_t pid = fork();
+    if (pid == 0) {
+      ::execl("/bin/sh", "sh", "-c", (std::string(TEXPROC_CLI_PATH) + " " + args + " >/dev/null 2>&1").c_str(),
+              static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    std::this_thread::sleep_for(full * (trial + 1) / 8);
+    // The shell and texproc under it.
+    if (std::system("pkill -KILL -f 'texproc mip .*killbatch' >/dev/null 2>&1") < 0) ADD_FAILURE();
+    ::kill(pid, SIGKILL);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    if (!fs::exists(dir + "/out")) continue;
+    for (const auto& f : entries(dir + "/out")) {
+      ASSERT_TRUE(reference.count(f)) << "a stray file after a kill: " << f;
+      EXPECT_TRUE(slurp(dir + "/out/" + f) == reference[f]) << f << " is incomplete";
+    }
+  }
+  fs::remove_all(dir);
+}
+
+TEST(Faults, OutputThatIsAnotherInputIsRefused) {
+  const std::string dir = temp_dir("outisin");
+  write_image(dir + "/a.png", random_image(16, 16, 1, PixelType::u8, 1).view());
+  write_image(dir + "/a_n.png", random_image(16, 16, 1, PixelType::u8, 2).view());
+  const std::string before = slurp(dir + "/a_n.png");
+  // a.png's output is a_n.png, the second input: refused before any work, even with -f.
+  RunResult r = run_texproc("normalmap '" + dir + "/a.png' '" + dir + "/a_n.png' -o '" + dir + "/{stem}_n.png' -f -j 2");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("a_n.png"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("never overwrite inputs"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(dir + "/a_n.png"), before);
+  EXPECT_FALSE(fs::exists(dir + "/a_n_n.png"));
+  // Through a symlink to the input, and through a hard link.
+  fs::create_symlink(dir + "/a.png", dir + "/link.png");
+  r = run_texproc("normalmap '" + dir + "/a.png' -o '" + dir + "/link.png' -f");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  fs::create_hard_link(dir + "/a.png", dir + "/hard.png");
+  r = run_texproc("normalmap '" + dir + "/a.png' -o '" + dir + "/hard.png' -f");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  // Two inputs that would write one output (through "..").
+  fs::create_directories(dir + "/sub");
+  r = run_texproc("normalmap '" + dir + "/a.png' '" + dir + "/a_n.png' -o '" + dir + "/sub/../x.png' -f");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  fs::remove_all(dir);
+}
+
+// Two processes writing one output that does not exist yet, without
+// --force: never both succeed (the rename refuses a file that appeared
+// since the check).
+TEST(Faults, TwoProcessesNeverBothReplaceOneOutput) {
+  const std::string dir = temp_dir("race");
+  write_image(dir + "/a.png", random_image(512, 512, 4, PixelType::u8, 3).view());
+  int both = 0, one = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    fs::remove(dir + "/out.dds");
+    const std::string cmd = std::string(TEXPROC_CLI_PATH) + " mip '" + dir + "/a.png' -o '" + dir + "/out.dds' -q 2>/dev/null";
+    const std::string both_cmd = "(" + cmd + "; echo $? > '" + dir + "/rc1') & (" + cmd + "; echo $? > '" + dir +
+                                 "/rc2') & wait";
+    ASSERT_EQ(std::system(both_cmd.c_str()), 0);
+    const int rc1 = std::stoi(slurp(dir + "/rc1")), rc2 = std::stoi(slurp(dir + "/rc2"));
+    both += rc1 == 0 && rc2 == 0;
+    one += (rc1 == 0) != (rc2 == 0);
+    EXPECT_TRUE(fs::exists(dir + "/out.dds"));
+  }
+  EXPECT_EQ(both, 0) << "both processes reported writing the one output";
+  EXPECT_EQ(one, 6);
+  for (const auto& f : entries(dir)) EXPECT_TRUE(f == "a.png" || f == "out.dds" || f == "rc1" || f == "rc2") << f;
+  fs::remove_all(dir);
+}
+
+TEST(Faults, LongOutputNamesWork) {
+  const std::string dir = temp_dir("longname");
+  write_image(dir + "/a.png", random_image(16, 16, 3, PixelType::u8, 3).view());
+  const std::string name = std::string(240, 'n') + ".dds";  // 244 bytes
+  RunResult r = run_texproc("mip '" + dir + "/a.png' -o '" + dir + "/" + name + "' -q");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir + "/" + name));
+  // Replacing it goes through a named temporary, cut to fit.
+  r = run_texproc("mip '" + dir + "/a.png' -o '" + dir + "/" + name + "' -q -f");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(entries(dir).size(), 2u);
+  fs::remove_all(dir);
+}
