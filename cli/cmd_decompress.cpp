@@ -61,6 +61,7 @@ void run_decompress(const DecompressArgs& a, const std::string& input, const std
   check_index(input, "--face", a.face, t.faces);
   const std::uint32_t first = a.all_levels ? 0 : std::uint32_t(a.level), last = a.all_levels ? t.levels : first + 1;
   w.color_space = format_info(t.format).srgb ? "srgb" : "linear";
+  w.red_green = format_info(t.format).channels == 2;  // BC5, EAC RG11, RG8/RG16: data, not grey + alpha
   for (std::uint32_t l = first; l < last; ++l) {
     const Image img = decode_texture_image(t, l, std::uint32_t(a.layer), std::uint32_t(a.face), *type);
     phases.compute_done();

@@ -298,11 +298,29 @@ TEST(Container, Ktx2CompressedDfds) {
   // ETC2 RGBA8: alpha (15) then color (2) at 64; punch-through: color and alpha both at 0.
   const auto e = words(TexelFormat::etc2_rgba8_srgb);
   EXPECT_EQ(e[3], 161u | 1 << 8 | 2 << 16);
-  EXPECT_EQ(e[7], 63u << 16 | 15u << 24);
+  EXPECT_EQ(e[7], 63u << 16 | (15u | 0x10u) << 24);  // an sRGB format's alpha sample is LINEAR
   EXPECT_EQ(e[11], 64u | 63u << 16 | 2u << 24);
   const auto a1 = words(TexelFormat::etc2_rgba1_unorm);
   EXPECT_EQ(a1[7], 63u << 16 | 2u << 24);
   EXPECT_EQ(a1[11], 63u << 16 | 15u << 24);
+  // Every sRGB format with an alpha sample marks it LINEAR, and only that one
+  // (ktx validate's rule for KHR_DF_TRANSFER_SRGB): BC2, BC3, ETC2 A1 and A8.
+  for (TexelFormat f : {TexelFormat::bc2_srgb, TexelFormat::bc3_srgb, TexelFormat::etc2_rgba1_srgb,
+                        TexelFormat::etc2_rgba8_srgb, TexelFormat::rgba8_srgb, TexelFormat::bgra8_srgb}) {
+    const auto w = words(f);
+    const std::size_t samples = (w.size() - 7) / 4;
+    int alpha = 0;
+    for (std::size_t s = 0; s < samples; ++s) {
+      const std::uint32_t channel = w[7 + 4 * s] >> 24;
+      if ((channel & 0x0F) == 15) {
+        EXPECT_EQ(channel & 0x10, 0x10u) << format_info(f).name;
+        ++alpha;
+      } else {
+        EXPECT_EQ(channel & 0x10, 0u) << format_info(f).name << " sample " << s;
+      }
+    }
+    EXPECT_EQ(alpha, 1) << format_info(f).name;
+  }
   // R8 sRGB: one sample, no alpha to mark LINEAR; transfer sRGB.
   const auto r8s = words(TexelFormat::r8_srgb);
   EXPECT_EQ(r8s[0], 44u);
@@ -574,4 +592,72 @@ TEST(Container, PillowReadsLegacyDds) {
   }
   EXPECT_EQ(slurp(out), "RGBA 7 5 " + hex + "\n");
   fs::remove_all(dir);
+}
+
+// Malformed files that the readers once accepted or described wrongly: each
+// is refused with a message naming the field, the value and what was expected.
+TEST(Container, MalformedFilesAreRefusedByName) {
+  auto refused = [](const std::vector<std::uint8_t>& b, Texture (*decode)(const std::uint8_t*, std::size_t,
+                                                                          const std::string&, const ReadLimits&),
+                    const std::string& want) {
+    try {
+      decode(b.data(), b.size(), "f", ReadLimits{});
+      ADD_FAILURE() << "accepted; expected: " << want;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(want), std::string::npos) << e.what();
+    }
+  };
+  // KTX1: a cubemap of 4x1 faces.
+  {
+    const Texture t = random_texture(TexelFormat::rgba8_unorm, 4, 4, 1, 6, 1, 3);
+    std::vector<std::uint8_t> b = encode_ktx1(t);
+    const std::uint32_t one = 1;
+    std::memcpy(&b[40], &one, 4);  // pixelHeight
+    refused(b, decode_ktx1, "cube faces must be square");
+  }
+  const Texture t = random_texture(TexelFormat::rgba8_unorm, 16, 16, 5, 1, 1, 4);
+  const std::vector<std::uint8_t> good = encode_ktx2(t, "w");
+  // KTX2: key/value data 2 bytes long.
+  {
+    std::vector<std::uint8_t> b = good;
+    const std::uint32_t two = 2;
+    std::memcpy(&b[60], &two, 4);
+    refused(b, decode_ktx2, "fewer than an entry's 4-byte keyAndValueByteLength");
+  }
+  // KTX2: level 3's byteOffset 0 (inside the header).
+  {
+    std::vector<std::uint8_t> b = good;
+    const std::uint64_t zero = 0;
+    std::memcpy(&b[80 + 24 * 3], &zero, 8);
+    refused(b, decode_ktx2, "level 3 byteOffset 0 lies inside the header");
+  }
+  // KTX2: levelCount 2 with 5 levels stored: the three smallest lie before
+  // level 1, covered by no index entry.
+  {
+    std::vector<std::uint8_t> b = good;
+    const std::uint32_t two = 2;
+    std::memcpy(&b[40], &two, 4);
+    refused(b, decode_ktx2, "that no level index entry covers (levelCount 2");
+  }
+  // KTX2: uncompressedByteLength that differs from byteLength is named as such.
+  {
+    std::vector<std::uint8_t> b = good;
+    const std::uint64_t wrong = 7;
+    std::memcpy(&b[80 + 16], &wrong, 8);
+    refused(b, decode_ktx2, "level 0 uncompressedByteLength 7 (expected 1024");
+  }
+  // DDS cut at byte 120: truncated, with the sizes.
+  {
+    const std::vector<std::uint8_t> d = encode_dds(t);
+    refused(std::vector<std::uint8_t>(d.begin(), d.begin() + 120), decode_dds, "truncated");
+  }
+  // PKM cut at byte 10 has its magic: truncated, not "no magic"; a bad version is shown printably.
+  {
+    Texture e = random_texture(TexelFormat::etc1_rgb, 8, 8, 1, 1, 1, 5);
+    std::vector<std::uint8_t> p = encode_pkm(e);
+    refused(std::vector<std::uint8_t>(p.begin(), p.begin() + 10), decode_pkm, "the header needs 16 bytes, the file has 10");
+    p[4] = 0x01;
+    p[5] = 0xFF;
+    refused(p, decode_pkm, "PKM version '\\x01\\xFF'");
+  }
 }

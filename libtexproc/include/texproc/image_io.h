@@ -78,6 +78,11 @@ struct WriteOptions {
                             // pxr24, b44, b44a, dwaa, dwab; empty: the format's default
   std::string color_space;  // tag to record: "srgb" or "linear"; empty: none
   int quality = 95;         // JPEG quality
+  // Two channels are red and green (BC5, EAC RG11, RG8 data), not grey and
+  // alpha: OpenEXR names them R and G; PNG, TGA, JPEG, TIFF and the others,
+  // which have no red-green layout (a grey+alpha file would be shown as
+  // transparency), get RGB with blue 0.
+  bool red_green = false;
 };
 
 // Writes one image atomically. The format follows the extension. Throws

@@ -232,6 +232,9 @@ Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string
   const std::uint64_t images = std::uint64_t(t.layers) * t.faces;
   if (total > (std::uint64_t(1) << 40) / images) r.fail("sizes overflow");
   const std::uint64_t need = total * images;
+  if (size < offset) {
+    r.fail("truncated: the header needs " + std::to_string(offset) + " bytes, the file has " + std::to_string(size));
+  }
   if (size - offset < need) {
     r.fail("truncated: the texture data needs " + std::to_string(need) + " bytes after the header, the file has " +
            std::to_string(size - offset));

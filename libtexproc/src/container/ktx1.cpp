@@ -100,6 +100,9 @@ Texture decode_ktx1(const std::uint8_t* data, std::size_t size, const std::strin
   if (width > limits.max_dimension || height > limits.max_dimension) r.unsupported("texture larger than the limit");
   if (depth > 1) r.unsupported("3D textures are not supported");
   if (faces != 1 && faces != 6) r.fail("numberOfFaces " + std::to_string(faces) + " (valid: 1, 6)");
+  if (faces == 6 && width != height) {
+    r.fail("cubemap faces are " + std::to_string(width) + "x" + std::to_string(height) + " (cube faces must be square)");
+  }
   if (elements > limits.max_layers) r.fail("numberOfArrayElements " + std::to_string(elements));
   std::uint32_t max_levels = 1;
   for (std::uint32_t m = std::max(width, height); m > 1; m >>= 1) ++max_levels;

@@ -134,10 +134,25 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
     r.at(kvd_offset, kvd_length, "key/value data");
     // Walk the entries: every length must stay inside the block.
     std::uint64_t p = kvd_offset, end = std::uint64_t(kvd_offset) + kvd_length;
+    if (kvd_offset < dfd_offset + std::uint64_t(dfd_length)) r.fail("kvdByteOffset overlaps the data format descriptor");
     while (p < end) {
+      if (end - p < 4) {
+        r.fail("key/value data: " + std::to_string(end - p) + " bytes left at byte " + std::to_string(p) +
+               ", fewer than an entry's 4-byte keyAndValueByteLength");
+      }
       const std::uint32_t len = r.u32(p, "key/value length");
-      if (len > end - p - 4) r.fail("key/value entry runs past the key/value data");
-      p += 4 + ((std::uint64_t(len) + 3) & ~std::uint64_t(3));
+      if (len > end - p - 4) {
+        r.fail("key/value entry at byte " + std::to_string(p) + ": keyAndValueByteLength " + std::to_string(len) +
+               " runs past the key/value data (" + std::to_string(end - p - 4) + " bytes left)");
+      }
+      const std::uint8_t* kv = r.at(p + 4, len, "key/value entry");
+      const void* nul = std::memchr(kv, 0, len);
+      if (len < 2 || !nul || nul == kv) {
+        r.fail("key/value entry at byte " + std::to_string(p) + ": the key is not a non-empty NUL-terminated string");
+      }
+      const std::uint64_t next = p + 4 + ((std::uint64_t(len) + 3) & ~std::uint64_t(3));
+      if (next > end) r.fail("key/value entry at byte " + std::to_string(p) + ": its padding runs past the key/value data");
+      p = next;
     }
   }
   Texture t;
@@ -150,6 +165,12 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
   t.is_array = layer_count > 0;
   t.images.resize(std::size_t(t.levels) * t.layers * t.faces);
   const std::uint32_t align = level_alignment(*fi);
+  // Levels lie after every other block, in place, without overlap, with
+  // nothing but alignment padding between them.
+  const std::uint64_t metadata_end =
+      std::max<std::uint64_t>({kHeaderEnd + 24ull * level_count, std::uint64_t(dfd_offset) + dfd_length,
+                               kvd_length ? std::uint64_t(kvd_offset) + kvd_length : 0, sgd_offset + sgd_length});
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> placed;  // offset, level
   std::uint64_t covered = 0;
   for (std::uint32_t l = 0; l < level_count; ++l) {
     const std::uint64_t offset = r.u64(kHeaderEnd + 24ull * l, "level byteOffset");
@@ -157,11 +178,24 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
     const std::uint64_t ulength = r.u64(kHeaderEnd + 24ull * l + 16, "level uncompressedByteLength");
     const std::uint64_t image = image_bytes(t.format, t.level_width(l), t.level_height(l));
     const std::uint64_t want = image * t.layers * t.faces;
-    if (length != want || ulength != want) {
+    if (length != want) {
       r.fail("level " + std::to_string(l) + " byteLength " + std::to_string(length) + " (expected " +
              std::to_string(want) + ")");
     }
-    if (offset % align) r.fail("level " + std::to_string(l) + " is not aligned to " + std::to_string(align) + " bytes");
+    if (ulength != want) {
+      r.fail("level " + std::to_string(l) + " uncompressedByteLength " + std::to_string(ulength) + " (expected " +
+             std::to_string(want) + " without supercompression)");
+    }
+    if (offset % align) {
+      r.fail("level " + std::to_string(l) + " byteOffset " + std::to_string(offset) + " is not aligned to " +
+             std::to_string(align) + " bytes");
+    }
+    if (offset < metadata_end) {
+      r.fail("level " + std::to_string(l) + " byteOffset " + std::to_string(offset) +
+             " lies inside the header, index, descriptor or key/value data (they end at byte " +
+             std::to_string(metadata_end) + ")");
+    }
+    placed.push_back({offset, l});
     r.at(offset, length, "level data");
     covered = std::max(covered, offset + length);
     std::uint64_t p = offset;
@@ -171,6 +205,17 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
         t.image(l, a, f).assign(src, src + image);
         p += image;
       }
+  }
+  std::sort(placed.begin(), placed.end());
+  std::uint64_t prev_end = metadata_end;
+  for (const auto& [offset, l] : placed) {
+    if (offset < prev_end) r.fail("level " + std::to_string(l) + " overlaps another level");
+    if (offset - prev_end >= std::max<std::uint64_t>(align, 4)) {
+      r.fail(std::to_string(offset - prev_end) + " bytes before level " + std::to_string(l) +
+             " that no level index entry covers (levelCount " + std::to_string(level_count) +
+             "; only alignment padding may lie between levels)");
+    }
+    prev_end = offset + (std::uint64_t(image_bytes(t.format, t.level_width(l), t.level_height(l))) * t.layers * t.faces);
   }
   if (covered != size) r.fail(std::to_string(size - covered) + " trailing bytes after the last level");
   return t;

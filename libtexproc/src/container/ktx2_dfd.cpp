@@ -78,7 +78,12 @@ std::vector<std::uint8_t> compressed(const FormatInfo& i, std::uint32_t model,
   const std::uint32_t flags = i.snorm ? kSigned : 0;
   const std::uint32_t lower = i.snorm ? 0x80000000u : 0u, upper = i.snorm ? 0x7FFFFFFFu : 0xFFFFFFFFu;
   std::vector<Sample> samples;
-  for (auto [channel, offset] : channels_offsets) samples.push_back({offset, 64, channel | flags, lower, upper});
+  // An sRGB format's alpha is linear (KTX2 validity rules; libktx and
+  // `ktx validate` agree), as for the uncompressed formats above.
+  for (auto [channel, offset] : channels_offsets) {
+    const std::uint32_t linear = i.srgb && channel == kAlpha ? kLinear : 0;
+    samples.push_back({offset, 64, channel | flags | linear, lower, upper});
+  }
   return block(model, i.srgb, 0x0303, std::uint32_t(i.block_bytes), samples);
 }
 

@@ -1,6 +1,9 @@
 // PKM, the ETC container of Android's etc1tool and of etc2comp: a 16-byte
 // big-endian header ("PKM ", version "10" for ETC1 or "20" for ETC2, data
 // type, extended and original sizes) and one level of blocks.
+#include <cstdio>
+#include <cstring>
+
 #include "container/bytes.h"
 #include "container/streams.h"
 #include "texproc/container.h"
@@ -44,7 +47,8 @@ std::vector<std::uint8_t> encode_pkm(const Texture& t) { return encode_pkm_strea
 
 Texture decode_pkm(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& limits) {
   ByteReader r(data, size, name);
-  if (size < 16 || std::memcmp(r.at(0, 4, "magic"), "PKM ", 4) != 0) r.fail("not a PKM file (no \"PKM \" magic)");
+  if (size < 4 || std::memcmp(r.at(0, 4, "magic"), "PKM ", 4) != 0) r.fail("not a PKM file (no \"PKM \" magic)");
+  if (size < 16) r.fail("truncated: the header needs 16 bytes, the file has " + std::to_string(size));
   const std::uint8_t* version = r.at(4, 2, "version");
   const std::uint32_t type = get_be16(r, 6, "data type");
   Texture t;
@@ -53,7 +57,13 @@ Texture decode_pkm(const std::uint8_t* data, std::size_t size, const std::string
   } else if (version[0] == '2' && version[1] == '0' && type == 1) {
     t.format = TexelFormat::etc2_rgb_unorm;
   } else {
-    r.unsupported("PKM version '" + std::string(reinterpret_cast<const char*>(version), 2) + "' data type " +
+    auto shown = [](std::uint8_t c) {
+      char b[8];
+      if (c >= 0x20 && c < 0x7f) return std::string(1, char(c));
+      std::snprintf(b, sizeof b, "\\x%02X", unsigned(c));
+      return std::string(b);
+    };
+    r.unsupported("PKM version '" + shown(version[0]) + shown(version[1]) + "' data type " +
                   std::to_string(type) + " (texproc reads ETC1 \"10\"/0 and ETC2 RGB \"20\"/1)");
   }
   const std::uint32_t ew = get_be16(r, 8, "extended width"), eh = get_be16(r, 10, "extended height");

@@ -189,9 +189,21 @@ ImageArray read_image_array(const std::string& path, ImageFileInfo* info_out) {
   return out;
 }
 
-void write_image(const std::string& path, const ImageView& image, const WriteOptions& options) {
+void write_image(const std::string& path, const ImageView& given, const WriteOptions& options) {
   check_writable_extension(path);
   const std::string e = lower_ext(path);
+  // Red-green data goes to formats without a red-green layout as RGB, blue 0.
+  Image rgb;
+  ImageView image = given;
+  if (options.red_green && given.channels == 2 && (e != ".exr" || g_path == ImageIoPath::oiio)) {
+    rgb = Image(given.width, given.height, 3, given.type);  // zero-filled: blue 0
+    const std::size_t bpc = bytes_per_channel(given.type);
+    for (int y = 0; y < given.height; ++y)
+      for (int x = 0; x < given.width; ++x)
+        std::memcpy(rgb.row<std::uint8_t>(y) + std::size_t(x) * 3 * bpc, given.row<std::uint8_t>(y) + std::size_t(x) * 2 * bpc,
+                    2 * bpc);
+    image = rgb.view();
+  }
   AtomicFile file(path);
   const bool tiff = e == ".tif" || e == ".tiff";
   if (module_writes(e) || (tiff && (options.half || !tiff_levels_supported(options.compression)))) {

@@ -151,12 +151,14 @@ Imf::Compression compression_of(const std::string& path, const std::string& c) {
 
 const char* const kNames1[] = {"Y"};
 const char* const kNames2[] = {"Y", "A"};
+const char* const kNamesRG[] = {"R", "G"};
+thread_local bool g_red_green = false;  // set by each write call, for the names it writes
 const char* const kNames3[] = {"R", "G", "B"};
 const char* const kNames4[] = {"R", "G", "B", "A"};
 const char* const* names_for(int channels) {
   switch (channels) {
     case 1: return kNames1;
-    case 2: return kNames2;
+    case 2: return g_red_green ? kNamesRG : kNames2;
     case 3: return kNames3;
     default: return kNames4;
   }
@@ -313,6 +315,8 @@ int write_c(const char* file, const char* path, const TpImageLevel* levels, int 
     w.compression = o->compression ? o->compression : "";
     w.color_space = o->color_space ? o->color_space : "";
     w.quality = o->quality;
+    w.red_green = o->red_green != 0;
+    g_red_green = w.red_green;
     write(file, path, views, mip_file != 0, w);
   });
 }

@@ -13,7 +13,7 @@
 
 extern "C" {
 
-enum { TP_IMAGE_MODULE_ABI = 1, TP_IMAGE_MAX_LEVELS = 32 };
+enum { TP_IMAGE_MODULE_ABI = 2, TP_IMAGE_MAX_LEVELS = 32 };
 
 // The pixel types of texproc::PixelType, in its order.
 enum { TP_U8 = 0, TP_U16 = 1, TP_F32 = 2 };
@@ -40,6 +40,7 @@ struct TpWriteOptions {
   const char* compression;  // OpenImageIO's compression name, "" for the default
   const char* color_space;  // "srgb", "linear" or ""
   int quality;              // JPEG quality
+  int red_green;            // two channels are R and G, not Y and A
 };
 
 // Every call returns 0 or a texproc::ErrorCode value; on failure `err` holds

@@ -106,7 +106,7 @@ void write(Module m, const std::string& file, const std::string& path, const std
   std::vector<TpImageLevel> tl;
   for (const ImageView& v : levels) tl.push_back({v.data, v.width, v.height, v.channels, to_tp(v.type), v.row_stride});
   const TpWriteOptions o{options.half ? 1 : 0, options.compression.c_str(), options.color_space.c_str(),
-                         options.quality};
+                         options.quality, options.red_green ? 1 : 0};
   char err[1024] = {};
   check(t.write(file.c_str(), path.c_str(), tl.data(), int(tl.size()), mip_file ? 1 : 0, &o, err, sizeof err), err);
 }
