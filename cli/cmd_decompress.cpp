@@ -7,6 +7,7 @@
 #include "batch.h"
 #include "common.h"
 #include "texproc/block_decode.h"
+#include "texproc/color.h"
 #include "texproc/container.h"
 #include "texproc/error.h"
 #include "texproc/image_io.h"
@@ -38,11 +39,9 @@ void check_index(const std::string& input, const char* what, int value, std::uin
 std::vector<std::string> plan(const DecompressArgs& a, const std::string& input, const std::string& output) {
   if (!a.all_levels) return {output};
   const Texture t = read_texture(input);
-  std::vector<std::string> outputs = level_outputs(output, int(t.levels));
-  if (outputs.size() == 1) {
-    throw Error(ErrorCode::unsupported, output + ": --all-levels writes one file per level (use .png, .exr, .tga)");
-  }
-  return outputs;
+  // One level, or a file that holds a MIP chain (.exr, .tif): the one output.
+  if (t.levels == 1 || holds_mip_levels(output)) return {output};
+  return level_outputs(output, int(t.levels));
 }
 
 void run_decompress(const DecompressArgs& a, const std::string& input, const std::string& output, FileReport& r) {
@@ -62,11 +61,34 @@ void run_decompress(const DecompressArgs& a, const std::string& input, const std
   const std::uint32_t first = a.all_levels ? 0 : std::uint32_t(a.level), last = a.all_levels ? t.levels : first + 1;
   w.color_space = format_info(t.format).srgb ? "srgb" : "linear";
   w.red_green = format_info(t.format).channels == 2;  // BC5, EAC RG11, RG8/RG16: data, not grey + alpha
-  for (std::uint32_t l = first; l < last; ++l) {
-    const Image img = decode_texture_image(t, l, std::uint32_t(a.layer), std::uint32_t(a.face), *type);
+  // OpenEXR holds linear light: an sRGB texture's texels are decoded to linear
+  // there (alpha as it is), and the file says linear.
+  const bool to_linear = exr && format_info(t.format).srgb && *type == PixelType::f32;
+  if (to_linear) w.color_space = "linear";
+  auto decode = [&](std::uint32_t l) {
+    Image img = decode_texture_image(t, l, std::uint32_t(a.layer), std::uint32_t(a.face), *type);
+    if (to_linear) {
+      std::vector<float> row(std::size_t(img.width()) * img.channels());
+      for (int y = 0; y < img.height(); ++y) {
+        ColorSpace::srgb().decode_row(img.row<float>(y), PixelType::f32, img.channels(), img.width(), row.data());
+        std::copy(row.begin(), row.end(), img.row<float>(y));
+      }
+    }
+    return img;
+  };
+  if (a.all_levels && holds_mip_levels(output) && t.levels > 1) {
+    std::vector<Image> levels;
+    for (std::uint32_t l = 0; l < t.levels; ++l) levels.push_back(decode(l));
     phases.compute_done();
-    write_image(a.all_levels ? r.outputs.at(l) : output, img.view(), w);
+    write_mip_file(output, levels, w);  // one file with the whole chain
     phases.write_done();
+  } else {
+    for (std::uint32_t l = first; l < last; ++l) {
+      const Image img = decode(l);
+      phases.compute_done();
+      write_image(a.all_levels && r.outputs.size() > 1 ? r.outputs.at(l) : output, img.view(), w);
+      phases.write_done();
+    }
   }
   r.line = input + " -> " + r.outputs[0] + (r.outputs.size() > 1 ? " ..." : "") + ": " + format_info(t.format).name +
            ", " + std::to_string(last - first) + " level(s)";

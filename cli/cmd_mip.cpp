@@ -83,6 +83,12 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
   check_surfaces_fit(input, in, output);
   // A half-float texture stays half float.
   if (!o.output_type && container && info.file_type == "rgba16_float") w.half = true;
+  // GPU formats have no 16-bit sRGB: a 16-bit sRGB chain goes into a
+  // container linear (r16/rg16/rgba16_unorm say linear), not sRGB values
+  // labelled linear.
+  const PixelType out_type = o.output_type ? *o.output_type : in.images[0].type();
+  const bool srgb_in = o.color_space.empty() ? in.images[0].type() != PixelType::f32 : ColorSpace::from_name(o.color_space).is_srgb();
+  if (container && out_type == PixelType::u16 && srgb_in && o.output_color_space.empty()) o.output_color_space = "linear";
   // A cubemap's faces and an array's layers are each mipped on their own.
   std::vector<std::vector<Image>> more;
   for (std::size_t s = 1; s < in.images.size(); ++s) more.push_back(generate_mips(std::move(in.images[s]), o).levels);

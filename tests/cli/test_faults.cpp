@@ -17,6 +17,9 @@
 
 #include "support/images.h"
 #include "support/run.h"
+#include "texproc/block_decode.h"
+#include "texproc/color.h"
+#include "texproc/container.h"
 #include "texproc/image_io.h"
 
 using namespace texproc;
@@ -207,5 +210,78 @@ TEST(Faults, LongOutputNamesWork) {
   r = run_texproc("mip '" + dir + "/a.png' -o '" + dir + "/" + name + "' -q -f");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(entries(dir).size(), 2u);
+  fs::remove_all(dir);
+}
+
+// KTX-Software's `ktx validate` (built outside the tree; its path in
+// $TEXPROC_KTX_TOOL, or `ktx` on PATH) accepts every KTX2 texproc writes:
+// each block format in sRGB and linear, with and without mips, the
+// uncompressed types, a cubemap.
+TEST(Faults, KtxValidateAcceptsEveryKtx2) {
+  const char* env = std::getenv("TEXPROC_KTX_TOOL");
+  std::string ktx = env && *env ? env : "";
+  if (ktx.empty() && std::system("command -v ktx >/dev/null 2>&1") == 0) ktx = "ktx";
+  if (ktx.empty()) GTEST_SKIP() << "no `ktx` tool (set TEXPROC_KTX_TOOL to KTX-Software's ktx)";
+  const std::string dir = temp_dir("ktxvalidate");
+  write_image(dir + "/src.png", random_image(37, 21, 4, PixelType::u8, 2).view());
+  std::vector<std::string> files;
+  for (const char* fmt : {"bc1", "bc1a", "bc2", "bc3", "bc4", "bc4s", "bc5", "bc5s", "etc1", "etc2", "etc2a1", "etc2a",
+                          "eac-r11", "eac-r11s", "eac-rg11", "eac-rg11s"}) {
+    for (const char* cs : {"", " --linear"}) {
+      for (const char* mips : {"", " --mips"}) {
+        const std::string out = dir + "/" + fmt + (cs[0] ? "_lin" : "") + (mips[0] ? "_mips" : "") + ".ktx2";
+        if (run_texproc("compress '" + dir + "/src.png' -o '" + out + "' --format " + fmt + cs + mips + " -q").exit_code == 0) {
+          files.push_back(out);
+        }
+      }
+    }
+  }
+  for (const char* type : {"u8", "u16", "f16", "f32"}) {
+    const std::string out = dir + "/m_" + type + ".ktx2";
+    ASSERT_EQ(run_texproc("mip '" + dir + "/src.png' -o '" + out + "' --type " + type + " -q").exit_code, 0);
+    files.push_back(out);
+  }
+  EXPECT_GE(files.size(), 60u);
+  for (const std::string& f : files) {
+    const std::string cmd = ktx + " validate --warnings-as-errors '" + f + "' >'" + dir + "/v.txt' 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << f << ":\n" << slurp(dir + "/v.txt");
+  }
+  fs::remove_all(dir);
+}
+
+// What the files say matches what the values are: a 16-bit sRGB chain goes
+// into a container linear (no GPU format is 16-bit sRGB), an sRGB texture
+// decompressed to OpenEXR is decoded to linear; --all-levels works for one
+// level and writes a whole chain into one .exr.
+TEST(Faults, ColourMetadataMatchesTheValues) {
+  const std::string dir = temp_dir("colourmeta");
+  const Image src = random_image(8, 8, 4, PixelType::u16, 3);
+  write_image(dir + "/in16.png", src.view());
+  ASSERT_EQ(run_texproc("mip '" + dir + "/in16.png' -o '" + dir + "/m.ktx2' -q").exit_code, 0);
+  const Texture m = read_texture(dir + "/m.ktx2");
+  EXPECT_EQ(m.format, TexelFormat::rgba16_unorm);
+  const Image l0 = image_from_texture(m, 0);
+  for (int x = 0; x < 8; ++x) {
+    const float want = srgb16_to_linear(src.row<std::uint16_t>(3)[4 * x]);
+    EXPECT_NEAR(l0.get(x, 3, 0), want, 1.0 / 65535) << x;
+    EXPECT_EQ(l0.row<std::uint16_t>(3)[4 * x + 3], src.row<std::uint16_t>(3)[4 * x + 3]);  // alpha as it was
+  }
+  write_image(dir + "/in8.png", random_image(16, 16, 3, PixelType::u8, 4).view());
+  ASSERT_EQ(run_texproc("compress '" + dir + "/in8.png' -o '" + dir + "/c.dds' --format bc1 --mips -q").exit_code, 0);
+  ASSERT_EQ(run_texproc("decompress '" + dir + "/c.dds' -o '" + dir + "/c.exr' -q").exit_code, 0);
+  ASSERT_EQ(run_texproc("decompress '" + dir + "/c.dds' -o '" + dir + "/c.png' -q").exit_code, 0);
+  ImageFileInfo info;
+  const Image e = read_image(dir + "/c.exr", &info);
+  const Image p = read_image(dir + "/c.png");
+  EXPECT_EQ(info.color_space_tag, "Linear");
+  for (int x = 0; x < 16; ++x) EXPECT_NEAR(e.get(x, 5, 1), srgb8_to_linear(p.row<std::uint8_t>(5)[4 * x + 1]), 2e-3) << x;
+  // --all-levels: one level is one file; a chain into .exr is one MIP file.
+  ASSERT_EQ(run_texproc("compress '" + dir + "/in8.png' -o '" + dir + "/one.dds' --format bc1 -q").exit_code, 0);
+  RunResult r = run_texproc("decompress '" + dir + "/one.dds' -o '" + dir + "/one.png' --all-levels -q");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir + "/one.png"));
+  r = run_texproc("decompress '" + dir + "/c.dds' -o '" + dir + "/chain.exr' --all-levels -q");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(probe_image(dir + "/chain.exr").mip_levels, 5);
   fs::remove_all(dir);
 }
