@@ -213,7 +213,9 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
   // Without --force (or --write-if-changed), an output that appears between
   // the check below and the end of the work is not replaced either: the
   // final rename refuses it atomically (two processes, one output).
-  if (!write_if_changed()) set_commit_policy(common.force ? CommitPolicy::replace : CommitPolicy::no_replace);
+  if (!write_if_changed()) {
+    set_commit_policy(common.force || s.incremental ? CommitPolicy::replace : CommitPolicy::no_replace);
+  }
 
   // Plan every file (names, existence, overwrites) before any work.
   std::vector<FileReport> reports(files.size());
@@ -280,13 +282,34 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
   for (std::size_t i = 0; i < reports.size(); ++i) {
     FileReport& r = reports[i];
     if (r.status == "failed") continue;
+    if (s.incremental && !common.force) {
+      // Up to date: every output exists and none is older than any input.
+      fs::file_time_type newest_input = fs::file_time_type::min();
+      bool inputs_known = true;
+      std::vector<std::string> deps = r.inputs;  // the file's (an OCIO config among them), and the recipe
+      deps.insert(deps.end(), s.run_inputs.begin(), s.run_inputs.end());
+      for (const std::string& in : deps) {
+        const auto t = fs::last_write_time(in, ec);
+        if (ec) inputs_known = false;
+        else newest_input = std::max(newest_input, t);
+      }
+      const bool up_to_date = inputs_known && !r.outputs.empty() &&
+                              std::all_of(r.outputs.begin(), r.outputs.end(), [&](const std::string& f) {
+                                const auto t = fs::last_write_time(f, ec);
+                                return !ec && t >= newest_input;
+                              });
+      if (up_to_date) {
+        r.status = "skipped";
+        continue;
+      }
+    }
     if (s.skip_existing && std::all_of(r.outputs.begin(), r.outputs.end(),
                                        [&](const std::string& f) { return fs::exists(f, ec); })) {
       r.status = "skipped";
       continue;
     }
     try {
-      for (const auto& out : r.outputs) check_output(out, {r.input}, common.force);
+      for (const auto& out : r.outputs) check_output(out, {r.input}, common.force || s.incremental);
       todo.push_back(i);
     } catch (const Error& e) {
       fail(r, e.code(), e.what());

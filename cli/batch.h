@@ -126,6 +126,11 @@ struct SessionOptions {
   // Set by `build` for a first pass over its jobs: run_batch checks the
   // options, inputs and output names, and returns before planning files.
   bool check_only = false;
+  // Set by `build` unless --force: a file whose outputs all exist and are no
+  // older than each of its inputs (the recipe among them) is skipped as up
+  // to date; any other is rebuilt, its old outputs replaced.
+  bool incremental = false;
+  std::vector<std::string> run_inputs;  // what every file depends on besides its own inputs: the recipe
 };
 SessionOptions& session_options();
 

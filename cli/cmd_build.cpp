@@ -127,6 +127,9 @@ int run_build(const BuildArgs& a) {
     if (!a.only.empty() && std::find(a.only.begin(), a.only.end(), j.name) == a.only.end()) continue;
     jobs.push_back(prepare(recipe, j, a.common));
   }
+  // Incremental unless --force: up-to-date files are skipped, changed ones rebuilt.
+  session_options().incremental = !a.common.force;
+  session_options().run_inputs = {a.recipe};
   // A first pass checks each job's option values, inputs and output names.
   session_options().check_only = true;
   for (PreparedJob& p : jobs) {

@@ -54,7 +54,15 @@ TexelFormat format_for(const std::string& f, bool srgb) {
       {"eac-r11", {F::eac_r11_unorm, F::eac_r11_unorm}}, {"eac-r11s", {F::eac_r11_snorm, F::eac_r11_snorm}},
       {"eac-rg11", {F::eac_rg11_unorm, F::eac_rg11_unorm}},
       {"eac-rg11s", {F::eac_rg11_snorm, F::eac_rg11_snorm}}};
-  auto it = k.find(f);
+  // The names other tools use (texconv, nvcompress, Compressonator), in any case.
+  static const std::map<std::string, std::string> aliases = {
+      {"dxt1", "bc1"}, {"dxt1a", "bc1a"}, {"dxt3", "bc2"}, {"dxt5", "bc3"}, {"ati1", "bc4"}, {"bc4u", "bc4"},
+      {"ati2", "bc5"}, {"bc5u", "bc5"}, {"3dc", "bc5"}, {"etc2a8", "etc2a"}, {"etc2-rgba", "etc2a"},
+      {"r11", "eac-r11"}, {"rg11", "eac-rg11"}};
+  std::string name = f;
+  for (auto& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (auto al = aliases.find(name); al != aliases.end()) name = al->second;
+  auto it = k.find(name);
   if (it != k.end()) return srgb ? it->second.second : it->second.first;
   throw Error(ErrorCode::bad_arguments, "unknown --format '" + f +
                                             "' (valid: bc1, bc1a, bc2, bc3, bc4, bc4s, bc5, bc5s, etc1, etc2, etc2a1, "
@@ -67,7 +75,21 @@ void validate(CompressArgs& a) {
   a.header = parse_dds_header(a.dds_header);
   a.transparent = parse_transparent_color(a.transparent_color);
   format_for(a.format, false);  // a known format, or an error now
-  if (a.bc1_black && a.format != "bc1")
+  if (a.srgb && !format_info(format_for(a.format, true)).srgb) {
+    throw Error(ErrorCode::bad_arguments, "--srgb: --format " + a.format +
+                                              " has no sRGB variant (it holds data); drop --srgb");
+  }
+  // Options of the mip chain mean nothing without one.
+  if (!a.mips) {
+    const ChainArgs defaults;
+    const char* given = a.chain.levels != defaults.levels         ? "--levels"
+                        : a.chain.min_size != defaults.min_size   ? "--min-size"
+                        : a.chain.filter != defaults.filter       ? "--filter"
+                        : a.chain.sigma != defaults.sigma         ? "--sigma"
+                                                                  : nullptr;
+    if (given) throw Error(ErrorCode::bad_arguments, std::string(given) + " shapes the mip chain: add --mips");
+  }
+  if (a.bc1_black && format_for(a.format, false) != TexelFormat::bc1_rgb_unorm)
     throw Error(ErrorCode::bad_arguments, "--bc1-black applies to --format bc1 only (opaque BC1), not '" + a.format + "'");
   a.mip.filter.kind = parse_filter_kind(a.chain.filter);
   a.mip.filter.sigma = a.chain.sigma;

@@ -285,3 +285,25 @@ TEST(Faults, ColourMetadataMatchesTheValues) {
   EXPECT_EQ(probe_image(dir + "/chain.exr").mip_levels, 5);
   fs::remove_all(dir);
 }
+
+// The format names users type (texconv's, nvcompress's, any case) are
+// accepted; options that would be silently ignored are refused with the way out.
+TEST(Faults, FormatAliasesAndIgnoredOptions) {
+  const std::string dir = temp_dir("aliases");
+  write_image(dir + "/a.png", random_image(16, 16, 4, PixelType::u8, 2).view());
+  for (const auto& [alias, name] : std::vector<std::pair<std::string, TexelFormat>>{
+           {"DXT1", TexelFormat::bc1_rgb_srgb}, {"dxt5", TexelFormat::bc3_srgb}, {"ATI2", TexelFormat::bc5_unorm},
+           {"BC4", TexelFormat::bc4_unorm}, {"dxt3", TexelFormat::bc2_srgb}}) {
+    const RunResult r = run_texproc("compress '" + dir + "/a.png' -o '" + dir + "/" + alias + ".dds' --format " + alias + " -q");
+    ASSERT_EQ(r.exit_code, 0) << alias << ": " << r.err;
+    EXPECT_EQ(read_texture(dir + "/" + alias + ".dds").format, name) << alias;
+  }
+  RunResult r = run_texproc("compress '" + dir + "/a.png' -o '" + dir + "/x.dds' --format bc1 --levels 3 -q");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("add --mips"), std::string::npos) << r.err;
+  r = run_texproc("compress '" + dir + "/a.png' -o '" + dir + "/x.dds' --format bc5 --srgb -q");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("no sRGB variant"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/x.dds"));
+  fs::remove_all(dir);
+}

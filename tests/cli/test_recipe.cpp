@@ -2,6 +2,7 @@
 // stand for, with mistakes named by line and key before any work.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 
@@ -90,9 +91,9 @@ TEST(Recipe, RunsItsJobsAsTheCommandLineWould) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out, "dry/out/rock_h_n.png\n");
   EXPECT_FALSE(fs::exists(dir + "/dry"));
-  // A second run without --force refuses to overwrite; --skip-existing passes.
+  // A second run is incremental: nothing to redo, exit 0 (Recipe.SecondRunIsIncremental); --skip-existing passes.
   r = run_texproc("build r.toml -q", dir);
-  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
   r = run_texproc("build r.toml -q --skip-existing", dir);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   fs::remove_all(dir);
@@ -164,5 +165,35 @@ TEST(Recipe, SampleRecipeCooksTheSamples) {
     EXPECT_TRUE(fs::exists(dir + "/" + f)) << f;
   }
   EXPECT_NE(r.out.find("\"job\" : \"heights-to-normals\""), std::string::npos) << r.out;
+  fs::remove_all(dir);
+}
+
+// A build is incremental: a second run skips every up-to-date file and
+// exits 0; a changed input rebuilds its outputs only; a changed recipe
+// rebuilds every job; --force rebuilds everything.
+TEST(Recipe, SecondRunIsIncremental) {
+  const std::string dir = make_project("recipe_incremental");
+  write_text(dir + "/r.toml", kToml);
+  auto statuses = [&](const std::string& extra) {
+    const RunResult r = run_texproc("build '" + dir + "/r.toml' --json" + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    int ok = 0, skipped = 0;
+    for (std::size_t p = 0; (p = r.out.find("\"status\" : \"", p)) != std::string::npos; ++p) {
+      ok += r.out.compare(p + 12, 2, "ok") == 0;
+      skipped += r.out.compare(p + 12, 7, "skipped") == 0;
+    }
+    return std::pair{ok, skipped};
+  };
+  const auto first = statuses("");
+  EXPECT_GT(first.first, 0);
+  EXPECT_EQ(first.second, 0);
+  const int files = first.first;
+  EXPECT_EQ(statuses(""), std::make_pair(0, files));
+  const auto later = fs::file_time_type::clock::now() + std::chrono::seconds(5);
+  fs::last_write_time(dir + "/src/albedo/rock.png", later);
+  EXPECT_EQ(statuses(""), std::make_pair(1, files - 1));
+  fs::last_write_time(dir + "/r.toml", later + std::chrono::seconds(5));
+  EXPECT_EQ(statuses("").first, files);
+  EXPECT_EQ(statuses(" --force").first, files);
   fs::remove_all(dir);
 }
