@@ -294,9 +294,9 @@ TEST(Faults, FormatAliasesAndIgnoredOptions) {
   for (const auto& [alias, name] : std::vector<std::pair<std::string, TexelFormat>>{
            {"DXT1", TexelFormat::bc1_rgb_srgb}, {"dxt5", TexelFormat::bc3_srgb}, {"ATI2", TexelFormat::bc5_unorm},
            {"BC4", TexelFormat::bc4_unorm}, {"dxt3", TexelFormat::bc2_srgb}}) {
-    const RunResult r = run_texproc("compress '" + dir + "/a.png' -o '" + dir + "/" + alias + ".dds' --format " + alias + " -q");
+    const RunResult r = run_texproc("compress '" + dir + "/a.png' -o '" + dir + "/" + alias + ".ktx2' --format " + alias + " -q");
     ASSERT_EQ(r.exit_code, 0) << alias << ": " << r.err;
-    EXPECT_EQ(read_texture(dir + "/" + alias + ".dds").format, name) << alias;
+    EXPECT_EQ(read_texture(dir + "/" + alias + ".ktx2").format, name) << alias;
   }
   RunResult r = run_texproc("compress '" + dir + "/a.png' -o '" + dir + "/x.dds' --format bc1 --levels 3 -q");
   EXPECT_EQ(r.exit_code, 1);
