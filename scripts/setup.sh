@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake ninja-build pkg-config
   libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
-  libtiff-dev libdeflate-dev libspng-dev libjpeg62-turbo-dev zlib1g-dev libcli11-dev googletest libgtest-dev libbenchmark-dev libtbb-dev libhwy-dev
+  libtiff-dev libdeflate-dev libspng-dev libjpeg62-turbo-dev zlib1g-dev libzstd-dev libcli11-dev googletest libgtest-dev libbenchmark-dev libtbb-dev libhwy-dev
   libjsoncpp-dev libtomlplusplus-dev
   # independent checks and peers used by tests and benchmarks
   libnvtt-bin libsquish-dev android-libetc1-dev python3-pil

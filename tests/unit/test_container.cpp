@@ -1,6 +1,8 @@
 // Texture containers: round trips, header bytes from the specifications,
 // hostile files, and readers that no one here wrote.
 #include <gtest/gtest.h>
+#include <zlib.h>
+#include <zstd.h>
 #include <OpenImageIO/imageio.h>
 
 #include <cstring>
@@ -659,5 +661,60 @@ TEST(Container, MalformedFilesAreRefusedByName) {
     p[4] = 0x01;
     p[5] = 0xFF;
     refused(p, decode_pkm, "PKM version '\\x01\\xFF'");
+  }
+}
+
+// Zstandard- and zlib-supercompressed KTX2 (what `ktx deflate` and glTF
+// assets carry) read as the uncompressed file they came from; a level that
+// does not inflate to its size is refused by name.
+TEST(Container, Ktx2SupercompressedLevelsRead) {
+  const Texture t = random_texture(TexelFormat::bc3_srgb, 36, 20, full_levels(36, 20), 1, 2, 7);
+  const std::vector<std::uint8_t> plain = encode_ktx2(t, "w");
+  for (std::uint32_t scheme : {2u, 3u}) {
+    SCOPED_TRACE(scheme);
+    // Header, index, DFD and key/value data as they were; then each level compressed, smallest first.
+    std::uint64_t first_level = ~std::uint64_t(0);
+    for (std::uint32_t l = 0; l < t.levels; ++l) {
+      std::uint64_t off;
+      std::memcpy(&off, &plain[80 + 24 * l], 8);
+      first_level = std::min(first_level, off);
+    }
+    // Up to the end of the key/value data: supercompressed levels need no alignment padding.
+    std::uint32_t kvd_off, kvd_len;
+    std::memcpy(&kvd_off, &plain[56], 4);
+    std::memcpy(&kvd_len, &plain[60], 4);
+    ASSERT_LE(kvd_off + kvd_len, first_level);
+    std::vector<std::uint8_t> out(plain.begin(), plain.begin() + std::ptrdiff_t(kvd_off + kvd_len));
+    std::memcpy(&out[44], &scheme, 4);
+    for (std::uint32_t l = t.levels; l-- > 0;) {
+      std::uint64_t off, len;
+      std::memcpy(&off, &plain[80 + 24 * l], 8);
+      std::memcpy(&len, &plain[80 + 24 * l + 8], 8);
+      std::vector<std::uint8_t> packed;
+      if (scheme == 2) {
+        packed.resize(ZSTD_compressBound(len));
+        packed.resize(ZSTD_compress(packed.data(), packed.size(), &plain[off], len, 3));
+      } else {
+        uLongf n = compressBound(uLong(len));
+        packed.resize(n);
+        ASSERT_EQ(compress(packed.data(), &n, &plain[off], uLong(len)), Z_OK);
+        packed.resize(n);
+      }
+      const std::uint64_t at = out.size(), plen = packed.size();
+      out.insert(out.end(), packed.begin(), packed.end());
+      std::memcpy(&out[80 + 24 * l], &at, 8);
+      std::memcpy(&out[80 + 24 * l + 8], &plen, 8);
+      std::memcpy(&out[80 + 24 * l + 16], &len, 8);
+    }
+    const Texture back = decode_ktx2(out.data(), out.size(), "z.ktx2");
+    ASSERT_EQ(back.images.size(), t.images.size());
+    for (std::size_t i = 0; i < t.images.size(); ++i) EXPECT_TRUE(back.images[i] == t.images[i]) << i;
+    // Level 0 claims one byte more than it inflates to.
+    std::vector<std::uint8_t> bad = out;
+    std::uint64_t ulen;
+    std::memcpy(&ulen, &bad[80 + 16], 8);
+    ++ulen;
+    std::memcpy(&bad[80 + 16], &ulen, 8);
+    EXPECT_THROW(decode_ktx2(bad.data(), bad.size(), "bad.ktx2"), Error);
   }
 }

@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "container/bytes.h"
+#include "container/format_names.h"
 #include "container/streams.h"
 #include "texproc/container.h"
 
@@ -183,7 +184,11 @@ Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string
     const std::uint32_t array_size = r.u32(offset + 12, "DX10 arraySize");
     offset += 20;
     const FormatInfo* fi = find_format_by_dxgi(dxgi);
-    if (!fi) r.unsupported("DXGI format " + std::to_string(dxgi) + " is not one texproc reads");
+    if (!fi) {
+      const std::string what = dxgi_format_name(dxgi);
+      r.unsupported("DXGI format " + std::to_string(dxgi) + (what.empty() ? "" : " (" + what + ")") +
+                    " is not one texproc reads");
+    }
     if (dim != kDimensionTexture2D) r.unsupported("resource dimension " + std::to_string(dim) + " (texproc reads 2D textures)");
     if (array_size == 0 || array_size > limits.max_layers) r.fail("DX10 arraySize " + std::to_string(array_size));
     t.format = fi->format;

@@ -2,11 +2,15 @@
 // index, level index (level 0 first), DFD, key/value data (sorted, with
 // KTXwriter), then the levels stored smallest first, each aligned to
 // lcm(texel block bytes, 4). No supercompression.
+#include <zlib.h>
+#include <zstd.h>
+
 #include <algorithm>
 #include <map>
 #include <numeric>
 
 #include "container/bytes.h"
+#include "container/format_names.h"
 #include "container/streams.h"
 #include "texproc/container.h"
 #include "texproc/version.h"
@@ -84,6 +88,36 @@ ByteWriter encode_ktx2_stream(const Texture& t, const std::string& writer) {
 
 std::vector<std::uint8_t> encode_ktx2(const Texture& t, const std::string& writer) { return encode_ktx2_stream(t, writer).bytes(); }
 
+namespace {
+
+// A Zstandard (2) or zlib (3) level: exactly `want` bytes once inflated.
+std::vector<std::uint8_t> supercompressed_level(const ByteReader& r, std::uint32_t level, std::uint32_t scheme,
+                                                const std::uint8_t* data, std::uint64_t length, std::uint64_t want) {
+  std::vector<std::uint8_t> out(want);
+  const std::string where = "level " + std::to_string(level) + ": ";
+  if (scheme == 2) {
+    const unsigned long long size = ZSTD_getFrameContentSize(data, length);
+    if (size == ZSTD_CONTENTSIZE_ERROR) r.fail(where + "not a Zstandard frame");
+    if (size != ZSTD_CONTENTSIZE_UNKNOWN && size != want) {
+      r.fail(where + "Zstandard frame of " + std::to_string(size) + " bytes (expected " + std::to_string(want) + ")");
+    }
+    const std::size_t n = ZSTD_decompress(out.data(), want, data, length);
+    if (ZSTD_isError(n)) r.fail(where + "Zstandard data: " + ZSTD_getErrorName(n));
+    if (n != want) r.fail(where + "Zstandard data inflates to " + std::to_string(n) + " bytes (expected " + std::to_string(want) + ")");
+  } else {
+    uLongf n = uLongf(want);
+    const int rc = uncompress(out.data(), &n, data, uLong(length));
+    if (rc != Z_OK || n != want) {
+      r.fail(where + "zlib data " + (rc == Z_OK ? "inflates to " + std::to_string(n) + " bytes (expected " +
+                                                      std::to_string(want) + ")"
+                                                : std::string(rc == Z_BUF_ERROR ? "larger than the level" : "corrupt")));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& limits) {
   ByteReader r(data, size, name);
   if (size < 12 || std::memcmp(r.at(0, 12, "identifier"), kIdentifier, 12) != 0) r.fail("not a KTX2 file (bad identifier)");
@@ -95,9 +129,22 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
   const std::uint32_t dfd_offset = r.u32(48, "dfdByteOffset"), dfd_length = r.u32(52, "dfdByteLength");
   const std::uint32_t kvd_offset = r.u32(56, "kvdByteOffset"), kvd_length = r.u32(60, "kvdByteLength");
   const std::uint64_t sgd_offset = r.u64(64, "sgdByteOffset"), sgd_length = r.u64(72, "sgdByteLength");
-  if (scheme != 0) r.unsupported("supercompression scheme " + std::to_string(scheme) + " (texproc reads scheme 0, none)");
+  // Zstandard (2) and zlib (3) compress each level on its own; BasisLZ (1)
+  // is a codec of its own, with global data.
+  if (scheme == 1) r.unsupported("supercompression scheme 1, BasisLZ (ETC1S), is not one texproc reads (valid: 0 none, 2 Zstandard, 3 zlib)");
+  if (scheme > 3) r.unsupported("supercompression scheme " + std::to_string(scheme) + " (valid: 0 none, 2 Zstandard, 3 zlib)");
   const FormatInfo* fi = find_format_by_vk(vk);
-  if (!fi) r.unsupported("vkFormat " + std::to_string(vk) + " is not one texproc reads");
+  if (!fi) {
+    // Name what it is: Basis Universal's formats have vkFormat 0 and say which in the DFD's colour model.
+    std::string what = vk_format_name(vk);
+    if (vk == 0 && dfd_length >= 16 && std::uint64_t(dfd_offset) + 16 <= size) {
+      const std::uint32_t model = r.u32(dfd_offset + 12, "DFD colour model") & 0xFF;
+      if (model == 166) what = "UASTC, Basis Universal";
+      if (model == 163) what = "ETC1S, Basis Universal";
+    }
+    r.unsupported("vkFormat " + std::to_string(vk) + (what.empty() ? "" : " (" + what + ")") +
+                  " is not one texproc reads");
+  }
   if (type_size != std::uint32_t(fi->type_size)) {
     r.fail("typeSize " + std::to_string(type_size) + " (valid for " + fi->name + ": " + std::to_string(fi->type_size) + ")");
   }
@@ -117,7 +164,10 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
            std::to_string(height) + " texture has (" + std::to_string(max_levels) + ")");
   }
   if (level_count == 0) r.unsupported("levelCount 0 (generate mipmaps at load) is not supported");
-  if (sgd_offset != 0 || sgd_length != 0) r.fail("supercompression global data without a scheme");
+  if (sgd_offset != 0 || sgd_length != 0) {
+    r.fail("supercompression global data (sgdByteLength " + std::to_string(sgd_length) + ") with scheme " +
+           std::to_string(scheme) + ", which has none");
+  }
   // The DFD must be the one this format has (texproc reads what it writes,
   // and what libktx writes for the same VkFormat).
   const std::vector<std::uint8_t> want_dfd = ktx2_dfd(fi->format);
@@ -164,13 +214,15 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
   t.layers = std::max(layer_count, 1u);
   t.is_array = layer_count > 0;
   t.images.resize(std::size_t(t.levels) * t.layers * t.faces);
-  const std::uint32_t align = level_alignment(*fi);
+  // Supercompressed levels need no alignment (KTX2 specification, "mip level array").
+  const std::uint32_t align = scheme ? 1 : level_alignment(*fi);
   // Levels lie after every other block, in place, without overlap, with
   // nothing but alignment padding between them.
   const std::uint64_t metadata_end =
       std::max<std::uint64_t>({kHeaderEnd + 24ull * level_count, std::uint64_t(dfd_offset) + dfd_length,
                                kvd_length ? std::uint64_t(kvd_offset) + kvd_length : 0, sgd_offset + sgd_length});
   std::vector<std::pair<std::uint64_t, std::uint32_t>> placed;  // offset, level
+  std::vector<std::uint64_t> placed_length(level_count);
   std::uint64_t covered = 0;
   for (std::uint32_t l = 0; l < level_count; ++l) {
     const std::uint64_t offset = r.u64(kHeaderEnd + 24ull * l, "level byteOffset");
@@ -178,13 +230,13 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
     const std::uint64_t ulength = r.u64(kHeaderEnd + 24ull * l + 16, "level uncompressedByteLength");
     const std::uint64_t image = image_bytes(t.format, t.level_width(l), t.level_height(l));
     const std::uint64_t want = image * t.layers * t.faces;
-    if (length != want) {
+    if (scheme == 0 && length != want) {
       r.fail("level " + std::to_string(l) + " byteLength " + std::to_string(length) + " (expected " +
              std::to_string(want) + ")");
     }
     if (ulength != want) {
       r.fail("level " + std::to_string(l) + " uncompressedByteLength " + std::to_string(ulength) + " (expected " +
-             std::to_string(want) + " without supercompression)");
+             std::to_string(want) + (scheme ? ")" : " without supercompression)"));
     }
     if (offset % align) {
       r.fail("level " + std::to_string(l) + " byteOffset " + std::to_string(offset) + " is not aligned to " +
@@ -196,15 +248,21 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
              std::to_string(metadata_end) + ")");
     }
     placed.push_back({offset, l});
-    r.at(offset, length, "level data");
+    const std::uint8_t* stored = r.at(offset, length, "level data");
     covered = std::max(covered, offset + length);
-    std::uint64_t p = offset;
+    std::vector<std::uint8_t> inflated;
+    const std::uint8_t* level_data = stored;
+    if (scheme == 2 || scheme == 3) {
+      inflated = supercompressed_level(r, l, scheme, stored, length, want);
+      level_data = inflated.data();
+    }
+    std::uint64_t p = 0;
     for (std::uint32_t a = 0; a < t.layers; ++a)
       for (std::uint32_t f = 0; f < t.faces; ++f) {
-        const std::uint8_t* src = r.at(p, image, "level data");
-        t.image(l, a, f).assign(src, src + image);
+        t.image(l, a, f).assign(level_data + p, level_data + p + image);
         p += image;
       }
+    placed_length[l] = length;
   }
   std::sort(placed.begin(), placed.end());
   std::uint64_t prev_end = metadata_end;
@@ -215,7 +273,7 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
              " that no level index entry covers (levelCount " + std::to_string(level_count) +
              "; only alignment padding may lie between levels)");
     }
-    prev_end = offset + (std::uint64_t(image_bytes(t.format, t.level_width(l), t.level_height(l))) * t.layers * t.faces);
+    prev_end = offset + placed_length[l];
   }
   if (covered != size) r.fail(std::to_string(size - covered) + " trailing bytes after the last level");
   return t;
