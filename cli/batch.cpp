@@ -379,6 +379,11 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
                   fail(r, ErrorCode::runtime, r.input + ": " + e.what());
                 }
                 r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                if (!r.warnings.empty()) {
+                  Json::Value w(Json::arrayValue);
+                  for (const std::string& m : r.warnings) w.append(m);
+                  r.details["warnings"] = w;
+                }
                 if (r.phases.read >= 0) {
                   Json::Value ph(Json::objectValue);
                   ph["read_ms"] = r.phases.read;
@@ -398,6 +403,9 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
           tbb::make_filter<std::size_t, void>(tbb::filter_mode::serial_in_order, [&](std::size_t i) {
             FileReport& r = reports[i];
             progress.finished(r.input, [&] {
+              if (!common.quiet && !s.json) {
+                for (const std::string& w : r.warnings) std::cerr << "texproc " << c.name << ": warning: " << w << "\n";
+              }
               if (r.status == "failed") {
                 std::cerr << "texproc " << c.name << ": error: " << r.error << "\n";
               } else if (!common.quiet && !s.json && !r.line.empty()) {

@@ -61,6 +61,7 @@ struct FileReport {
   std::string error;                 // the message, when failed
   ErrorCode code = ErrorCode::success;
   std::string line;                  // the human summary ("a.png -> a.dds: ..."), printed unless --quiet
+  std::vector<std::string> warnings;  // "FILE: what", printed on stderr unless --quiet, in --json too
   Json::Value details{Json::objectValue};  // format, sizes, levels, quality figures (--report)
   double seconds = 0;
   // Wall time of the file's phases in milliseconds, set by the command

@@ -140,6 +140,7 @@ Json::Value number_or_null(double v) { return std::isfinite(v) ? Json::Value(v) 
 void run_compress(const CompressArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   PhaseTimer phases(r);
   ImageArray in = read_image_array(input);
+  for (Image& im : in.images) read_as_finite(input, im, r.warnings);
   phases.read_done();
   const PixelType input_type = in.images[0].type();
   // Colour is sRGB unless --linear, a normal map, or float input.

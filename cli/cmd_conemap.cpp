@@ -77,7 +77,8 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
   const WriteOptions& w = a.write;
   PhaseTimer phases(r);
   ImageFileInfo info;
-  const Image img = read_image(input, &info);
+  Image img = read_image(input, &info);
+  read_as_finite(input, img, r.warnings);
   phases.read_done();
   const std::vector<float> h = extract_height(img.view(), a.channel, a.invert);
   const auto t0 = std::chrono::steady_clock::now();

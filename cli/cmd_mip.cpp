@@ -79,6 +79,7 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
   PhaseTimer phases(r);
   ImageFileInfo info;
   ImageArray in = read_image_array(input, &info);
+  for (Image& im : in.images) read_as_finite(input, im, r.warnings);
   phases.read_done();
   check_surfaces_fit(input, in, output);
   // A half-float texture stays half float.

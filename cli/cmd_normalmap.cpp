@@ -74,7 +74,8 @@ void run_normalmap(const NormalMapArgs& a, const std::string& input, const std::
   WriteOptions w = a.write;
   PhaseTimer phases(r);
   ImageFileInfo info;
-  const Image heights = read_image(input, &info);
+  Image heights = read_image(input, &info);
+  read_as_finite(input, heights, r.warnings);
   phases.read_done();
   std::optional<PixelType> type = a.type_choice;
   if (!type) type = info.type == PixelType::u8 ? PixelType::u8 : PixelType::u16;

@@ -55,7 +55,8 @@ void run_build(const SatArgs& a, const std::string& input, const std::string& ou
   if (!a.precision.empty()) requested = parse_sat_precision(a.precision);
   PhaseTimer phases(r);
   ImageFileInfo info;
-  const Image img = read_image(input, &info);
+  Image img = read_image(input, &info);
+  read_as_finite(input, img, r.warnings);
   phases.read_done();
   const SatPrecision p = requested ? *requested : default_sat_precision(img.type(), img.width(), img.height());
   const SummedAreaTable t = build_sat(img.view(), p);
@@ -137,7 +138,8 @@ void validate_blur(SatArgs& a) {
 
 void run_blur(const SatArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   PhaseTimer phases(r);
-  const Image img = read_image(input);
+  Image img = read_image(input);
+  read_as_finite(input, img, r.warnings);
   phases.read_done();
   BoxBlurOptions o = a.blur;
   const ImageView mv = a.map.view();

@@ -212,6 +212,12 @@ void write_levels(const std::string& output, const std::vector<Image>& levels, c
   for (std::size_t l = 0; l < levels.size(); ++l) write_image(names[l], levels[l].view(), options);
 }
 
+void read_as_finite(const std::string& input, Image& image, std::vector<std::string>& warnings) {
+  if (const std::size_t n = replace_non_finite(image)) {
+    warnings.push_back(input + ": " + std::to_string(n) + " non-finite value(s) (NaN or infinity) read as 0");
+  }
+}
+
 void check_surfaces_fit(const std::string& input, const ImageArray& in, const std::string& output) {
   if (in.images.size() <= 1 || is_container_path(output)) return;
   const std::string what = in.faces == 6 ? (in.layers > 1 ? std::to_string(in.layers) + " cubemaps" : std::string("a cubemap"))

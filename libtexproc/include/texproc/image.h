@@ -153,4 +153,9 @@ class Image {
   PixelBytes::Base data_;
 };
 
+// Sets every NaN and infinity of an f32 image to `value` and returns how
+// many there were (0 for integer images). A filter would otherwise spread
+// one bad texel over its whole footprint at every level.
+std::size_t replace_non_finite(Image& image, float value = 0.0f);
+
 }  // namespace texproc

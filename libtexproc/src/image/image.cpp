@@ -128,4 +128,18 @@ void Image::set(int x, int y, int c, float v) {
   }
 }
 
+std::size_t replace_non_finite(Image& image, float value) {
+  if (image.type() != PixelType::f32) return 0;
+  std::size_t n = 0;
+  float* p = reinterpret_cast<float*>(image.data());
+  const std::size_t count = image.byte_size() / sizeof(float);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!std::isfinite(p[i])) {
+      p[i] = value;
+      ++n;
+    }
+  }
+  return n;
+}
+
 }  // namespace texproc
