@@ -718,3 +718,32 @@ TEST(Container, Ktx2SupercompressedLevelsRead) {
     EXPECT_THROW(decode_ktx2(bad.data(), bad.size(), "bad.ktx2"), Error);
   }
 }
+
+// Fields that contradict the format are refused, naming the field: KTX1's
+// glType, glTypeSize, glFormat and glBaseInternalFormat against its
+// glInternalFormat; a DDS pitch or linear size, DX10 misc flags.
+TEST(Container, ContradictingFieldsAreRefused) {
+  const Texture t = random_texture(TexelFormat::rgba8_unorm, 8, 8, 1, 1, 1, 2);
+  const std::vector<std::uint8_t> k1 = encode_ktx1(t);
+  for (const auto& [at, field] : std::vector<std::pair<std::size_t, std::string>>{
+           {16, "glType"}, {20, "glTypeSize"}, {24, "glFormat"}, {32, "glBaseInternalFormat"}}) {
+    std::vector<std::uint8_t> b = k1;
+    b[at] ^= 0x01;
+    try {
+      decode_ktx1(b.data(), b.size(), "k.ktx");
+      ADD_FAILURE() << field << " accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(field + " 0x"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("contradicts glInternalFormat"), std::string::npos) << e.what();
+    }
+  }
+  const Texture bc = random_texture(TexelFormat::bc3_unorm, 8, 8, 1, 1, 1, 2);
+  std::vector<std::uint8_t> d = encode_dds(bc);
+  const std::uint32_t wrong = 40;
+  std::memcpy(&d[20], &wrong, 4);  // linear size of an 8x8 BC3 level is 64
+  EXPECT_THROW(decode_dds(d.data(), d.size(), "d.dds"), Error);
+  std::vector<std::uint8_t> x = encode_dds(random_texture(TexelFormat::rgba8_srgb, 8, 8, 1, 1, 1, 2));  // DX10 header
+  const std::uint32_t misc = 0x5;
+  std::memcpy(&x[128 + 8], &misc, 4);
+  EXPECT_THROW(decode_dds(x.data(), x.size(), "x.dds"), Error);
+}

@@ -157,7 +157,6 @@ Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string
   if (r.u32(76, "ddspf.dwSize") != kPixelFormatSize) r.fail("pixel format dwSize (valid: 32)");
   const std::uint32_t pf_flags = r.u32(80, "ddspf.dwFlags"), pf_fourcc = r.u32(84, "ddspf.dwFourCC");
   const std::uint32_t caps2 = r.u32(112, "dwCaps2");
-  (void)flags;
   if (width == 0 || height == 0) r.fail("zero width or height");
   if (width > limits.max_dimension || height > limits.max_dimension) {
     r.unsupported(std::to_string(width) + "x" + std::to_string(height) + " is larger than " +
@@ -182,6 +181,14 @@ Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string
     const std::uint32_t dim = r.u32(offset + 4, "DX10 resourceDimension");
     const std::uint32_t misc = r.u32(offset + 8, "DX10 miscFlag");
     const std::uint32_t array_size = r.u32(offset + 12, "DX10 arraySize");
+    const std::uint32_t alpha_mode = r.u32(offset + 16, "DX10 miscFlags2") & 0x7;
+    if (misc & ~kMiscTextureCube) {
+      r.fail("DX10 miscFlag 0x" + std::to_string(misc) + " has bits other than TEXTURECUBE (0x4)");
+    }
+    if (alpha_mode > 4) r.fail("DX10 alpha mode " + std::to_string(alpha_mode) + " (valid: 0 to 4)");
+    if ((misc & kMiscTextureCube) && (caps2 & kCaps2Cubemap) && (caps2 & kCaps2AllFaces) != kCaps2AllFaces) {
+      r.unsupported("cubemaps without all six faces");
+    }
     offset += 20;
     const FormatInfo* fi = find_format_by_dxgi(dxgi);
     if (!fi) {
@@ -228,6 +235,19 @@ Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string
     t.faces = 6;
   }
   if (t.faces == 6 && width != height) r.fail("cubemap faces are not square");
+  // A pitch or linear size the header claims must be the format's (0: not given, as many writers leave it).
+  {
+    const FormatInfo& info = format_info(t.format);
+    const std::uint32_t pitch = r.u32(20, "dwPitchOrLinearSize");
+    const std::uint64_t want = info.compressed ? image_bytes(t.format, width, height)
+                                               : std::uint64_t(width) * std::uint32_t(info.block_bytes);
+    const bool says = (flags & (info.compressed ? kLinearSize : kPitch)) != 0;
+    if (says && pitch != 0 && pitch != want) {
+      r.fail(std::string(info.compressed ? "dwPitchOrLinearSize (linear size) " : "dwPitchOrLinearSize (pitch) ") +
+             std::to_string(pitch) + " (expected " + std::to_string(want) + " for " + std::to_string(width) + "x" +
+             std::to_string(height) + " " + info.name + ")");
+    }
+  }
   std::vector<std::uint64_t> level_bytes(levels);
   std::uint64_t total = 0;
   for (std::uint32_t l = 0; l < levels; ++l) {

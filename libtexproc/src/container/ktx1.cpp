@@ -96,6 +96,26 @@ Texture decode_ktx1(const std::uint8_t* data, std::size_t size, const std::strin
     std::snprintf(b, sizeof b, "%X", internal);
     return std::string(b);
   }() + " is not one texproc reads");
+  // The other GL fields must say the same format.
+  auto hex = [](std::uint32_t v) {
+    char b[16];
+    std::snprintf(b, sizeof b, "0x%X", v);
+    return std::string(b);
+  };
+  const std::uint32_t gl_type = r.u32(16, "glType"), type_size = r.u32(20, "glTypeSize"), gl_format = r.u32(24, "glFormat"),
+                      base = r.u32(32, "glBaseInternalFormat");
+  const std::uint32_t want_size = fi->compressed ? 1 : std::uint32_t(fi->type_size);
+  const std::pair<const char*, std::pair<std::uint32_t, std::uint32_t>> fields[] = {
+      {"glType", {gl_type, fi->gl_type}},
+      {"glTypeSize", {type_size, want_size}},
+      {"glFormat", {gl_format, fi->gl_format}},
+      {"glBaseInternalFormat", {base, base_format(*fi)}}};
+  for (const auto& [field, values] : fields) {
+    if (values.first != values.second) {
+      r.fail(std::string(field) + " " + hex(values.first) + " contradicts glInternalFormat " + hex(internal) + " (" +
+             fi->name + ": expected " + hex(values.second) + ")");
+    }
+  }
   if (width == 0 || height == 0) r.fail("zero pixelWidth or pixelHeight");
   if (width > limits.max_dimension || height > limits.max_dimension) r.unsupported("texture larger than the limit");
   if (depth > 1) r.unsupported("3D textures are not supported");
