@@ -747,3 +747,42 @@ TEST(Container, ContradictingFieldsAreRefused) {
   std::memcpy(&x[128 + 8], &misc, 4);
   EXPECT_THROW(decode_dds(x.data(), x.size(), "x.dds"), Error);
 }
+
+// KTXorientation and KTXswizzle are honoured or refused, never ignored.
+TEST(Container, Ktx2OrientationAndSwizzle) {
+  auto patched = [](const Texture& t, const std::string& writer, const std::string& entry) {
+    std::vector<std::uint8_t> b = encode_ktx2(t, writer);
+    std::uint32_t kvd;
+    std::memcpy(&kvd, &b[56], 4);
+    std::uint32_t len;
+    std::memcpy(&len, &b[kvd], 4);
+    EXPECT_EQ(len, entry.size());
+    std::memcpy(&b[kvd + 4], entry.data(), entry.size());
+    return b;
+  };
+  const Texture t = random_texture(TexelFormat::rgba8_unorm, 4, 3, 1, 1, 1, 6);
+  // "KTXwriter\0abcdefg\0" and "KTXorientation\0ru\0" are both 18 bytes.
+  const std::string ru("KTXorientation\0ru", 18);
+  std::vector<std::uint8_t> b = patched(t, "abcdefg", ru);
+  const Texture flipped = decode_ktx2(b.data(), b.size(), "ru.ktx2");
+  for (int y = 0; y < 3; ++y)
+    EXPECT_EQ(0, std::memcmp(&flipped.image(0)[std::size_t(y) * 16], &t.image(0)[std::size_t(2 - y) * 16], 16)) << y;
+  const std::string rd("KTXorientation\0rd", 18);
+  b = patched(t, "abcdefg", rd);
+  EXPECT_TRUE(decode_ktx2(b.data(), b.size(), "rd.ktx2").image(0) == t.image(0));
+  // Block formats cannot be flipped row by row: refused, by name.
+  const Texture c = random_texture(TexelFormat::bc1_rgb_unorm, 8, 8, 1, 1, 1, 6);
+  b = patched(c, "abcdefg", ru);
+  try {
+    decode_ktx2(b.data(), b.size(), "c.ktx2");
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ErrorCode::unsupported);
+    EXPECT_NE(std::string(e.what()).find("KTXorientation 'ru'"), std::string::npos) << e.what();
+  }
+  // "KTXwriter\0abcde\0" and "KTXswizzle\0bgra\0" are both 16 bytes.
+  b = patched(t, "abcde", std::string("KTXswizzle\0bgra", 16));
+  EXPECT_THROW(decode_ktx2(b.data(), b.size(), "s.ktx2"), Error);
+  b = patched(t, "abcde", std::string("KTXswizzle\0rgba", 16));
+  EXPECT_TRUE(decode_ktx2(b.data(), b.size(), "s.ktx2").image(0) == t.image(0));
+}

@@ -180,6 +180,7 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
     const std::uint32_t transfer = (r.u32(dfd_offset + 12, "DFD transfer") >> 16) & 0xFF;
     if ((transfer == 2) != fi->srgb) r.fail("DFD transfer function contradicts vkFormat");
   }
+  std::map<std::string, std::string> kv;
   if (kvd_length) {
     r.at(kvd_offset, kvd_length, "key/value data");
     // Walk the entries: every length must stay inside the block.
@@ -195,10 +196,16 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
         r.fail("key/value entry at byte " + std::to_string(p) + ": keyAndValueByteLength " + std::to_string(len) +
                " runs past the key/value data (" + std::to_string(end - p - 4) + " bytes left)");
       }
-      const std::uint8_t* kv = r.at(p + 4, len, "key/value entry");
-      const void* nul = std::memchr(kv, 0, len);
-      if (len < 2 || !nul || nul == kv) {
+      const std::uint8_t* entry = r.at(p + 4, len, "key/value entry");
+      const void* nul = std::memchr(entry, 0, len);
+      if (len < 2 || !nul || nul == entry) {
         r.fail("key/value entry at byte " + std::to_string(p) + ": the key is not a non-empty NUL-terminated string");
+      }
+      {
+        const auto* key_end = static_cast<const std::uint8_t*>(nul);
+        std::string value(reinterpret_cast<const char*>(key_end + 1), reinterpret_cast<const char*>(entry + len));
+        while (!value.empty() && value.back() == '\0') value.pop_back();
+        kv[std::string(reinterpret_cast<const char*>(entry), reinterpret_cast<const char*>(key_end))] = value;
       }
       const std::uint64_t next = p + 4 + ((std::uint64_t(len) + 3) & ~std::uint64_t(3));
       if (next > end) r.fail("key/value entry at byte " + std::to_string(p) + ": its padding runs past the key/value data");
@@ -276,6 +283,32 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
     prev_end = offset + placed_length[l];
   }
   if (covered != size) r.fail(std::to_string(size - covered) + " trailing bytes after the last level");
+  // KTXswizzle: texproc hands texels over as stored, so only the identity is honest.
+  if (auto sw = kv.find("KTXswizzle"); sw != kv.end() && sw->second != "rgba") {
+    r.unsupported("KTXswizzle '" + sw->second + "' (texproc reads texels as stored: 'rgba' only)");
+  }
+  // KTXorientation: rows top to bottom ("rd", the default) as texproc keeps
+  // them; uncompressed "ru" files are flipped on read, block formats refused.
+  if (auto o = kv.find("KTXorientation"); o != kv.end()) {
+    const std::string& v = o->second;
+    if (v.size() < 2 || v[0] != 'r' || (v[1] != 'd' && v[1] != 'u')) {
+      r.unsupported("KTXorientation '" + v + "' (texproc reads 'rd' and, uncompressed, 'ru')");
+    }
+    if (v[1] == 'u') {
+      if (fi->compressed) r.unsupported("KTXorientation 'ru' on block-compressed " + std::string(fi->name) + " (rows bottom to top)");
+      for (std::uint32_t l = 0; l < t.levels; ++l) {
+        const std::size_t row = std::size_t(t.level_width(l)) * std::uint32_t(fi->block_bytes);
+        const std::uint32_t h = t.level_height(l);
+        for (std::uint32_t a = 0; a < t.layers; ++a)
+          for (std::uint32_t f = 0; f < t.faces; ++f) {
+            auto& img = t.image(l, a, f);
+            for (std::uint32_t y = 0; y < h / 2; ++y)
+              std::swap_ranges(img.begin() + std::ptrdiff_t(y * row), img.begin() + std::ptrdiff_t((y + 1) * row),
+                               img.begin() + std::ptrdiff_t((h - 1 - y) * row));
+          }
+      }
+    }
+  }
   return t;
 }
 
