@@ -138,6 +138,7 @@ ImageDifference encoding_error(const Image& level, const Texture& t) {
 Json::Value number_or_null(double v) { return std::isfinite(v) ? Json::Value(v) : Json::Value(); }
 
 void run_compress(const CompressArgs& a, const std::string& input, const std::string& output, FileReport& r) {
+  check_dds_header_fits(a.dds_header, output);
   PhaseTimer phases(r);
   ImageArray in = read_image_array(input);
   for (Image& im : in.images) read_as_finite(input, im, r.warnings);

@@ -76,6 +76,7 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
     o.output_type = PixelType::f32;  // OpenEXR holds floats: write half
     w.half = true;
   }
+  check_dds_header_fits(a.dds_header, output);
   PhaseTimer phases(r);
   ImageFileInfo info;
   ImageArray in = read_image_array(input, &info);

@@ -72,6 +72,7 @@ std::vector<std::string> plan(const NormalMapArgs& a, const std::string& input, 
 void run_normalmap(const NormalMapArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   const NormalMapOptions& o = a.options;
   WriteOptions w = a.write;
+  check_dds_header_fits(a.dds_header, output);
   PhaseTimer phases(r);
   ImageFileInfo info;
   Image heights = read_image(input, &info);

@@ -218,6 +218,14 @@ void read_as_finite(const std::string& input, Image& image, std::vector<std::str
   }
 }
 
+void check_dds_header_fits(const std::string& dds_header, const std::string& output) {
+  std::string e = fs::path(output).extension().string();
+  for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (dds_header != "auto" && e != ".dds") {
+    throw Error(ErrorCode::bad_arguments, output + ": --dds-header " + dds_header + " applies to .dds outputs only");
+  }
+}
+
 void check_surfaces_fit(const std::string& input, const ImageArray& in, const std::string& output) {
   if (in.images.size() <= 1 || is_container_path(output)) return;
   const std::string what = in.faces == 6 ? (in.layers > 1 ? std::to_string(in.layers) + " cubemaps" : std::string("a cubemap"))

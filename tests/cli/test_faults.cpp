@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <filesystem>
@@ -307,6 +308,22 @@ TEST(Faults, FormatAliasesAndIgnoredOptions) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("no sRGB variant"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir + "/x.dds"));
+  r = run_texproc("compress '" + dir + "/a.png' -o '" + dir + "/x.ktx2' --format bc1 --dds-header dx9 -q");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("applies to .dds outputs only"), std::string::npos) << r.err;
+  // Dead ends name the way out.
+  r = run_texproc("compress '" + dir + "/a.png' -o '" + dir + "/x.pkm' --format etc2 -q");
+  EXPECT_NE(r.err.find("--linear"), std::string::npos) << r.err;
+  r = run_texproc("compress '" + dir + "/a.png' -o '" + dir + "/x.dds' --format bc1 --dds-header dx9 -q");
+  EXPECT_NE(r.err.find("--linear"), std::string::npos) << r.err;
+  // A legacy header for float RGBA: D3DFMT 116 as the FourCC.
+  r = run_texproc("mip '" + dir + "/a.png' -o '" + dir + "/f.dds' --type f32 --dds-header dx9 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string f = slurp(dir + "/f.dds");
+  std::uint32_t cc;
+  std::memcpy(&cc, f.data() + 84, 4);
+  EXPECT_EQ(cc, 116u);
+  EXPECT_EQ(read_texture(dir + "/f.dds").format, TexelFormat::rgba32_float);
   fs::remove_all(dir);
 }
 
@@ -343,5 +360,49 @@ TEST(Faults, NonFiniteInputsWarnAndDoNotSpread) {
   // -q: no warning.
   r = run_texproc("mip '" + dir + "/h.exr' -o '" + dir + "/m2.ktx2' --type f32 -q");
   EXPECT_EQ(r.err, "");
+  fs::remove_all(dir);
+}
+
+// The same bytes for every command at --threads 1, 2 and 7, --jobs 1 and 3,
+// and with the scalar kernels (TEXPROC_FORCE_SCALAR=1).
+TEST(Faults, EveryCommandIsDeterministic) {
+  const std::string dir = temp_dir("determinism");
+  fs::create_directories(dir + "/in");
+  for (int i = 0; i < 3; ++i) {
+    write_image(dir + "/in/c" + std::to_string(i) + ".png", random_image(150 + 20 * i, 97, 4, PixelType::u8, 30 + i).view());
+  }
+  struct Case {
+    std::string command, options, ext;
+  };
+  const std::vector<Case> cases = {
+      {"compress", "--format bc1 --mips", ".dds"},       {"compress", "--format bc3 --quality high", ".ktx2"},
+      {"compress", "--format etc2a --mips", ".ktx2"},    {"compress", "--format bc5 --normal-map", ".dds"},
+      {"mip", "--filter lanczos3", ".ktx2"},             {"mip", "--type f32", ".exr"},
+      {"normalmap", "--kernel sobel5 --mips", ".ktx2"}, {"conemap", "--mode relaxed", ".png"},
+      {"sat", "", ".sat"},                               {"sat blur", "--radius 3", ".png"},
+  };
+  const std::vector<std::pair<std::string, std::string>> configs = {
+      {"", "--threads 1 --jobs 1"}, {"", "--threads 2 --jobs 3"}, {"", "--threads 7 --jobs 1"},
+      {"TEXPROC_FORCE_SCALAR=1 ", "--threads 2 --jobs 3"}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.command + " " + c.options);
+    std::map<std::string, std::string> reference;
+    for (std::size_t k = 0; k < configs.size(); ++k) {
+      const std::string out = dir + "/out" + std::to_string(k);
+      fs::remove_all(out);
+      const std::string cmd = configs[k].first + TEXPROC_CLI_PATH + " " + c.command + " '" + dir + "/in' -o '" + out +
+                              "/{stem}" + c.ext + "' -q " + c.options + " " + configs[k].second + " 2>'" + dir + "/err'";
+      ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir + "/err");
+      for (const auto& f : entries(out)) {
+        const std::string bytes = slurp(out + "/" + f);
+        if (k == 0) {
+          reference[f] = bytes;
+        } else {
+          EXPECT_TRUE(reference.count(f) && reference[f] == bytes) << f << " differs under " << configs[k].first << configs[k].second;
+        }
+      }
+      if (k == 0) EXPECT_EQ(reference.size(), 3u);
+    }
+  }
   fs::remove_all(dir);
 }

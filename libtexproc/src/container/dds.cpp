@@ -84,11 +84,21 @@ ByteWriter encode_dds_stream(const Texture& t, DdsHeader header) {
                                             " (Direct3D has no ETC formats): write .ktx2, .ktx or .pkm");
   }
   const LegacyFormat* legacy = legacy_for(t.format);
+  // Asked for a legacy header: the D3DFMT codes that old readers take as FourCCs
+  // (36 A16B16G16R16, 113 A16B16G16R16F, 116 A32B32G32R32F) say these too.
+  static const LegacyFormat kNumbered[] = {{TexelFormat::rgba16_unorm, kFourCC, 36, 0, 0, 0, 0, 0},
+                                           {TexelFormat::rgba16_float, kFourCC, 113, 0, 0, 0, 0, 0},
+                                           {TexelFormat::rgba32_float, kFourCC, 116, 0, 0, 0, 0, 0}};
+  if (!legacy && header == DdsHeader::dx9) {
+    for (const LegacyFormat& n : kNumbered)
+      if (n.format == t.format) legacy = &n;
+  }
   const bool array = t.is_array || t.layers > 1;
   bool dx10 = header == DdsHeader::dx10 || (header == DdsHeader::automatic && (!legacy || array));
   if (header == DdsHeader::dx9 && (!legacy || array)) {
     throw Error(ErrorCode::unsupported, std::string("a legacy (DX9) DDS header cannot say ") + info.name +
-                                            (array ? " arrays" : "") + ": use --dds-header dx10 or auto");
+                                            (array ? " arrays" : "") + ": use --dds-header dx10 or auto" +
+                                            (info.srgb ? ", or --linear for the UNORM format (DX9 has no sRGB)" : ""));
   }
   const bool mips = t.levels > 1;
   const bool cube = t.faces == 6;

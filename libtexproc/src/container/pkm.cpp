@@ -24,7 +24,8 @@ ByteWriter encode_pkm_stream(const Texture& t) {
   validate(t);
   if (t.format != TexelFormat::etc1_rgb && t.format != TexelFormat::etc2_rgb_unorm) {
     throw Error(ErrorCode::unsupported, std::string("PKM holds ETC1 and ETC2 RGB only, not ") + format_info(t.format).name +
-                                            ": write .ktx2 or .ktx");
+                                            ": write .ktx2 or .ktx" +
+                                            (t.format == TexelFormat::etc2_rgb_srgb ? ", or add --linear (PKM has no sRGB)" : ""));
   }
   if (t.levels != 1 || t.faces != 1 || t.layers != 1) {
     throw Error(ErrorCode::unsupported, "PKM holds one level of one image: write .ktx2 or .ktx for mips, cubemaps, arrays");
