@@ -10,6 +10,8 @@ packages=(
   libjsoncpp-dev libtomlplusplus-dev
   # independent checks and peers used by tests and benchmarks
   libnvtt-bin libsquish-dev android-libetc1-dev python3-pil
+  # the libFuzzer harnesses (scripts/fuzz.sh)
+  clang libclang-rt-14-dev
 )
 missing=()
 for p in "${packages[@]}"; do

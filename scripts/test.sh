@@ -4,5 +4,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh
+# The readers and decoders under libFuzzer with ASan and UBSan, 10 s each
+# (scripts/fuzz.sh SECONDS runs them longer).
+bash scripts/fuzz.sh 10
 cd build
 ctest --output-on-failure -j "$(nproc)"

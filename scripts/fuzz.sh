@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer harnesses (tests/fuzz) with clang, ASan and UBSan into
+# build-fuzz/ and runs each for SECONDS (default 60), seeded from samples/
+# and files texproc writes. Usage: scripts/fuzz.sh [SECONDS]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+SECONDS_EACH=${1:-60}
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTEXPROC_FUZZ=ON \
+  -DTEXPROC_BUILD_TESTS=OFF -DTEXPROC_BUILD_BENCH=OFF -DTEXPROC_STATIC_CODECS=OFF >/dev/null
+cmake --build build-fuzz -j "$(nproc)" --target fuzz_containers fuzz_block_decoders fuzz_images
+# Seeds come from the Release build's texproc (scripts/build.sh).
+T=${TEXPROC:-build/cli/texproc}
+[ -x "$T" ] || bash scripts/build.sh
+S=build-fuzz/seeds
+rm -rf "$S"; mkdir -p "$S/containers" "$S/blocks" "$S/images"
+cp samples/*.png "$S/images/"
+export ASAN_OPTIONS=detect_leaks=0
+$T compress samples/normal_stein_256.png -o "$S/containers/a.dds" --format bc5 --mips -q -f
+$T compress samples/albedo_desert_512.png -o "$S/containers/b.ktx2" --format bc1 --mips -q -f
+$T compress samples/cutout_fence_512x256.png -o "$S/containers/c.ktx" --format etc2a --mips -q -f
+$T compress samples/albedo_desert_512.png -o "$S/containers/d.pkm" --format etc1 -q -f
+$T mip samples/height_mount_250.png -o "$S/images/h.tif" -q -f
+$T sat samples/height_mount_250.png -o "$S/images/h.sat" -q -f
+$T mip samples/albedo_desert_512.png -o "$S/images/a.tga" --levels 1 -q -f
+head -c 4096 "$S/containers/b.ktx2" > "$S/blocks/seed"
+for pair in containers:containers block_decoders:blocks images:images; do
+  h=${pair%%:*} seeds=${pair##*:}
+  echo "fuzz.sh: fuzz_$h for ${SECONDS_EACH}s"
+  mkdir -p "build-fuzz/corpus_$h"
+  build-fuzz/tests/fuzz/fuzz_$h -max_total_time="$SECONDS_EACH" -max_len=262144 -rss_limit_mb=2048 \
+    -print_final_stats=1 "build-fuzz/corpus_$h" "$S/$seeds" > "build-fuzz/fuzz_$h.log" 2>&1 ||
+    { tail -40 "build-fuzz/fuzz_$h.log"; echo "fuzz.sh: fuzz_$h found a crash"; exit 1; }
+  grep -E "stat::number_of_executed_units|Done" "build-fuzz/fuzz_$h.log" | tail -2
+done
+echo "fuzz.sh: no crash"

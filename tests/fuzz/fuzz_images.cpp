@@ -1,0 +1,52 @@
+// libFuzzer harness: the direct image readers (PNG, JPEG, TGA, TIFF) and the
+// .sat reader, through the files they read: the input goes to a file in
+// /dev/shm named for each format (TGA and .sat are chosen by extension).
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include "texproc/error.h"
+#include "texproc/image_io.h"
+#include "texproc/sat.h"
+
+using namespace texproc;
+
+namespace {
+std::string put(const std::string& ext, const std::uint8_t* data, std::size_t size) {
+  const std::string path = "/dev/shm/texproc_fuzz_" + std::to_string(::getpid()) + ext;
+  FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) return "";
+  std::fwrite(data, 1, size, f);
+  std::fclose(f);
+  return path;
+}
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const bool once = [] {
+    ImageReadLimits l;
+    l.max_dimension = 4096;
+    l.max_pixels = 1 << 22;
+    set_image_read_limits(l);
+    return true;
+  }();
+  (void)once;
+  for (const char* ext : {".png", ".tga", ".sat"}) {  // PNG/JPEG/TIFF by signature, whatever the name
+    const std::string path = put(ext, data, size);
+    if (path.empty()) return 0;
+    try {
+      if (std::string(ext) == ".sat") {
+        read_sat_file(path);
+      } else {
+        const ImageFileInfo info = probe_image(path);
+        const Image img = read_image(path);
+        if (img.width() != info.width || img.height() != info.height) __builtin_trap();
+      }
+    } catch (const Error&) {
+    }
+    std::remove(path.c_str());
+  }
+  return 0;
+}
