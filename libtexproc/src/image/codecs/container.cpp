@@ -61,7 +61,12 @@ ImageFileInfo container_probe(const std::string& path) {
   return info_of(path, read_texture(path), container_name(path, f));
 }
 
-ImageArray container_read_all(const std::string& path, ImageFileInfo& info) {
+namespace {
+
+// The texture and its facts; `decode` turns it into images, with errors
+// named for the file.
+template <typename Decode>
+auto load(const std::string& path, ImageFileInfo& info, Decode&& decode) {
   const char* name;
   {
     const FileBytes f(path);
@@ -69,36 +74,31 @@ ImageArray container_read_all(const std::string& path, ImageFileInfo& info) {
   }
   const Texture t = read_texture(path);
   info = info_of(path, t, name);
-  ImageArray out;
-  out.faces = t.faces;
-  out.layers = t.layers;
-  out.is_array = t.is_array || t.layers > 1;
   try {
-    for (std::uint32_t a = 0; a < t.layers; ++a)
-      for (std::uint32_t f = 0; f < t.faces; ++f) out.images.push_back(decode_texture_image(t, 0, a, f, info.type));
+    return decode(t);
   } catch (const Error& e) {
     const std::string msg = e.what();
     if (msg.rfind(path, 0) == 0) throw;
     throw Error(e.code(), path + ": " + msg);
   }
-  return out;
+}
+
+}  // namespace
+
+ImageArray container_read_all(const std::string& path, ImageFileInfo& info) {
+  return load(path, info, [&](const Texture& t) {
+    ImageArray out;
+    out.faces = t.faces;
+    out.layers = t.layers;
+    out.is_array = t.is_array || t.layers > 1;
+    for (std::uint32_t a = 0; a < t.layers; ++a)
+      for (std::uint32_t f = 0; f < t.faces; ++f) out.images.push_back(decode_texture_image(t, 0, a, f, info.type));
+    return out;
+  });
 }
 
 Image container_read(const std::string& path, ImageFileInfo& info) {
-  const char* name;
-  {
-    const FileBytes f(path);
-    name = container_name(path, f);
-  }
-  const Texture t = read_texture(path);
-  info = info_of(path, t, name);
-  try {
-    return decode_texture_image(t, 0, 0, 0, info.type);
-  } catch (const Error& e) {
-    const std::string msg = e.what();
-    if (msg.rfind(path, 0) == 0) throw;
-    throw Error(e.code(), path + ": " + msg);
-  }
+  return load(path, info, [&](const Texture& t) { return decode_texture_image(t, 0, 0, 0, info.type); });
 }
 
 }  // namespace texproc::codecs

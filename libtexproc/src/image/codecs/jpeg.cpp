@@ -36,6 +36,15 @@ void on_message(j_common_ptr cinfo, int level) {
   if (level < 0 && cinfo->err->msg_code != JWRN_EXTRANEOUS_DATA) cinfo->err->error_exit(cinfo);
 }
 
+// texproc's handlers on a codec's error manager (the setjmp stays in the
+// caller's frame).
+jpeg_error_mgr* install(ErrorManager& err) {
+  jpeg_error_mgr* e = jpeg_std_error(&err.pub);
+  err.pub.error_exit = on_error;
+  err.pub.emit_message = on_message;
+  return e;
+}
+
 struct Header {
   int width = 0, height = 0, channels = 0;
   J_COLOR_SPACE space = JCS_UNKNOWN;
@@ -47,9 +56,7 @@ bool decode(const FileBytes& f, Header& h, std::uint8_t* pixels, std::size_t row
             char* message) {
   jpeg_decompress_struct cinfo;
   ErrorManager err;
-  cinfo.err = jpeg_std_error(&err.pub);
-  err.pub.error_exit = on_error;
-  err.pub.emit_message = on_message;
+  cinfo.err = install(err);
   if (setjmp(err.jump)) {
     std::strcpy(message, err.message);
     jpeg_destroy_decompress(&cinfo);
@@ -118,9 +125,7 @@ bool encode(const std::uint8_t* rows, std::size_t stride, int width, int height,
             unsigned char** out, unsigned long* out_size, char* message) {
   jpeg_compress_struct cinfo;
   ErrorManager err;
-  cinfo.err = jpeg_std_error(&err.pub);
-  err.pub.error_exit = on_error;
-  err.pub.emit_message = on_message;
+  cinfo.err = install(err);
   if (setjmp(err.jump)) {
     std::strcpy(message, err.message);
     jpeg_destroy_compress(&cinfo);
