@@ -28,6 +28,7 @@ struct CompressArgs {
   BatchInputs io;
   ChainArgs chain;
   std::string format, quality = "normal", wrap = "clamp", dds_header = "auto";
+  int zstd = 0;
   std::string transparent_color = "keep";
   bool mips = false, normal_map = false, linear = false, srgb = false, report = false, bc1_black = false;
   float alpha_coverage = -1.0f;  // with --mips: the alpha reference whose coverage each level keeps
@@ -139,6 +140,7 @@ Json::Value number_or_null(double v) { return std::isfinite(v) ? Json::Value(v) 
 
 void run_compress(const CompressArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   check_dds_header_fits(a.dds_header, output);
+  zstd_level_for(a.zstd, output);  // checked before any work
   PhaseTimer phases(r);
   ImageArray in = read_image_array(input);
   for (Image& im : in.images) read_as_finite(input, im, r.warnings);
@@ -211,7 +213,7 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   phases.compute_done();
-  write_texture(output, t, a.header);
+  write_texture(output, t, a.header, zstd_level_for(a.zstd, output));
   phases.write_done();
   std::ostringstream line;
   line << input << " -> " << output << ": " << format_info(format).name << ", " << t.levels << " level(s), quality "
@@ -275,6 +277,8 @@ void add_compress_command(CLI::App& app) {
                 "With --mips: filter colour without weighting it by alpha (an alpha channel that holds data)");
   add_chain_options(*cmd, args->chain);
   cmd->add_option("--dds-header", args->dds_header, "auto, dx9, dx10")->capture_default_str();
+  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")
+      ->group("Container");
   cmd->add_option("--transparent-color", args->transparent_color,
                   "Colour under alpha 0 (bc1a, bc2, bc3, etc2a1, etc2a): keep, bleed (from the visible texels), zero")
       ->capture_default_str();

@@ -32,6 +32,7 @@ struct MipArgs {
   bool no_premultiply = false;
   std::string compression;
   std::string dds_header = "auto";
+  int zstd = 0;
   bool report = false;
   // From the options, once (validate):
   MipOptions mip;
@@ -77,6 +78,7 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
     w.half = true;
   }
   check_dds_header_fits(a.dds_header, output);
+  zstd_level_for(a.zstd, output);  // checked before any work
   PhaseTimer phases(r);
   ImageFileInfo info;
   ImageArray in = read_image_array(input, &info);
@@ -105,11 +107,11 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
     for (auto& c : more) chains.push_back(std::move(c));
     write_texture(output, texture_from_surfaces(std::move(chains), in.faces, in.layers, in.is_array,
                                                 chain.color_space == "srgb", w.half),
-                  a.header);
+                  a.header, zstd_level_for(a.zstd, output));
   } else if (container) {
     // Uncompressed GPU formats: r8/rg8/rgba8 (sRGB when the chain is), 16-bit, half or float;
     // the chain's pixel memory becomes the texture's.
-    write_texture(output, texture_from_levels(std::move(chain.levels), chain.color_space == "srgb", w.half), a.header);
+    write_texture(output, texture_from_levels(std::move(chain.levels), chain.color_space == "srgb", w.half), a.header, zstd_level_for(a.zstd, output));
   } else {
     write_levels(output, chain.levels, w);
   }
@@ -172,6 +174,8 @@ void add_mip_command(CLI::App& app) {
   cmd->add_option("--dds-header", args->dds_header,
                   "DDS header: auto (legacy when a FourCC or masks can say the format, else DX10), dx9, dx10")
       ->capture_default_str();
+  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")
+      ->group("Container");
   cmd->add_flag("--report", args->report, "With --json: alpha coverage and its scale per level (--alpha-coverage)");
   add_common_options(*cmd, args->common);
   set_runner(*cmd, [args] {

@@ -34,6 +34,7 @@ struct NormalMapArgs {
   bool mips = false;
   std::string compression;
   std::string dds_header = "auto";
+  int zstd = 0;
   // From the options, once (validate):
   NormalMapOptions options;
   std::optional<PixelType> type_choice;  // --type (empty: from the input)
@@ -73,6 +74,7 @@ void run_normalmap(const NormalMapArgs& a, const std::string& input, const std::
   const NormalMapOptions& o = a.options;
   WriteOptions w = a.write;
   check_dds_header_fits(a.dds_header, output);
+  zstd_level_for(a.zstd, output);  // checked before any work
   PhaseTimer phases(r);
   ImageFileInfo info;
   Image heights = read_image(input, &info);
@@ -121,7 +123,7 @@ void run_normalmap(const NormalMapArgs& a, const std::string& input, const std::
   if (container) {
     // Uncompressed rg8/rgba8/16-bit/half/float (block compression in the same
     // call comes with `compress`); normals are data: linear formats.
-    write_texture(output, texture_from_levels(std::move(chain), false, w.half), a.header);
+    write_texture(output, texture_from_levels(std::move(chain), false, w.half), a.header, zstd_level_for(a.zstd, output));
   } else if (a.mips) {
     write_levels(output, chain, w);
   } else {
@@ -173,6 +175,8 @@ void add_normalmap_command(CLI::App& app) {
   cmd->add_option("--compression", args->compression, "Output compression, as for `texproc mip`");
   cmd->add_option("--dds-header", args->dds_header, "DDS header for .dds output: auto, dx9, dx10")
       ->capture_default_str();
+  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")
+      ->group("Container");
   add_common_options(*cmd, args->common);
   set_runner(*cmd, [args] {
     BatchCommand c;

@@ -226,6 +226,16 @@ void check_dds_header_fits(const std::string& dds_header, const std::string& out
   }
 }
 
+int zstd_level_for(int zstd, const std::string& output) {
+  std::string e = fs::path(output).extension().string();
+  for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (zstd != 0 && e != ".ktx2") {
+    throw Error(ErrorCode::bad_arguments, output + ": --zstd " + std::to_string(zstd) + " applies to .ktx2 outputs only");
+  }
+  if (zstd < 0 || zstd > 22) throw Error(ErrorCode::bad_arguments, "--zstd " + std::to_string(zstd) + " (valid: 1 to 22)");
+  return zstd;
+}
+
 void check_surfaces_fit(const std::string& input, const ImageArray& in, const std::string& output) {
   if (in.images.size() <= 1 || is_container_path(output)) return;
   const std::string what = in.faces == 6 ? (in.layers > 1 ? std::to_string(in.layers) + " cubemaps" : std::string("a cubemap"))

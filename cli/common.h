@@ -81,6 +81,8 @@ const std::vector<std::string>& image_extensions();
 void check_surfaces_fit(const std::string& input, const ImageArray& in, const std::string& output);
 // --dds-header other than auto for an output that is not .dds: Error{bad_arguments}.
 void check_dds_header_fits(const std::string& dds_header, const std::string& output);
+// --zstd N for an output that is not .ktx2: Error{bad_arguments}; the level to pass on otherwise.
+int zstd_level_for(int zstd, const std::string& output);
 // Float inputs: NaN and infinity read as 0, with a warning in `warnings`
 // naming the file and the count (a filter would spread them).
 void read_as_finite(const std::string& input, Image& image, std::vector<std::string>& warnings);

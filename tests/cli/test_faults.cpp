@@ -239,6 +239,11 @@ TEST(Faults, KtxValidateAcceptsEveryKtx2) {
       }
     }
   }
+  for (const char* fmt : {"bc1", "bc3", "etc2a", "bc5"}) {  // Zstandard-supercompressed
+    const std::string out = dir + "/z_" + fmt + ".ktx2";
+    ASSERT_EQ(run_texproc("compress '" + dir + "/src.png' -o '" + out + "' --format " + fmt + " --mips --zstd 9 -q").exit_code, 0);
+    files.push_back(out);
+  }
   for (const char* type : {"u8", "u16", "f16", "f32"}) {
     const std::string out = dir + "/m_" + type + ".ktx2";
     ASSERT_EQ(run_texproc("mip '" + dir + "/src.png' -o '" + out + "' --type " + type + " -q").exit_code, 0);
@@ -311,6 +316,9 @@ TEST(Faults, FormatAliasesAndIgnoredOptions) {
   r = run_texproc("compress '" + dir + "/a.png' -o '" + dir + "/x.ktx2' --format bc1 --dds-header dx9 -q");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("applies to .dds outputs only"), std::string::npos) << r.err;
+  r = run_texproc("compress '" + dir + "/a.png' -o '" + dir + "/x.dds' --format bc1 --zstd 5 -q");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("applies to .ktx2 outputs only"), std::string::npos) << r.err;
   // Dead ends name the way out.
   r = run_texproc("compress '" + dir + "/a.png' -o '" + dir + "/x.pkm' --format etc2 -q");
   EXPECT_NE(r.err.find("--linear"), std::string::npos) << r.err;

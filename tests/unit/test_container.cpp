@@ -786,3 +786,20 @@ TEST(Container, Ktx2OrientationAndSwizzle) {
   b = patched(t, "abcde", std::string("KTXswizzle\0rgba", 16));
   EXPECT_TRUE(decode_ktx2(b.data(), b.size(), "s.ktx2").image(0) == t.image(0));
 }
+
+// Zstandard-supercompressed writing: the same texture back, smaller for
+// compressible data, levels unaligned; a level outside 1-22 is refused.
+TEST(Container, Ktx2ZstdWrite) {
+  Texture t = random_texture(TexelFormat::rgba8_unorm, 64, 32, full_levels(64, 32), 6 / 6, 3, 4);
+  for (auto& img : t.images)
+    for (std::size_t i = 0; i < img.size(); ++i) img[i] = std::uint8_t(i / 64);  // compressible
+  const std::vector<std::uint8_t> plain = encode_ktx2(t, "w"), packed = encode_ktx2(t, "w", 9);
+  EXPECT_LT(packed.size(), plain.size() / 4);
+  std::uint32_t scheme;
+  std::memcpy(&scheme, &packed[44], 4);
+  EXPECT_EQ(scheme, 2u);
+  const Texture back = decode_ktx2(packed.data(), packed.size(), "z.ktx2");
+  ASSERT_EQ(back.images.size(), t.images.size());
+  for (std::size_t i = 0; i < t.images.size(); ++i) EXPECT_TRUE(back.images[i] == t.images[i]) << i;
+  EXPECT_THROW(encode_ktx2(t, "w", 99), Error);
+}

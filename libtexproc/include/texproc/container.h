@@ -34,7 +34,9 @@ struct ReadLimits {
 
 // In-memory encoders and decoders (`name` appears in error messages).
 std::vector<std::uint8_t> encode_dds(const Texture& t, DdsHeader header = DdsHeader::automatic);
-std::vector<std::uint8_t> encode_ktx2(const Texture& t, const std::string& writer = "");
+// zstd_level 1-22: each level Zstandard-supercompressed (scheme 2, as `ktx
+// deflate --zstd` writes); 0: none.
+std::vector<std::uint8_t> encode_ktx2(const Texture& t, const std::string& writer = "", int zstd_level = 0);
 std::vector<std::uint8_t> encode_ktx1(const Texture& t);
 std::vector<std::uint8_t> encode_pkm(const Texture& t);  // ETC1/ETC2 RGB, one level
 Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& = {});
@@ -43,7 +45,9 @@ Texture decode_ktx1(const std::uint8_t* data, std::size_t size, const std::strin
 Texture decode_pkm(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& = {});
 
 // Files: written atomically; the container follows the extension.
-void write_texture(const std::string& path, const Texture& t, DdsHeader dds_header = DdsHeader::automatic);
+// ktx2_zstd_level applies to .ktx2 outputs (encode_ktx2's zstd_level).
+void write_texture(const std::string& path, const Texture& t, DdsHeader dds_header = DdsHeader::automatic,
+                   int ktx2_zstd_level = 0);
 Texture read_texture(const std::string& path, const ReadLimits& limits = {});
 // True if the file starts with a DDS, KTX1, KTX2 or PKM signature.
 bool is_texture_container(const std::string& path);

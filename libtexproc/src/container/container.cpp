@@ -33,12 +33,12 @@ const char* to_string(ContainerKind k) {
   return "?";
 }
 
-void write_texture(const std::string& path, const Texture& t, DdsHeader dds_header) {
+void write_texture(const std::string& path, const Texture& t, DdsHeader dds_header, int ktx2_zstd_level) {
   ByteWriter stream;
   try {
     switch (container_for_path(path)) {
       case ContainerKind::dds: stream = encode_dds_stream(t, dds_header); break;
-      case ContainerKind::ktx2: stream = encode_ktx2_stream(t, ""); break;
+      case ContainerKind::ktx2: stream = encode_ktx2_stream(t, "", ktx2_zstd_level); break;
       case ContainerKind::ktx1: stream = encode_ktx1_stream(t); break;
       case ContainerKind::pkm: stream = encode_pkm_stream(t); break;
     }

@@ -25,7 +25,11 @@ std::uint32_t level_alignment(const FormatInfo& i) { return std::lcm(std::uint32
 
 }  // namespace
 
-ByteWriter encode_ktx2_stream(const Texture& t, const std::string& writer) {
+ByteWriter encode_ktx2_stream(const Texture& t, const std::string& writer, int zstd_level) {
+  if (zstd_level < 0 || zstd_level > ZSTD_maxCLevel()) {
+    throw Error(ErrorCode::bad_arguments, "Zstandard level " + std::to_string(zstd_level) + " (valid: 1 to " +
+                                              std::to_string(ZSTD_maxCLevel()) + ")");
+  }
   validate(t);
   const FormatInfo& info = format_info(t.format);
   ByteWriter w;
@@ -38,7 +42,7 @@ ByteWriter encode_ktx2_stream(const Texture& t, const std::string& writer) {
   w.u32(t.is_array || t.layers > 1 ? t.layers : 0);  // layerCount: 0 for a non-array texture
   w.u32(t.faces);
   w.u32(t.levels);
-  w.u32(0);  // supercompressionScheme
+  w.u32(zstd_level ? 2 : 0);  // supercompressionScheme: 2 Zstandard, 0 none
   const std::size_t index_at = w.size();
   w.zeros(32);  // dfd offset/length, kvd offset/length, sgd offset/length (u64)
   const std::size_t level_index_at = w.size();
@@ -68,25 +72,40 @@ ByteWriter encode_ktx2_stream(const Texture& t, const std::string& writer) {
   w.put_u32_at(index_at + 12, kvd_length);
   // sgd offset and length stay 0.
 
-  const std::uint32_t align = level_alignment(info);
+  // Supercompressed levels are not aligned (KTX2 specification, mip level array).
+  const std::uint32_t align = zstd_level ? 1 : level_alignment(info);
   for (std::uint32_t l = t.levels; l-- > 0;) {
     w.pad_to(align);
     const std::uint64_t offset = w.size();
-    // Within a level: layers, then faces (z slices, then rows).
-    for (std::uint32_t a = 0; a < t.layers; ++a)
-      for (std::uint32_t f = 0; f < t.faces; ++f) {
-        const auto& img = t.image(l, a, f);
-        w.ref(img.data(), img.size());
-      }
+    std::uint64_t raw = 0;
+    if (zstd_level) {
+      // Within a level: layers, then faces (z slices, then rows); one frame for the level.
+      std::vector<std::uint8_t> level;
+      for (std::uint32_t a = 0; a < t.layers; ++a)
+        for (std::uint32_t f = 0; f < t.faces; ++f) level.insert(level.end(), t.image(l, a, f).begin(), t.image(l, a, f).end());
+      std::vector<std::uint8_t> packed(ZSTD_compressBound(level.size()));
+      const std::size_t n = ZSTD_compress(packed.data(), packed.size(), level.data(), level.size(), zstd_level);
+      if (ZSTD_isError(n)) throw Error(ErrorCode::runtime, std::string("Zstandard: ") + ZSTD_getErrorName(n));
+      w.raw(packed.data(), n);
+      raw = level.size();
+    } else {
+      for (std::uint32_t a = 0; a < t.layers; ++a)
+        for (std::uint32_t f = 0; f < t.faces; ++f) {
+          const auto& img = t.image(l, a, f);
+          w.ref(img.data(), img.size());
+        }
+    }
     const std::uint64_t length = w.size() - offset;
     w.put_u64_at(level_index_at + 24 * l, offset);
     w.put_u64_at(level_index_at + 24 * l + 8, length);
-    w.put_u64_at(level_index_at + 24 * l + 16, length);
+    w.put_u64_at(level_index_at + 24 * l + 16, zstd_level ? raw : length);
   }
   return w;
 }
 
-std::vector<std::uint8_t> encode_ktx2(const Texture& t, const std::string& writer) { return encode_ktx2_stream(t, writer).bytes(); }
+std::vector<std::uint8_t> encode_ktx2(const Texture& t, const std::string& writer, int zstd_level) {
+  return encode_ktx2_stream(t, writer, zstd_level).bytes();
+}
 
 namespace {
 
