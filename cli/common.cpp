@@ -212,6 +212,14 @@ void write_levels(const std::string& output, const std::vector<Image>& levels, c
   for (std::size_t l = 0; l < levels.size(); ++l) write_image(names[l], levels[l].view(), options);
 }
 
+namespace {
+std::string lower_extension(const std::string& path) {
+  std::string e = fs::path(path).extension().string();
+  for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+}  // namespace
+
 void read_as_finite(const std::string& input, Image& image, std::vector<std::string>& warnings) {
   if (const std::size_t n = replace_non_finite(image)) {
     warnings.push_back(input + ": " + std::to_string(n) + " non-finite value(s) (NaN or infinity) read as 0");
@@ -219,16 +227,14 @@ void read_as_finite(const std::string& input, Image& image, std::vector<std::str
 }
 
 void check_dds_header_fits(const std::string& dds_header, const std::string& output) {
-  std::string e = fs::path(output).extension().string();
-  for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string e = lower_extension(output);
   if (dds_header != "auto" && e != ".dds") {
     throw Error(ErrorCode::bad_arguments, output + ": --dds-header " + dds_header + " applies to .dds outputs only");
   }
 }
 
 int zstd_level_for(int zstd, const std::string& output) {
-  std::string e = fs::path(output).extension().string();
-  for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string e = lower_extension(output);
   if (zstd != 0 && e != ".ktx2") {
     throw Error(ErrorCode::bad_arguments, output + ": --zstd " + std::to_string(zstd) + " applies to .ktx2 outputs only");
   }
@@ -255,8 +261,7 @@ const std::vector<std::string>& texture_extensions() {
 }
 
 bool is_container_path(const std::string& path) {
-  std::string e = fs::path(path).extension().string();
-  for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string e = lower_extension(path);
   return e == ".dds" || e == ".ktx2" || e == ".ktx" || e == ".pkm";
 }
 

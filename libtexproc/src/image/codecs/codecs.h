@@ -43,6 +43,10 @@ struct LeaveToModule {
 // ImageReadLimits before anything is allocated for it.
 void check_size(const std::string& path, long long width, long long height, int channels);
 
+// Sample i of row y as 8 bits, for the formats that hold only 8 (JPEG, TGA):
+// 16-bit rounded, float clamped to [0, 1] (NaN as 0) and rounded.
+std::uint8_t sample_u8(const ImageView& v, int y, std::size_t i);
+
 // [[noreturn]] helpers for the readers' messages: "PATH: what".
 [[noreturn]] void invalid(const std::string& path, const std::string& what);
 [[noreturn]] void write_error(const std::string& path, const std::string& what);

@@ -60,6 +60,14 @@ FileBytes::~FileBytes() {
   std::free(owned_);
 }
 
+std::uint8_t sample_u8(const ImageView& v, int y, std::size_t i) {
+  if (v.type == PixelType::u8) return v.row<const std::uint8_t>(y)[i];
+  if (v.type == PixelType::u16) return std::uint8_t((unsigned(v.row<const std::uint16_t>(y)[i]) * 255u + 32767u) / 65535u);
+  float f = v.row<const float>(y)[i];
+  f = f != f ? 0.0f : f < 0.0f ? 0.0f : f > 1.0f ? 1.0f : f;
+  return std::uint8_t(f * 255.0f + 0.5f);
+}
+
 void check_size(const std::string& path, long long width, long long height, int channels) {
   if (width <= 0 || height <= 0 || channels <= 0) invalid(path, "image has no pixels");
   const ImageReadLimits l = image_read_limits();

@@ -161,20 +161,7 @@ void jpeg_write(const std::string& file, const std::string& path, const ImageVie
   for (int y = 0; y < v.height; ++y) {
     std::uint8_t* d = rows.data() + std::size_t(y) * v.width * channels;
     for (int x = 0; x < v.width; ++x) {
-      for (int c = 0; c < channels; ++c) {
-        const std::size_t i = std::size_t(x) * v.channels + c;
-        std::uint8_t q;
-        if (v.type == PixelType::u8) {
-          q = v.row<const std::uint8_t>(y)[i];
-        } else if (v.type == PixelType::u16) {
-          q = std::uint8_t((unsigned(v.row<const std::uint16_t>(y)[i]) * 255u + 32767u) / 65535u);
-        } else {
-          float f = v.row<const float>(y)[i];
-          f = f != f ? 0.0f : f < 0.0f ? 0.0f : f > 1.0f ? 1.0f : f;
-          q = std::uint8_t(f * 255.0f + 0.5f);
-        }
-        d[std::size_t(x) * channels + c] = q;
-      }
+      for (int c = 0; c < channels; ++c) d[std::size_t(x) * channels + c] = sample_u8(v, y, std::size_t(x) * v.channels + c);
     }
   }
   unsigned char* out = nullptr;

@@ -195,18 +195,7 @@ void tga_write(const std::string& file, const std::string& path, const ImageView
       std::uint8_t* d = body.data() + std::size_t(y) * v.width * C;
       for (int x = 0; x < v.width; ++x) {
         std::uint8_t px[4];
-        for (int c = 0; c < C; ++c) {
-          const std::size_t i = std::size_t(x) * C + c;
-          if (v.type == PixelType::u8) {
-            px[c] = v.row<const std::uint8_t>(y)[i];
-          } else if (v.type == PixelType::u16) {
-            px[c] = std::uint8_t((unsigned(v.row<const std::uint16_t>(y)[i]) * 255u + 32767u) / 65535u);
-          } else {
-            float fv = v.row<const float>(y)[i];
-            fv = fv != fv ? 0.0f : fv < 0.0f ? 0.0f : fv > 1.0f ? 1.0f : fv;
-            px[c] = std::uint8_t(fv * 255.0f + 0.5f);
-          }
-        }
+        for (int c = 0; c < C; ++c) px[c] = sample_u8(v, y, std::size_t(x) * C + c);
         std::uint8_t* o = d + std::size_t(x) * C;
         if (C >= 3) {
           o[0] = px[2], o[1] = px[1], o[2] = px[0];

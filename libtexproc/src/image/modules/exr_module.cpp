@@ -152,13 +152,12 @@ Imf::Compression compression_of(const std::string& path, const std::string& c) {
 const char* const kNames1[] = {"Y"};
 const char* const kNames2[] = {"Y", "A"};
 const char* const kNamesRG[] = {"R", "G"};
-thread_local bool g_red_green = false;  // set by each write call, for the names it writes
 const char* const kNames3[] = {"R", "G", "B"};
 const char* const kNames4[] = {"R", "G", "B", "A"};
-const char* const* names_for(int channels) {
+const char* const* names_for(int channels, bool red_green) {
   switch (channels) {
     case 1: return kNames1;
-    case 2: return g_red_green ? kNamesRG : kNames2;
+    case 2: return red_green ? kNamesRG : kNames2;
     case 3: return kNames3;
     default: return kNames4;
   }
@@ -221,14 +220,14 @@ std::vector<float> as_float(const ImageView& v) {
 Imf::Header header_for(const ImageView& v, const WriteOptions& o, Imf::Compression comp) {
   Imf::Header h(v.width, v.height);
   h.compression() = comp;
-  const char* const* names = names_for(v.channels);
+  const char* const* names = names_for(v.channels, o.red_green);
   for (int c = 0; c < v.channels; ++c) h.channels().insert(names[c], Imf::Channel(o.half ? Imf::HALF : Imf::FLOAT));
   h.insert("software", Imf::StringAttribute("texproc"));
   return h;
 }
 
-void fill_frame_buffer(Imf::FrameBuffer& fb, const ImageView& v, const Stored& s) {
-  const char* const* names = names_for(v.channels);
+void fill_frame_buffer(Imf::FrameBuffer& fb, const ImageView& v, const Stored& s, bool red_green) {
+  const char* const* names = names_for(v.channels, red_green);
   const std::size_t sample = s.type == Imf::HALF ? sizeof(half) : sizeof(float);
   for (int c = 0; c < v.channels; ++c) {
     fb.insert(names[c], Imf::Slice(s.type, const_cast<char*>(s.data + sample * c), s.pixel, s.stride));
@@ -249,7 +248,7 @@ void write(const std::string& file, const std::string& path, const std::vector<I
       const Stored s = stored(v, o.half);
       Imf::OutputFile out(file.c_str(), header_for(v, o, comp));
       Imf::FrameBuffer fb;
-      fill_frame_buffer(fb, v, s);
+      fill_frame_buffer(fb, v, s, o.red_green);
       out.setFrameBuffer(fb);
       out.writePixels(v.height);
       return;
@@ -265,7 +264,7 @@ void write(const std::string& file, const std::string& path, const std::vector<I
       const ImageView& v = levels[std::size_t(l)];
       const Stored s = stored(v, o.half);
       Imf::FrameBuffer fb;
-      fill_frame_buffer(fb, v, s);
+      fill_frame_buffer(fb, v, s, o.red_green);
       out.setFrameBuffer(fb);
       out.writeTiles(0, out.numXTiles(l) - 1, 0, out.numYTiles(l) - 1, l);
     }
@@ -316,7 +315,6 @@ int write_c(const char* file, const char* path, const TpImageLevel* levels, int 
     w.color_space = o->color_space ? o->color_space : "";
     w.quality = o->quality;
     w.red_green = o->red_green != 0;
-    g_red_green = w.red_green;
     write(file, path, views, mip_file != 0, w);
   });
 }
