@@ -1,5 +1,5 @@
-// texproc compress: block compression (BC1-BC5, ETC1, ETC2, EAC) into DDS,
-// KTX2, KTX1 or PKM, optionally with a mip chain.
+// texproc compress: block compression (BC1-BC5, ETC1, ETC2, EAC, ASTC) into
+// DDS, KTX2, KTX1, PKM or .astc, optionally with a mip chain.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +13,7 @@
 #include "texproc/block_decode.h"
 #include "texproc/metrics.h"
 #include "texproc/block_encode.h"
+#include "texproc/color.h"
 #include "texproc/container.h"
 #include "texproc/error.h"
 #include "texproc/image_io.h"
@@ -29,6 +30,7 @@ struct CompressArgs {
   ChainArgs chain;
   std::string format, quality = "normal", wrap = "clamp", dds_header = "auto";
   int zstd = 0;
+  float astc_effort = -1.0f;  // astc-encoder's numeric quality, in place of --quality's preset
   std::string transparent_color = "keep";
   bool mips = false, normal_map = false, linear = false, srgb = false, report = false, bc1_black = false;
   float alpha_coverage = -1.0f;  // with --mips: the alpha reference whose coverage each level keeps
@@ -65,9 +67,32 @@ TexelFormat format_for(const std::string& f, bool srgb) {
   if (auto al = aliases.find(name); al != aliases.end()) name = al->second;
   auto it = k.find(name);
   if (it != k.end()) return srgb ? it->second.second : it->second.first;
+  // ASTC: astc-WxH (LDR: sRGB for colour, UNORM with --linear) and
+  // astc-WxH-hdr (SFLOAT); astc_6x6 and astc6x6 are read the same.
+  if (name.rfind("astc", 0) == 0) {
+    std::string rest = name.substr(4);
+    if (!rest.empty() && (rest[0] == '-' || rest[0] == '_')) rest.erase(0, 1);
+    bool hdr = false;
+    for (const char* suffix : {"-hdr", "_hdr"}) {
+      if (rest.size() > 4 && rest.compare(rest.size() - 4, 4, suffix) == 0) {
+        hdr = true;
+        rest.resize(rest.size() - 4);
+      }
+    }
+    int w = 0, h = 0;
+    char tail = 0;
+    if (std::sscanf(rest.c_str(), "%dx%d%c", &w, &h, &tail) == 2) {
+      try {
+        return astc_format(w, h, srgb && !hdr, hdr);
+      } catch (const Error&) {  // the message below lists the footprints
+      }
+    }
+  }
   throw Error(ErrorCode::bad_arguments, "unknown --format '" + f +
                                             "' (valid: bc1, bc1a, bc2, bc3, bc4, bc4s, bc5, bc5s, etc1, etc2, etc2a1, "
-                                            "etc2a, eac-r11, eac-r11s, eac-rg11, eac-rg11s)");
+                                            "etc2a, eac-r11, eac-r11s, eac-rg11, eac-rg11s, astc-WxH and astc-WxH-hdr "
+                                            "for the footprints 4x4, 5x4, 5x5, 6x5, 6x6, 8x5, 8x6, 8x8, 10x5, 10x6, "
+                                            "10x8, 10x10, 12x10, 12x12)");
 }
 
 void validate(CompressArgs& a) {
@@ -76,6 +101,9 @@ void validate(CompressArgs& a) {
   a.header = parse_dds_header(a.dds_header);
   a.transparent = parse_transparent_color(a.transparent_color);
   format_for(a.format, false);  // a known format, or an error now
+  if (a.srgb && format_info(format_for(a.format, false)).is_float) {
+    throw Error(ErrorCode::bad_arguments, "--srgb: --format " + a.format + " is HDR (linear floats); drop --srgb");
+  }
   if (a.srgb && !format_info(format_for(a.format, true)).srgb) {
     throw Error(ErrorCode::bad_arguments, "--srgb: --format " + a.format +
                                               " has no sRGB variant (it holds data); drop --srgb");
@@ -90,7 +118,14 @@ void validate(CompressArgs& a) {
                                                                   : nullptr;
     if (given) throw Error(ErrorCode::bad_arguments, std::string(given) + " shapes the mip chain: add --mips");
   }
-  if (a.bc1_black && format_for(a.format, false) != TexelFormat::bc1_rgb_unorm)
+  const TexelFormat linear_format = format_for(a.format, false);
+  if (a.astc_effort >= 0.0f && !is_astc(linear_format))
+    throw Error(ErrorCode::bad_arguments, "--astc-effort applies to the ASTC formats, not '" + a.format + "'");
+  if (a.astc_effort >= 0.0f && a.astc_effort > 100.0f)
+    throw Error(ErrorCode::bad_arguments, "--astc-effort " + std::to_string(a.astc_effort) + " is not in [0, 100]");
+  if (a.normal_map && format_info(linear_format).is_float)
+    throw Error(ErrorCode::bad_arguments, "--normal-map: a normal map is LDR data; use astc-WxH, not '" + a.format + "'");
+  if (a.bc1_black && linear_format != TexelFormat::bc1_rgb_unorm)
     throw Error(ErrorCode::bad_arguments, "--bc1-black applies to --format bc1 only (opaque BC1), not '" + a.format + "'");
   a.mip.filter.kind = parse_filter_kind(a.chain.filter);
   a.mip.filter.sigma = a.chain.sigma;
@@ -109,7 +144,18 @@ void validate(CompressArgs& a) {
 
 // The encoded level and its decoding as f32 images with the format's
 // channels, on one scale ([0, 1]; SNORM mapped back from [-1, 1]).
-ImageDifference encoding_error(const Image& level, const Texture& t) {
+// A colour image as linear f32 (alpha unchanged).
+Image decode_to_linear(const Image& img, const ColorSpace& from) {
+  Image out = Image::uninitialized(img.width(), img.height(), img.channels(), PixelType::f32);
+  for_each_row_block(img.height(), 16, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y)
+      from.decode_row(img.data() + std::size_t(y) * img.row_stride(), img.type(), img.channels(), img.width(),
+                      out.row<float>(y));
+  });
+  return out;
+}
+
+ImageDifference encoding_error(const Image& level, const Texture& t, bool astc_normal_map) {
   const Image decoded = decode_texture_image(t, 0, 0, 0, PixelType::f32);
   const int channels = decoded.channels();
   const bool snorm = format_info(t.format).snorm;
@@ -120,7 +166,9 @@ ImageDifference encoding_error(const Image& level, const Texture& t) {
     for (int x = 0; x < level.width(); ++x) {
       for (int c = 0; c < channels; ++c) {
         float v;
-        if (channels <= 2) {
+        if (astc_normal_map) {
+          v = level.get(x, y, c < 3 ? 0 : n > 1 ? 1 : 0);  // stored X, X, X, Y
+        } else if (channels <= 2) {
           v = c < n ? level.get(x, y, c) : 0.0f;  // BC4/BC5: the first channels, as data
         } else if (c < 3) {
           v = level.get(x, y, n >= 3 ? c : 0);  // gray fills RGB
@@ -149,6 +197,12 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   // Colour is sRGB unless --linear, a normal map, or float input.
   const bool srgb = a.srgb || (!a.linear && !a.normal_map && input_type != PixelType::f32);
   const TexelFormat format = format_for(a.format, srgb);
+  // HDR formats hold linear values: 8/16-bit colour is decoded from sRGB
+  // first (as data with --linear), so the chain and the encoder see light.
+  if (format_info(format).is_float && input_type != PixelType::f32) {
+    const ColorSpace from = srgb ? ColorSpace::srgb() : ColorSpace::linear();
+    for (Image& img : in.images) img = decode_to_linear(img, from);
+  }
   // One chain per surface: a cubemap's faces and an array's layers (index layer * faces + face).
   std::vector<std::vector<Image>> chains;
   for (Image& img : in.images) {
@@ -204,6 +258,8 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
     if (format_info(format).channels == 4 && !a.normal_map) apply_transparent_color(l, a.transparent);
     EncodeOptions options;
     options.bc1_black = a.bc1_black;
+    options.astc_effort = a.astc_effort;
+    options.normal_map = a.normal_map && is_astc(format);
     const double level_texels = double(l.width()) * double(l.height());
     if (r.progress)
       options.progress = [&](double done) { r.progress((texels_before + done * level_texels) / texels); };
@@ -225,7 +281,7 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   r.details["quality"] = a.quality;
   r.details["encode_seconds"] = s;
   if (a.report) {
-    const ImageDifference d = encoding_error(levels[0], t);
+    const ImageDifference d = encoding_error(levels[0], t, a.normal_map && is_astc(format));
     Json::Value rep(Json::objectValue);
     rep["psnr"] = number_or_null(d.psnr());
     if (d.channels >= 3) rep["psnr_rgb"] = number_or_null(d.psnr_rgb());
@@ -249,26 +305,34 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
 
 void add_compress_command(CLI::App& app) {
   auto args = std::make_shared<CompressArgs>();
-  CLI::App* cmd = app.add_subcommand("compress", "Block-compress images (BC1-BC5, ETC1, ETC2, EAC) into DDS, KTX2, KTX1 or PKM.");
+  CLI::App* cmd = app.add_subcommand("compress", "Block-compress images (BC1-BC5, ETC1, ETC2, EAC, ASTC) into DDS, KTX2, KTX1, PKM or .astc.");
   cmd->footer(
       "BC4 and EAC R11 store one channel, BC5 and EAC RG11 two (the red and green of the input; for a normal\n"
       "map its X and Y, the shader rebuilds Z). SNORM variants map the stored [0, 1] to [-1, 1]. Values are\n"
       "data: no transfer function. ETC and EAC go to .ktx2 (the default for -o DIR/), .ktx, or .pkm (ETC1 and\n"
-      "ETC2 RGB, one level). See docs/compression.md.");
+      "ETC2 RGB, one level). ASTC (astc-WxH: LDR, sRGB for colour; astc-WxH-hdr: HDR, linear) is searched by\n"
+      "ARM's astc-encoder at the preset --quality names (fast: -fast, normal: -medium, high: -thorough,\n"
+      "max: -exhaustive) and goes to .ktx2 (the default), .ktx or .astc (one level). See docs/compression.md.");
   add_batch_inputs(*cmd, args->io, "Input images",
-                   "Output texture (.dds, .ktx2, .ktx, .pkm), folder (DIR/: {stem}.dds each; .ktx2 for ETC/EAC) or "
+                   "Output texture (.dds, .ktx2, .ktx, .pkm, .astc), folder (DIR/: {stem}.dds each; .ktx2 for ETC/EAC/ASTC) or "
                    "template ('out/{stem}.ktx2')");
   cmd->add_option("--format", args->format,
                  "bc1, bc1a (1-bit alpha), bc2, bc3, bc4, bc4s, bc5, bc5s; etc1, etc2, etc2a1 (punch-through alpha), "
-                 "etc2a (EAC alpha), eac-r11, eac-r11s, eac-rg11, eac-rg11s")
+                 "etc2a (EAC alpha), eac-r11, eac-r11s, eac-rg11, eac-rg11s; astc-4x4, astc-5x4, astc-5x5, astc-6x5, "
+                 "astc-6x6, astc-8x5, astc-8x6, astc-8x8, astc-10x5, astc-10x6, astc-10x8, astc-10x10, astc-12x10, "
+                 "astc-12x12, each also -hdr (astc-6x6-hdr)")
       ->required();
   cmd->add_flag("--srgb", args->srgb, "BC1-BC3: write the sRGB format (the default for 8/16-bit colour input)");
   cmd->add_flag("--linear", args->linear, "The input is data: UNORM formats, linear mip filtering");
   cmd->add_option("--quality", args->quality, "fast, normal, high, max (widest search; slow)")->capture_default_str();
+  cmd->add_option("--astc-effort", args->astc_effort,
+                  "ASTC: astc-encoder's numeric quality 0-100 in place of --quality's preset (0 -fastest, 10 -fast, "
+                  "60 -medium, 98 -thorough, 99 -verythorough, 100 -exhaustive)");
   cmd->add_flag("--mips", args->mips, "Compress a whole mip chain (mip options below)");
   cmd->add_flag("--normal-map", args->normal_map,
                 "The input is a normal map: linear, renormalized mips; bc5/eac-rg11 store X and Y, bc3 the DXT5nm "
-                "layout (X in alpha, Y in green, red 1, blue 0)");
+                "layout (X in alpha, Y in green, red 1, blue 0), astc astc-encoder's normal mode (X in RGB, Y in "
+                "alpha)");
   cmd->add_option("--wrap", args->wrap, "Mip filter taps past the edges: clamp, repeat, mirror")->capture_default_str();
   cmd->add_option("--alpha-coverage", args->alpha_coverage,
                   "With --mips: keep the fraction of texels with alpha >= REF equal to level 0's in every level "
@@ -290,8 +354,10 @@ void add_compress_command(CLI::App& app) {
   set_runner(*cmd, [args] {
     BatchCommand c;
     c.name = "compress";
-    const bool etc = args->format.rfind("etc", 0) == 0 || args->format.rfind("eac", 0) == 0;
-    c.default_extension = etc ? ".ktx2" : ".dds";  // DDS has no ETC formats
+    std::string f = args->format;
+    for (auto& ch : f) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    const bool no_dds = f.rfind("etc", 0) == 0 || f.rfind("eac", 0) == 0 || f.rfind("astc", 0) == 0;
+    c.default_extension = no_dds ? ".ktx2" : ".dds";  // DDS has no ETC or ASTC formats
     c.input_extensions = image_extensions();
     c.validate = [args] { validate(*args); };
     c.plan = [](const InputFile&, const std::string& out) {

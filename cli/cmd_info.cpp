@@ -65,15 +65,14 @@ void describe(const std::string& path, std::ostringstream& json, std::ostringstr
   if (is_texture_container(path)) {
     const Texture t = read_texture(path);
     const FormatInfo& f = format_info(t.format);
-    std::string container = "dds";
+    ContainerKind kind = ContainerKind::dds;
     {
       std::ifstream in(path, std::ios::binary);
-      char h[8] = {};
-      in.read(h, 8);
-      if (std::string(h, 4) == "PKM ") container = "pkm";
-      else if (std::string(h + 1, 6) == "KTX 20") container = "ktx2";
-      else if (std::string(h + 1, 6) == "KTX 11") container = "ktx1";
+      char h[12] = {};
+      in.read(h, 12);
+      container_from_signature(reinterpret_cast<const std::uint8_t*>(h), std::size_t(in.gcount()), kind);
     }
+    const std::string container = to_string(kind);
     json << "{\"file\": " << quoted(path) << ", \"container\": \"" << container << "\", \"format\": \"" << f.name
          << "\", \"vk_format\": " << f.vk_format << ", \"dxgi_format\": " << f.dxgi_format
          << ", \"color_space\": \"" << (f.srgb ? "srgb" : "linear") << "\", \"width\": " << t.width
@@ -147,7 +146,7 @@ int run_info(const InfoArgs& args) {
 
 void add_info_command(CLI::App& app) {
   auto args = std::make_shared<InfoArgs>();
-  CLI::App* cmd = app.add_subcommand("info", "Describe images, MIP chains, DDS/KTX2/KTX1/PKM textures and .sat tables.");
+  CLI::App* cmd = app.add_subcommand("info", "Describe images, MIP chains, DDS/KTX2/KTX1/PKM/.astc textures and .sat tables.");
   cmd->add_option("files", args->io.inputs, "Files to describe, or folders (their images, textures and tables)")
       ->required();
   cmd->add_flag("-r,--recursive", args->io.recursive, "Folders: their subfolders too");

@@ -19,6 +19,8 @@ $T compress samples/normal_stein_256.png -o "$S/containers/a.dds" --format bc5 -
 $T compress samples/albedo_desert_512.png -o "$S/containers/b.ktx2" --format bc1 --mips -q -f
 $T compress samples/cutout_fence_512x256.png -o "$S/containers/c.ktx" --format etc2a --mips -q -f
 $T compress samples/albedo_desert_512.png -o "$S/containers/d.pkm" --format etc1 -q -f
+$T compress samples/height_stein_256.png -o "$S/containers/e.astc" --format astc-8x6 --quality fast -q -f
+$T compress samples/cutout_fence_512x256.png -o "$S/containers/f.ktx2" --format astc-12x12 --mips --quality fast -q -f
 $T mip samples/height_mount_250.png -o "$S/images/h.tif" -q -f
 $T sat samples/height_mount_250.png -o "$S/images/h.sat" -q -f
 $T mip samples/albedo_desert_512.png -o "$S/images/a.tga" --levels 1 -q -f

@@ -8,6 +8,8 @@ packages=(
   libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
   libtiff-dev libdeflate-dev libspng-dev libjpeg62-turbo-dev zlib1g-dev libzstd-dev libcli11-dev googletest libgtest-dev libbenchmark-dev libtbb-dev libhwy-dev
   libjsoncpp-dev libtomlplusplus-dev
+  # ASTC: ARM's astc-encoder library (dlopen'd on first use) and its CLI, the tests' independent check
+  libastcenc-dev astcenc
   # independent checks and peers used by tests and benchmarks
   libnvtt-bin libsquish-dev android-libetc1-dev python3-pil
   # the libFuzzer harnesses (scripts/fuzz.sh)

@@ -1,4 +1,4 @@
-// libFuzzer harness: the DDS, KTX2, KTX1 and PKM readers. Whatever they
+// libFuzzer harness: the DDS, KTX2, KTX1, PKM and .astc readers. Whatever they
 // accept must write back and read again to the same texture (the writers are
 // texproc's, so the bytes may differ from another writer's, not the texels).
 #include <cstdint>
@@ -21,7 +21,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   limits.max_dimension = 4096;
   limits.max_layers = 64;
   const std::pair<Decode, Encode> kinds[] = {{decode_dds, dds}, {decode_ktx2, ktx2}, {decode_ktx1, encode_ktx1},
-                                             {decode_pkm, encode_pkm}};
+                                             {decode_pkm, encode_pkm}, {decode_astc, encode_astc}};
   for (const auto& [decode, encode] : kinds) {
     Texture t;
     try {

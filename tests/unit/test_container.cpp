@@ -37,6 +37,19 @@ Texture random_texture(TexelFormat f, std::uint32_t w, std::uint32_t h, std::uin
     for (std::uint32_t i = 0; i < layers * faces; ++i) {
       std::vector<std::uint8_t> b(image_bytes(f, t.level_width(l), t.level_height(l)));
       for (auto& v : b) v = std::uint8_t(rng());
+      if (is_astc(f)) {
+        // Constant-colour (void-extent) blocks, LDR or HDR as the format
+        // says: the .astc and KTX1 readers tell the profile from the blocks.
+        const bool hdr = format_info(f).is_float;
+        for (std::size_t k = 0; k < b.size(); k += 16) {
+          b[k] = 0xFC;
+          b[k + 1] = hdr ? 0xFF : 0xFD;
+          for (int j = 2; j < 8; ++j) b[k + j] = 0xFF;
+          if (hdr) {
+            for (int j = 8; j < 16; j += 2) b[k + j + 1] = std::uint8_t(b[k + j + 1] & 0x3B);  // finite halves
+          }
+        }
+      }
       if (format_info(f).is_float && f == TexelFormat::rgba32_float) {
         for (std::size_t k = 0; k + 4 <= b.size(); k += 4) {  // finite floats
           const float x = float(rng() % 1000) / 7.0f;
@@ -76,6 +89,7 @@ Texture decode(ContainerKind k, const std::vector<std::uint8_t>& b) {
     case ContainerKind::ktx2: return decode_ktx2(b.data(), b.size(), "t.ktx2");
     case ContainerKind::ktx1: return decode_ktx1(b.data(), b.size(), "t.ktx");
     case ContainerKind::pkm: return decode_pkm(b.data(), b.size(), "t.pkm");
+    case ContainerKind::astc: return decode_astc(b.data(), b.size(), "t.astc");
   }
   return {};
 }
@@ -86,6 +100,7 @@ std::vector<std::uint8_t> encode(ContainerKind k, const Texture& t) {
     case ContainerKind::ktx2: return encode_ktx2(t, "test");
     case ContainerKind::ktx1: return encode_ktx1(t);
     case ContainerKind::pkm: return encode_pkm(t);
+    case ContainerKind::astc: return encode_astc(t);
   }
   return {};
 }
@@ -97,6 +112,7 @@ bool holds(ContainerKind k, TexelFormat f) {
     case ContainerKind::ktx2: return true;
     case ContainerKind::ktx1: return i.gl_internal_format != 0;
     case ContainerKind::pkm: return f == TexelFormat::etc1_rgb || f == TexelFormat::etc2_rgb_unorm;
+    case ContainerKind::astc: return is_astc(f);
   }
   return false;
 }
@@ -106,6 +122,10 @@ TexelFormat as_read(ContainerKind k, TexelFormat f) {
   if (k == ContainerKind::dds && f == TexelFormat::bc1_rgb_unorm) return TexelFormat::bc1_rgba_unorm;
   if (k == ContainerKind::dds && f == TexelFormat::bc1_rgb_srgb) return TexelFormat::bc1_rgba_srgb;
   if (k == ContainerKind::ktx2 && f == TexelFormat::etc1_rgb) return TexelFormat::etc2_rgb_unorm;
+  // .astc has no colour profile: sRGB reads as UNORM (HDR from its blocks).
+  if (k == ContainerKind::astc && is_astc(f) && format_info(f).srgb) {
+    return astc_format(format_info(f).block_width, format_info(f).block_height, false, false);
+  }
   return f;
 }
 
@@ -115,7 +135,8 @@ TexelFormat as_read(ContainerKind k, TexelFormat f) {
 // 100x60 and 256x256, with and without mips: write, read, same bytes.
 TEST(Container, RoundTripEveryFormatSizeAndContainer) {
   int checked = 0;
-  for (ContainerKind k : {ContainerKind::dds, ContainerKind::ktx2, ContainerKind::ktx1, ContainerKind::pkm}) {
+  for (ContainerKind k :
+       {ContainerKind::dds, ContainerKind::ktx2, ContainerKind::ktx1, ContainerKind::pkm, ContainerKind::astc}) {
     for (TexelFormat f : all_formats()) {
       if (!holds(k, f)) {
         EXPECT_THROW(encode(k, random_texture(f, 4, 4, 1, 1, 1, 1)), Error) << to_string(k) << " " << format_info(f).name;
@@ -123,7 +144,7 @@ TEST(Container, RoundTripEveryFormatSizeAndContainer) {
       }
       for (auto [w, h] : {std::pair{1u, 1u}, {3u, 5u}, {4u, 4u}, {100u, 60u}, {256u, 256u}}) {
         for (bool mips : {false, true}) {
-          if (mips && k == ContainerKind::pkm) continue;
+          if (mips && (k == ContainerKind::pkm || k == ContainerKind::astc)) continue;
           const Texture t = random_texture(f, w, h, mips ? full_levels(w, h) : 1, 1, 1, w * 7 + h);
           Texture back = decode(k, encode(k, t));
           Texture want = t;
@@ -361,9 +382,11 @@ TEST(Container, HostileFilesAreRejectedSafely) {
   const Texture mips = random_texture(TexelFormat::bc3_unorm, 12, 8, 4, 1, 1, 11);
   const Texture cube = random_texture(TexelFormat::rgba8_unorm, 8, 8, 2, 6, 1, 12);
   const Texture etc = random_texture(TexelFormat::etc1_rgb, 9, 7, 1, 1, 1, 13);
-  for (ContainerKind k : {ContainerKind::dds, ContainerKind::ktx2, ContainerKind::ktx1, ContainerKind::pkm}) {
-    for (const Texture* t : {&mips, &cube, &etc}) {
-      if (!holds(k, t->format) || (k == ContainerKind::pkm && t->levels > 1)) continue;
+  const Texture astc = random_texture(TexelFormat::astc_5x4_unorm, 11, 9, 1, 1, 1, 14);
+  for (ContainerKind k :
+       {ContainerKind::dds, ContainerKind::ktx2, ContainerKind::ktx1, ContainerKind::pkm, ContainerKind::astc}) {
+    for (const Texture* t : {&mips, &cube, &etc, &astc}) {
+      if (!holds(k, t->format) || ((k == ContainerKind::pkm || k == ContainerKind::astc) && t->levels > 1)) continue;
       const std::vector<std::uint8_t> good = encode(k, *t);
       for (std::size_t n = 0; n < good.size(); ++n) {
         const std::vector<std::uint8_t> cut(good.begin(), good.begin() + std::ptrdiff_t(n));

@@ -1,4 +1,5 @@
-// texproc/block_encode.h: block compression: BC1-BC5, ETC1, ETC2 and EAC
+// texproc/block_encode.h: block compression: BC1-BC5, ETC1, ETC2, EAC, and
+// ASTC through ARM's astc-encoder
 // (docs/compression.md describes the encoders and their quality levels).
 #pragma once
 
@@ -41,6 +42,12 @@ double bc4_block_error(const std::uint8_t block[8], const float values[16], bool
 // data: integers scaled to [0, 1], SNORM formats map [0, 1] to [-1, 1] (so a
 // normal map's stored x * 0.5 + 0.5 becomes x). Partial blocks replicate the
 // edge texels. Bytes are identical for any thread count and SIMD target.
+// ASTC formats take RGBA as BC1-BC3 do (8-bit stays 8-bit, 16-bit and
+// float in [0, 1] keep their precision); SFLOAT takes the values as they
+// are (above 1 kept, negative clamped by the format). ASTC is searched by
+// astc-encoder at the preset the quality names (astc::effort_for, or
+// EncodeOptions::astc_effort); its library is loaded on first use and
+// Error{unsupported} says so when it is missing.
 // Throws Error{unsupported} for formats that are not block formats.
 std::vector<std::uint8_t> compress_image(const ImageView& image, TexelFormat format, Quality q);
 
@@ -57,6 +64,15 @@ struct EncodeOptions {
   // Where set: the fraction of the image's block rows done, after each group
   // of rows, one call at a time (from worker threads), rising to 1.
   std::function<void(double)> progress;
+  // ASTC: astc-encoder's effort, 0-100 (its numeric quality: 0 -fastest,
+  // 10 -fast, 60 -medium, 98 -thorough, 99 -verythorough, 100 -exhaustive),
+  // in place of the quality level's preset; negative: the preset.
+  float astc_effort = -1.0f;
+  // ASTC LDR: the image is a tangent-space normal map (X in red, Y in
+  // green): stored with X in RGB and Y in alpha (astc-encoder's rrrg) and
+  // searched for angular error. Shaders read X from .r (or .g, .b), Y from
+  // .a and rebuild Z = sqrt(1 - X^2 - Y^2) after mapping both to [-1, 1].
+  bool normal_map = false;
 };
 std::vector<std::uint8_t> compress_image(const ImageView& image, TexelFormat format, Quality q, const EncodeOptions& options);
 

@@ -1,4 +1,4 @@
-// texproc/container.h: DDS, KTX2, KTX1 and PKM files.
+// texproc/container.h: DDS, KTX2, KTX1, PKM and .astc files.
 //
 // Writers lay files out exactly as the specifications say (docs/formats.md);
 // readers check every field against the file size before using it and
@@ -16,8 +16,8 @@
 
 namespace texproc {
 
-enum class ContainerKind { dds, ktx2, ktx1, pkm };
-// From the extension: .dds, .ktx2, .ktx, .pkm. Throws Error{unsupported}.
+enum class ContainerKind { dds, ktx2, ktx1, pkm, astc };
+// From the extension: .dds, .ktx2, .ktx, .pkm, .astc. Throws Error{unsupported}.
 ContainerKind container_for_path(const std::string& path);
 const char* to_string(ContainerKind k);
 
@@ -39,17 +39,23 @@ std::vector<std::uint8_t> encode_dds(const Texture& t, DdsHeader header = DdsHea
 std::vector<std::uint8_t> encode_ktx2(const Texture& t, const std::string& writer = "", int zstd_level = 0);
 std::vector<std::uint8_t> encode_ktx1(const Texture& t);
 std::vector<std::uint8_t> encode_pkm(const Texture& t);  // ETC1/ETC2 RGB, one level
+std::vector<std::uint8_t> encode_astc(const Texture& t);  // ASTC, one level (astcenc's file)
 Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& = {});
 Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& = {});
 Texture decode_ktx1(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& = {});
 Texture decode_pkm(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& = {});
+// .astc has no colour profile: UNORM, or SFLOAT when a block is HDR.
+Texture decode_astc(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& = {});
 
 // Files: written atomically; the container follows the extension.
 // ktx2_zstd_level applies to .ktx2 outputs (encode_ktx2's zstd_level).
 void write_texture(const std::string& path, const Texture& t, DdsHeader dds_header = DdsHeader::automatic,
                    int ktx2_zstd_level = 0);
 Texture read_texture(const std::string& path, const ReadLimits& limits = {});
-// True if the file starts with a DDS, KTX1, KTX2 or PKM signature.
+// The container a file's first bytes (at least 12 where present) announce:
+// false when they are none of DDS, KTX2, KTX1, PKM, .astc.
+bool container_from_signature(const std::uint8_t* head, std::size_t n, ContainerKind& kind);
+// True if the file starts with a DDS, KTX1, KTX2, PKM or .astc signature.
 bool is_texture_container(const std::string& path);
 
 // KTX2's Data Format Descriptor for a format, as libktx writes it.

@@ -24,6 +24,9 @@ class ThreadLimit {
 
 // Hardware threads available to this process.
 int hardware_threads();
+// Threads libtexproc's work may use now: hardware_threads() under the
+// innermost ThreadLimit.
+int thread_limit();
 
 // Calls fn(begin, end) for the blocks [0, b), [b, 2b), ... of [0, rows), in
 // parallel. Blocks are fixed by `block_rows`, never by the thread count, so

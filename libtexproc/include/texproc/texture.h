@@ -21,6 +21,22 @@ enum class TexelFormat {
   // ETC / EAC (ETC1 is written as ETC2 RGB, of which it is a subset)
   etc1_rgb, etc2_rgb_unorm, etc2_rgb_srgb, etc2_rgba1_unorm, etc2_rgba1_srgb, etc2_rgba8_unorm, etc2_rgba8_srgb,
   eac_r11_unorm, eac_r11_snorm, eac_rg11_unorm, eac_rg11_snorm,
+  // ASTC, every 2D footprint: LDR (UNORM, sRGB) and HDR (SFLOAT); encoded and
+  // decoded through ARM's astc-encoder (docs/compression.md)
+  astc_4x4_unorm, astc_4x4_srgb, astc_4x4_sfloat,
+  astc_5x4_unorm, astc_5x4_srgb, astc_5x4_sfloat,
+  astc_5x5_unorm, astc_5x5_srgb, astc_5x5_sfloat,
+  astc_6x5_unorm, astc_6x5_srgb, astc_6x5_sfloat,
+  astc_6x6_unorm, astc_6x6_srgb, astc_6x6_sfloat,
+  astc_8x5_unorm, astc_8x5_srgb, astc_8x5_sfloat,
+  astc_8x6_unorm, astc_8x6_srgb, astc_8x6_sfloat,
+  astc_8x8_unorm, astc_8x8_srgb, astc_8x8_sfloat,
+  astc_10x5_unorm, astc_10x5_srgb, astc_10x5_sfloat,
+  astc_10x6_unorm, astc_10x6_srgb, astc_10x6_sfloat,
+  astc_10x8_unorm, astc_10x8_srgb, astc_10x8_sfloat,
+  astc_10x10_unorm, astc_10x10_srgb, astc_10x10_sfloat,
+  astc_12x10_unorm, astc_12x10_srgb, astc_12x10_sfloat,
+  astc_12x12_unorm, astc_12x12_srgb, astc_12x12_sfloat,
 };
 
 // Everything the containers need to know about a format, from one table
@@ -39,6 +55,10 @@ struct FormatInfo {
 };
 
 const FormatInfo& format_info(TexelFormat f);
+bool is_astc(TexelFormat f);
+// The ASTC format of a footprint (4x4 ... 12x12): UNORM, sRGB or SFLOAT (hdr).
+// Throws Error{bad_arguments} for a footprint ASTC does not have.
+TexelFormat astc_format(int block_width, int block_height, bool srgb, bool hdr);
 const FormatInfo* find_format_by_vk(std::uint32_t vk_format);
 const FormatInfo* find_format_by_dxgi(std::uint32_t dxgi_format);
 const FormatInfo* find_format_by_gl(std::uint32_t gl_internal_format);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "astc/astc_codec.h"
 #include "bc/bc1_encode.h"
 #include "bc/bc1_lanes.h"
 #include "bc/bc4_lanes.h"
@@ -286,6 +287,7 @@ int encode_block(TexelFormat format, const std::uint8_t rgba[16][4], Quality q, 
 }
 
 std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
+  if (is_astc(format)) return astc::encode(img, format, q, options);
   if (format >= TexelFormat::bc1_rgb_unorm && format <= TexelFormat::bc3_srgb) return compress_color(img, format, q, options);
   if (format >= TexelFormat::etc1_rgb && format <= TexelFormat::eac_rg11_snorm) return etc::compress_etc(img, format, q, options);
   const bool bc5 = format == TexelFormat::bc5_unorm || format == TexelFormat::bc5_snorm;

@@ -6,6 +6,9 @@
 
 #include "texproc/block_decode.h"
 
+#include "astc/astc_codec.h"
+#include "texproc/runtime.h"
+
 #include "etc/etc_tables.h"
 #include "texproc/error.h"
 
@@ -173,6 +176,18 @@ Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t 
     for (int y = 0; y < raw.height(); ++y)
       for (int x = 0; x < raw.width(); ++x)
         for (int c = 0; c < raw.channels(); ++c) out.set(x, y, c, raw.get(x, y, c));
+    return out;
+  }
+  if (is_astc(t.format)) {
+    const PixelBytes& data = t.image(level, layer, face);
+    Image decoded = astc::decode(data.data(), data.size(), int(t.level_width(level)), int(t.level_height(level)), t.format);
+    if (decoded.type() == type) return decoded;
+    Image out = Image::uninitialized(decoded.width(), decoded.height(), 4, type);
+    for_each_row_block(decoded.height(), 64, [&](int y0, int y1) {
+      for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < decoded.width(); ++x)
+          for (int c = 0; c < 4; ++c) out.set(x, y, c, decoded.get(x, y, c));
+    });
     return out;
   }
   if (info.block_width != 4) {

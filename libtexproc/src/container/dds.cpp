@@ -81,7 +81,8 @@ ByteWriter encode_dds_stream(const Texture& t, DdsHeader header) {
   const FormatInfo& info = format_info(t.format);
   if (info.dxgi_format == 0) {
     throw Error(ErrorCode::unsupported, std::string("DDS cannot hold ") + info.name +
-                                            " (Direct3D has no ETC formats): write .ktx2, .ktx or .pkm");
+                                            (is_astc(t.format) ? " (Direct3D has no ASTC formats): write .ktx2, .ktx or .astc"
+                                                               : " (Direct3D has no ETC formats): write .ktx2, .ktx or .pkm"));
   }
   const LegacyFormat* legacy = legacy_for(t.format);
   // Asked for a legacy header: the D3DFMT codes that old readers take as FourCCs

@@ -56,6 +56,48 @@ const FormatInfo kFormats[] = {
     {F::eac_r11_snorm, "eac_r11_snorm", 4, 4, 8, 1, false, true, false, true, 1, 154, 0, 0x9271, 0, 0},
     {F::eac_rg11_unorm, "eac_rg11_unorm", 4, 4, 16, 2, false, false, false, true, 1, 155, 0, 0x9272, 0, 0},
     {F::eac_rg11_snorm, "eac_rg11_snorm", 4, 4, 16, 2, false, true, false, true, 1, 156, 0, 0x9273, 0, 0},
+    {F::astc_4x4_unorm, "astc_4x4_unorm", 4, 4, 16, 4, false, false, false, true, 1, 157, 0, 0x93B0, 0, 0},
+    {F::astc_4x4_srgb, "astc_4x4_srgb", 4, 4, 16, 4, true, false, false, true, 1, 158, 0, 0x93D0, 0, 0},
+    {F::astc_4x4_sfloat, "astc_4x4_sfloat", 4, 4, 16, 4, false, false, true, true, 1, 1000066000u, 0, 0x93B0, 0, 0},
+    {F::astc_5x4_unorm, "astc_5x4_unorm", 5, 4, 16, 4, false, false, false, true, 1, 159, 0, 0x93B1, 0, 0},
+    {F::astc_5x4_srgb, "astc_5x4_srgb", 5, 4, 16, 4, true, false, false, true, 1, 160, 0, 0x93D1, 0, 0},
+    {F::astc_5x4_sfloat, "astc_5x4_sfloat", 5, 4, 16, 4, false, false, true, true, 1, 1000066001u, 0, 0x93B1, 0, 0},
+    {F::astc_5x5_unorm, "astc_5x5_unorm", 5, 5, 16, 4, false, false, false, true, 1, 161, 0, 0x93B2, 0, 0},
+    {F::astc_5x5_srgb, "astc_5x5_srgb", 5, 5, 16, 4, true, false, false, true, 1, 162, 0, 0x93D2, 0, 0},
+    {F::astc_5x5_sfloat, "astc_5x5_sfloat", 5, 5, 16, 4, false, false, true, true, 1, 1000066002u, 0, 0x93B2, 0, 0},
+    {F::astc_6x5_unorm, "astc_6x5_unorm", 6, 5, 16, 4, false, false, false, true, 1, 163, 0, 0x93B3, 0, 0},
+    {F::astc_6x5_srgb, "astc_6x5_srgb", 6, 5, 16, 4, true, false, false, true, 1, 164, 0, 0x93D3, 0, 0},
+    {F::astc_6x5_sfloat, "astc_6x5_sfloat", 6, 5, 16, 4, false, false, true, true, 1, 1000066003u, 0, 0x93B3, 0, 0},
+    {F::astc_6x6_unorm, "astc_6x6_unorm", 6, 6, 16, 4, false, false, false, true, 1, 165, 0, 0x93B4, 0, 0},
+    {F::astc_6x6_srgb, "astc_6x6_srgb", 6, 6, 16, 4, true, false, false, true, 1, 166, 0, 0x93D4, 0, 0},
+    {F::astc_6x6_sfloat, "astc_6x6_sfloat", 6, 6, 16, 4, false, false, true, true, 1, 1000066004u, 0, 0x93B4, 0, 0},
+    {F::astc_8x5_unorm, "astc_8x5_unorm", 8, 5, 16, 4, false, false, false, true, 1, 167, 0, 0x93B5, 0, 0},
+    {F::astc_8x5_srgb, "astc_8x5_srgb", 8, 5, 16, 4, true, false, false, true, 1, 168, 0, 0x93D5, 0, 0},
+    {F::astc_8x5_sfloat, "astc_8x5_sfloat", 8, 5, 16, 4, false, false, true, true, 1, 1000066005u, 0, 0x93B5, 0, 0},
+    {F::astc_8x6_unorm, "astc_8x6_unorm", 8, 6, 16, 4, false, false, false, true, 1, 169, 0, 0x93B6, 0, 0},
+    {F::astc_8x6_srgb, "astc_8x6_srgb", 8, 6, 16, 4, true, false, false, true, 1, 170, 0, 0x93D6, 0, 0},
+    {F::astc_8x6_sfloat, "astc_8x6_sfloat", 8, 6, 16, 4, false, false, true, true, 1, 1000066006u, 0, 0x93B6, 0, 0},
+    {F::astc_8x8_unorm, "astc_8x8_unorm", 8, 8, 16, 4, false, false, false, true, 1, 171, 0, 0x93B7, 0, 0},
+    {F::astc_8x8_srgb, "astc_8x8_srgb", 8, 8, 16, 4, true, false, false, true, 1, 172, 0, 0x93D7, 0, 0},
+    {F::astc_8x8_sfloat, "astc_8x8_sfloat", 8, 8, 16, 4, false, false, true, true, 1, 1000066007u, 0, 0x93B7, 0, 0},
+    {F::astc_10x5_unorm, "astc_10x5_unorm", 10, 5, 16, 4, false, false, false, true, 1, 173, 0, 0x93B8, 0, 0},
+    {F::astc_10x5_srgb, "astc_10x5_srgb", 10, 5, 16, 4, true, false, false, true, 1, 174, 0, 0x93D8, 0, 0},
+    {F::astc_10x5_sfloat, "astc_10x5_sfloat", 10, 5, 16, 4, false, false, true, true, 1, 1000066008u, 0, 0x93B8, 0, 0},
+    {F::astc_10x6_unorm, "astc_10x6_unorm", 10, 6, 16, 4, false, false, false, true, 1, 175, 0, 0x93B9, 0, 0},
+    {F::astc_10x6_srgb, "astc_10x6_srgb", 10, 6, 16, 4, true, false, false, true, 1, 176, 0, 0x93D9, 0, 0},
+    {F::astc_10x6_sfloat, "astc_10x6_sfloat", 10, 6, 16, 4, false, false, true, true, 1, 1000066009u, 0, 0x93B9, 0, 0},
+    {F::astc_10x8_unorm, "astc_10x8_unorm", 10, 8, 16, 4, false, false, false, true, 1, 177, 0, 0x93BA, 0, 0},
+    {F::astc_10x8_srgb, "astc_10x8_srgb", 10, 8, 16, 4, true, false, false, true, 1, 178, 0, 0x93DA, 0, 0},
+    {F::astc_10x8_sfloat, "astc_10x8_sfloat", 10, 8, 16, 4, false, false, true, true, 1, 1000066010u, 0, 0x93BA, 0, 0},
+    {F::astc_10x10_unorm, "astc_10x10_unorm", 10, 10, 16, 4, false, false, false, true, 1, 179, 0, 0x93BB, 0, 0},
+    {F::astc_10x10_srgb, "astc_10x10_srgb", 10, 10, 16, 4, true, false, false, true, 1, 180, 0, 0x93DB, 0, 0},
+    {F::astc_10x10_sfloat, "astc_10x10_sfloat", 10, 10, 16, 4, false, false, true, true, 1, 1000066011u, 0, 0x93BB, 0, 0},
+    {F::astc_12x10_unorm, "astc_12x10_unorm", 12, 10, 16, 4, false, false, false, true, 1, 181, 0, 0x93BC, 0, 0},
+    {F::astc_12x10_srgb, "astc_12x10_srgb", 12, 10, 16, 4, true, false, false, true, 1, 182, 0, 0x93DC, 0, 0},
+    {F::astc_12x10_sfloat, "astc_12x10_sfloat", 12, 10, 16, 4, false, false, true, true, 1, 1000066012u, 0, 0x93BC, 0, 0},
+    {F::astc_12x12_unorm, "astc_12x12_unorm", 12, 12, 16, 4, false, false, false, true, 1, 183, 0, 0x93BD, 0, 0},
+    {F::astc_12x12_srgb, "astc_12x12_srgb", 12, 12, 16, 4, true, false, false, true, 1, 184, 0, 0x93DD, 0, 0},
+    {F::astc_12x12_sfloat, "astc_12x12_sfloat", 12, 12, 16, 4, false, false, true, true, 1, 1000066013u, 0, 0x93BD, 0, 0},
 };
 
 }  // namespace
@@ -66,6 +108,20 @@ const FormatInfo& format_info(TexelFormat f) {
   }
   assert(false && "format missing from the table");
   return kFormats[0];
+}
+
+bool is_astc(TexelFormat f) { return f >= F::astc_4x4_unorm && f <= F::astc_12x12_sfloat; }
+
+TexelFormat astc_format(int block_width, int block_height, bool srgb, bool hdr) {
+  for (const auto& i : kFormats) {
+    if (is_astc(i.format) && i.block_width == block_width && i.block_height == block_height && i.srgb == srgb &&
+        i.is_float == hdr)
+      return i.format;
+  }
+  throw Error(ErrorCode::bad_arguments, "ASTC has no " + std::to_string(block_width) + "x" +
+                                            std::to_string(block_height) + (hdr ? " HDR" : srgb ? " sRGB" : "") +
+                                            " footprint (valid: 4x4, 5x4, 5x5, 6x5, 6x6, 8x5, 8x6, 8x8, 10x5, "
+                                            "10x6, 10x8, 10x10, 12x10, 12x12)");
 }
 
 const FormatInfo* find_format_by_vk(std::uint32_t vk) {

@@ -4,6 +4,7 @@
 // 4 bytes, uncompressed rows padded to 4 bytes (GL_UNPACK_ALIGNMENT 4).
 #include <algorithm>
 
+#include "astc/astc_codec.h"
 #include "container/bytes.h"
 #include "container/streams.h"
 #include "texproc/container.h"
@@ -164,6 +165,16 @@ Texture decode_ktx1(const std::uint8_t* data, std::size_t size, const std::strin
     p = (p + 3) & ~std::uint64_t(3);
   }
   if (p != size) r.fail(p > size ? "truncated padding" : std::to_string(size - p) + " trailing bytes after the last level");
+  // GL has one code for LDR and HDR ASTC (the profile is the context's): a
+  // texture with an HDR block is SFLOAT.
+  if (is_astc(t.format) && !fi->srgb) {
+    for (const PixelBytes& img : t.images) {
+      if (astc::has_hdr_blocks(img.data(), img.size(), fi->block_width, fi->block_height)) {
+        t.format = astc_format(fi->block_width, fi->block_height, false, true);
+        break;
+      }
+    }
+  }
   return t;
 }
 

@@ -17,7 +17,8 @@ namespace texproc {
 namespace {
 
 constexpr std::uint32_t kModelRgbsda = 1, kModelBc1a = 128, kModelBc2 = 129, kModelBc3 = 130, kModelBc4 = 131,
-                        kModelBc5 = 132, kModelEtc2 = 161;
+                        kModelBc5 = 132, kModelEtc2 = 161,
+                        kModelAstc = 162;
 constexpr std::uint32_t kPrimariesBt709 = 1, kTransferLinear = 1, kTransferSrgb = 2;
 constexpr std::uint32_t kLinear = 0x10, kSigned = 0x40, kFloat = 0x80;
 constexpr std::uint32_t kAlpha = 15;
@@ -87,10 +88,21 @@ std::vector<std::uint8_t> compressed(const FormatInfo& i, std::uint32_t model,
   return block(model, i.srgb, 0x0303, std::uint32_t(i.block_bytes), samples);
 }
 
+// ASTC (createDFDCompressed's c_ASTC): the footprint in texelBlockDimension,
+// one 128-bit sample of channel 0 (ASTC data); SFLOAT is float and signed,
+// with libktx's bounds -1 and 1.
+std::vector<std::uint8_t> astc(const FormatInfo& i) {
+  const std::uint32_t dims = std::uint32_t(i.block_width - 1) | std::uint32_t(i.block_height - 1) << 8;
+  const Sample s = i.is_float ? Sample{0, 128, kFloat | kSigned, float_bits(-1.0f), float_bits(1.0f)}
+                              : Sample{0, 128, 0, 0u, 0xFFFFFFFFu};
+  return block(kModelAstc, i.srgb, dims, 16, {s});
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> ktx2_dfd(TexelFormat f) {
   const FormatInfo& i = format_info(f);
+  if (is_astc(f)) return astc(i);
   using F = TexelFormat;
   switch (f) {
     case F::bgra8_unorm:

@@ -14,5 +14,6 @@ ByteWriter encode_dds_stream(const Texture& t, DdsHeader header);
 ByteWriter encode_ktx2_stream(const Texture& t, const std::string& writer, int zstd_level = 0);
 ByteWriter encode_ktx1_stream(const Texture& t);
 ByteWriter encode_pkm_stream(const Texture& t);
+ByteWriter encode_astc_stream(const Texture& t);
 
 }  // namespace texproc

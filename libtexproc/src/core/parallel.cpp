@@ -4,6 +4,9 @@
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
 
 #include <mutex>
 
@@ -24,6 +27,12 @@ ThreadLimit::ThreadLimit(int threads) : impl_(std::make_unique<Impl>()) {
 ThreadLimit::~ThreadLimit() = default;
 
 int hardware_threads() { return tbb::info::default_concurrency(); }
+
+int thread_limit() {
+  const auto allowed = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  const int arena = tbb::this_task_arena::max_concurrency();
+  return int(std::min<std::size_t>(allowed, std::size_t(arena)));
+}
 
 void for_each_row_block(int rows, int block_rows, const std::function<void(int, int)>& fn) {
   if (rows <= 0) return;

@@ -54,7 +54,8 @@ Kind sniff(const std::string& path, const codecs::FileBytes& f) {
   const std::uint8_t* b = f.data();
   const std::size_t n = f.size();
   auto starts = [&](const char* sig, std::size_t len) { return n >= len && std::memcmp(b, sig, len) == 0; };
-  if (starts("DDS ", 4) || starts("PKM ", 4) || starts("\xABKTX 20\xBB", 8) || starts("\xABKTX 11\xBB", 8)) {
+  if (starts("DDS ", 4) || starts("PKM ", 4) || starts("\xABKTX 20\xBB", 8) || starts("\xABKTX 11\xBB", 8) ||
+      starts("\x13\xAB\xA1\x5C", 4)) {
     return Kind::container;
   }
   if (g_path == ImageIoPath::oiio) return Kind::module;

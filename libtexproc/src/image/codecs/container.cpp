@@ -1,4 +1,4 @@
-// GPU containers (DDS, KTX2, KTX1, PKM) read as images: level 0, layer 0,
+// GPU containers (DDS, KTX2, KTX1, PKM, .astc) read as images: level 0, layer 0,
 // face 0, through texproc's own container readers; block-compressed formats
 // are decoded. (read_texture keeps every level, face and layer.)
 #include <cstring>
@@ -14,10 +14,9 @@ namespace {
 
 const char* container_name(const std::string& path, const FileBytes& f) {
   (void)path;
-  if (f.size() >= 4 && std::memcmp(f.data(), "DDS ", 4) == 0) return "dds";
-  if (f.size() >= 4 && std::memcmp(f.data(), "PKM ", 4) == 0) return "pkm";
-  if (f.size() >= 8 && std::memcmp(f.data(), "\xABKTX 20\xBB", 8) == 0) return "ktx2";
-  return "ktx1";
+  ContainerKind kind = ContainerKind::ktx1;
+  container_from_signature(f.data(), f.size(), kind);
+  return to_string(kind);
 }
 
 // The type a texture's texels decode to without loss: 16-bit and float
