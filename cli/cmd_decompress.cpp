@@ -36,15 +36,23 @@ void check_index(const std::string& input, const char* what, int value, std::uin
   }
 }
 
-std::vector<std::string> plan(const DecompressArgs& a, const std::string& input, const std::string& output) {
-  if (!a.all_levels) return {output};
+std::vector<std::string> plan(const DecompressArgs& a, const std::string& input, std::string output) {
   const Texture t = read_texture(input);
+  // -o DIR/: HDR textures (half and float formats, ASTC HDR) go to OpenEXR,
+  // where their values above 1 survive, instead of the folder default .png.
+  const bool folder = !a.io.output.empty() && (a.io.output.back() == '/' || fs::is_directory(a.io.output));
+  if (folder && format_info(t.format).is_float && fs::path(output).extension() == ".png") {
+    output = fs::path(output).replace_extension(".exr").string();
+  }
+  if (!a.all_levels) return {output};
   // One level, or a file that holds a MIP chain (.exr, .tif): the one output.
   if (t.levels == 1 || holds_mip_levels(output)) return {output};
   return level_outputs(output, int(t.levels));
 }
 
-void run_decompress(const DecompressArgs& a, const std::string& input, const std::string& output, FileReport& r) {
+void run_decompress(const DecompressArgs& a, const std::string& input, const std::string& requested, FileReport& r) {
+  // plan() may have chosen another name (.exr for HDR into a folder).
+  const std::string output = r.outputs.size() == 1 ? r.outputs[0] : requested;
   WriteOptions w = a.write;
   const bool exr = fs::path(output).extension() == ".exr";
   std::optional<PixelType> type = a.type_choice;
@@ -102,12 +110,13 @@ void run_decompress(const DecompressArgs& a, const std::string& input, const std
 
 void add_decompress_command(CLI::App& app) {
   auto args = std::make_shared<DecompressArgs>();
-  CLI::App* cmd = app.add_subcommand("decompress", "Decode a DDS/KTX2/KTX1/PKM texture back to image files.");
+  CLI::App* cmd = app.add_subcommand("decompress", "Decode a DDS/KTX2/KTX1/PKM/.astc texture back to image files.");
   cmd->footer(
-      "BC1-BC5 and uncompressed formats (ETC decoding comes with the ETC codecs). SNORM data goes to float\n"
-      "(.exr, or --type f32) as [-1, 1], to 8/16-bit as the usual biased (v + 1) / 2.");
-  add_batch_inputs(*cmd, args->io, "Texture files (.dds, .ktx2, .ktx, .pkm)",
-                   "Output image (.png, .exr, .tga, .tif), folder (DIR/: {stem}.png each) or template");
+      "Every format texproc writes: BC1-BC5, ETC1/ETC2/EAC, ASTC (through astc-encoder's decoder) and the\n"
+      "uncompressed ones. SNORM data goes to float (.exr, or --type f32) as [-1, 1], to 8/16-bit as the usual\n"
+      "biased (v + 1) / 2. With -o DIR/, HDR textures (float formats, ASTC HDR) are written as .exr.");
+  add_batch_inputs(*cmd, args->io, "Texture files (.dds, .ktx2, .ktx, .pkm, .astc)",
+                   "Output image (.png, .exr, .tga, .tif), folder (DIR/: {stem}.png each, .exr for HDR) or template");
   cmd->add_option("--level", args->level, "Mip level to write (default 0)");
   cmd->add_flag("--all-levels", args->all_levels, "Write every level as {stem}_mip{L}.{ext}");
   cmd->add_option("--layer", args->layer, "Array layer (default 0)");

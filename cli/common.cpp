@@ -252,17 +252,17 @@ void check_surfaces_fit(const std::string& input, const ImageArray& in, const st
 
 const std::vector<std::string>& image_extensions() {
   static const std::vector<std::string> e = {".png", ".jpg", ".jpeg", ".tga", ".tif", ".tiff", ".exr", ".hdr",
-                                             ".bmp", ".psd", ".webp", ".gif", ".ppm", ".pgm", ".pnm", ".dds", ".ktx2", ".ktx", ".pkm"};
+                                             ".bmp", ".psd", ".webp", ".gif", ".ppm", ".pgm", ".pnm", ".dds", ".ktx2", ".ktx", ".pkm", ".astc"};
   return e;
 }
 const std::vector<std::string>& texture_extensions() {
-  static const std::vector<std::string> e = {".dds", ".ktx2", ".ktx", ".pkm"};
+  static const std::vector<std::string> e = {".dds", ".ktx2", ".ktx", ".pkm", ".astc"};
   return e;
 }
 
 bool is_container_path(const std::string& path) {
   const std::string e = lower_extension(path);
-  return e == ".dds" || e == ".ktx2" || e == ".ktx" || e == ".pkm";
+  return e == ".dds" || e == ".ktx2" || e == ".ktx" || e == ".pkm" || e == ".astc";
 }
 
 DdsHeader parse_dds_header(const std::string& s) {

@@ -114,6 +114,7 @@ struct SingleColorTables {
     for (int mode = 0; mode < 2; ++mode)
       for (int bits : {5, 6}) {
         const int n = 1 << bits;
+        auto& table = (bits == 5 ? five : six)[std::size_t(mode)];  // named once (see bc1_lanes_simd.cpp's nudge)
         std::array<int, 256> first;  // value -> index a * n + b of the first pair giving it, -1 if none
         first.fill(-1);
         for (int a = 0; a < n; ++a)
@@ -128,7 +129,7 @@ struct SingleColorTables {
             const int hi = d > 0 && v + d < 256 ? first[std::size_t(v + d)] : -1;
             if (lo < 0 && hi < 0) continue;
             const int pair = lo < 0 ? hi : hi < 0 ? lo : std::min(lo, hi);
-            (bits == 5 ? five : six)[mode][std::size_t(v)] = {std::uint8_t(pair / n), std::uint8_t(pair % n)};
+            table[std::size_t(v)] = {std::uint8_t(pair / n), std::uint8_t(pair % n)};
             break;
           }
         }

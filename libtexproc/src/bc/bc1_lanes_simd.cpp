@@ -126,7 +126,11 @@ void nudge(const int rgb[16][3], const bool clear[16], bool four, State& s) {
     bool improved = false;
     for (int m = 0; m < 12; ++m) {
       State n = s;
-      int& v = (m < 6 ? n.qa : n.qb)[m % 6 / 2];
+      // Through a pointer: GCC 12.2 miscompiles the index of `(c ? n.qa :
+      // n.qb)[m % 6 / 2]` under -fsanitize=integer-divide-by-zero (and
+      // shift, signed-integer-overflow): the asan preset's bytes differed.
+      int* q = m < 6 ? n.qa : n.qb;
+      int& v = q[m % 6 / 2];
       v += m % 2 ? 1 : -1;
       if (v < 0 || v > (m % 6 / 2 == 1 ? 63 : 31)) continue;
       n.error = nearest(rgb, clear, n.qa, n.qb, four, n.codes);
@@ -550,7 +554,8 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, in
         for (int m = 0; m < 12; ++m) {
           const int ch = m % 6 / 2, max = ch == 1 ? 63 : 31;
           State n = s;
-          V& v = (m < 6 ? n.qa : n.qb)[ch];
+          V* q = m < 6 ? n.qa : n.qb;  // a pointer, as in the reference (GCC 12.2, sanitizers)
+          V& v = q[ch];
           v = hn::Add(v, hn::Set(d, m % 2 ? 1 : -1));
           const auto valid = hn::And(moving, hn::And(hn::Not(hn::Lt(v, hn::Zero(d))), hn::Not(hn::Gt(v, hn::Set(d, max)))));
           if (hn::AllFalse(d, valid)) continue;
