@@ -1,5 +1,6 @@
 // texproc compress: block compression (BC1-BC5, ETC1, ETC2, EAC, ASTC) into
 // DDS, KTX2, KTX1, PKM or .astc, optionally with a mip chain.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -33,6 +34,7 @@ struct CompressArgs {
   float astc_effort = -1.0f;  // astc-encoder's numeric quality, in place of --quality's preset
   std::string transparent_color = "keep";
   bool mips = false, normal_map = false, linear = false, srgb = false, report = false, bc1_black = false;
+  bool clip = false;  // float input outside [0, 1] to an LDR format: meant, no warning
   float alpha_coverage = -1.0f;  // with --mips: the alpha reference whose coverage each level keeps
   bool no_premultiply = false;   // with --mips: alpha is data, not coverage
   // From the options, once (validate):
@@ -144,6 +146,23 @@ void validate(CompressArgs& a) {
 
 // The encoded level and its decoding as f32 images with the format's
 // channels, on one scale ([0, 1]; SNORM mapped back from [-1, 1]).
+// LDR formats hold [0, 1]: float input outside it is clipped, which an HDR
+// source rarely means. One warning per file, with the range and the way out.
+void warn_if_clipped(const std::string& input, const ImageArray& in, TexelFormat format, std::vector<std::string>& warnings) {
+  if (format_info(format).is_float || in.images.empty() || in.images[0].type() != PixelType::f32) return;
+  float lo = 0.0f, hi = 1.0f;
+  for (const Image& img : in.images) {
+    const float* p = reinterpret_cast<const float*>(img.data());
+    const std::size_t n = img.byte_size() / sizeof(float);
+    for (std::size_t i = 0; i < n; ++i) lo = std::min(lo, p[i]), hi = std::max(hi, p[i]);
+  }
+  if (lo >= 0.0f && hi <= 1.0f) return;
+  char range[96];
+  std::snprintf(range, sizeof range, "values from %g to %g", double(lo), double(hi));
+  warnings.push_back(input + ": " + range + " are clipped to [0, 1] by " + format_info(format).name +
+                     "; an HDR format keeps them (astc-WxH-hdr), --clip says the clipping is meant");
+}
+
 // A colour image as linear f32 (alpha unchanged).
 Image decode_to_linear(const Image& img, const ColorSpace& from) {
   Image out = Image::uninitialized(img.width(), img.height(), img.channels(), PixelType::f32);
@@ -197,6 +216,7 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   // Colour is sRGB unless --linear, a normal map, or float input.
   const bool srgb = a.srgb || (!a.linear && !a.normal_map && input_type != PixelType::f32);
   const TexelFormat format = format_for(a.format, srgb);
+  if (!a.clip) warn_if_clipped(input, in, format, r.warnings);
   // HDR formats hold linear values: 8/16-bit colour is decoded from sRGB
   // first (as data with --linear), so the chain and the encoder see light.
   if (format_info(format).is_float && input_type != PixelType::f32) {
@@ -325,6 +345,8 @@ void add_compress_command(CLI::App& app) {
   cmd->add_flag("--srgb", args->srgb, "BC1-BC3: write the sRGB format (the default for 8/16-bit colour input)");
   cmd->add_flag("--linear", args->linear, "The input is data: UNORM formats, linear mip filtering");
   cmd->add_option("--quality", args->quality, "fast, normal, high, max (widest search; slow)")->capture_default_str();
+  cmd->add_flag("--clip", args->clip,
+                "Float input to an LDR format: clip values outside [0, 1] without the warning (an HDR format keeps them)");
   cmd->add_option("--astc-effort", args->astc_effort,
                   "ASTC: astc-encoder's numeric quality 0-100 in place of --quality's preset (0 -fastest, 10 -fast, "
                   "60 -medium, 98 -thorough, 99 -verythorough, 100 -exhaustive)");

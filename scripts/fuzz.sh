@@ -7,7 +7,8 @@ cd "$(dirname "$0")/.."
 SECONDS_EACH=${1:-60}
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTEXPROC_FUZZ=ON \
   -DTEXPROC_BUILD_TESTS=OFF -DTEXPROC_BUILD_BENCH=OFF -DTEXPROC_STATIC_CODECS=OFF >/dev/null
-cmake --build build-fuzz -j "$(nproc)" --target fuzz_containers fuzz_block_decoders fuzz_images
+# texproc_exr: the OpenEXR module, built with the same sanitizers; fuzz_images loads it for EXR input.
+cmake --build build-fuzz -j "$(nproc)" --target fuzz_containers fuzz_block_decoders fuzz_images texproc_exr
 # Seeds come from the Release build's texproc (scripts/build.sh).
 T=${TEXPROC:-build/cli/texproc}
 [ -x "$T" ] || bash scripts/build.sh
@@ -24,7 +25,14 @@ $T compress samples/cutout_fence_512x256.png -o "$S/containers/f.ktx2" --format 
 $T mip samples/height_mount_250.png -o "$S/images/h.tif" -q -f
 $T sat samples/height_mount_250.png -o "$S/images/h.sat" -q -f
 $T mip samples/albedo_desert_512.png -o "$S/images/a.tga" --levels 1 -q -f
+# Small OpenEXR seeds (half, float, tiled MIP chain, three compressions) for the EXR module.
+oiiotool samples/height_mount_250.png --resize 24x20 -d half --compression zip -o "$S/images/e_zip.exr"
+oiiotool samples/albedo_desert_512.png --resize 16x16 -d float --compression piz -o "$S/images/e_piz.exr"
+oiiotool samples/albedo_desert_512.png --resize 20x12 -d half --compression rle -o "$S/images/e_rle.exr"
+$T mip "$S/images/e_piz.exr" -o "$S/images/e_mip.exr" --type f32 -q -f
 head -c 4096 "$S/containers/b.ktx2" > "$S/blocks/seed"
+# From here on the harnesses load the sanitized EXR module, not build/'s.
+export TEXPROC_EXR_MODULE="$PWD/build-fuzz/cli/texproc_exr.so"
 for pair in containers:containers block_decoders:blocks images:images; do
   h=${pair%%:*} seeds=${pair##*:}
   echo "fuzz.sh: fuzz_$h for ${SECONDS_EACH}s"

@@ -1,6 +1,8 @@
-// libFuzzer harness: the direct image readers (PNG, JPEG, TGA, TIFF) and the
-// .sat reader, through the files they read: the input goes to a file in
-// /dev/shm named for each format (TGA and .sat are chosen by extension).
+// libFuzzer harness: the direct image readers (PNG, JPEG, TGA, TIFF), OpenEXR
+// through texproc_exr (the module built with the same sanitizers; fuzz.sh
+// names it in TEXPROC_EXR_MODULE) and the .sat reader, through the files they
+// read: the input goes to a file in /dev/shm named for each format (TGA and
+// .sat are chosen by extension, the others by signature).
 #include <unistd.h>
 
 #include <cstdint>
@@ -33,7 +35,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return true;
   }();
   (void)once;
-  for (const char* ext : {".png", ".tga", ".sat"}) {  // PNG/JPEG/TIFF by signature, whatever the name
+  for (const char* ext : {".png", ".tga", ".sat"}) {  // PNG/JPEG/TIFF/EXR by signature, whatever the name
     const std::string path = put(ext, data, size);
     if (path.empty()) return 0;
     try {

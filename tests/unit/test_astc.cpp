@@ -373,3 +373,47 @@ TEST(Astc, AstcencCliWritesTheSameBytesAndDecodesTheSamePixels) {
   }
   fs::remove_all(dir);
 }
+
+// Float input outside [0, 1] to an LDR format warns once, naming the file, the
+// range and the HDR way out; --clip silences it; an HDR format keeps the values.
+TEST(Astc, LdrFormatsWarnWhenTheyClipFloatInput) {
+  const std::string dir = temp_dir("astc_clip");
+  Image hdr(12, 8, 3, PixelType::f32);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 12; ++x)
+      for (int c = 0; c < 3; ++c) hdr.row<float>(y)[x * 3 + c] = 0.25f * float(x);
+  write_image(dir + "/sky.exr", hdr.view());
+  const std::string in = "'" + dir + "/sky.exr' ";
+  RunResult r = run_texproc("compress " + in + "-o '" + dir + "/a.ktx2' --format astc-4x4");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("sky.exr"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("2.75"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("hdr"), std::string::npos) << r.err;
+  r = run_texproc("compress " + in + "-o '" + dir + "/b.dds' --format bc1");
+  EXPECT_NE(r.err.find("clipped"), std::string::npos) << r.err;
+  r = run_texproc("compress " + in + "-o '" + dir + "/c.dds' --format bc1 --clip");
+  EXPECT_EQ(r.err.find("clipped"), std::string::npos) << r.err;
+  r = run_texproc("compress " + in + "-o '" + dir + "/d.ktx2' --format astc-4x4-hdr");
+  EXPECT_EQ(r.err.find("clipped"), std::string::npos) << r.err;
+  const Image back = decode_texture_image(read_texture(dir + "/d.ktx2"), 0, 0, 0, PixelType::f32);
+  EXPECT_GT(back.get(11, 0, 0), 2.5f);
+  fs::remove_all(dir);
+}
+
+// Cubemaps keep their faces through ASTC, with a chain per face.
+TEST(Astc, CubemapsKeepTheirFaces) {
+  const std::string dir = temp_dir("astc_cube");
+  std::vector<std::vector<Image>> faces;
+  for (int f = 0; f < 6; ++f) {
+    faces.emplace_back();
+    faces.back().push_back(random_image(16, 16, 4, PixelType::u8, unsigned(40 + f)));
+  }
+  write_texture(dir + "/cube.dds", texture_from_surfaces(std::move(faces), 6, 1, false, true));
+  ASSERT_EQ(run_texproc("compress '" + dir + "/cube.dds' -o '" + dir + "/cube.ktx2' --format astc-8x8 --mips -q").exit_code, 0);
+  const Texture t = read_texture(dir + "/cube.ktx2");
+  EXPECT_EQ(t.format, TexelFormat::astc_8x8_srgb);
+  EXPECT_EQ(t.faces, 6u);
+  EXPECT_EQ(t.levels, 5u);
+  EXPECT_FALSE(t.image(0, 0, 0) == t.image(0, 0, 5));
+  fs::remove_all(dir);
+}
