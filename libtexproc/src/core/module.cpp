@@ -46,9 +46,8 @@ const void* load_module(const ModuleSpec& spec, std::string& why) {
       note(file, e ? e : "dlopen failed");
       continue;
     }
-    using Entry = const void* (*)();
-    auto entry = reinterpret_cast<Entry>(dlsym(handle, spec.entry));
-    if (const void* table = entry ? entry() : nullptr) return table;  // kept loaded: the libraries keep threads and caches
+    void* entry = dlsym(handle, spec.entry);
+    if (const void* table = entry ? spec.call_entry(entry) : nullptr) return table;  // kept loaded: the libraries keep threads and caches
     note(file, std::string("no ") + spec.entry);
     dlclose(handle);
   }

@@ -13,6 +13,10 @@ struct ModuleSpec {
   const char* env;         // a variable that names the file to use instead (and nowhere else)
   const char* entry;       // the exported function that returns the module's table
   const char* build_path;  // where the build tree puts it ("" for none)
+  // Calls the entry `symbol` through its own type (a module's entry returns
+  // its own table type; calling it through another is undefined behaviour,
+  // which UBSan's function check reports) and returns the table.
+  const void* (*call_entry)(void* symbol);
 };
 
 // Where it looks, in order: $env when set; beside the binary or shared

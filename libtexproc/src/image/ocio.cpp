@@ -23,7 +23,9 @@ const TpOcioModule& ocio_module() {
 #else
     const char* build = "";
 #endif
-    const ModuleSpec spec{"texproc_ocio.so", "TEXPROC_OCIO_MODULE", "texproc_ocio_module", build};
+    using Entry = const TpOcioModule* (*)();
+    const ModuleSpec spec{"texproc_ocio.so", "TEXPROC_OCIO_MODULE", "texproc_ocio_module", build,
+                          [](void* entry) -> const void* { return reinterpret_cast<Entry>(entry)(); }};
     module = static_cast<const TpOcioModule*>(load_module(spec, why));
     if (module && module->abi != TP_OCIO_MODULE_ABI) {
       why = "texproc_ocio is of another version";
