@@ -299,6 +299,14 @@ TEST(Astc, CliRefusals) {
   // The default container for -o DIR/ is KTX2.
   ASSERT_EQ(run_texproc("compress " + in + "-o '" + dir + "/out/' --format ASTC-6x6 -q").exit_code, 0);
   EXPECT_EQ(read_texture(dir + "/out/a.ktx2").format, TexelFormat::astc_6x6_srgb);
+  // info and compare read ASTC like any other texture.
+  ASSERT_EQ(run_texproc("compress " + in + "-o '" + dir + "/a.astc' --format astc-5x4 --linear -q").exit_code, 0);
+  r = run_texproc("info '" + dir + "/a.astc' --json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"container\": \"astc\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("astc_5x4_unorm"), std::string::npos) << r.out;
+  EXPECT_EQ(run_texproc("compare " + in + "'" + dir + "/a.astc' --min-psnr 30").exit_code, 0);
+  EXPECT_EQ(run_texproc("compare " + in + "'" + dir + "/a.astc' --min-psnr 80").exit_code, 7);
   fs::remove_all(dir);
 }
 
