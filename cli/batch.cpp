@@ -3,7 +3,6 @@
 #include "texproc/file_io.h"
 
 #include <json/writer.h>
-#include <tbb/parallel_pipeline.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -348,76 +347,62 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
   }
 
   Progress progress(c.name, todo.size(), !common.quiet && (s.progress || ::isatty(2)));
-  std::atomic<bool> stop{false};
-  std::size_t next = 0;
   const int hw = hardware_threads();
   const std::size_t tokens = std::size_t(std::max(1, s.jobs > 0 ? s.jobs : (common.threads > 0 ? common.threads : hw)));
-  tbb::parallel_pipeline(
-      tokens,
-      tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
-                                          [&](tbb::flow_control& fc) -> std::size_t {
-                                            if (next == todo.size() || stop) {
-                                              fc.stop();
-                                              return 0;
-                                            }
-                                            return todo[next++];
-                                          }) &
-          tbb::make_filter<std::size_t, std::size_t>(
-              tbb::filter_mode::parallel,
-              [&](std::size_t i) {
-                FileReport& r = reports[i];
-                progress.started(r.input);
-                r.progress = [&progress, &r](double done) { progress.fraction(r.input, done); };
-                const auto t0 = std::chrono::steady_clock::now();
-                try {
-                  c.run(r.input, outputs[i], r);
-                } catch (const Error& e) {
-                  fail(r, e.code(), e.what());
-                } catch (const std::bad_alloc&) {
-                  fail(r, ErrorCode::runtime, r.input + ": out of memory");
-                } catch (const std::exception& e) {
-                  fail(r, ErrorCode::runtime, r.input + ": " + e.what());
-                }
-                r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-                if (!r.warnings.empty()) {
-                  Json::Value w(Json::arrayValue);
-                  for (const std::string& m : r.warnings) w.append(m);
-                  r.details["warnings"] = w;
-                }
-                if (r.phases.read >= 0) {
-                  Json::Value ph(Json::objectValue);
-                  ph["read_ms"] = r.phases.read;
-                  ph["compute_ms"] = r.phases.compute;
-                  ph["write_ms"] = r.phases.write;
-                  r.details["phases"] = ph;
-                  if (common.verbose && !r.line.empty()) {
-                    char buf[160];
-                    std::snprintf(buf, sizeof buf, "\n  read %.1f ms, compute %.1f ms, write %.1f ms", r.phases.read,
-                                  r.phases.compute, r.phases.write);
-                    const std::size_t nl = r.line.find('\n');
-                    r.line.insert(nl == std::string::npos ? r.line.size() : nl, buf);
-                  }
-                }
-                return i;
-              }) &
-          tbb::make_filter<std::size_t, void>(tbb::filter_mode::serial_in_order, [&](std::size_t i) {
-            FileReport& r = reports[i];
-            progress.finished(r.input, [&] {
-              if (!common.quiet && !s.json) {
-                for (const std::string& w : r.warnings) std::cerr << "texproc " << c.name << ": warning: " << w << "\n";
-              }
-              if (r.status == "failed") {
-                std::cerr << "texproc " << c.name << ": error: " << r.error << "\n";
-              } else if (!common.quiet && !s.json && !r.line.empty()) {
-                std::cout << r.line << "\n" << std::flush;
-              }
-            });
-            if (r.status == "failed" && s.fail_fast) stop = true;
-          }));
+  // Files in parallel, reported in input order as each and those before it finish.
+  const std::size_t started = for_each_in_order(
+      todo.size(), tokens,
+      [&](std::size_t k) {
+        FileReport& r = reports[todo[k]];
+        progress.started(r.input);
+        r.progress = [&progress, &r](double done) { progress.fraction(r.input, done); };
+        const auto t0 = std::chrono::steady_clock::now();
+        try {
+          c.run(r.input, outputs[todo[k]], r);
+        } catch (const Error& e) {
+          fail(r, e.code(), e.what());
+        } catch (const std::bad_alloc&) {
+          fail(r, ErrorCode::runtime, r.input + ": out of memory");
+        } catch (const std::exception& e) {
+          fail(r, ErrorCode::runtime, r.input + ": " + e.what());
+        }
+        r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (!r.warnings.empty()) {
+          Json::Value w(Json::arrayValue);
+          for (const std::string& m : r.warnings) w.append(m);
+          r.details["warnings"] = w;
+        }
+        if (r.phases.read >= 0) {
+          Json::Value ph(Json::objectValue);
+          ph["read_ms"] = r.phases.read;
+          ph["compute_ms"] = r.phases.compute;
+          ph["write_ms"] = r.phases.write;
+          r.details["phases"] = ph;
+          if (common.verbose && !r.line.empty()) {
+            char buf[160];
+            std::snprintf(buf, sizeof buf, "\n  read %.1f ms, compute %.1f ms, write %.1f ms", r.phases.read,
+                          r.phases.compute, r.phases.write);
+            const std::size_t nl = r.line.find('\n');
+            r.line.insert(nl == std::string::npos ? r.line.size() : nl, buf);
+          }
+        }
+      },
+      [&](std::size_t k) {
+        FileReport& r = reports[todo[k]];
+        progress.finished(r.input, [&] {
+          if (!common.quiet && !s.json) {
+            for (const std::string& w : r.warnings) std::cerr << "texproc " << c.name << ": warning: " << w << "\n";
+          }
+          if (r.status == "failed") {
+            std::cerr << "texproc " << c.name << ": error: " << r.error << "\n";
+          } else if (!common.quiet && !s.json && !r.line.empty()) {
+            std::cout << r.line << "\n" << std::flush;
+          }
+        });
+        return !(r.status == "failed" && s.fail_fast);
+      });
   progress.close();
-  if (stop) {
-    for (std::size_t k = next; k < todo.size(); ++k) reports[todo[k]].status = "not_run";
-  }
+  for (std::size_t k = started; k < todo.size(); ++k) reports[todo[k]].status = "not_run";
   return finish();
 }
 

@@ -1,6 +1,7 @@
 // texproc/runtime.h: threads and SIMD switches for the whole library.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <string>
@@ -38,6 +39,15 @@ void for_each_row_block(int rows, int block_rows, const std::function<void(int, 
 // block, the fractions rising to 1.
 void for_each_row_block(int rows, int block_rows, const std::function<void(int, int)>& fn,
                         const std::function<void(double)>& progress);
+
+// A batch of `count` items, `in_flight` at most at a time: work(i) runs in
+// parallel for i = 0, 1, ... (started in order of i), and done(i) runs for
+// each item one at a time in order of i, once it and every item before it
+// have finished work. done returning false stops the batch: no item starts
+// after that (those in flight finish and get done). Returns how many items
+// were started (the rest were not run).
+std::size_t for_each_in_order(std::size_t count, std::size_t in_flight, const std::function<void(std::size_t)>& work,
+                              const std::function<bool(std::size_t)>& done);
 
 // Forces the scalar reference kernels instead of the SIMD ones (also set by
 // the environment variable TEXPROC_FORCE_SCALAR=1). Both give identical bytes.

@@ -8,7 +8,8 @@
 // and the library hands out blocks. Each block is searched on its own, so
 // the bytes do not depend on which thread took it, nor on the thread count.
 #define ASTCENC_DYNAMIC_LIBRARY 1
-#include "astc/astc_codec.h"
+#include "astc/astc_decode.h"
+#include "astc/astc_encode.h"
 
 #include <Imath/half.h>
 #include <astcenc.h>

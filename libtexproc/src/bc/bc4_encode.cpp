@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "astc/astc_codec.h"
+#include "astc/astc_encode.h"
 #include "bc/bc1_encode.h"
 #include "bc/bc1_lanes.h"
 #include "bc/bc4_lanes.h"

@@ -6,7 +6,7 @@
 
 #include "texproc/block_decode.h"
 
-#include "astc/astc_codec.h"
+#include "astc/astc_decode.h"
 #include "texproc/runtime.h"
 
 #include "etc/etc_tables.h"

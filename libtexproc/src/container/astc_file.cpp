@@ -8,7 +8,7 @@
 // reads a file as UNORM, or SFLOAT when a block uses HDR endpoints.
 #include <cstring>
 
-#include "astc/astc_codec.h"
+#include "astc/astc_decode.h"
 #include "container/bytes.h"
 #include "container/streams.h"
 #include "texproc/container.h"

@@ -21,8 +21,10 @@ class ByteWriter {
   void u32(std::uint32_t v) { raw(&v, 4); }
   void u64(std::uint64_t v) { raw(&v, 8); }
   void raw(const void* p, std::size_t n) {  // little-endian host (x86-64, Arm64)
-    const auto* b = static_cast<const std::uint8_t*>(p);
-    out_.insert(out_.end(), b, b + n);
+    if (n == 0) return;
+    const std::size_t at = out_.size();
+    out_.resize(at + n);  // (not insert: GCC 12 warns falsely of an overflow in vector::insert here)
+    std::memcpy(out_.data() + at, p, n);
   }
   // `n` bytes at `p`, which must stay valid while this writer is used.
   void ref(const void* p, std::size_t n) {

@@ -4,7 +4,7 @@
 // 4 bytes, uncompressed rows padded to 4 bytes (GL_UNPACK_ALIGNMENT 4).
 #include <algorithm>
 
-#include "astc/astc_codec.h"
+#include "astc/astc_decode.h"
 #include "container/bytes.h"
 #include "container/streams.h"
 #include "texproc/container.h"

@@ -3,11 +3,13 @@
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
 #include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 
+#include <atomic>
 #include <mutex>
 
 #include "texproc/runtime.h"
@@ -65,6 +67,31 @@ void for_each_row_block(int rows, int block_rows, const std::function<void(int, 
     done += end - begin;
     progress(double(done) / double(rows));
   });
+}
+
+std::size_t for_each_in_order(std::size_t count, std::size_t in_flight, const std::function<void(std::size_t)>& work,
+                              const std::function<bool(std::size_t)>& done) {
+  std::size_t next = 0;
+  std::atomic<bool> stop{false};  // set by the last stage, read by the first (they may run at once)
+  tbb::parallel_pipeline(
+      std::max<std::size_t>(1, in_flight),
+      tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
+                                          [&](tbb::flow_control& fc) -> std::size_t {
+                                            if (next == count || stop) {
+                                              fc.stop();
+                                              return 0;
+                                            }
+                                            return next++;
+                                          }) &
+          tbb::make_filter<std::size_t, std::size_t>(tbb::filter_mode::parallel,
+                                                     [&](std::size_t i) {
+                                                       work(i);
+                                                       return i;
+                                                     }) &
+          tbb::make_filter<std::size_t, void>(tbb::filter_mode::serial_in_order, [&](std::size_t i) {
+            if (!done(i)) stop = true;
+          }));
+  return next;
 }
 
 }  // namespace texproc
