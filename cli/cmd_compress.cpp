@@ -144,8 +144,6 @@ void validate(CompressArgs& a) {
   a.mip.premultiplied_alpha = !a.no_premultiply;
 }
 
-// The encoded level and its decoding as f32 images with the format's
-// channels, on one scale ([0, 1]; SNORM mapped back from [-1, 1]).
 // LDR formats hold [0, 1]: float input outside it is clipped, which an HDR
 // source rarely means. One warning per file, with the range and the way out.
 void warn_if_clipped(const std::string& input, const ImageArray& in, TexelFormat format, std::vector<std::string>& warnings) {
@@ -174,6 +172,9 @@ Image decode_to_linear(const Image& img, const ColorSpace& from) {
   return out;
 }
 
+// The encoded level and its decoding as f32 images with the format's
+// channels, on one scale ([0, 1]; SNORM mapped back from [-1, 1]); an ASTC
+// normal map is compared as stored (X in RGB, Y in alpha).
 ImageDifference encoding_error(const Image& level, const Texture& t, bool astc_normal_map) {
   const Image decoded = decode_texture_image(t, 0, 0, 0, PixelType::f32);
   const int channels = decoded.channels();

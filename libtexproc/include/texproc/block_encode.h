@@ -45,7 +45,7 @@ double bc4_block_error(const std::uint8_t block[8], const float values[16], bool
 // ASTC formats take RGBA as BC1-BC3 do (8-bit stays 8-bit, 16-bit and
 // float in [0, 1] keep their precision); SFLOAT takes the values as they
 // are (above 1 kept, negative clamped by the format). ASTC is searched by
-// astc-encoder at the preset the quality names (astc::effort_for, or
+// astc-encoder at the preset the quality names (docs/compression.md, or
 // EncodeOptions::astc_effort); its library is loaded on first use and
 // Error{unsupported} says so when it is missing.
 // Throws Error{unsupported} for formats that are not block formats.

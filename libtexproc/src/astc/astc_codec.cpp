@@ -11,7 +11,6 @@
 #include "astc/astc_decode.h"
 #include "astc/astc_encode.h"
 
-#include <Imath/half.h>
 #include <astcenc.h>
 #include <dlfcn.h>
 
@@ -166,16 +165,8 @@ void on_threads(unsigned threads, const std::function<void(unsigned)>& fn) {
 struct Packed {
   astcenc_type type = ASTCENC_TYPE_U8;
   std::vector<std::uint8_t> u8;
-  std::vector<std::uint16_t> f16;
   std::vector<float> f32;
-  void* data() {
-    switch (type) {
-      case ASTCENC_TYPE_U8: return u8.data();
-      case ASTCENC_TYPE_F16: return f16.data();
-      case ASTCENC_TYPE_F32: return f32.data();
-    }
-    return nullptr;
-  }
+  void* data() { return type == ASTCENC_TYPE_U8 ? static_cast<void*>(u8.data()) : static_cast<void*>(f32.data()); }
 };
 
 // Gray fills RGB, missing alpha is 1; a two-channel normal map is X, Y.
@@ -183,16 +174,14 @@ Packed pack(const ImageView& img, bool hdr, bool normal_map) {
   Packed p;
   const std::size_t n = std::size_t(img.width) * img.height * 4;
   const int C = img.channels;
-  // LDR: 8-bit stays 8-bit, 16-bit goes to half (as astcenc's CLI loads a
-  // 16-bit PNG), float is clamped to [0, 1]. HDR: float.
-  p.type = hdr ? ASTCENC_TYPE_F32
-               : img.type == PixelType::u8 ? ASTCENC_TYPE_U8
-               : img.type == PixelType::u16 ? ASTCENC_TYPE_F16
-                                             : ASTCENC_TYPE_F32;
-  switch (p.type) {
-    case ASTCENC_TYPE_U8: p.u8.resize(n); break;
-    case ASTCENC_TYPE_F16: p.f16.resize(n); break;
-    case ASTCENC_TYPE_F32: p.f32.resize(n); break;
+  // 8-bit LDR stays 8-bit; 16-bit and float go as float, keeping every bit
+  // (astcenc's CLI reads a 16-bit PNG as 8-bit); LDR float is clamped to
+  // [0, 1].
+  p.type = !hdr && img.type == PixelType::u8 ? ASTCENC_TYPE_U8 : ASTCENC_TYPE_F32;
+  if (p.type == ASTCENC_TYPE_U8) {
+    p.u8.resize(n);
+  } else {
+    p.f32.resize(n);
   }
   // Which source channel feeds each of R, G, B, A (-1: constant 1).
   int src[4];
@@ -221,8 +210,7 @@ Packed pack(const ImageView& img, bool hdr, bool normal_map) {
             }
             case PixelType::u16: {
               const std::uint16_t v = s < 0 ? 65535 : img.row<const std::uint16_t>(y)[x * C + s];
-              if (p.type == ASTCENC_TYPE_F16) p.f16[i] = Imath::half(float(v) / 65535.0f).bits();
-              else p.f32[i] = float(v) / 65535.0f;
+              p.f32[i] = float(v) / 65535.0f;
               break;
             }
             case PixelType::f32: {
