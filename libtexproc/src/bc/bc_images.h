@@ -1,0 +1,19 @@
+// BC1-BC5 images: the drivers that cut an image into blocks, gather them
+// sixteen at a time for the lanes (or one at a time for `max`), and write the
+// blocks, row by row over texproc's threads. compress_image dispatches here.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "texproc/block_encode.h"
+
+namespace texproc {
+
+// BC1 (opaque and 1-bit alpha), BC2 and BC3: the colour block, and BC2's
+// explicit or BC3's interpolated alpha.
+std::vector<std::uint8_t> compress_bc13(const ImageView& img, TexelFormat format, Quality q, const EncodeOptions& options);
+// BC4 and BC5 (UNORM, SNORM): one or two channels as data.
+std::vector<std::uint8_t> compress_bc45(const ImageView& img, TexelFormat format, Quality q, const EncodeOptions& options);
+
+}  // namespace texproc
