@@ -17,10 +17,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <fstream>
 #include <iterator>
 #include <mutex>
 #include <vector>
 
+#include <cstdint>
 #include <cstring>
 #include <string>
 #include <thread>
@@ -97,7 +99,63 @@ void info_of(const Imf::Header& h, TpImageSpec& out) {
   out.level_height[0] = out.height;
 }
 
+
+// The header as the OpenEXR file layout has it (magic, version, then per part
+// a list of attributes: name, type name, int32 size, value; an empty name
+// ends a header, and in a multi-part file an empty header ends the list),
+// walked before OpenEXR opens the file: OpenEXR allocates each attribute's
+// declared size first, so a 1.6 KB file declaring a 1.9 GB attribute made
+// it take 1.9 GB (found by fuzz_images). An attribute larger than the rest
+// of the file is refused here.
+void check_header(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw texproc::Error(texproc::ErrorCode::io, path + ": cannot open");
+  in.seekg(0, std::ios::end);
+  const std::uint64_t size = std::uint64_t(in.tellg());
+  in.seekg(0);
+  std::uint8_t head[8] = {};
+  if (!in.read(reinterpret_cast<char*>(head), 8)) return;  // OpenEXR says what is wrong
+  const bool multipart = (head[5] & 0x10) != 0;  // version flags: bit 12 multi-part
+  auto fail = [&](const std::string& what) {
+    throw texproc::Error(texproc::ErrorCode::invalid_file, path + ": not a valid OpenEXR file: " + what); };
+  auto read_name = [&](std::string& out) {
+    out.clear();
+    for (int i = 0; i < 256; ++i) {
+      const int c = in.get();
+      if (c == EOF) fail("truncated header");
+      if (c == 0) return;
+      out.push_back(char(c));
+    }
+    fail("an attribute name longer than 255 bytes");
+  };
+  for (int part = 0;; ++part) {
+    std::string name, type;
+    read_name(name);
+    if (name.empty()) {
+      if (!multipart || part > 0) return;  // single part: its header ended; multi-part: the empty header
+      fail("an empty header");
+    }
+    for (; !name.empty(); read_name(name)) {
+      read_name(type);
+      std::uint8_t b[4];
+      if (!in.read(reinterpret_cast<char*>(b), 4)) fail("truncated header");
+      const std::int32_t n = std::int32_t(std::uint32_t(b[0]) | std::uint32_t(b[1]) << 8 | std::uint32_t(b[2]) << 16 |
+                                          std::uint32_t(b[3]) << 24);
+      const std::uint64_t at = std::uint64_t(in.tellg());
+      if (n < 0 || std::uint64_t(n) > size - at) {
+        fail("attribute '" + name + "' (" + type + ") declares " + std::to_string(n) + " bytes, " +
+             std::to_string(size - at) + " follow it in the file");
+      }
+      in.seekg(std::streamoff(n), std::ios::cur);
+    }
+    if (!multipart) return;
+    // Multi-part: another header follows unless the next byte ends the list.
+    if (in.peek() == 0) return;
+  }
+}
+
 void probe(const std::string& path, TpImageSpec& out) {
+  check_header(path);
   start_threads();
   Imf::InputFile in(path.c_str());
   info_of(in.header(), out);
@@ -112,6 +170,7 @@ void probe(const std::string& path, TpImageSpec& out) {
 }
 
 void read(const std::string& path, int C, void* data, size_t row_stride) {
+  check_header(path);
   start_threads();
   Imf::InputFile in(path.c_str());
   const std::vector<Channel> ch = ordered_channels(in.header());
