@@ -37,13 +37,14 @@ void check_index(const std::string& input, const char* what, int value, std::uin
 }
 
 std::vector<std::string> plan(const DecompressArgs& a, const std::string& input, std::string output) {
-  const Texture t = read_texture(input);
   // -o DIR/: HDR textures (half and float formats, ASTC HDR) go to OpenEXR,
   // where their values above 1 survive, instead of the folder default .png.
+  // The texture is read here only when its format or levels decide the name.
   const bool folder = !a.io.output.empty() && (a.io.output.back() == '/' || fs::is_directory(a.io.output));
-  if (folder && format_info(t.format).is_float && fs::path(output).extension() == ".png") {
-    output = fs::path(output).replace_extension(".exr").string();
-  }
+  const bool default_png = folder && fs::path(output).extension() == ".png";
+  if (!default_png && !a.all_levels) return {output};
+  const Texture t = read_texture(input);
+  if (default_png && format_info(t.format).is_float) output = fs::path(output).replace_extension(".exr").string();
   if (!a.all_levels) return {output};
   // One level, or a file that holds a MIP chain (.exr, .tif): the one output.
   if (t.levels == 1 || holds_mip_levels(output)) return {output};
