@@ -89,8 +89,10 @@ void report_seams() {
 void report_ibl_accuracy() {
   const Image p = linear_panorama(kPanoramas[0]);
   const Cubemap src = cubemap_from_equirect(p.view(), 32);
-  const Cubemap spec = prefilter_specular(src);
-  SpecularOptions so;
+  SpecularOptions all;
+  all.min_size = 1;
+  const Cubemap spec = prefilter_specular(src, all);
+  SpecularOptions so = all;
   so.exact_budget = 0;
   if (getenv("CUBE_SAMPLES")) so.samples = atoi(getenv("CUBE_SAMPLES"));
   const Cubemap sampled = prefilter_specular(src, so);
@@ -132,7 +134,9 @@ void report_ibl_accuracy() {
   // each such level against brute force over the 256 source.
   {
     const Cubemap src256 = cubemap_from_equirect(p.view(), 256);
-    const Cubemap s256 = prefilter_specular(src256);
+    SpecularOptions every;
+    every.min_size = 1;
+    const Cubemap s256 = prefilter_specular(src256, every);
     const int levels256 = int(s256.levels.size());
     std::printf("GGX prefilter of a 256 cube (forest), importance-sampled levels, 600 texels each against brute force:\n");
     for (int m = 1; m <= 3; ++m) {
@@ -218,8 +222,10 @@ void specular_256(benchmark::State& state, int threads) {
   ThreadLimit limit(threads);
   const Image p = linear_panorama(kPanoramas[0]);
   const Cubemap src = cubemap_from_equirect(p.view(), 256);
+  SpecularOptions every;  // all levels, down to 1x1
+  every.min_size = 1;
   for (auto _ : state) {
-    const Cubemap s = prefilter_specular(src);
+    const Cubemap s = prefilter_specular(src, every);
     benchmark::DoNotOptimize(s.levels.back().faces[0].data());
   }
 }

@@ -15,6 +15,7 @@ void add_all_commands(CLI::App& app) {
   add_normalmap_command(app);
   add_sat_command(app);
   add_conemap_command(app);
+  add_cubemap_command(app);
   add_compress_command(app);
   add_decompress_command(app);
   add_info_command(app);

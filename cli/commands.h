@@ -15,6 +15,7 @@ void add_compress_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 void add_build_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
+void add_cubemap_command(CLI::App& app);
 
 void add_all_commands(CLI::App& app);
 int report_usage_error(CLI::App& app, const CLI::ParseError& e);

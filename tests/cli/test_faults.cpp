@@ -250,7 +250,21 @@ TEST(Faults, KtxValidateAcceptsEveryKtx2) {
     ASSERT_EQ(run_texproc("mip '" + dir + "/src.png' -o '" + out + "' --type " + type + " -q").exit_code, 0);
     files.push_back(out);
   }
-  EXPECT_GE(files.size(), 74u);
+  // Cube maps from `cubemap`: sRGB bytes and half floats with seamless mips,
+  // float, and an IBL specular chain.
+  Image pano(64, 32, 3, PixelType::f32);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64 * 3; ++x) pano.row<float>(y)[x] = float((x * 7 + y * 3) % 23) / 11.0f;
+  write_image(dir + "/pano.exr", pano.view());
+  write_image(dir + "/pano.png", random_image(64, 32, 3, PixelType::u8, 5).view());
+  for (const char* args : {"pano.png' -o '{}/cube_srgb.ktx2' --mips", "pano.exr' -o '{}/cube_half.ktx2' --mips",
+                           "pano.exr' -o '{}/cube_f32.ktx2' --format rgba32f", "pano.exr' -o '{}/cube_ibl.ktx2' --ibl specular"}) {
+    std::string a = args;
+    a.replace(a.find("{}"), 2, dir);
+    ASSERT_EQ(run_texproc("cubemap '" + dir + "/" + a + " -q").exit_code, 0) << a;
+    files.push_back(dir + "/" + a.substr(a.find("cube_"), a.find(".ktx2") - a.find("cube_") + 5));
+  }
+  EXPECT_GE(files.size(), 78u);
   for (const std::string& f : files) {
     const std::string cmd = ktx + " validate --warnings-as-errors '" + f + "' >'" + dir + "/v.txt' 2>&1";
     EXPECT_EQ(std::system(cmd.c_str()), 0) << f << ":\n" << slurp(dir + "/v.txt");

@@ -138,7 +138,9 @@ Cubemap prefilter_specular(const Cubemap& source, const SpecularOptions& o) {
   Cubemap chain = resize_cubemap(source, size);
   generate_cube_mips(chain);
   const int all = int(chain.levels.size());
-  const int levels = o.levels > 0 ? std::min(o.levels, all) : all;
+  int levels = 1;
+  while (levels < all && chain.levels[levels].size >= std::max(1, o.min_size)) ++levels;
+  if (o.levels > 0) levels = std::min(o.levels, all);
   const CubeSampler sampler(chain);
   Cubemap out;
   out.levels.push_back(chain.levels[0]);

@@ -1,0 +1,557 @@
+// texproc cubemap: environment maps from panoramas, faces, crosses and
+// strips; seamless mips; GGX specular and diffuse irradiance for
+// image-based lighting; spherical harmonics; a preview.
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "batch.h"
+#include "commands.h"
+#include "common.h"
+#include "texproc/color.h"
+#include "texproc/container.h"
+#include "texproc/cubemap.h"
+#include "texproc/error.h"
+#include "texproc/file_io.h"
+#include "texproc/image_io.h"
+#include "texproc/runtime.h"
+
+namespace fs = std::filesystem;
+
+namespace texproc::cli {
+namespace {
+
+const char* kFaceNames[6] = {"px", "nx", "py", "ny", "pz", "nz"};
+
+enum class Target { automatic, cube, cross, vcross, strip, vstrip, equirect, faces };
+enum class Ibl { none, specular, irradiance, both };
+
+struct CubemapArgs {
+  CommonOptions common;
+  BatchInputs io;
+  std::vector<std::string> faces;
+  std::string layout = "auto", to = "auto", format, color_space, flip = "none", ibl = "none";
+  std::string irradiance_path, sh_path, preview_path, dds_header = "auto";
+  bool linear = false, mips = false, report = false;
+  int size = 0, levels = 0, equirect_width = 0, irradiance_size = 32, samples = 256, zstd = 0;
+  float exposure = 1.0f;
+  // From the options, once (validate):
+  Target target = Target::automatic;
+  Ibl mode = Ibl::none;
+  CubeFlip flip_axis = CubeFlip::none;
+  DdsHeader header = DdsHeader::automatic;
+  bool output_is_folder = false;
+};
+
+Target parse_target(const std::string& s) {
+  static const std::pair<const char*, Target> kNames[] = {
+      {"auto", Target::automatic}, {"cube", Target::cube},         {"cross", Target::cross},
+      {"hcross", Target::cross},   {"vcross", Target::vcross},     {"strip", Target::strip},
+      {"hstrip", Target::strip},   {"vstrip", Target::vstrip},     {"equirect", Target::equirect},
+      {"faces", Target::faces}};
+  for (const auto& [name, t] : kNames)
+    if (s == name) return t;
+  throw Error(ErrorCode::bad_arguments,
+              "--to " + s + ": valid: auto, cube, cross (= hcross), vcross, strip (= hstrip), vstrip, equirect, faces");
+}
+
+Ibl parse_ibl(const std::string& s) {
+  if (s == "none") return Ibl::none;
+  if (s == "specular") return Ibl::specular;
+  if (s == "irradiance") return Ibl::irradiance;
+  if (s == "both") return Ibl::both;
+  throw Error(ErrorCode::bad_arguments, "--ibl " + s + ": valid: none, specular, irradiance, both");
+}
+
+void validate(CubemapArgs& a) {
+  a.target = parse_target(a.to);
+  a.mode = parse_ibl(a.ibl);
+  a.flip_axis = parse_cube_flip(a.flip);
+  a.header = parse_dds_header(a.dds_header);
+  if (a.layout != "auto") parse_cube_layout(a.layout);
+  if (!a.format.empty() && a.format != "rgba8" && a.format != "rgba16f" && a.format != "rgba32f") {
+    throw Error(ErrorCode::bad_arguments, "--format " + a.format + ": valid: rgba8, rgba16f, rgba32f");
+  }
+  if (a.size < 0 || a.size > 16384) throw Error(ErrorCode::bad_arguments, "--size: a face of 1 to 16384 texels");
+  if (a.irradiance_size < 1 || a.irradiance_size > 1024) {
+    throw Error(ErrorCode::bad_arguments, "--irradiance-size: 1 to 1024");
+  }
+  if (a.samples < 1 || a.samples > 65536) throw Error(ErrorCode::bad_arguments, "--samples: 1 to 65536");
+  if (!(a.exposure > 0.0f)) throw Error(ErrorCode::bad_arguments, "--exposure must be positive");
+  if (!a.faces.empty()) {
+    if (a.faces.size() != 6) {
+      throw Error(ErrorCode::bad_arguments, "--faces takes six images, +X -X +Y -Y +Z -Z; got " +
+                                                std::to_string(a.faces.size()));
+    }
+    if (!a.io.inputs.empty() || !a.io.file_list.empty()) {
+      throw Error(ErrorCode::bad_arguments, "--faces replaces the input: give either IN or --faces");
+    }
+    a.io.inputs = {a.faces[0]};
+  }
+  if (a.io.inputs.empty() && a.io.file_list.empty()) {
+    throw Error(ErrorCode::bad_arguments, "cubemap needs an input (a panorama, cross, strip or cube texture) or --faces");
+  }
+  if (a.io.output.empty()) throw Error(ErrorCode::bad_arguments, "cubemap: -o OUT.ktx2|.dds|.exr|DIR/ is required");
+  a.output_is_folder = a.io.output.back() == '/' || fs::is_directory(a.io.output);
+  if (a.target == Target::automatic && a.output_is_folder) a.target = Target::faces;
+  if (a.mode == Ibl::irradiance && a.mips) throw Error(ErrorCode::bad_arguments, "--mips has no meaning with --ibl irradiance");
+  if (!a.irradiance_path.empty() && a.mode != Ibl::both) {
+    throw Error(ErrorCode::bad_arguments, "--irradiance FILE goes with --ibl both (with --ibl irradiance, -o is the map)");
+  }
+  if (!a.sh_path.empty() && fs::path(a.sh_path).extension() != ".json") {
+    throw Error(ErrorCode::bad_arguments, "--sh " + a.sh_path + ": the coefficients are written as .json");
+  }
+  if (!a.preview_path.empty() && fs::path(a.preview_path).extension() != ".png") {
+    throw Error(ErrorCode::bad_arguments, "--preview " + a.preview_path + ": the preview is a .png");
+  }
+  for (const std::string& f : a.faces) record_input(f);
+}
+
+// What -o holds for this output name.
+Target target_for(const CubemapArgs& a, const std::string& output) {
+  if (a.target != Target::automatic) return a.target;
+  return is_container_path(output) ? Target::cube : Target::cross;
+}
+
+// Where a folder output's images go: the input's extension, or for inputs
+// that are containers or lossy, .exr for float and .png otherwise.
+std::string image_extension_for(const std::string& input, const std::string& output) {
+  std::string ext = fs::path(output).extension().string();
+  if (ext == ".jpg" || ext == ".jpeg" || is_container_path(output) || ext.empty()) {
+    const ImageFileInfo info = probe_image(input);
+    ext = info.type == PixelType::f32 ? ".exr" : ".png";
+  }
+  return ext;
+}
+
+std::string with_suffix(const std::string& output, const std::string& suffix, const std::string& ext) {
+  const fs::path p(output);
+  return (p.parent_path() / (p.stem().string() + suffix + ext)).string();
+}
+
+struct Plan {
+  std::vector<std::string> main;        // the environment (or IBL map) files
+  std::vector<std::string> irradiance;  // --ibl both
+  std::string sh, preview;
+  std::vector<std::string> all() const {
+    std::vector<std::string> v = main;
+    v.insert(v.end(), irradiance.begin(), irradiance.end());
+    for (const std::string* s : {&sh, &preview})
+      if (!s->empty()) v.push_back(*s);
+    return v;
+  }
+};
+
+// OUT gets a chain of levels (else one level).
+bool writes_chain(const CubemapArgs& a) { return a.mips || a.mode == Ibl::specular || a.mode == Ibl::both; }
+
+// The files one cube map goes to under `output`: the container, the image,
+// or six faces {stem}_px{ext} ... {stem}_nz{ext}; `suffix` goes after the stem.
+std::vector<std::string> files_for(const CubemapArgs& a, const std::string& input, const std::string& output,
+                                   const std::string& suffix, bool chain) {
+  const Target t = target_for(a, output);
+  if (t == Target::cube) {
+    container_for_path(output);  // a container extension, or an error now
+    return {with_suffix(output, suffix, fs::path(output).extension().string())};
+  }
+  if (is_container_path(output)) {
+    throw Error(ErrorCode::bad_arguments, output + ": --to " + a.to + " writes images; a cube texture is --to cube");
+  }
+  const std::string ext = image_extension_for(input, output);
+  if (chain && ext != ".exr" && ext != ".tif" && ext != ".tiff") {
+    throw Error(ErrorCode::bad_arguments,
+                output + ": a chain of levels (--mips, --ibl specular) in an image file needs .exr or .tif (one "
+                         "MIP-mapped file a face or layout), or a cube texture (.ktx2, .dds, .ktx)");
+  }
+  if (t != Target::faces) return {with_suffix(output, suffix, ext)};
+  std::vector<std::string> names;
+  for (const char* f : kFaceNames) names.push_back(with_suffix(output, suffix + "_" + f, ext));
+  return names;
+}
+
+Plan make_plan(const CubemapArgs& a, const std::string& input, const std::string& output) {
+  Plan p;
+  p.main = files_for(a, input, output, "", writes_chain(a));
+  if (a.mode == Ibl::both) {
+    p.irradiance = a.irradiance_path.empty() ? files_for(a, input, output, "_irradiance", false)
+                                             : files_for(a, input, a.irradiance_path, "", false);
+  }
+  p.sh = a.sh_path;
+  p.preview = a.preview_path;
+  return p;
+}
+
+// ---- Reading ------------------------------------------------------------------
+
+struct Source {
+  std::string input;    // the file (the +X face for --faces), for messages
+  Cubemap cube;
+  std::string layout;   // what the input was: "equirect 4096x2048", "hcross", "cube", "faces"
+  bool hdr = false;     // float input (kept linear, no clipping)
+  bool srgb = true;     // the colour space is sRGB (rgba8 outputs say so)
+  bool alpha = false;   // the input had an alpha channel
+  ColorSpace space = ColorSpace::srgb();
+};
+
+ColorSpace source_space(const CubemapArgs& a, PixelType type) {
+  if (a.linear) return ColorSpace::linear();
+  if (!a.color_space.empty()) return ColorSpace::from_name(a.color_space);
+  return type == PixelType::f32 ? ColorSpace::linear() : ColorSpace::srgb();
+}
+
+Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r) {
+  Source s;
+  s.input = a.faces.empty() ? input : a.faces[0];
+  if (!a.faces.empty()) {
+    std::array<Image, 6> faces;
+    for (int f = 0; f < 6; ++f) {
+      Image img = read_image(a.faces[f]);
+      read_as_finite(a.faces[f], img, r.warnings);
+      if (img.width() != img.height()) {
+        throw Error(ErrorCode::bad_arguments, a.faces[f] + ": a face is square; this one is " +
+                                                  std::to_string(img.width()) + "x" + std::to_string(img.height()));
+      }
+      if (f > 0 && img.width() != faces[0].width()) {
+        throw Error(ErrorCode::bad_arguments, a.faces[f] + ": " + std::to_string(img.width()) + "x" +
+                                                  std::to_string(img.height()) + ", but " + a.faces[0] + " (+X) is " +
+                                                  std::to_string(faces[0].width()) + "x" +
+                                                  std::to_string(faces[0].height()) + ": the six faces must be one size");
+      }
+      if (f == 0) {
+        s.hdr = img.type() == PixelType::f32;
+        s.space = source_space(a, img.type());
+      }
+      s.alpha = s.alpha || img.channels() == 2 || img.channels() == 4;
+      faces[f] = to_linear_rgba(img.view(), s.space);
+      r.inputs.push_back(a.faces[f]);
+    }
+    std::array<ImageView, 6> views;
+    for (int f = 0; f < 6; ++f) views[f] = faces[f].view();
+    s.cube = cubemap_from_faces(views);
+    s.layout = "faces";
+  } else {
+    ImageFileInfo info;
+    ImageArray in = read_image_array(input, &info);
+    for (Image& im : in.images) read_as_finite(input, im, r.warnings);
+    s.hdr = in.images[0].type() == PixelType::f32;
+    s.space = source_space(a, in.images[0].type());
+    s.alpha = in.images[0].channels() == 2 || in.images[0].channels() == 4;
+    if (in.faces == 6 && in.images.size() == 6) {
+      std::vector<Image> faces;
+      for (const Image& im : in.images) faces.push_back(to_linear_rgba(im.view(), s.space));
+      s.cube = cubemap_from_images(faces);
+      s.layout = "cube " + std::to_string(s.cube.size());
+    } else {
+      if (in.images.size() != 1) {
+        throw Error(ErrorCode::unsupported, input + ": an array texture is not a cube map (6 faces, one layer)");
+      }
+      const Image& img = in.images[0];
+      const CubeLayout layout =
+          a.layout == "auto" ? detect_cube_layout(img.width(), img.height()) : parse_cube_layout(a.layout);
+      const Image rgba = to_linear_rgba(img.view(), s.space);
+      if (layout == CubeLayout::equirect) {
+        if (img.width() != 2 * img.height()) {
+          throw Error(ErrorCode::bad_arguments, std::to_string(img.width()) + "x" + std::to_string(img.height()) +
+                                                    " is not a 2:1 panorama");
+        }
+        const int size = a.size > 0 ? a.size : default_cube_size(img.width());
+        s.cube = cubemap_from_equirect(rgba.view(), size, a.flip_axis);
+      } else {
+        s.cube = cubemap_from_layout(rgba.view(), layout);
+      }
+      s.layout = std::string(to_string(layout)) + " " + std::to_string(img.width()) + "x" + std::to_string(img.height());
+    }
+  }
+  s.srgb = s.space.is_srgb();
+  // Faces, crosses and cubes take --flip and --size here (a panorama took them while sampling).
+  if (s.layout.rfind("equirect", 0) != 0) {
+    if (a.flip_axis != CubeFlip::none) s.cube = flip_cubemap(s.cube, a.flip_axis);
+    if (a.size > 0 && a.size != s.cube.size()) s.cube = resize_cubemap(s.cube, a.size);
+  }
+  return s;
+}
+
+// ---- Writing ------------------------------------------------------------------
+
+// The texel format a cube texture gets: --format, else rgba16f for float
+// input and for IBL maps, rgba8 (sRGB when the input was) otherwise.
+TexelFormat cube_format(const CubemapArgs& a, const Source& s, bool lighting) {
+  if (a.format == "rgba32f") return TexelFormat::rgba32_float;
+  if (a.format == "rgba16f" || (a.format.empty() && (s.hdr || lighting))) return TexelFormat::rgba16_float;
+  return s.srgb ? TexelFormat::rgba8_srgb : TexelFormat::rgba8_unorm;
+}
+
+// The largest colour value, for the clipping warning.
+float peak_value(const Cubemap& c) {
+  float peak = 0;
+  for (const CubeLevel& l : c.levels)
+    for (const Image& f : l.faces) {
+      const float* p = f.row<float>(0);
+      for (std::size_t k = 0; k < std::size_t(l.size) * l.size * 4; ++k)
+        if (k % 4 != 3) peak = std::max(peak, p[k]);
+    }
+  return peak;
+}
+
+void warn_if_clipped(const std::string& input, const std::string& output, const Cubemap& c, std::vector<std::string>& w) {
+  const float peak = peak_value(c);
+  if (peak > 1.0f) {
+    std::ostringstream m;
+    m << input << ": values up to " << peak << " are clipped to 1 in " << output
+      << " (8-bit); --format rgba16f or an .exr output keeps them";
+    w.push_back(m.str());
+  }
+}
+
+void write_cube(const CubemapArgs& a, const Source& s, const Cubemap& c, const std::string& output, bool lighting,
+                std::vector<std::string>& warnings) {
+  const TexelFormat format = cube_format(a, s, lighting);
+  const bool eight_bit = format == TexelFormat::rgba8_srgb || format == TexelFormat::rgba8_unorm;
+  if (eight_bit) warn_if_clipped(s.input, output, c, warnings);
+  const ColorSpace out_space = eight_bit && s.srgb ? ColorSpace::srgb() : ColorSpace::linear();
+  std::vector<std::vector<Image>> chains(6);
+  for (const CubeLevel& l : c.levels)
+    for (int f = 0; f < 6; ++f) {
+      chains[f].push_back(eight_bit ? from_linear_rgba(l.faces[f].view(), out_space, 4, PixelType::u8)
+                                    : from_linear_rgba(l.faces[f].view(), ColorSpace::linear(), 4, PixelType::f32));
+    }
+  write_texture(output,
+                texture_from_surfaces(std::move(chains), 6, 1, false, format == TexelFormat::rgba8_srgb,
+                                      format == TexelFormat::rgba16_float),
+                a.header, zstd_level_for(a.zstd, output));
+}
+
+bool any_above_one(const std::vector<Image>& levels) {
+  for (const Image& l : levels)
+    for (int y = 0; y < l.height(); ++y) {
+      const float* row = l.row<float>(y);
+      for (int x = 0; x < l.width(); ++x)
+        if (row[4 * x] > 1.0f || row[4 * x + 1] > 1.0f || row[4 * x + 2] > 1.0f) return true;
+    }
+  return false;
+}
+
+// Images in a file: float to .exr/.hdr/.tif (half in EXR), bytes elsewhere;
+// several levels go into one MIP-mapped .exr or .tif.
+void write_images(const Source& s, const std::vector<Image>& levels, const std::string& output,
+                  std::vector<std::string>& warnings) {
+  const std::string ext = fs::path(output).extension().string();
+  const bool keeps_float = ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff" || ext == ".pfm";
+  const int channels = s.alpha ? 4 : 3;
+  std::vector<Image> out;
+  WriteOptions w;
+  if (keeps_float) {
+    for (const Image& l : levels) out.push_back(from_linear_rgba(l.view(), ColorSpace::linear(), channels, PixelType::f32));
+    w.half = ext == ".exr";
+    w.color_space = "linear";
+  } else {
+    if (any_above_one(levels)) {
+      warnings.push_back(s.input + ": values above 1 are clipped in " + output + " (8-bit); write .exr to keep them");
+    }
+    const ColorSpace space = s.srgb ? ColorSpace::srgb() : ColorSpace::linear();
+    for (const Image& l : levels) out.push_back(from_linear_rgba(l.view(), space, channels, PixelType::u8));
+    w.color_space = s.srgb ? "srgb" : "linear";
+  }
+  if (out.size() == 1) {
+    write_image(output, out[0].view(), w);
+  } else {
+    write_mip_file(output, out, w);
+  }
+}
+
+// One cube map (every level it has) to the files files_for named.
+void write_environment(const CubemapArgs& a, const Source& s, const Cubemap& c, const std::vector<std::string>& files,
+                       bool lighting, std::vector<std::string>& warnings) {
+  const Target t = target_for(a, files[0]);
+  if (t == Target::cube) return write_cube(a, s, c, files[0], lighting, warnings);
+  if (t == Target::faces) {
+    for (int f = 0; f < 6; ++f) {
+      std::vector<Image> levels;
+      for (const CubeLevel& l : c.levels) levels.push_back(l.faces[f]);
+      write_images(s, levels, files[f], warnings);
+    }
+    return;
+  }
+  std::vector<Image> images;
+  for (int l = 0; l < int(c.levels.size()); ++l) {
+    switch (t) {
+      case Target::equirect: {
+        const int w = a.equirect_width > 0 ? a.equirect_width : 4 * c.levels[0].size;
+        images.push_back(cubemap_to_equirect(c, std::max(2, w >> l), l));
+        break;
+      }
+      case Target::vcross: images.push_back(cubemap_to_layout(c, CubeLayout::cross_vertical, l)); break;
+      case Target::strip: images.push_back(cubemap_to_layout(c, CubeLayout::strip_horizontal, l)); break;
+      case Target::vstrip: images.push_back(cubemap_to_layout(c, CubeLayout::strip_vertical, l)); break;
+      default: images.push_back(cubemap_to_layout(c, CubeLayout::cross_horizontal, l)); break;
+    }
+  }
+  write_images(s, images, files[0], warnings);
+}
+
+void write_sh(const std::string& path, const SphericalHarmonics9& sh) {
+  static const char* kNames[9] = {"Y00", "Y1-1", "Y10", "Y11", "Y2-2", "Y2-1", "Y20", "Y21", "Y22"};
+  static constexpr double kBand[9] = {1.0, 2.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0, 0.25, 0.25, 0.25, 0.25, 0.25};
+  std::ostringstream o;
+  o << std::setprecision(9);
+  o << "{\n  \"basis\": \"real spherical harmonics, Ramamoorthi and Hanrahan 2001, texproc axes (docs/cubemap.md)\",\n";
+  o << "  \"order\": [";
+  for (int k = 0; k < 9; ++k) o << (k ? ", " : "") << '"' << kNames[k] << '"';
+  o << "],\n  \"radiance\": [";
+  for (int k = 0; k < 9; ++k)
+    o << (k ? ", " : "") << "[" << sh.radiance[k][0] << ", " << sh.radiance[k][1] << ", " << sh.radiance[k][2] << "]";
+  o << "],\n  \"irradiance_over_pi\": [";
+  for (int k = 0; k < 9; ++k)
+    o << (k ? ", " : "") << "[" << kBand[k] * sh.radiance[k][0] << ", " << kBand[k] * sh.radiance[k][1] << ", "
+      << kBand[k] * sh.radiance[k][2] << "]";
+  o << "]\n}\n";
+  write_file_atomic(path, o.str());
+}
+
+void run_cubemap(const CubemapArgs& a, const std::string& input, const std::string& output, FileReport& r) {
+  try {
+    PhaseTimer phases(r);
+    const Plan plan = make_plan(a, input, output);
+    if (target_for(a, output) == Target::cube) {
+      zstd_level_for(a.zstd, output);
+      check_dds_header_fits(a.dds_header, output);
+    } else if (a.zstd != 0 || a.dds_header != "auto") {
+      throw Error(ErrorCode::bad_arguments, output + ": --zstd and --dds-header are for cube textures (.ktx2, .dds)");
+    }
+    Source s = read_source(a, input, r);
+    phases.read_done();
+    const int levels = a.levels;
+    Cubemap env = s.cube;
+    if (a.mips) generate_cube_mips(env, levels);
+    Cubemap specular, irradiance;
+    if (a.mode == Ibl::specular || a.mode == Ibl::both) {
+      SpecularOptions so;
+      so.size = s.cube.size();
+      so.levels = levels;
+      so.samples = a.samples;
+      specular = prefilter_specular(s.cube, so);
+    }
+    if (a.mode == Ibl::irradiance || a.mode == Ibl::both) irradiance = irradiance_cubemap(s.cube, a.irradiance_size);
+    phases.compute_done();
+    const Cubemap& main = a.mode == Ibl::specular || a.mode == Ibl::both ? specular
+                          : a.mode == Ibl::irradiance                     ? irradiance
+                                                                          : env;
+    write_environment(a, s, main, plan.main, a.mode != Ibl::none, r.warnings);
+    if (!plan.irradiance.empty()) write_environment(a, s, irradiance, plan.irradiance, true, r.warnings);
+    if (!plan.sh.empty()) write_sh(plan.sh, project_sh9(s.cube));
+    if (!plan.preview.empty()) {
+      Cubemap chain = env;
+      if (chain.levels.size() == 1) generate_cube_mips(chain);
+      const Image p = render_cube_preview(chain, specular.levels.empty() ? nullptr : &specular, a.exposure);
+      write_image(plan.preview, p.view());
+    }
+    phases.write_done();
+    std::ostringstream line;
+    line << input << " -> " << output << ": " << s.layout << " -> cube " << main.size() << ", " << main.levels.size()
+         << (main.levels.size() == 1 ? " level" : " levels");
+    if (a.mode != Ibl::none) line << ", " << a.ibl << " IBL";
+    if (!plan.irradiance.empty()) line << ", irradiance " << plan.irradiance[0];
+    if (!plan.sh.empty()) line << ", SH " << plan.sh;
+    if (!plan.preview.empty()) line << ", preview " << plan.preview;
+    r.line = line.str();
+    r.details["source"] = s.layout;
+    r.details["size"] = main.size();
+    r.details["levels"] = Json::UInt(main.levels.size());
+    if (target_for(a, output) == Target::cube) r.details["format"] = format_info(cube_format(a, s, a.mode != Ibl::none)).name;
+    if (a.report) {
+      Json::Value seams(Json::arrayValue);
+      for (const CubeLevel& l : main.levels) {
+        const SeamStats st = measure_seams(l);
+        Json::Value v;
+        v["size"] = l.size;
+        v["edge_step"] = st.edge_step;
+        v["near_edge_step"] = st.near_edge_step;
+        v["interior_step"] = st.interior_step;
+        seams.append(v);
+      }
+      r.details["seams"] = seams;
+    }
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    const std::string& named = a.faces.empty() ? input : a.faces[0];
+    bool has_name = what.rfind(named, 0) == 0;
+    for (const std::string& f : a.faces) has_name = has_name || what.rfind(f, 0) == 0;
+    if (has_name) throw;
+    throw Error(e.code(), (a.faces.empty() ? input : "--faces " + a.faces[0] + " ...") + ": " + what);
+  }
+}
+
+}  // namespace
+
+void add_cubemap_command(CLI::App& app) {
+  auto args = std::make_shared<CubemapArgs>();
+  CLI::App* cmd = app.add_subcommand("cubemap", "Make cube maps (environment maps) and image-based lighting.");
+  cmd->footer(
+      "texproc cubemap IN -o OUT.ktx2|.dds|.ktx|.exr|.png|DIR/ [--size N] [--mips] [--ibl specular|irradiance|both]\n"
+      "texproc cubemap --faces PX NX PY NY PZ NZ -o OUT ...\n"
+      "IN: a 2:1 panorama (equirectangular), a cross (4:3, 3:4), a strip (6:1, 1:6), or a cube texture.\n"
+      "OUT: a cube texture (.ktx2, .dds, .ktx), a cross image (.exr, .png, ...), six faces (DIR/ or --to faces:\n"
+      "{stem}_px ... _nz), or a panorama (--to equirect). Faces follow Vulkan/OpenGL/D3D: +X -X +Y -Y +Z -Z.\n"
+      "--mips: seamless (filtered over the sphere, across the face edges). --ibl specular: GGX prefiltered chain,\n"
+      "roughness = level / (levels - 1); irradiance: cosine-convolved map. See docs/cubemap.md.");
+  add_batch_inputs(*cmd, args->io, "Input panoramas, crosses, strips or cube textures",
+                   "Output file, folder (DIR/: six faces each) or template ('env/{stem}.ktx2')", false);
+  cmd->add_option("--faces", args->faces, "Six face images instead of IN: +X -X +Y -Y +Z -Z")->expected(6);
+  cmd->add_option("--layout", args->layout, "Input layout: auto (by aspect ratio), equirect, hcross, vcross, hstrip, vstrip")
+      ->capture_default_str();
+  cmd->add_option("--to", args->to,
+                  "What OUT holds: auto (a cube texture for .ktx2/.dds/.ktx, six faces for DIR/, a cross otherwise), "
+                  "cube, cross, vcross, strip, vstrip, equirect, faces")
+      ->capture_default_str();
+  cmd->add_option("--size", args->size, "Face size (default: a panorama's width / 4 as a power of two; a cross's face)");
+  cmd->add_flag("--mips", args->mips, "A seamless mip chain down to 1x1");
+  cmd->add_option("--levels", args->levels, "At most this many levels (with --mips or --ibl specular)");
+  cmd->add_option("--flip", args->flip, "Mirror a world axis of the source: none, x, y, z (z: left-handed engines)")
+      ->capture_default_str();
+  cmd->add_option("--format", args->format,
+                  "Cube texture format: rgba8 (sRGB for sRGB input), rgba16f, rgba32f (default: rgba16f for float "
+                  "input and IBL, rgba8 otherwise)");
+  cmd->add_option("--colorspace", args->color_space, "Source color space (default: srgb for 8/16-bit, linear for float)");
+  cmd->add_flag("--linear", args->linear, "The input is data: no transfer function");
+  cmd->add_option("--equirect-width", args->equirect_width, "--to equirect: the panorama's width (default 4 x size)");
+  CLI::App& g = *cmd;
+  g.add_option("--ibl", args->ibl, "Image-based lighting: none, specular, irradiance, both")->capture_default_str()->group("Lighting");
+  g.add_option("--irradiance", args->irradiance_path, "--ibl both: the irradiance map's file (default {stem}_irradiance{ext})")
+      ->group("Lighting");
+  g.add_option("--irradiance-size", args->irradiance_size, "Irradiance map face size")->capture_default_str()->group("Lighting");
+  g.add_option("--samples", args->samples, "Importance samples per texel where the GGX lobe is sampled")
+      ->capture_default_str()->group("Lighting");
+  g.add_option("--sh", args->sh_path, "Write the 9 spherical-harmonic coefficients of the radiance (JSON)")->group("Lighting");
+  g.add_option("--preview", args->preview_path, "Write a PNG: every level's cross and lit spheres")->group("Lighting");
+  g.add_option("--exposure", args->exposure, "Preview exposure (a multiplier)")->capture_default_str()->group("Lighting");
+  cmd->add_option("--dds-header", args->dds_header, "DDS header: auto, dx9, dx10")->capture_default_str()->group("Container");
+  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level (1-22)")->group("Container");
+  cmd->add_flag("--report", args->report, "With --json: seam figures per level (steps across edges and inside)");
+  add_common_options(*cmd, args->common);
+  set_runner(*cmd, [args] {
+    BatchCommand c;
+    c.name = "cubemap";
+    c.default_extension = ".ktx2";
+    c.input_extensions = image_extensions();
+    c.validate = [args] {
+      validate(*args);
+      if (args->target == Target::faces && args->output_is_folder) {
+        // DIR/: {stem}{ext} there, the faces named from it.
+        args->io.output = (fs::path(args->io.output) / "{stem}").string();
+      }
+    };
+    c.plan = [args](const InputFile& in, const std::string& out) {
+      try {
+        return make_plan(*args, in.path, out).all();
+      } catch (const Error& e) {
+        if (std::string(e.what()).rfind(in.path, 0) == 0) throw;
+        throw Error(e.code(), in.path + ": " + e.what());
+      }
+    };
+    c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_cubemap(*args, in, out, r); };
+    return run_batch(c, args->io, args->common);
+  });
+}
+
+}  // namespace texproc::cli
