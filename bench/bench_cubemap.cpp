@@ -50,7 +50,8 @@ void report_seams() {
       "seam by construction (its edge/inner ratio is the content's).\n");
   std::printf("%-17s %5s %5s | %-23s | %-13s | %-13s | %-13s\n", "panorama", "level", "size",
               "seamless edge near inner", "gauss edge", "box edge", "direct edge");
-  int levels = 0, below_inner = 0, below_gauss = 0, within_direct = 0, direct_below_inner = 0;
+  int levels = 0, below_inner = 0, below_gauss = 0, within_direct = 0, direct_below_inner = 0, both_fail = 0;
+  double worst_vs_direct = 0, worst_gauss = 0;
   for (const char* path : kPanoramas) {
     const Image p = linear_panorama(path);
     Cubemap c = cubemap_from_equirect(p.view(), 256);
@@ -79,11 +80,16 @@ void report_seams() {
       below_gauss += s.edge_step <= sg.edge_step;
       within_direct += s.edge_step <= 1.05 * sd.edge_step;
       direct_below_inner += sd.edge_step <= sd.interior_step;
+      both_fail += s.edge_step > s.interior_step && sd.edge_step > sd.interior_step;
+      worst_vs_direct = std::max(worst_vs_direct, s.edge_step / sd.edge_step);
+      worst_gauss = std::max(worst_gauss, sg.edge_step / s.edge_step);
     }
   }
-  std::printf("levels 1..: %d; seamless edge <= inner: %d (direct sampling: %d); seamless edge <= per-face gaussian's: "
-              "%d; seamless edge within 5%% of direct sampling's: %d  (* marks edge > inner)\n",
-              levels, below_inner, direct_below_inner, below_gauss, within_direct);
+  std::printf("levels: %d; seamless edge <= inner: %d (direct sampling: %d; both above inner: %d); seamless edge <= "
+              "per-face gaussian's: %d (gaussian up to %.2fx); seamless edge within 5%% of direct sampling's: %d (at most "
+              "%.2fx)  (* marks edge > inner)\n",
+              levels, below_inner, direct_below_inner, both_fail, below_gauss, worst_gauss, within_direct,
+              worst_vs_direct);
 }
 
 void report_ibl_accuracy() {

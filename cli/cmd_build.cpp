@@ -61,7 +61,7 @@ PreparedJob prepare(const Recipe& r, const RecipeJob& j, const CommonOptions& co
   p.job = &j;
   p.app = std::make_unique<CLI::App>();
   add_all_commands(*p.app);
-  const std::vector<std::string> valid = {"mip", "compress", "normalmap", "conemap", "sat", "sat blur", "decompress"};
+  const std::vector<std::string> valid = {"mip", "compress", "normalmap", "conemap", "sat", "sat blur", "decompress", "cubemap"};
   if (std::find(valid.begin(), valid.end(), j.command) == valid.end()) {
     throw Error(ErrorCode::bad_arguments, where(r, j, j.command_line) + ": command: unknown command '" + j.command +
                                               "' (valid: " + join(valid) + ")");

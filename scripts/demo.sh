@@ -25,6 +25,10 @@ $T sat samples/height_mount_250.png -o out/height_mount_250.sat --force
 $T sat query out/height_mount_250.sat 0 0 250 250 --json
 $T conemap samples/height_stein_256.png -o out/cone_stein_256.png --height-channel r --depth 0.08 \
    --preview out/cone_stein_256_preview.png --force
+# Environment map: a cube texture with seamless mips; GGX specular and irradiance IBL, SH, a preview.
+$T cubemap samples/sky_forest_512x256.exr -o out/sky_forest.ktx2 --mips --force
+$T cubemap samples/sky_forest_512x256.exr -o out/sky_forest_specular.ktx2 --ibl both --sh out/sky_forest_sh.json \
+   --preview out/sky_forest_preview.png --force
 $T info out/albedo_desert_512_bc1.dds out/normal_from_height_256_bc5.ktx2
 # The build-system way: samples/Makefile cooks every sample with depfiles
 # (run it again and nothing is redone).

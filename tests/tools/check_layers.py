@@ -36,6 +36,10 @@ def rules(rel):
     base = os.path.basename(rel)
     if re.search(r"_decode\.(cpp|h)$", base) or rel.startswith("libtexproc/src/container/"):
         out.append(("decoders and containers include no encoder", lambda k, h: k == '"' and bool(ENCODER.search(h))))
+    if re.match(r"libtexproc/src/(image|mip|normalmap|sat|conemap|cubemap)/", rel):
+        out.append(("the image layers (image, mip, normalmap, sat, conemap, cubemap) include no encoder or codec internals",
+                    lambda k, h: k == '"' and (bool(ENCODER.search(h)) or
+                                               re.match(r"(bc|etc|astc|encode|container)/", h) is not None)))
     if rel.startswith("libtexproc/src/core/"):
         out.append(("core/ is the bottom layer: core/ and texproc/ only",
                     lambda k, h: k == '"' and not (h.startswith("core/") or h.startswith("texproc/"))))
@@ -72,6 +76,7 @@ def self_test():
         "libtexproc/src/bc/bc_decode.cpp": '#include "bc/bc1_encode.h"\n',
         "libtexproc/src/container/ktx9.cpp": '#include "texproc/block_encode.h"\n',
         "libtexproc/src/core/x.cpp": '#include "image/ocio.h"\n',
+        "libtexproc/src/cubemap/x.cpp": '#include "bc/bc_images.h"\n',
     }
     with tempfile.TemporaryDirectory() as tmp:
         for rel, text in breaks.items():
