@@ -9,6 +9,7 @@
 #include <random>
 
 #include "cubemap/convolve.h"
+#include "cubemap/pano_map.h"
 #include "support/targets.h"
 #include "support/threads.h"
 #include "texproc/cubemap.h"
@@ -474,6 +475,28 @@ TEST(CubeIbl, ConvolutionSimdEqualsScalarOnEveryTarget) {
           return bytes_of(prefilter_specular(src, so));
         },
         "cube convolution alpha " + std::to_string(alpha));
+  }
+}
+
+TEST(CubeFromPanorama, Atan2PolynomialIsWithinTwoTenthsOfAMicroradian) {
+  double worst = 0;
+  for (int a = 0; a < 100000; ++a) {
+    const double t = 2 * kPi * a / 100000.0;
+    for (double r : {1e-3, 1.0, 7.5}) {
+      const float y = float(r * std::sin(t)), x = float(r * std::cos(t));
+      worst = std::max(worst, std::fabs(cube::atan2_poly(y, x) - std::atan2(double(y), double(x))));
+    }
+  }
+  EXPECT_LT(worst, 4e-7);  // float rounding of the result included (pi is 3.1e-7 apart in float)
+  EXPECT_EQ(cube::atan2_poly(0.0f, 0.0f), 0.0f);
+}
+
+TEST(CubeFromPanorama, SimdEqualsScalarOnEveryTarget) {
+  const Image hdr = read_image(std::string(TEXPROC_CORPUS_DIR) + "/hdr/blender_world_courtyard.exr");
+  const Image rgba = to_linear_rgba(hdr.view(), ColorSpace::linear());
+  for (CubeFlip flip : {CubeFlip::none, CubeFlip::z}) {
+    test::expect_same_on_every_target([&] { return bytes_of(cubemap_from_equirect(rgba.view(), 37, flip)); },
+                                      "cubemap_from_equirect");
   }
 }
 

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "cubemap/cube_internal.h"
+#include "cubemap/pano_map.h"
 #include "mip/resample.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
@@ -151,8 +152,11 @@ struct PanoPyramid {
     const PanoLevel& l0 = levels[0];
     const double fx = x * (double(l.w) / l0.w) - 0.5, fy = y * (double(l.h) / l0.h) - 0.5;
     const double flx = std::floor(fx);
-    int x0 = int(flx) % l.w;
-    if (x0 < 0) x0 += l.w;
+    int x0 = int(flx);
+    if (x0 < 0 || x0 >= l.w) {  // a tap past the seam (rarely more than one width)
+      x0 %= l.w;
+      if (x0 < 0) x0 += l.w;
+    }
     const int x1 = x0 + 1 == l.w ? 0 : x0 + 1;
     const float tx = float(fx - flx);
     int y0, y1;
@@ -204,68 +208,65 @@ Cubemap cubemap_from_equirect(const ImageView& pano, int size, CubeFlip flip) {
   Cubemap c;
   c.levels.push_back(cube::make_level(size));
   CubeLevel& out = c.levels[0];
-  const double sx = W / (2.0 * std::numbers::pi), sy = H / std::numbers::pi, step = 2.0 / size;
+  const double step = 2.0 / size;
   for_each_row_block(6 * size, cube::kRowBlock, [&](int r0, int r1) {
+    std::vector<float> buf(std::size_t(size) * 7);
+    const cube::FaceRowMap map{buf.data(), buf.data() + size, buf.data() + 2 * size, buf.data() + 3 * size,
+                               buf.data() + 4 * size, buf.data() + 5 * size, buf.data() + 6 * size};
     for (int r = r0; r < r1; ++r) {
       const int f = r / size, j = r % size;
-      double eu[3], ev[3];
+      double o[3], eu[3], ev[3];
+      cube_direction(f, 0, 0, o);
       face_axes(f, eu, ev);
+      apply_flip(flip, o);
       apply_flip(flip, eu);
       apply_flip(flip, ev);
+      float axes[9];
+      for (int k = 0; k < 3; ++k) axes[k] = float(o[k]), axes[3 + k] = float(eu[k]), axes[6 + k] = float(ev[k]);
+      cube::map_face_row(axes, size, j, W, H, map);
       float* row = out.faces[f].row<float>(j);
       const double v = step * (j + 0.5) - 1.0;
       for (int i = 0; i < size; ++i) {
-        const double u = step * (i + 0.5) - 1.0;
-        double d[3];
-        cube_direction(f, u, v, d);
-        apply_flip(flip, d);
-        double px, py;
-        direction_to_equirect(d, W, H, px, py);
         // The texel's footprint in panorama texels: a along u, b along v.
-        const double rho2 = std::max(d[0] * d[0] + d[2] * d[2], 1e-24), rho = std::sqrt(rho2);
-        const double r2 = rho2 + d[1] * d[1];
-        auto jac = [&](const double e[3], double& jx, double& jy) {
-          const double dphi = (-d[2] * e[0] + d[0] * e[2]) / rho2;
-          const double drho = (d[0] * e[0] + d[2] * e[2]) / rho;
-          const double dlam = (rho * e[1] - d[1] * drho) / r2;
-          jx = sx * dphi * step;
-          jy = -sy * dlam * step;
-        };
-        double ax, ay, bx, by;
-        jac(eu, ax, ay);
-        jac(ev, bx, by);
+        const double ax = map.ax[i], ay = map.ay[i], bx = map.bx[i], by = map.by[i];
         const double la = std::sqrt(ax * ax + ay * ay), lb = std::sqrt(bx * bx + by * by);
         const double major = std::max(la, lb);
         const double minor = std::fabs(ax * by - ay * bx) / std::max(major, 1e-30);
-        int k = minor > 1.0 ? std::min(top, int(std::floor(std::log2(minor)))) : 0;
+        int k = 0;
+        if (minor >= 2.0) k = std::min(top, std::ilogb(minor));
         int na, nb;
         for (;;) {
-          const double texel = std::ldexp(1.0, k);
-          na = std::clamp(int(std::ceil(la / texel - 1e-3)), 1, kMaxTaps);
-          nb = std::clamp(int(std::ceil(lb / texel - 1e-3)), 1, kMaxTaps);
+          const double inv_texel = std::ldexp(1.0, -k);
+          na = std::clamp(int(std::ceil(la * inv_texel - 1e-3)), 1, kMaxTaps);
+          nb = std::clamp(int(std::ceil(lb * inv_texel - 1e-3)), 1, kMaxTaps);
           if (na * nb <= kMaxTaps || k == top) break;
           ++k;
         }
         while (na * nb > kMaxTaps) (na > nb ? na : nb) /= 2;
         // Near the poles (latitude past ~75 degrees) the panorama mapping is
         // far from linear over a texel: each tap is mapped exactly.
-        const bool exact = rho < 0.25 * std::sqrt(r2) && na * nb > 1;
+        const bool exact = map.cosl[i] < 0.25f && na * nb > 1;
         float acc[4] = {0, 0, 0, 0};
-        for (int b = 0; b < nb; ++b) {
-          const double tv = (b + 0.5) / nb - 0.5;
-          for (int a = 0; a < na; ++a) {
-            const double tu = (a + 0.5) / na - 0.5;
-            double x, y;
-            if (exact) {
-              double dt[3];
-              cube_direction(f, u + tu * step, v + tv * step, dt);
-              apply_flip(flip, dt);
-              direction_to_equirect(dt, W, H, x, y);
-            } else {
-              x = px + tu * ax + tv * bx;
-              y = py + tu * ay + tv * by;
+        if (na * nb == 1) {
+          pyr.sample(k, map.px[i], std::clamp(double(map.py[i]), 0.0, double(H)), acc);
+        } else {
+          const double u = step * (i + 0.5) - 1.0;
+          for (int b = 0; b < nb; ++b) {
+            const double tv = (b + 0.5) / nb - 0.5;
+            for (int a = 0; a < na; ++a) {
+              const double tu = (a + 0.5) / na - 0.5;
+              double x, y;
+              if (exact) {
+                double dt[3];
+                cube_direction(f, u + tu * step, v + tv * step, dt);
+                apply_flip(flip, dt);
+                direction_to_equirect(dt, W, H, x, y);
+              } else {
+                x = map.px[i] + tu * ax + tv * bx;
+                y = map.py[i] + tu * ay + tv * by;
+              }
+              pyr.sample(k, x, std::clamp(y, 0.0, double(H)), acc);
             }
-            pyr.sample(k, x, std::clamp(y, 0.0, double(H)), acc);
           }
         }
         const float inv = 1.0f / float(na * nb);
