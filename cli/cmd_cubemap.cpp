@@ -200,7 +200,7 @@ ColorSpace source_space(const CubemapArgs& a, PixelType type) {
   return type == PixelType::f32 ? ColorSpace::linear() : ColorSpace::srgb();
 }
 
-Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r) {
+Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r, PhaseTimer& phases) {
   Source s;
   s.input = a.faces.empty() ? input : a.faces[0];
   if (!a.faces.empty()) {
@@ -226,6 +226,7 @@ Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r
       faces[f] = to_linear_rgba(img.view(), s.space);
       r.inputs.push_back(a.faces[f]);
     }
+    phases.read_done();
     std::array<ImageView, 6> views;
     for (int f = 0; f < 6; ++f) views[f] = faces[f].view();
     s.cube = cubemap_from_faces(views);
@@ -234,6 +235,7 @@ Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r
     ImageFileInfo info;
     ImageArray in = read_image_array(input, &info);
     for (Image& im : in.images) read_as_finite(input, im, r.warnings);
+    phases.read_done();
     s.hdr = in.images[0].type() == PixelType::f32;
     s.space = source_space(a, in.images[0].type());
     s.alpha = in.images[0].channels() == 2 || in.images[0].channels() == 4;
@@ -419,10 +421,9 @@ void run_cubemap(const CubemapArgs& a, const std::string& input, const std::stri
     } else if (a.zstd != 0 || a.dds_header != "auto") {
       throw Error(ErrorCode::bad_arguments, output + ": --zstd and --dds-header are for cube textures (.ktx2, .dds)");
     }
-    Source s = read_source(a, input, r);
-    phases.read_done();
+    Source s = read_source(a, input, r, phases);
     const int levels = a.levels;
-    Cubemap env = s.cube;
+    Cubemap& env = s.cube;  // its level 0 is the source of the lighting below
     if (a.mips) generate_cube_mips(env, levels);
     Cubemap specular, irradiance;
     if (a.mode == Ibl::specular || a.mode == Ibl::both) {
@@ -430,20 +431,18 @@ void run_cubemap(const CubemapArgs& a, const std::string& input, const std::stri
       so.size = s.cube.size();
       so.levels = levels;
       so.samples = a.samples;
-      specular = prefilter_specular(s.cube, so);
+      specular = prefilter_specular(env, so);
     }
-    if (a.mode == Ibl::irradiance || a.mode == Ibl::both) irradiance = irradiance_cubemap(s.cube, a.irradiance_size);
+    if (a.mode == Ibl::irradiance || a.mode == Ibl::both) irradiance = irradiance_cubemap(env, a.irradiance_size);
     phases.compute_done();
     const Cubemap& main = a.mode == Ibl::specular || a.mode == Ibl::both ? specular
                           : a.mode == Ibl::irradiance                     ? irradiance
                                                                           : env;
     write_environment(a, s, main, plan.main, a.mode != Ibl::none, r.warnings);
     if (!plan.irradiance.empty()) write_environment(a, s, irradiance, plan.irradiance, true, r.warnings);
-    if (!plan.sh.empty()) write_sh(plan.sh, project_sh9(s.cube));
+    if (!plan.sh.empty()) write_sh(plan.sh, project_sh9(env));
     if (!plan.preview.empty()) {
-      Cubemap chain = env;
-      if (chain.levels.size() == 1) generate_cube_mips(chain);
-      const Image p = render_cube_preview(chain, specular.levels.empty() ? nullptr : &specular, a.exposure);
+      const Image p = render_cube_preview(env, specular.levels.empty() ? nullptr : &specular, a.exposure);
       write_image(plan.preview, p.view());
     }
     phases.write_done();
