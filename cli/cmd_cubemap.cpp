@@ -34,7 +34,7 @@ struct CubemapArgs {
   std::string layout = "auto", to = "auto", format, color_space, flip = "none", ibl = "none";
   std::string irradiance_path, sh_path, preview_path, dds_header = "auto";
   bool linear = false, mips = false, report = false;
-  int size = 0, levels = 0, equirect_width = 0, irradiance_size = 32, samples = 256, zstd = 0;
+  int size = 0, levels = 0, equirect_width = 0, irradiance_size = 32, samples = 512, zstd = 0;
   float exposure = 1.0f;
   // From the options, once (validate):
   Target target = Target::automatic;

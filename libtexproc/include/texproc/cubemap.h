@@ -170,7 +170,7 @@ struct SpecularOptions {
   // its faces showing (bilinear taps over six texels), so roughness 1 sits
   // on 8x8 faces by default.
   int min_size = 8;
-  int samples = 256; // importance samples per texel where the lobe is sampled
+  int samples = 512; // importance samples per texel where the lobe is sampled
   // Levels whose exact convolution (every texel of a source level fine
   // enough for the lobe) costs at most this many texel pairs are convolved
   // exactly; the others use filtered importance sampling. 0: sample all.
