@@ -43,6 +43,14 @@ void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int l
                       std::uint8_t out[][8], bool handled[]);
 
 namespace ref {
+// The partition variants: texels split into four runs along the axis at
+// thirds of the extent shifted by `offset` steps of 0.15 and stretched by
+// `stretch` steps of 0.15 (about the middle). Shared by both twins.
+constexpr float kVariantStep = 0.15f;
+inline float variant_shift(int offset, int stretch) {
+  return 0.5f + kVariantStep * float(offset) - kVariantStep * float(stretch) * 1.5f;
+}
+
 void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three, bool punch,
                       std::uint8_t out[][8], bool handled[]);
 }  // namespace ref

@@ -1,4 +1,4 @@
-// BC4 palette scoring: the scalar reference and its Highway twin (lanes over
+// BC4 palette scoring: the Highway twin of the scalar reference in bc4_eval.cpp (lanes over
 // the 16 values). Same operations, no FMA: identical results.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "bc/bc4_eval_simd.cpp"
@@ -7,24 +7,6 @@
 
 #include "bc/bc4_eval.h"
 #include "texproc/runtime.h"
-
-#ifndef TEXPROC_BC4_EVAL_REF
-#define TEXPROC_BC4_EVAL_REF
-namespace texproc::ref {
-void bc4_nearest(const double t[16], const double pal[8], std::uint8_t codes[16], double errors[16]) {
-  for (int i = 0; i < 16; ++i) {
-    int best = 0;
-    double be = (t[i] - pal[0]) * (t[i] - pal[0]);
-    for (int k = 1; k < 8; ++k) {
-      const double e = (t[i] - pal[k]) * (t[i] - pal[k]);
-      if (e < be) be = e, best = k;
-    }
-    codes[i] = std::uint8_t(best);
-    errors[i] = be;
-  }
-}
-}  // namespace texproc::ref
-#endif
 
 HWY_BEFORE_NAMESPACE();
 namespace texproc {
