@@ -1,4 +1,5 @@
 #include "batch.h"
+#include "report.h"
 
 #include "texproc/file_io.h"
 
@@ -160,10 +161,11 @@ std::vector<std::string> name_outputs(const BatchCommand& c, const BatchInputs& 
   return outs;
 }
 
+// Every failure of a file: in the command line's terms, the file in front.
 void fail(FileReport& r, ErrorCode code, const std::string& message) {
   r.status = "failed";
   r.code = code;
-  r.error = message;
+  r.error = about(r.input, in_cli_terms(message));
 }
 
 }  // namespace
@@ -326,7 +328,7 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
   if (dry_run()) {
     for (const auto& r : reports) {
       if (r.status == "failed") {
-        std::cerr << "texproc " << c.name << ": error: " << r.error << "\n";
+        print_error(c.name, r.error);
       } else if (!s.json) {
         for (const auto& o : r.outputs) std::cout << o << "\n";
       }
@@ -339,7 +341,7 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
   for (const auto& r : reports) {
     if (r.status != "failed") continue;
     failed = true;
-    std::cerr << "texproc " << c.name << ": error: " << r.error << "\n";
+    print_error(c.name, r.error);
   }
   if (failed && s.fail_fast) {
     for (std::size_t i : todo) reports[i].status = "not_run";
@@ -391,10 +393,10 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
         FileReport& r = reports[todo[k]];
         progress.finished(r.input, [&] {
           if (!common.quiet && !s.json) {
-            for (const std::string& w : r.warnings) std::cerr << "texproc " << c.name << ": warning: " << w << "\n";
+            for (const std::string& w : r.warnings) print_warning(c.name, w);
           }
           if (r.status == "failed") {
-            std::cerr << "texproc " << c.name << ": error: " << r.error << "\n";
+            print_error(c.name, r.error);
           } else if (!common.quiet && !s.json && !r.line.empty()) {
             std::cout << r.line << "\n" << std::flush;
           }
@@ -471,13 +473,11 @@ void print_failure_summary(const std::string& command) {
     if (r.status == "not_run") ++not_run;
   }
   if (reports.size() < 2 || failed.empty()) return;
-  std::cerr << "texproc " << command << ": " << failed.size() << " of " << reports.size() << " files failed";
-  if (not_run) std::cerr << ", " << not_run << " not run (--fail-fast)";
-  std::cerr << ":\n";
-  for (const FileReport* r : failed) {
-    const bool named = r->error.rfind(r->input, 0) == 0;  // messages usually start with the file
-    std::cerr << "  " << (named ? "" : r->input + ": ") << r->error << "\n";
-  }
+  std::string head = "texproc " + command + ": " + std::to_string(failed.size()) + " of " +
+                     std::to_string(reports.size()) + " files failed";
+  if (not_run) head += ", " + std::to_string(not_run) + " not run (--fail-fast)";
+  print_note(head + ":");
+  for (const FileReport* r : failed) print_note("  " + about(r->input, r->error));
 }
 
 }  // namespace texproc::cli

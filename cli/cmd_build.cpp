@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "batch.h"
+#include "report.h"
 #include "commands.h"
 #include "common.h"
 #include "recipe.h"
@@ -148,7 +149,7 @@ int run_build(const BuildArgs& a) {
     try {
       job_rc = (*runner_of(*top_command(p)))();
     } catch (const Error& e) {
-      std::cerr << "texproc build: error: " << locate(recipe, *p.job, e.what()) << ": " << e.what() << "\n";
+      print_error("build", locate(recipe, *p.job, e.what()) + ": " + in_cli_terms(e.what()));
       job_rc = int(e.code());
     }
     const std::string name = p.job->name.empty() ? "jobs[" + std::to_string(p.job->index) + "]" : p.job->name;

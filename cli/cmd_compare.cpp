@@ -9,6 +9,7 @@
 #include "batch.h"
 #include "commands.h"
 #include "common.h"
+#include "report.h"
 #include "texproc/block_decode.h"
 #include "texproc/container.h"
 #include "texproc/error.h"
@@ -142,7 +143,7 @@ int run_compare(const CompareArgs& a) {
     s << ", " << d.differing_texels << " texels differ (" << pct << "%)";
     std::cout << s.str() << "\n";
   }
-  if (!failed.empty()) std::cerr << "texproc compare: " << a.a << " and " << a.b << " differ: " << join(failed) << "\n";
+  if (!failed.empty()) print_note("texproc compare: " + a.a + " and " + a.b + " differ: " + join(failed));
   return rc;
 }
 

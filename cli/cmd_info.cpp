@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "batch.h"
 #include "common.h"
+#include "report.h"
 #include "texproc/container.h"
 #include "texproc/error.h"
 #include "texproc/image_io.h"
@@ -132,7 +133,7 @@ int run_info(const InfoArgs& args) {
       describe(files[k], j, text);
       json << (k && json.str().size() > 1 ? ", " : "") << j.str();
     } catch (const Error& e) {
-      std::cerr << "texproc info: error: " << e.what() << "\n";
+      print_error("info", about(files[k], e.what()));
       ++failures;
       last = e.code();
     }

@@ -5,6 +5,7 @@
 #include "batch.h"
 #include "common.h"
 #include "exit_codes.h"
+#include "report.h"
 #include "texproc/error.h"
 #include "texproc/file_io.h"
 
@@ -33,7 +34,8 @@ std::string command_name(CLI::App& app) {
 int report_usage_error(CLI::App& app, const CLI::ParseError& e) {
   const std::string cmd = command_name(app);
   const std::string prefix = cmd.empty() ? "texproc" : "texproc " + cmd;
-  std::cerr << prefix << ": error: " << e.what() << "\nSee '" << prefix << " --help'.\n";
+  print_error(cmd, e.what());
+  print_note("See '" + prefix + " --help'.");
   return int(ExitCode::bad_arguments);
 }
 
@@ -50,19 +52,21 @@ int run_selected(CLI::App& app) {
       if (session_options().json) print_json_summary(cmd, rc);
       return rc;
     } catch (const texproc::Error& e) {
-      std::cerr << "texproc " << cmd << ": error: " << e.what() << "\n";
-      if (e.code() == ErrorCode::bad_arguments) std::cerr << "See 'texproc " << cmd << " --help'.\n";
-      if (session_options().json) print_json_summary(cmd, int(e.code()), e.what());
+      const std::string message = in_cli_terms(e.what());
+      print_error(cmd, message);
+      if (e.code() == ErrorCode::bad_arguments) print_note("See 'texproc " + cmd + " --help'.");
+      if (session_options().json) print_json_summary(cmd, int(e.code()), message);
       return int(e.code());
     } catch (const std::bad_alloc&) {
-      std::cerr << "texproc " << cmd << ": error: out of memory\n";
+      print_error(cmd, "out of memory");
       return int(ExitCode::runtime);
     } catch (const std::exception& e) {
-      std::cerr << "texproc " << cmd << ": error: " << e.what() << "\n";
+      print_error(cmd, e.what());
       return int(ExitCode::runtime);
     }
   }
-  std::cerr << "texproc: error: no command given\nSee 'texproc --help'.\n";
+  print_error("", "no command given");
+  print_note("See 'texproc --help'.");
   return int(ExitCode::bad_arguments);
 }
 

@@ -47,6 +47,24 @@ TEST(Cli, UsageErrorsExitOneWithHint) {
   EXPECT_EQ(r.exit_code, 1);
 }
 
+// A library error about one file reaches the user with that file in front
+// and in the command line's terms (the library names MipOptions::normal_map).
+TEST(Cli, LibraryErrorsNameTheFileAndTheFlag) {
+  const std::string dir = temp_dir("cli_liberr");
+  write_image(dir + "/gray.png", checkerboard(8, 8, 1).view());
+  write_image(dir + "/rgb.png", checkerboard(8, 8, 3).view());
+  RunResult r = run_texproc("mip '" + dir + "/gray.png' '" + dir + "/rgb.png' -o '" + dir + "/out/' --normal-map");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("texproc mip: error: " + dir + "/gray.png: --normal-map needs an RGB or RGBA image"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("MipOptions"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(dir + "/out/rgb.dds"));  // the other file went on
+  r = run_texproc("normalmap '" + dir + "/gray.png' -o '" + dir + "/n.png' --height-channel b");
+  EXPECT_NE(r.err.find("gray.png: --height-channel b: the image has only 1 channel"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
+
 TEST(Cli, MipErrorsNameTheFileAndProblem) {
   const std::string dir = temp_dir("cli_err");
   const Image img = checkerboard(8, 8, 3);

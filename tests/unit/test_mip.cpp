@@ -32,6 +32,28 @@ bool same_bytes(const Image& a, const Image& b) {
 }
 }  // namespace
 
+// Library errors speak the API's terms: a C++ caller reads the option's name.
+TEST(MipErrors, NameTheOptionInApiTerms) {
+  const Image gray(8, 8, 1, PixelType::u8);
+  MipOptions o;
+  o.normal_map = true;
+  try {
+    generate_mips(gray.view(), o);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("MipOptions::normal_map needs an RGB or RGBA image"), std::string::npos)
+        << e.what();
+  }
+  o = MipOptions{};
+  o.filter.sigma = 9.0f;
+  try {
+    generate_mips(Image(8, 8, 3, PixelType::u8).view(), o);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("MipOptions::filter.sigma"), std::string::npos) << e.what();
+  }
+}
+
 TEST(MipLevels, SizesFollowFloorHalving) {
   auto sizes = [](int w, int h) {
     std::vector<std::pair<int, int>> s;

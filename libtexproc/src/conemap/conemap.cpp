@@ -24,12 +24,12 @@ void check(const std::vector<float>& heights, int width, int height, const ConeM
   if (width <= 0 || height <= 0 || heights.size() != std::size_t(width) * height) {
     throw Error(ErrorCode::bad_arguments, "heights do not match the size");
   }
-  if (!(o.depth > 0.0f) || !std::isfinite(o.depth)) throw Error(ErrorCode::bad_arguments, "--depth must be > 0");
-  if (!(o.max_ratio > 0.0f) || !std::isfinite(o.max_ratio)) throw Error(ErrorCode::bad_arguments, "--max-ratio must be > 0");
-  if (o.wrap == WrapMode::mirror) throw Error(ErrorCode::bad_arguments, "--wrap for conemap: valid: repeat, clamp");
-  if (o.fast_reach < 0) throw Error(ErrorCode::bad_arguments, "--fast-reach must be >= 1 (0: exact cones)");
+  if (!(o.depth > 0.0f) || !std::isfinite(o.depth)) throw Error(ErrorCode::bad_arguments, "ConeMapOptions::depth must be > 0");
+  if (!(o.max_ratio > 0.0f) || !std::isfinite(o.max_ratio)) throw Error(ErrorCode::bad_arguments, "ConeMapOptions::max_ratio must be > 0");
+  if (o.wrap == WrapMode::mirror) throw Error(ErrorCode::bad_arguments, "ConeMapOptions::wrap: valid: repeat, clamp");
+  if (o.fast_reach < 0) throw Error(ErrorCode::bad_arguments, "ConeMapOptions::fast_reach must be >= 1 (0: exact cones)");
   if (o.bilinear_safe && o.mode == ConeMode::relaxed) {
-    throw Error(ErrorCode::bad_arguments, "--bilinear-safe makes conservative cones (use it without --mode relaxed)");
+    throw Error(ErrorCode::bad_arguments, "ConeMapOptions::bilinear_safe makes conservative cones (use it without ConeMode::relaxed)");
   }
 }
 

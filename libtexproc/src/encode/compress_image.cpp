@@ -18,7 +18,7 @@ Quality parse_quality(std::string_view n) {
   if (n == "normal") return Quality::normal;
   if (n == "high") return Quality::high;
   if (n == "max") return Quality::max;
-  throw Error(ErrorCode::bad_arguments, "unknown --quality '" + std::string(n) + "' (valid: fast, normal, high, max)");
+  throw Error(ErrorCode::bad_arguments, "unknown quality name '" + std::string(n) + "' (valid: fast, normal, high, max)");
 }
 
 const char* to_string(Quality q) {

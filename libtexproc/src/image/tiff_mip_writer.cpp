@@ -41,7 +41,7 @@ int deflate_level(const std::string& c) {
         if (level >= 1 && level <= 12) return level;
       } catch (...) {
       }
-      throw Error(ErrorCode::bad_arguments, "--compression " + c + ": the deflate level must be 1 to 12");
+      throw Error(ErrorCode::bad_arguments, "WriteOptions::compression " + c + ": the deflate level must be 1 to 12");
     }
   }
   return -1;

@@ -296,18 +296,18 @@ MipChain generate(const ImageView& image, Image* owned, const MipOptions& o) {
   }
   if (o.filter.kind == FilterKind::gaussian && !(o.filter.sigma > 0.0f && o.filter.sigma <= 4.0f)) {
     throw Error(ErrorCode::bad_arguments,
-                "--sigma " + std::to_string(o.filter.sigma) + " is out of range (valid: 0 < sigma <= 4)");
+                "MipOptions::filter.sigma " + std::to_string(o.filter.sigma) + " is out of range (valid: 0 < sigma <= 4)");
   }
   if (o.normal_map && image.channels < 3) {
     throw Error(ErrorCode::bad_arguments,
-                "--normal-map needs an RGB or RGBA image, this one has " + std::to_string(image.channels) +
+                "MipOptions::normal_map needs an RGB or RGBA image, this one has " + std::to_string(image.channels) +
                     " channel(s)");
   }
   if (o.alpha_coverage_ref >= 0.0f && !(o.alpha_coverage_ref > 0.0f && o.alpha_coverage_ref <= 1.0f)) {
-    throw Error(ErrorCode::bad_arguments, "--alpha-coverage " + std::to_string(o.alpha_coverage_ref) +
+    throw Error(ErrorCode::bad_arguments, "MipOptions::alpha_coverage_ref " + std::to_string(o.alpha_coverage_ref) +
                                               " is out of range (valid: 0 < ref <= 1)");
   }
-  if (o.min_size < 1) throw Error(ErrorCode::bad_arguments, "--min-size must be at least 1");
+  if (o.min_size < 1) throw Error(ErrorCode::bad_arguments, "MipOptions::min_size must be at least 1");
 
   ChainSetup s;
   s.channels = image.channels;

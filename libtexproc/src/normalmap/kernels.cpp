@@ -57,14 +57,14 @@ SeparableKernel make_kernel(GradientKernel kind, const std::vector<float>& weigh
   // Multiscale: sum_i w_i * (h[x + 2^i] - h[x - 2^i]) / (2 * 2^i), weights
   // normalized to 1, so each term and the sum estimate the true gradient.
   if (weights.empty() || weights.size() > 6) {
-    throw Error(ErrorCode::bad_arguments, "--multiscale-weights needs 1 to 6 weights (scales 1, 2, 4, ... 32)");
+    throw Error(ErrorCode::bad_arguments, "NormalMapOptions::multiscale_weights needs 1 to 6 weights (scales 1, 2, 4, ... 32)");
   }
   double wsum = 0.0;
   for (float w : weights) {
-    if (!(w >= 0.0f)) throw Error(ErrorCode::bad_arguments, "--multiscale-weights must not be negative");
+    if (!(w >= 0.0f)) throw Error(ErrorCode::bad_arguments, "NormalMapOptions::multiscale_weights must not be negative");
     wsum += w;
   }
-  if (wsum <= 0.0) throw Error(ErrorCode::bad_arguments, "--multiscale-weights must not all be zero");
+  if (wsum <= 0.0) throw Error(ErrorCode::bad_arguments, "NormalMapOptions::multiscale_weights must not all be zero");
   const int r = 1 << (weights.size() - 1);
   std::vector<double> deriv(2 * r + 1, 0.0), smooth(2 * r + 1, 0.0);
   smooth[r] = 1.0;
@@ -120,7 +120,7 @@ NormalChannels parse_normal_channels(std::string_view n) {
   if (n == "xyz") return NormalChannels::xyz;
   if (n == "xy") return NormalChannels::xy;
   if (n == "xyzh") return NormalChannels::xyzh;
-  throw Error(ErrorCode::bad_arguments, "unknown --channels '" + std::string(n) + "' (valid: xyz, xy, xyzh)");
+  throw Error(ErrorCode::bad_arguments, "unknown NormalChannels '" + std::string(n) + "' (valid: xyz, xy, xyzh)");
 }
 
 int channel_count(NormalChannels c) {

@@ -84,7 +84,7 @@ int height_source_channel(const ImageView& img, HeightChannel ch) {
   const int c = img.channels;
   auto need = [&](int index, const char* name) {
     if (index >= c) {
-      throw Error(ErrorCode::bad_arguments, std::string("--height-channel ") + name + ": the image has only " +
+      throw Error(ErrorCode::bad_arguments, std::string("NormalMapOptions::height_channel ") + name + ": the image has only " +
                                                 std::to_string(c) + " channel(s)");
     }
     return index;
@@ -95,7 +95,7 @@ int height_source_channel(const ImageView& img, HeightChannel ch) {
     case HeightChannel::g: return need(1, "g");
     case HeightChannel::b: return need(2, "b");
     case HeightChannel::a:
-      if (c != 2 && c != 4) throw Error(ErrorCode::bad_arguments, "--height-channel a: the image has no alpha");
+      if (c != 2 && c != 4) throw Error(ErrorCode::bad_arguments, "NormalMapOptions::height_channel a: the image has no alpha");
       return c - 1;
     case HeightChannel::luma: return c >= 3 ? -1 : 0;
   }
@@ -211,10 +211,10 @@ void compute_normal_map(const ImageView& in, const ImageView& out, const NormalM
   assert(in.data && out.data && in.width == out.width && in.height == out.height);
   assert(out.channels == channel_count(o.channels));
   if (!(o.height_scale > 0.0f) || !std::isfinite(o.height_scale)) {
-    throw Error(ErrorCode::bad_arguments, "--height-scale must be a positive number of texels");
+    throw Error(ErrorCode::bad_arguments, "NormalMapOptions::height_scale must be a positive number of texels");
   }
   if (!(o.strength > 0.0f) || !std::isfinite(o.strength)) {
-    throw Error(ErrorCode::bad_arguments, "--strength must be positive");
+    throw Error(ErrorCode::bad_arguments, "NormalMapOptions::strength must be positive");
   }
   const int source = height_source_channel(in, o.height_channel);
   const SeparableKernel k = make_kernel(o.kernel, o.multiscale_weights);

@@ -28,10 +28,10 @@ float map_value(const ImageView& m, int x, int y) {
 
 Image box_blur(const ImageView& img, const BoxBlurOptions& o) {
   if (!(o.radius >= 0.0f) || !std::isfinite(o.radius)) {
-    throw Error(ErrorCode::bad_arguments, "--radius must be a number >= 0");
+    throw Error(ErrorCode::bad_arguments, "BoxBlurOptions::radius must be a number >= 0");
   }
   if (o.radius_map && (o.radius_map->width != img.width || o.radius_map->height != img.height)) {
-    throw Error(ErrorCode::bad_arguments, "--radius-map is " + std::to_string(o.radius_map->width) + "x" +
+    throw Error(ErrorCode::bad_arguments, "BoxBlurOptions::radius_map is " + std::to_string(o.radius_map->width) + "x" +
                                               std::to_string(o.radius_map->height) + ", the image " +
                                               std::to_string(img.width) + "x" + std::to_string(img.height) +
                                               " (they must match)");

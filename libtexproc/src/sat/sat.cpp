@@ -57,7 +57,7 @@ SatPrecision parse_sat_precision(std::string_view n) {
   if (n == "u64") return SatPrecision::u64;
   if (n == "f32") return SatPrecision::f32;
   if (n == "f64") return SatPrecision::f64;
-  throw Error(ErrorCode::bad_arguments, "unknown --precision '" + std::string(n) + "' (valid: u32, u64, f32, f64)");
+  throw Error(ErrorCode::bad_arguments, "unknown SatPrecision '" + std::string(n) + "' (valid: u32, u64, f32, f64)");
 }
 
 namespace {
@@ -432,7 +432,7 @@ SummedAreaTable build_sat(const ImageView& img, SatPrecision p) {
 void build_sat(const ImageView& img, SatPrecision p, SummedAreaTable& t) {
   assert(img.data && img.width > 0 && img.height > 0 && img.channels >= 1 && img.channels <= 4);
   if (img.type == PixelType::f32 && (p == SatPrecision::u32 || p == SatPrecision::u64)) {
-    throw Error(ErrorCode::bad_arguments, std::string("--precision ") + to_string(p) +
+    throw Error(ErrorCode::bad_arguments, std::string("SatPrecision ") + to_string(p) +
                                               " needs 8- or 16-bit integer input; this image is float (valid: f32, f64)");
   }
   t.block = 0;
