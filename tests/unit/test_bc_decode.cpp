@@ -28,7 +28,7 @@ int to8(float v) { return int(std::lround(v * 255.0f)); }
 TEST(BcDecode, Bc1FourColour) {
   const std::uint8_t block[8] = {0x00, 0xF8, 0x1F, 0x00, 0xE4, 0xE4, 0xE4, 0xE4};
   float t[16][4];
-  decode_bc_block(TexelFormat::bc1_rgb_unorm, block, t);
+  decode_block(TexelFormat::bc1_rgb_unorm, block, t);
   const int want[4][3] = {{255, 0, 0}, {0, 0, 255}, {170, 0, 85}, {85, 0, 170}};
   for (int i = 0; i < 16; ++i)
     for (int c = 0; c < 3; ++c) EXPECT_EQ(to8(t[i][c]), want[i % 4][c]) << i;
@@ -40,13 +40,13 @@ TEST(BcDecode, Bc1FourColour) {
 TEST(BcDecode, Bc1ThreeColourAndPunchThrough) {
   const std::uint8_t block[8] = {0xE0, 0x07, 0xFF, 0xFF, 0xE4, 0xE4, 0xE4, 0xE4};
   float t[16][4];
-  decode_bc_block(TexelFormat::bc1_rgba_unorm, block, t);
+  decode_block(TexelFormat::bc1_rgba_unorm, block, t);
   EXPECT_EQ(to8(t[2][0]), 128);  // (0 + 255 + 1) / 2
   EXPECT_EQ(to8(t[2][1]), 255);
   EXPECT_EQ(t[3][0], 0.0f);
   EXPECT_EQ(t[3][3], 0.0f);  // transparent
   EXPECT_EQ(t[1][3], 1.0f);
-  decode_bc_block(TexelFormat::bc1_rgb_unorm, block, t);
+  decode_block(TexelFormat::bc1_rgb_unorm, block, t);
   EXPECT_EQ(t[3][3], 1.0f);  // opaque black without the alpha variant
 }
 
@@ -59,20 +59,20 @@ TEST(BcDecode, Bc4BothModesExact) {
   for (int i = 0; i < 16; ++i) bits |= std::uint64_t(i % 8) << (3 * i);
   for (int b = 0; b < 6; ++b) block[2 + b] = std::uint8_t(bits >> (8 * b));
   float t[16][4];
-  decode_bc_block(TexelFormat::bc4_unorm, block, t);
+  decode_block(TexelFormat::bc4_unorm, block, t);
   EXPECT_FLOAT_EQ(t[0][0], 200 / 255.0f);
   EXPECT_FLOAT_EQ(t[1][0], 100 / 255.0f);
   for (int k = 2; k < 8; ++k) EXPECT_FLOAT_EQ(t[k][0], float(((8 - k) * 200 + (k - 1) * 100) / 7.0 / 255.0)) << k;
   block[0] = 100;
   block[1] = 200;
-  decode_bc_block(TexelFormat::bc4_unorm, block, t);
+  decode_block(TexelFormat::bc4_unorm, block, t);
   for (int k = 2; k < 6; ++k) EXPECT_FLOAT_EQ(t[k][0], float(((6 - k) * 100 + (k - 1) * 200) / 5.0 / 255.0)) << k;
   EXPECT_EQ(t[6][0], 0.0f);
   EXPECT_EQ(t[7][0], 1.0f);
   // SNORM: -128 decodes as -127 (-1.0); endpoints 127 and -128.
   block[0] = 127;
   block[1] = 0x80;
-  decode_bc_block(TexelFormat::bc4_snorm, block, t);
+  decode_block(TexelFormat::bc4_snorm, block, t);
   EXPECT_EQ(t[0][0], 1.0f);
   EXPECT_EQ(t[1][0], -1.0f);
   EXPECT_FLOAT_EQ(t[4][0], float((4 * 127 + 3 * -127) / 7.0 / 127.0));
@@ -83,7 +83,7 @@ TEST(BcDecode, Bc2ExplicitAlpha) {
   std::uint8_t block[16] = {0x10, 0x32, 0x54, 0x76, 0x98, 0xBA, 0xDC, 0xFE,  // alpha 0..15
                             0x1F, 0x00, 0x00, 0xF8, 0xE4, 0xE4, 0xE4, 0xE4};  // c0 = blue < c1 = red
   float t[16][4];
-  decode_bc_block(TexelFormat::bc2_unorm, block, t);
+  decode_block(TexelFormat::bc2_unorm, block, t);
   for (int i = 0; i < 16; ++i) EXPECT_EQ(to8(t[i][3]), i * 17) << i;
   EXPECT_EQ(to8(t[2][2]), 170);  // four-colour even though c0 < c1
   EXPECT_EQ(to8(t[2][0]), 85);
@@ -108,7 +108,7 @@ TEST(BcDecode, MatchesLibsquishWithinOneLevel) {
       squish::u8 rgba[64];
       squish::Decompress(rgba, block, c.flags);
       float t[16][4];
-      decode_bc_block(c.f, block, t);
+      decode_block(c.f, block, t);
       for (int i = 0; i < 16; ++i)
         for (int ch = 0; ch < 4; ++ch) {
           const int d = std::abs(to8(t[i][ch]) - rgba[4 * i + ch]);
@@ -122,7 +122,7 @@ TEST(BcDecode, MatchesLibsquishWithinOneLevel) {
       std::memset(ends + color_at + 4, 0, 4);
       if (c.f == TexelFormat::bc3_unorm) std::memset(ends + 2, 0, 6);
       squish::Decompress(rgba, ends, c.flags);
-      decode_bc_block(c.f, ends, t);
+      decode_block(c.f, ends, t);
       for (int i = 0; i < 16; ++i)
         for (int ch = 0; ch < 4; ++ch) ASSERT_EQ(to8(t[i][ch]), rgba[4 * i + ch]) << format_info(c.f).name;
     }

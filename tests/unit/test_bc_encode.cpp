@@ -222,7 +222,7 @@ long long best_single_color_error(const int rgb[3]) {
 
 long long bc1_error(const std::uint8_t block[8], const std::uint8_t rgba[16][4]) {
   float t[16][4];
-  decode_bc_block(TexelFormat::bc1_rgb_unorm, block, t);
+  decode_block(TexelFormat::bc1_rgb_unorm, block, t);
   long long e = 0;
   for (int i = 0; i < 16; ++i)
     for (int c = 0; c < 3; ++c) {
@@ -245,7 +245,7 @@ TEST(Bc1Encode, SingleColourBlocksAreOptimal) {
     std::uint8_t px[16][4];
     for (auto& p : px) p[0] = std::uint8_t(rgb[0]), p[1] = std::uint8_t(rgb[1]), p[2] = std::uint8_t(rgb[2]), p[3] = 255;
     std::uint8_t block[8];
-    encode_bc1_color(px, ColorMode::bc1, Quality::fast, block);
+    encode_bc1_color(px, Bc1Mode::bc1, Quality::fast, block);
     ASSERT_EQ(bc1_error(block, px), best_single_color_error(rgb)) << rgb[0] << "," << rgb[1] << "," << rgb[2];
   }
 }
@@ -287,7 +287,7 @@ TEST(Bc1Encode, PunchThroughOneColourIsOptimal) {
       std::uint8_t block[8];
       encode_block(TexelFormat::bc1_rgba_unorm, px, q, block);
       float t[16][4];
-      decode_bc_block(TexelFormat::bc1_rgba_unorm, block, t);
+      decode_block(TexelFormat::bc1_rgba_unorm, block, t);
       long e = 0;
       for (int i = 0; i < 16; ++i) {
         EXPECT_EQ(t[i][3], px[i][3] == 255 ? 1.0f : 0.0f) << i;
@@ -369,7 +369,7 @@ TEST(Bc1Encode, TwoGridColoursAreLossless) {
     }
     for (Quality q : {Quality::fast, Quality::normal}) {
       std::uint8_t block[8];
-      encode_bc1_color(px, ColorMode::bc1, q, block);
+      encode_bc1_color(px, Bc1Mode::bc1, q, block);
       ASSERT_EQ(bc1_error(block, px), 0) << n << " " << to_string(q);
     }
   }
@@ -401,7 +401,7 @@ TEST(Bc1Encode, BlackIndexOptIn) {
     const int c0 = with[0] | with[1] << 8, c1 = with[2] | with[3] << 8;
     EXPECT_LE(c0, c1) << "three-colour mode";
     float t[16][4];
-    decode_bc_block(TexelFormat::bc1_rgb_unorm, with.data(), t);
+    decode_block(TexelFormat::bc1_rgb_unorm, with.data(), t);
     for (int i = 0; i < 16; ++i) {
       if (rgba[i][0] != 0) continue;
       EXPECT_EQ(t[i][0] + t[i][1] + t[i][2], 0.0f) << i;

@@ -188,7 +188,7 @@ std::vector<int> plain_eac(const Bits& b, int kind /* 0: 8-bit, 1: unsigned 11, 
   return out;
 }
 
-void decode(TexelFormat f, const std::vector<std::uint8_t>& block, float t[16][4]) { decode_bc_block(f, block.data(), t); }
+void decode(TexelFormat f, const std::vector<std::uint8_t>& block, float t[16][4]) { decode_block(f, block.data(), t); }
 
 void expect_rgba(TexelFormat f, const std::vector<std::uint8_t>& block, const std::vector<Px>& want, const char* what) {
   float t[16][4];
@@ -373,7 +373,7 @@ TEST(EtcDecode, EacByHand) {
   const auto cb = color.bytes();
   rgba.insert(rgba.end(), cb.begin(), cb.end());
   float u[16][4];
-  decode_bc_block(TexelFormat::etc2_rgba8_unorm, rgba.data(), u);
+  decode_block(TexelFormat::etc2_rgba8_unorm, rgba.data(), u);
   for (int x = 0; x < 4; ++x)
     for (int y = 0; y < 4; ++y) {
       const int k = x * 4 + y;
@@ -400,10 +400,10 @@ TEST(EtcDecode, RandomBlocksMatchThePlainDecoder) {
     }
     std::vector<std::uint8_t> rgba = bytes;
     rgba.insert(rgba.end(), bytes.begin(), bytes.end());
-    decode_bc_block(TexelFormat::etc2_rgba8_unorm, rgba.data(), t);
+    decode_block(TexelFormat::etc2_rgba8_unorm, rgba.data(), t);
     const auto alpha = plain_eac(b, 0);
     for (int i = 0; i < 16; ++i) ASSERT_EQ(std::lround(t[i][3] * 255), alpha[i]) << n;
-    decode_bc_block(TexelFormat::eac_rg11_snorm, rgba.data(), t);
+    decode_block(TexelFormat::eac_rg11_snorm, rgba.data(), t);
     const auto s = plain_eac(b, 2);
     for (int i = 0; i < 16; ++i) ASSERT_EQ(t[i][1], float(s[i]) / 1023.0f) << n;
   }
@@ -454,10 +454,10 @@ Image image_of(const float t[16][4], int channels) {
 // decode back exactly.
 void expect_exact_round_trip(TexelFormat f, const std::vector<std::uint8_t>& block, const char* what, int n) {
   float want[16][4], got[16][4];
-  decode_bc_block(f, block.data(), want);
+  decode_block(f, block.data(), want);
   const Image img = image_of(want, 4);
   const std::vector<std::uint8_t> enc = compress_image(img.view(), f, Quality::high);
-  decode_bc_block(f, enc.data(), got);
+  decode_block(f, enc.data(), got);
   for (int i = 0; i < 16; ++i)
     for (int c = 0; c < 4; ++c) {
       ASSERT_EQ(got[i][c], want[i][c]) << what << " block " << n << " texel " << i << " channel " << c << ": "
@@ -575,12 +575,12 @@ TEST(EtcEncode, EachModeRoundTripsExactly) {
       const bool s = f == TexelFormat::eac_r11_snorm;
       Bits eb = e;
       if (s) eb.put(63, 8, pick(rng, -60, 60) & 255);
-      decode_bc_block(f, eb.bytes().data(), want);
+      decode_block(f, eb.bytes().data(), want);
       // The targets as 16-bit data: EAC's 11 bits survive the trip.
       Image img = Image::uninitialized(4, 4, 1, PixelType::f32);
       for (int i = 0; i < 16; ++i) img.row<float>(i / 4)[i % 4] = s ? (want[i][0] + 1.0f) * 0.5f : want[i][0];
       const auto enc = compress_image(img.view(), f, Quality::high);
-      decode_bc_block(f, enc.data(), got);
+      decode_block(f, enc.data(), got);
       for (int i = 0; i < 16; ++i) ASSERT_NEAR(got[i][0], want[i][0], 1e-6) << "EAC block " << n << " texel " << i;
     }
     // EAC alpha in ETC2 RGBA8 (with an exact colour block).
@@ -770,7 +770,7 @@ TEST(EtcEncode, TwoColourBlocksAtFast) {
     std::uint8_t block[8];
     encode_block(TexelFormat::etc2_rgb_unorm, px, Quality::fast, block);
     float t[16][4];
-    decode_bc_block(TexelFormat::etc2_rgb_unorm, block, t);
+    decode_block(TexelFormat::etc2_rgb_unorm, block, t);
     long e = 0;
     for (int i = 0; i < 16; ++i)
       for (int ch = 0; ch < 3; ++ch) {
@@ -790,8 +790,8 @@ TEST(EtcEncode, Etc1StreamsAreEtc2AndThreadsDoNotMatter) {
     const auto etc1 = compress_image(img.view(), TexelFormat::etc1_rgb, q);
     for (std::size_t b = 0; b < etc1.size(); b += 8) {
       float a[16][4], c[16][4];
-      decode_bc_block(TexelFormat::etc1_rgb, etc1.data() + b, a);
-      decode_bc_block(TexelFormat::etc2_rgb_unorm, etc1.data() + b, c);
+      decode_block(TexelFormat::etc1_rgb, etc1.data() + b, a);
+      decode_block(TexelFormat::etc2_rgb_unorm, etc1.data() + b, c);
       for (int i = 0; i < 16; ++i)
         for (int k = 0; k < 4; ++k) ASSERT_EQ(a[i][k], c[i][k]) << "block " << b / 8;
     }

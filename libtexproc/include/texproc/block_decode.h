@@ -21,10 +21,10 @@ namespace texproc {
 // interpolate in 8 bits rounded to nearest: (2 a + b + 1) / 3 and
 // (a + b + 1) / 2. Hardware differs by one or two 8-bit levels on the
 // interpolated colours; the specification allows that.
-void decode_bc_block(TexelFormat format, const std::uint8_t* block, float texels[16][4]);
+void decode_block(TexelFormat format, const std::uint8_t* block, float texels[16][4]);
 
 // Decodes one image (level, layer, face) of a texture of any format texproc
-// reads: block formats through decode_bc_block, uncompressed ones converted.
+// reads: block formats through decode_block, uncompressed ones converted.
 // `type` u8 or u16 stores UNORM values rounded, SNORM values biased as
 // (v + 1) / 2; f32 stores the values. Channels: the format's (1, 2 or 4; 3
 // for BC1 RGB and ETC1/ETC2 RGB).

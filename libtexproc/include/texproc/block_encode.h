@@ -29,7 +29,7 @@ const char* to_string(Quality q);
 // One BC4 block from 16 target values (row by row) in code units: [0, 255]
 // for UNORM, [-127, 127] for SNORM (any real value; clamped). Writes 8
 // bytes. Chooses the endpoints and mode with the least squared error under
-// the exact decoding (decode_bc_block), within the quality's search.
+// the exact decoding (decode_block), within the quality's search.
 void encode_bc4_block(const float values[16], bool snorm, Quality q, std::uint8_t out[8]);
 
 // Squared error of a BC4 block against the targets, decoded exactly.

@@ -268,8 +268,8 @@ void cluster_fit(const std::uint8_t rgb[16][3], const bool transparent[16], cons
 
 // Block by block: `max`, and the blocks the lanes leave (one opaque colour,
 // with or without transparent texels, or none opaque).
-void encode_block_by_block(const Bc1Texels& tx, ColorMode mode, Quality q, std::uint8_t out[8]) {
-  const bool three_allowed = mode != ColorMode::four_only;
+void encode_block_by_block(const Bc1Texels& tx, Bc1Mode mode, Quality q, std::uint8_t out[8]) {
+  const bool three_allowed = mode != Bc1Mode::four_only;
   Result best;
   best.error = -1;
   auto keep = [&](const Result& r) {
@@ -460,10 +460,10 @@ void encode_block_by_block(const Bc1Texels& tx, ColorMode mode, Quality q, std::
     }
     std::uint8_t block[1][8];
     bool handled = false;
-    bc1_encode_lanes(texel, 1, lane_level(Quality::high), three_allowed, mode == ColorMode::bc1_punch_through, block, &handled);
+    bc1_encode_lanes(texel, 1, lane_level(Quality::high), three_allowed, mode == Bc1Mode::bc1_punch_through, block, &handled);
     if (handled) {
       const std::uint16_t c0 = std::uint16_t(block[0][0] | block[0][1] << 8), c1 = std::uint16_t(block[0][2] | block[0][3] << 8);
-      const bool four = mode == ColorMode::four_only || c0 > c1;
+      const bool four = mode == Bc1Mode::four_only || c0 > c1;
       if (four || three_allowed) {
         Endpoints e;
         for (int k = 0; k < 2; ++k) {
@@ -483,14 +483,14 @@ void encode_block_by_block(const Bc1Texels& tx, ColorMode mode, Quality q, std::
 
 }  // namespace
 
-void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
+void encode_bc1_color(const std::uint8_t rgba[16][4], Bc1Mode mode, Quality q, std::uint8_t out[8]) {
   if (q != Quality::max) {  // as whole images do: bc1_lanes.h
     std::uint32_t texel[16][kBc1Batch] = {};
     for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
     std::uint8_t block[1][8];
     bool handled = false;
-    bc1_encode_lanes(texel, 1, lane_level(q), mode != ColorMode::four_only,
-                     mode == ColorMode::bc1_punch_through, block, &handled);
+    bc1_encode_lanes(texel, 1, lane_level(q), mode != Bc1Mode::four_only,
+                     mode == Bc1Mode::bc1_punch_through, block, &handled);
     if (handled) {
       std::memcpy(out, block[0], 8);
       return;
@@ -499,11 +499,11 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], ColorMode mode, Quality q,
   encode_bc1_color_block_by_block(rgba, mode, q, out);
 }
 
-void encode_bc1_color_block_by_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
+void encode_bc1_color_block_by_block(const std::uint8_t rgba[16][4], Bc1Mode mode, Quality q, std::uint8_t out[8]) {
   Bc1Texels tx;
   for (int i = 0; i < 16; ++i) {
     tx.r[i] = rgba[i][0], tx.g[i] = rgba[i][1], tx.b[i] = rgba[i][2];
-    tx.transparent[i] = mode == ColorMode::bc1_punch_through && rgba[i][3] < 128 ? 1 : 0;
+    tx.transparent[i] = mode == Bc1Mode::bc1_punch_through && rgba[i][3] < 128 ? 1 : 0;
   }
   encode_block_by_block(tx, mode, q, out);
 }
@@ -532,13 +532,13 @@ long long block_errors(const std::uint8_t block[8], const std::uint8_t rgba[16][
 }
 }  // namespace
 
-void bc1_try_two_colours(const std::uint8_t rgba[16][4], ColorMode mode, std::uint8_t block[8]) {
+void bc1_try_two_colours(const std::uint8_t rgba[16][4], Bc1Mode mode, std::uint8_t block[8]) {
   // Exactly two colours, every texel opaque where alpha matters.
   const int a[3] = {rgba[0][0], rgba[0][1], rgba[0][2]};
   int b[3] = {-1, -1, -1}, nb = 0;
   bool is_b[16] = {};
   for (int i = 0; i < 16; ++i) {
-    if (mode == ColorMode::bc1_punch_through && rgba[i][3] < 128) return;
+    if (mode == Bc1Mode::bc1_punch_through && rgba[i][3] < 128) return;
     if (rgba[i][0] == a[0] && rgba[i][1] == a[1] && rgba[i][2] == a[2]) continue;
     if (b[0] < 0) b[0] = rgba[i][0], b[1] = rgba[i][1], b[2] = rgba[i][2];
     if (rgba[i][0] != b[0] || rgba[i][1] != b[1] || rgba[i][2] != b[2]) return;  // a third colour
@@ -549,7 +549,7 @@ void bc1_try_two_colours(const std::uint8_t rgba[16][4], ColorMode mode, std::ui
   Result best;
   best.error = -1;
   for (int four = 1; four >= 0; --four) {
-    if (!four && mode == ColorMode::four_only) continue;
+    if (!four && mode == Bc1Mode::four_only) continue;
     const int den = four ? 3 : 2;
     // Palette positions in steps of 1/den from the first end, and their indices.
     auto index_of = [&](int pos) { return four ? (pos == 0 ? 0 : pos == 3 ? 1 : pos == 1 ? 2 : 3) : (pos == 0 ? 0 : pos == 2 ? 1 : 2); };
@@ -614,7 +614,7 @@ void bc1_try_black(const std::uint8_t rgba[16][4], Quality q, std::uint8_t block
       marked[i][3] = set >> i & 1 ? 0 : 255;  // alpha 0: index 3, out of the fit
     }
     std::uint8_t candidate[8];
-    encode_bc1_color_block_by_block(marked, ColorMode::bc1_punch_through, q, candidate);
+    encode_bc1_color_block_by_block(marked, Bc1Mode::bc1_punch_through, q, candidate);
     int cand_err[16];
     const long long cand_total = block_errors(candidate, rgba, cand_err);
     if (cand_total >= total) return;

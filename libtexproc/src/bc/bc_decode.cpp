@@ -89,7 +89,7 @@ void decode_rgtc(const std::uint8_t* b, bool snorm, int ch, float out[16][4]) {
 
 }  // namespace
 
-void decode_bc_block(TexelFormat f, const std::uint8_t* b, float out[16][4]) {
+void decode_block(TexelFormat f, const std::uint8_t* b, float out[16][4]) {
   for (int i = 0; i < 16; ++i) {
     out[i][0] = out[i][1] = out[i][2] = 0.0f;
     out[i][3] = 1.0f;
@@ -201,7 +201,7 @@ Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t 
   float texels[16][4];
   for (int by = 0; by < bh; ++by)
     for (int bx = 0; bx < bw; ++bx) {
-      decode_bc_block(t.format, data.data() + (std::size_t(by) * bw + bx) * info.block_bytes, texels);
+      decode_block(t.format, data.data() + (std::size_t(by) * bw + bx) * info.block_bytes, texels);
       for (int i = 0; i < 16; ++i) {
         const int x = bx * 4 + i % 4, y = by * 4 + i / 4;
         if (x >= w || y >= h) continue;

@@ -37,7 +37,7 @@ std::vector<std::uint8_t> compress_bc13(const ImageView& img, TexelFormat format
   const int block_bytes = bc1 || bc1a ? 8 : 16;  // colour only, or an alpha block first
   const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * block_bytes);
-  const ColorMode color_mode = bc1 ? ColorMode::bc1 : bc1a ? ColorMode::bc1_punch_through : ColorMode::four_only;
+  const Bc1Mode color_mode = bc1 ? Bc1Mode::bc1 : bc1a ? Bc1Mode::bc1_punch_through : Bc1Mode::four_only;
   // Below `max` the colour (bc1_lanes.h) and BC3's alpha (bc4_lanes.h) go a
   // block per lane; `max` block by block.
   const bool lanes = q != Quality::max;

@@ -29,11 +29,11 @@ static_assert(kEtcBatch == kBlockBatch, "the lanes take the texels gather_rows_r
 
 namespace {
 
-Texels make_texels(const std::uint8_t rgba[16][4], ColorMode mode) {
+Texels make_texels(const std::uint8_t rgba[16][4], EtcMode mode) {
   Texels tx;
   for (int i = 0; i < 16; ++i) {
     for (int c = 0; c < 3; ++c) tx.rgb[i][c] = rgba[i][c];
-    tx.transparent[i] = mode == ColorMode::etc2_punch && rgba[i][3] < 128;
+    tx.transparent[i] = mode == EtcMode::etc2_punch && rgba[i][3] < 128;
     tx.any_transparent |= tx.transparent[i];
     tx.planes.r[i] = rgba[i][0], tx.planes.g[i] = rgba[i][1], tx.planes.b[i] = rgba[i][2];
     tx.planes.transparent[i] = 0;
@@ -51,16 +51,16 @@ Texels make_texels(const std::uint8_t rgba[16][4], ColorMode mode) {
 }
 
 // A colour block as `mode`'s decoder reads it (ETC1, ETC2, punch-through).
-void decode_colour(const std::uint8_t block[8], ColorMode mode, Rgba8Block out) {
-  if (mode == ColorMode::etc1) {
+void decode_colour(const std::uint8_t block[8], EtcMode mode, Rgba8Block out) {
+  if (mode == EtcMode::etc1) {
     decode_etc1(block, out);
   } else {
-    decode_etc2(block, mode == ColorMode::etc2_punch, out);
+    decode_etc2(block, mode == EtcMode::etc2_punch, out);
   }
 }
 
 // Squared RGB error of a block (ETC1, or ETC2 in `mode`).
-long block_error(const std::uint8_t rgba[16][4], const std::uint8_t block[8], ColorMode mode = ColorMode::etc1) {
+long block_error(const std::uint8_t rgba[16][4], const std::uint8_t block[8], EtcMode mode = EtcMode::etc1) {
   Rgba8Block decoded;
   decode_colour(block, mode, decoded);
   long err = 0;
@@ -156,11 +156,11 @@ const FlatTables& flat_tables() {
 // every texel (the differential mode at 5 bits; the individual mode at 4,
 // not with punch-through, whose bit 33 is the opaque flag), or, in ETC2, a
 // flat plane. `block` is replaced where that beats its error.
-void best_flat_block(const int rgb[3], ColorMode mode, std::uint8_t block[8]) {
+void best_flat_block(const int rgb[3], EtcMode mode, std::uint8_t block[8]) {
   const FlatTables& f = flat_tables();
   Candidate best;
   for (int b = 1; b >= 0; --b) {
-    if (b == 0 && mode == ColorMode::etc2_punch) continue;
+    if (b == 0 && mode == EtcMode::etc2_punch) continue;
     for (int m = 0; m < 32; ++m) {
       const long err = 16L * (f.err[b][m][rgb[0]] + f.err[b][m][rgb[1]] + f.err[b][m][rgb[2]]);
       if (err >= best.err) continue;
@@ -171,7 +171,7 @@ void best_flat_block(const int rgb[3], ColorMode mode, std::uint8_t block[8]) {
       keep(best, err, pack_halves(h, h, false, b == 1, b == 1 ? 1 : 0));
     }
   }
-  if (mode != ColorMode::etc1) {
+  if (mode != EtcMode::etc1) {
     int o[3], h[3], w[3];
     long err = 0;
     for (int c = 0; c < 3; ++c) {
@@ -227,7 +227,7 @@ long best_flat_holes_block(const std::uint8_t rgba[16][4], const int rgb[3], std
     keep(best, err, pack_halves(h[0], h[1], false, true, 0));
   }
   Rgba8Block decoded;
-  decode_colour(block, ColorMode::etc2_punch, decoded);
+  decode_colour(block, EtcMode::etc2_punch, decoded);
   long current = 0;
   for (int i = 0; i < 16; ++i)
     if (rgba[i][3] >= 128)
@@ -242,7 +242,7 @@ long best_flat_holes_block(const std::uint8_t rgba[16][4], const int rgb[3], std
 // ETC1 block shares one base and table between the halves' texels and
 // leaves such blocks far off (44 times the error of `normal` on random
 // pairs). The block is replaced where one wins.
-void two_colour_t_h(const std::uint32_t texel[16][kEtcBatch], int k, ColorMode mode, std::uint8_t block[8]) {
+void two_colour_t_h(const std::uint32_t texel[16][kEtcBatch], int k, EtcMode mode, std::uint8_t block[8]) {
   if (!two_colours(texel, k)) return;
   Texels tx;
   for (int i = 0; i < 16; ++i) {
@@ -263,8 +263,8 @@ void two_colour_t_h(const std::uint32_t texel[16][kEtcBatch], int k, ColorMode m
 
 // Whether the 16 texels (R | G << 8 | B << 16 | A << 24) are one colour,
 // opaque where `mode` reads alpha (punch-through); `rgb` gets it.
-bool flat_colour(const std::uint32_t texel[16][kEtcBatch], int k, ColorMode mode, int rgb[3]) {
-  const bool punch = mode == ColorMode::etc2_punch;
+bool flat_colour(const std::uint32_t texel[16][kEtcBatch], int k, EtcMode mode, int rgb[3]) {
+  const bool punch = mode == EtcMode::etc2_punch;
   const std::uint32_t first = texel[0][k];
   for (int i = 0; i < 16; ++i)
     if ((texel[i][k] & 0xFFFFFF) != (first & 0xFFFFFF) || (punch && (texel[i][k] >> 24) < 128)) return false;
@@ -274,8 +274,8 @@ bool flat_colour(const std::uint32_t texel[16][kEtcBatch], int k, ColorMode mode
 
 }  // namespace
 
-long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]) {
-  const bool punch = mode == ColorMode::etc2_punch;
+long encode_color_block(const std::uint8_t rgba[16][4], EtcMode mode, Quality q, std::uint8_t out[8]) {
+  const bool punch = mode == EtcMode::etc2_punch;
   const bool opaque = !punch || !any_transparent(rgba);
   std::uint32_t texel[16][kEtcBatch] = {};  // lane 0: this block, for the lanes
   for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
@@ -288,13 +288,13 @@ long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality 
     } else {
       std::int32_t e[1];
       etc1_search_lanes(texel, 1, q == Quality::high, punch, block, e);
-      err = mode == ColorMode::etc1 ? e[0] : finish_etc2_block(texel, 0, e[0], q, block[0]);
+      err = mode == EtcMode::etc1 ? e[0] : finish_etc2_block(texel, 0, e[0], q, block[0]);
     }
     int rgb[3];
     if (flat_colour(texel, 0, mode, rgb)) {
       best_flat_block(rgb, mode, block[0]);
       err = block_error(rgba, block[0], mode);
-    } else if (q == Quality::fast && mode != ColorMode::etc1) {  // as compress_etc
+    } else if (q == Quality::fast && mode != EtcMode::etc1) {  // as compress_etc
       two_colour_t_h(texel, 0, mode, block[0]);
       err = block_error(rgba, block[0], mode);
     }
@@ -314,7 +314,7 @@ long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality 
   // Bit 33: the differential flag, or with punch-through the opaque flag.
   const int bit33 = punch ? (non_opaque ? 0 : 1) : 1;
   search_etc1_modes(tx, q, !punch, non_opaque, bit33, best);
-  if (mode != ColorMode::etc1 && q != Quality::fast) {
+  if (mode != EtcMode::etc1 && q != Quality::fast) {
     if (!non_opaque) search_planar(tx, q, best);
     search_t_h(tx, non_opaque, q, best);
   }
@@ -347,14 +347,14 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
   const bool snorm = format == F::eac_r11_snorm || format == F::eac_rg11_snorm;
   const int eac_channels = format == F::eac_rg11_unorm || format == F::eac_rg11_snorm ? 2 : 1;
   const bool rgba8 = format == F::etc2_rgba8_unorm || format == F::etc2_rgba8_srgb;
-  const ColorMode mode = format == F::etc1_rgb                                           ? ColorMode::etc1
-                         : format == F::etc2_rgba1_unorm || format == F::etc2_rgba1_srgb ? ColorMode::etc2_punch
-                                                                                         : ColorMode::etc2;
+  const EtcMode mode = format == F::etc1_rgb                                           ? EtcMode::etc1
+                         : format == F::etc2_rgba1_unorm || format == F::etc2_rgba1_srgb ? EtcMode::etc2_punch
+                                                                                         : EtcMode::etc2;
   // Opaque colour: sixteen blocks at a time (etc_lanes.h); ETC2 then tries
   // its planar, T and H modes block by block.
   const bool batched = etc_blocks_in_lanes(q);
-  const bool punch = mode == ColorMode::etc2_punch;
-  const bool finish = batched && q != Quality::fast && mode != ColorMode::etc1;  // ETC2: planar, T, H per block
+  const bool punch = mode == EtcMode::etc2_punch;
+  const bool finish = batched && q != Quality::fast && mode != EtcMode::etc1;  // ETC2: planar, T, H per block
   const bool eac_lanes = q != Quality::max;
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::int32_t errors[kEtcBatch];
@@ -423,7 +423,7 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
           int rgb[3];
           if (flat_colour(texel, k, mode, rgb)) {
             best_flat_block(rgb, mode, color[k]);  // one colour: the format's best
-          } else if (q == Quality::fast && mode != ColorMode::etc1) {
+          } else if (q == Quality::fast && mode != EtcMode::etc1) {
             two_colour_t_h(texel, k, mode, color[k]);
           }
           std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + (rgba8 ? 8 : 0), color[k], 8);

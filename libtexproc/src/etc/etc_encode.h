@@ -9,7 +9,7 @@
 
 namespace texproc::etc {
 
-enum class ColorMode {
+enum class EtcMode {
   etc1,         // individual and differential modes
   etc2,         // + T, H and planar
   etc2_punch,   // ETC2 with punch-through alpha: no individual mode; alpha < 128 is transparent
@@ -19,7 +19,7 @@ enum class ColorMode {
 // choosing the mode, flip, tables and colours with the least squared RGB
 // error (over the visible texels for punch-through) within the quality's
 // search. Returns that error.
-long encode_color_block(const std::uint8_t rgba[16][4], ColorMode mode, Quality q, std::uint8_t out[8]);
+long encode_color_block(const std::uint8_t rgba[16][4], EtcMode mode, Quality q, std::uint8_t out[8]);
 
 enum class EacKind { alpha8, r11, r11_signed };
 // Encodes 16 targets into an 8-byte EAC block. Targets are in the format's

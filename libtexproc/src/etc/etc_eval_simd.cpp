@@ -1,74 +1,14 @@
-// ETC half-block scoring: the scalar reference and its Highway twin (lanes
-// over the 8 texels; 32-bit integers, so the results are identical).
+// ETC half-block scoring: the Highway twin of the scalar reference in
+// etc_eval.cpp (lanes over the 8 texels; 32-bit integers, so the results are identical).
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "etc/etc_eval_simd.cpp"
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
 
 #include "etc/etc_eval.h"
+#include "etc/etc_eval_shared.h"
 #include "etc/etc_tables.h"
 #include "texproc/runtime.h"
-
-#ifndef TEXPROC_ETC_EVAL_COMMON
-#define TEXPROC_ETC_EVAL_COMMON
-namespace texproc::etc {
-namespace {
-// The palette of base `col` and table `t` (clamped), and whether any entry clamps.
-bool make_palette(const int col[3], int t, bool non_opaque, int pal[4][3]) {
-  bool clamps = false;
-  for (int k = 0; k < 4; ++k) {
-    const int m = non_opaque && (k == 0 || k == 2) ? 0 : kModifiers[t][k];
-    for (int c = 0; c < 3; ++c) {
-      pal[k][c] = clamp255(col[c] + m);
-      clamps |= pal[k][c] != col[c] + m;
-    }
-  }
-  return clamps;
-}
-}  // namespace
-
-namespace ref {
-long eval_half(const HalfTexels& tx, const int col[3], int t, bool non_opaque, std::uint8_t idx[8]) {
-  int pal[4][3];
-  const bool clamps = make_palette(col, t, non_opaque, pal);
-  const int a = kModifiers[t][0], b = kModifiers[t][1];
-  const int base_sum = col[0] + col[1] + col[2];
-  long err = 0;
-  for (int i = 0; i < 8; ++i) {
-    if (non_opaque && tx.transparent[i]) {
-      idx[i] = 2;
-      continue;
-    }
-    const int px[3] = {tx.r[i], tx.g[i], tx.b[i]};
-    int bk;
-    long best;
-    if (!clamps) {
-      const int d2 = 2 * (tx.sum[i] - base_sum);
-      if (non_opaque) {
-        bk = d2 < -3 * b ? 3 : d2 < 3 * b ? 0 : 1;
-      } else {
-        bk = d2 < -3 * (a + b) ? 3 : d2 < 0 ? 2 : d2 < 3 * (a + b) ? 0 : 1;
-      }
-      const long dr = pal[bk][0] - px[0], dg = pal[bk][1] - px[1], db = pal[bk][2] - px[2];
-      best = dr * dr + dg * dg + db * db;
-    } else {
-      best = -1;
-      bk = 0;
-      for (int k = 0; k < 4; ++k) {
-        if (non_opaque && k == 2) continue;
-        const long dr = pal[k][0] - px[0], dg = pal[k][1] - px[1], db = pal[k][2] - px[2];
-        const long e = dr * dr + dg * dg + db * db;
-        if (best < 0 || e < best) best = e, bk = k;
-      }
-    }
-    idx[i] = std::uint8_t(bk);
-    err += best;
-  }
-  return err;
-}
-}  // namespace ref
-}  // namespace texproc::etc
-#endif
 
 HWY_BEFORE_NAMESPACE();
 namespace texproc::etc {

@@ -52,8 +52,6 @@ void HorizontalPass(const float* src, int channels, const int* first, const floa
   }
 }
 
-const char* TargetName() { return hwy::TargetName(HWY_TARGET); }
-
 }  // namespace HWY_NAMESPACE
 }  // namespace texproc
 HWY_AFTER_NAMESPACE();
@@ -62,7 +60,6 @@ HWY_AFTER_NAMESPACE();
 namespace texproc {
 HWY_EXPORT(VerticalPass);
 HWY_EXPORT(HorizontalPass);
-HWY_EXPORT(TargetName);
 
 void vertical_pass(const float* const* rows, const float* weights, int taps, int n, float* out) {
   if (force_scalar()) return ref::vertical_pass(rows, weights, taps, n, out);
@@ -75,8 +72,5 @@ void horizontal_pass(const float* src, int channels, const int* first, const flo
   HWY_DYNAMIC_DISPATCH(HorizontalPass)(src, channels, first, weights, taps, out_width, out);
 }
 
-namespace detail {
-std::string dispatched_target_name() { return HWY_DYNAMIC_DISPATCH(TargetName)(); }
-}  // namespace detail
 }  // namespace texproc
 #endif

@@ -7,7 +7,7 @@
 #include <cstring>
 
 #include "normalmap/kernels.h"
-#include "normalmap/normalmap_kernels.h"
+#include "normalmap/normalmap_rows.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
 

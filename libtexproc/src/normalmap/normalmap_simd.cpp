@@ -5,25 +5,13 @@
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
 
-#include "normalmap/normalmap_kernels.h"
+#include "normalmap/normalmap_rows.h"
 #include "texproc/runtime.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
-
-void ConvolveRow(const float* in, const float* w, int taps, int n, float* out) {
-  const hn::ScalableTag<float> d;
-  const int lanes = int(hn::Lanes(d));
-  int x = 0;
-  for (; x + lanes <= n; x += lanes) {
-    auto acc = hn::Zero(d);
-    for (int k = 0; k < taps; ++k) acc = hn::Add(acc, hn::Mul(hn::Set(d, w[k]), hn::LoadU(d, in + x + k)));
-    hn::StoreU(acc, d, out + x);
-  }
-  if (x < n) ref::convolve_row(in + x, w, taps, n - x, out + x);
-}
 
 void VerticalPass2(const float* const* rows, const float* wa, const float* wb, int taps, int n, float* a, float* b) {
   const hn::ScalableTag<float> d;
@@ -100,30 +88,6 @@ HWY_INLINE auto QuantizeHeightU8(D d, V h) {
   return hn::DemoteTo(du8, hn::ConvertTo(di, e));
 }
 
-void EncodeNormalsU8(const float* nx, const float* ny, const float* nz, const float* h, int n, int channels,
-                     std::uint8_t* out) {
-  const hn::ScalableTag<float> d;
-  const hn::Rebind<uint8_t, decltype(d)> du8;
-  const int lanes = int(hn::Lanes(d));
-  const auto k255 = hn::Set(d, 255.0f);
-  int x = 0;
-  for (; x + lanes <= n; x += lanes) {
-    const auto r = QuantizeU8(d, hn::LoadU(d, nx + x), k255);
-    const auto g = QuantizeU8(d, hn::LoadU(d, ny + x), k255);
-    if (channels == 2) {
-      hn::StoreInterleaved2(r, g, du8, out + 2 * x);
-      continue;
-    }
-    const auto b = QuantizeU8(d, hn::LoadU(d, nz + x), k255);
-    if (channels == 3) {
-      hn::StoreInterleaved3(r, g, b, du8, out + 3 * x);
-    } else {
-      hn::StoreInterleaved4(r, g, b, QuantizeHeightU8(d, hn::LoadU(d, h + x)), du8, out + 4 * x);
-    }
-  }
-  if (x < n) ref::encode_normals_u8(nx + x, ny + x, nz + x, h + x, n - x, channels, out + channels * x);
-}
-
 void GradientsToU8(const float* gx, const float* gy, const float* h, int n, float sx, float sy, int channels,
                    std::uint8_t* out) {
   const hn::ScalableTag<float> d;
@@ -157,7 +121,6 @@ HWY_AFTER_NAMESPACE();
 
 #if HWY_ONCE
 namespace texproc {
-HWY_EXPORT(ConvolveRow);
 HWY_EXPORT(VerticalPass2);
 HWY_EXPORT(ConvolveRows2);
 
@@ -172,24 +135,12 @@ void convolve_rows2(const float* ina, const float* wa, const float* inb, const f
   HWY_DYNAMIC_DISPATCH(ConvolveRows2)(ina, wa, inb, wb, taps, n, a, b);
 }
 HWY_EXPORT(NormalsFromGradients);
-HWY_EXPORT(EncodeNormalsU8);
 HWY_EXPORT(GradientsToU8);
 
 void gradients_to_u8(const float* gx, const float* gy, const float* h, int n, float sx, float sy, int channels,
                      std::uint8_t* out) {
   if (force_scalar()) return ref::gradients_to_u8(gx, gy, h, n, sx, sy, channels, out);
   HWY_DYNAMIC_DISPATCH(GradientsToU8)(gx, gy, h, n, sx, sy, channels, out);
-}
-
-void encode_normals_u8(const float* nx, const float* ny, const float* nz, const float* h, int n, int channels,
-                       std::uint8_t* out) {
-  if (force_scalar()) return ref::encode_normals_u8(nx, ny, nz, h, n, channels, out);
-  HWY_DYNAMIC_DISPATCH(EncodeNormalsU8)(nx, ny, nz, h, n, channels, out);
-}
-
-void convolve_row(const float* in, const float* w, int taps, int n, float* out) {
-  if (force_scalar()) return ref::convolve_row(in, w, taps, n, out);
-  HWY_DYNAMIC_DISPATCH(ConvolveRow)(in, w, taps, n, out);
 }
 
 void normals_from_gradients(const float* gx, const float* gy, int n, float sx, float sy, float* nx, float* ny,

@@ -27,7 +27,7 @@ namespace {
 // IEC 61966-2-1; Display P3 to Rec.709 derived from the P3-D65 primaries.
 constexpr const char* kBuiltinConfig = R"ocio(ocio_profile_version: 2.1
 name: texproc-builtin
-description: texproc built-in config (see docs/mip.md, colour spaces)
+description: texproc built-in config (see docs/color.md)
 roles:
   default: lin_rec709
   scene_linear: lin_rec709
