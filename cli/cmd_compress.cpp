@@ -236,58 +236,14 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
       chains.back().push_back(std::move(img));
     }
   }
-  const std::size_t surfaces = chains.size();
-  for (std::vector<Image>& levels : chains) {
-  // BC3 normal maps take the DXT5nm layout for platforms without BC5: X in
-  // alpha (coded by the 8-value alpha block), Y in green (the colour block's
-  // 6-bit channel), red 1 and blue 0 constant so the colour endpoints spend
-  // their precision on Y. Shaders read (a, g) and rebuild Z.
-  if (a.normal_map && (format == TexelFormat::bc3_unorm || format == TexelFormat::bc3_srgb)) {
-    for (Image& l : levels) {
-      Image nm = Image::uninitialized(l.width(), l.height(), 4, l.type());
-      for (int y = 0; y < l.height(); ++y)
-        for (int x = 0; x < l.width(); ++x) {
-          nm.set(x, y, 0, 1.0f);
-          nm.set(x, y, 1, l.channels() > 1 ? l.get(x, y, 1) : 0.5f);
-          nm.set(x, y, 2, 0.0f);
-          nm.set(x, y, 3, l.get(x, y, 0));
-        }
-      l = std::move(nm);
-    }
-  }
-  }
-  const std::vector<Image>& levels = chains[0];
-  Texture t;
-  t.format = format;
-  t.width = std::uint32_t(levels[0].width());
-  t.height = std::uint32_t(levels[0].height());
-  t.levels = std::uint32_t(levels.size());
-  t.faces = in.faces;
-  t.layers = in.layers;
-  t.is_array = in.is_array;
-  t.images.resize(std::size_t(t.levels) * surfaces);
   const auto t0 = std::chrono::steady_clock::now();
-  double texels = 0.0, texels_before = 0.0;  // for the progress line: the levels weighed by size
-  for (const auto& c : chains)
-    for (const Image& l : c) texels += double(l.width()) * double(l.height());
-  for (std::size_t s = 0; s < surfaces; ++s)
-  for (std::size_t li = 0; li < chains[s].size(); ++li) {
-    Image& l = chains[s][li];
-    // The policy applies to each stored level (the chain itself was filtered
-    // premultiplied, so it has no fringes; the GPU's filtering of straight
-    // alpha would add them back from the colour under alpha 0).
-    if (format_info(format).channels == 4 && !a.normal_map) apply_transparent_color(l, a.transparent);
-    EncodeOptions options;
-    options.bc1_black = a.bc1_black;
-    options.astc_effort = a.astc_effort;
-    options.normal_map = a.normal_map && is_astc(format);
-    const double level_texels = double(l.width()) * double(l.height());
-    if (r.progress)
-      options.progress = [&](double done) { r.progress((texels_before + done * level_texels) / texels); };
-    const std::vector<std::uint8_t> blocks = compress_image(l.view(), format, a.q, options);
-    t.images[li * surfaces + s] = PixelBytes(blocks);
-    texels_before += level_texels;
-  }
+  TextureEncodeOptions options;
+  options.encode.bc1_black = a.bc1_black;
+  options.encode.astc_effort = a.astc_effort;
+  options.encode.progress = r.progress;
+  options.normal_map = a.normal_map;
+  options.transparent = a.transparent;
+  const Texture t = compress_texture(chains, in.faces, in.layers, in.is_array, format, a.q, options);
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   phases.compute_done();
   write_texture(output, t, a.header, zstd_level_for(a.zstd, output));
@@ -302,7 +258,7 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   r.details["quality"] = a.quality;
   r.details["encode_seconds"] = s;
   if (a.report) {
-    const ImageDifference d = encoding_error(levels[0], t, a.normal_map && is_astc(format));
+    const ImageDifference d = encoding_error(chains[0][0], t, a.normal_map && is_astc(format));
     Json::Value rep(Json::objectValue);
     rep["psnr"] = number_or_null(d.psnr());
     if (d.channels >= 3) rep["psnr_rgb"] = number_or_null(d.psnr_rgb());

@@ -26,6 +26,38 @@ using namespace texproc;
 using namespace texproc::test;
 
 // A flat block is exact for every value, in every quality, UNORM and SNORM.
+// compress_texture is what `texproc compress` does to a chain: a BC3 normal
+// map in the DXT5nm layout (X in alpha, Y in green, R 1, B 0), each level
+// through compress_image, the stored levels handed back.
+TEST(CompressTexture, Bc3NormalMapsTakeTheDxt5nmLayout) {
+  Image n(8, 8, 3, PixelType::u8);
+  for (std::size_t k = 0; k < n.byte_size(); ++k) n.data()[k] = std::uint8_t(k * 37 + 11);
+  const Image nm = dxt5nm_layout(n.view());
+  ASSERT_EQ(nm.channels(), 4);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) {
+      EXPECT_EQ(nm.row<std::uint8_t>(y)[4 * x + 0], 255);
+      EXPECT_EQ(nm.row<std::uint8_t>(y)[4 * x + 1], n.row<std::uint8_t>(y)[3 * x + 1]);
+      EXPECT_EQ(nm.row<std::uint8_t>(y)[4 * x + 2], 0);
+      EXPECT_EQ(nm.row<std::uint8_t>(y)[4 * x + 3], n.row<std::uint8_t>(y)[3 * x + 0]);
+    }
+  Image half(4, 4, 3, PixelType::u8);
+  std::vector<std::vector<Image>> chains(1);
+  chains[0].push_back(n);
+  chains[0].push_back(half);
+  TextureEncodeOptions o;
+  o.normal_map = true;
+  const Texture t = compress_texture(chains, 1, 1, false, TexelFormat::bc3_unorm, Quality::normal, o);
+  EXPECT_EQ(t.levels, 2u);
+  EXPECT_EQ(t.image(0), PixelBytes(compress_image(nm.view(), TexelFormat::bc3_unorm, Quality::normal)));
+  EXPECT_EQ(chains[0][0].channels(), 4);  // handed back as stored
+  // Chains of different sizes are refused.
+  std::vector<std::vector<Image>> bad(2);
+  bad[0].push_back(n);
+  bad[1].push_back(half);
+  EXPECT_THROW(compress_texture(bad, 2, 1, true, TexelFormat::bc1_rgb_unorm, Quality::fast), Error);
+}
+
 TEST(Bc4Encode, FlatBlocksAreExact) {
   for (Quality q : {Quality::fast, Quality::normal, Quality::high}) {
     for (int v = 0; v <= 255; ++v) {

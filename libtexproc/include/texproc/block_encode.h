@@ -9,6 +9,7 @@
 
 #include "texproc/image.h"
 #include "texproc/texture.h"
+#include "texproc/transparent_color.h"
 
 namespace texproc {
 
@@ -84,5 +85,33 @@ std::vector<std::uint8_t> compress_image(const ImageView& image, TexelFormat for
 // Error{unsupported} for formats that are not block formats.
 int encode_block(TexelFormat format, const std::uint8_t rgba[16][4], Quality q, std::uint8_t* out,
                  const EncodeOptions& options = {});
+
+// BC3's DXT5nm layout of a tangent-space normal map, for platforms without
+// BC5: X (red) moves to alpha, coded by BC3's 8-value alpha block; Y stays
+// in green, the colour block's 6-bit channel; red is 1 and blue 0, constant,
+// so the colour endpoints spend their precision on Y. Shaders read (a, g)
+// and rebuild Z. Returns a 4-channel image of the input's type (a
+// one-channel input's Y is 0.5).
+Image dxt5nm_layout(const ImageView& normal_map);
+
+// What compress_texture does beyond compress_image.
+struct TextureEncodeOptions {
+  EncodeOptions encode;  // per level (its progress is the whole texture's)
+  // The chain is a tangent-space normal map: BC3 formats store it in the
+  // DXT5nm layout, ASTC in astc-encoder's rrrg mode (EncodeOptions::
+  // normal_map); the other formats take X and Y as they are.
+  bool normal_map = false;
+  // The colour under alpha < 1 of four-channel formats, applied to each
+  // stored level (not to normal maps).
+  TransparentColor transparent = TransparentColor::keep;
+};
+
+// A texture of `format` from one mip chain per surface (index layer * faces
+// + face; every chain of the same sizes): each level of each surface
+// through compress_image. On return the chains hold the levels as they were
+// encoded (DXT5nm layout, transparent colour), for measuring the error.
+// Bytes are identical for any thread count.
+Texture compress_texture(std::vector<std::vector<Image>>& chains, std::uint32_t faces, std::uint32_t layers,
+                         bool is_array, TexelFormat format, Quality q, const TextureEncodeOptions& options = {});
 
 }  // namespace texproc
