@@ -24,11 +24,13 @@
 // target).
 #pragma once
 
+#include "core/block_batch.h"
+
 #include <cstdint>
 
 namespace texproc {
 
-constexpr int kBc1Batch = 16;
+constexpr int kBc1Batch = kBlockBatch;  // core/block_batch.h
 
 // texel[i][k]: texel i (row by row) of block k as R | G << 8 | B << 16 |
 // A << 24. `three`: the three-colour mode may be used (BC1, not BC2/BC3's

@@ -17,11 +17,13 @@
 // expressions in the same order on both twins, no FMA.
 #pragma once
 
+#include "core/block_batch.h"
+
 #include <cstdint>
 
 namespace texproc {
 
-constexpr int kBc4Batch = 16;
+constexpr int kBc4Batch = kBlockBatch;  // core/block_batch.h
 
 // v[i][k]: value i (row by row) of block k in code units: [0, 255], or
 // [-127, 127] with `snorm` (clamped here).

@@ -1,6 +1,8 @@
 // Reading an image's texels as the block encoders take them.
 #pragma once
 
+#include "core/block_batch.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -69,8 +71,7 @@ inline void gather_rgba8(const ImageView& img, int bx, int by, std::uint8_t rgba
 
 // Block encoders that work on sixteen blocks at a time take their texels
 // as texel[i][k]: texel i (row by row) of block k, R | G << 8 | B << 16 |
-// A << 24 (only BC1 with punch-through alpha reads A).
-constexpr int kBlockBatch = 16;
+// A << 24 (only BC1 with punch-through alpha reads A). kBlockBatch: core/block_batch.h.
 
 // The lanes' search level for a quality below `max` (which goes block by
 // block): 0 `fast`, 1 `normal`, 2 `high`.

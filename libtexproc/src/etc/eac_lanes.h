@@ -15,13 +15,15 @@
 // tie. Float expressions in the same order on both twins, no FMA.
 #pragma once
 
+#include "core/block_batch.h"
+
 #include <cstdint>
 
 #include "etc/etc_encode.h"
 
 namespace texproc::etc {
 
-constexpr int kEacBatch = 16;
+constexpr int kEacBatch = kBlockBatch;  // core/block_batch.h
 
 // v[i][k]: value i (row by row) of block k in the format's units (see
 // encode_eac_block; clamped here). level: 0 `fast`, 1 `normal`, 2 `high`.

@@ -25,8 +25,6 @@
 
 namespace texproc::etc {
 
-static_assert(kEtcBatch == kBlockBatch, "the lanes take the texels gather_rows_rgba8 reads");
-
 namespace {
 
 Texels make_texels(const std::uint8_t rgba[16][4], EtcMode mode) {

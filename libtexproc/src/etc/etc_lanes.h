@@ -16,11 +16,13 @@
 // float division per quantized channel, the same on both twins.
 #pragma once
 
+#include "core/block_batch.h"
+
 #include <cstdint>
 
 namespace texproc::etc {
 
-constexpr int kEtcBatch = 16;
+constexpr int kEtcBatch = kBlockBatch;  // core/block_batch.h
 
 // texel[i][k]: texel i (row by row) of block k as R | G << 8 | B << 16
 // (alpha ignored). out: the ETC1 blocks (valid ETC2 RGB blocks too).
