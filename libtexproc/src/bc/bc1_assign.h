@@ -11,9 +11,25 @@
 namespace texproc {
 
 // A block's texels as planes, prepared once per block.
+struct Bc1Texels;
+struct Bc1Moments;
+struct Bc1LsSums;
+
+// The kernels below as the dispatched target's twins, or the references
+// under force_scalar(), resolved once: a block's search calls through the
+// table its texels carry instead of dispatching at every candidate.
+struct Bc1Kernels {
+  void (*moments)(const Bc1Texels&, Bc1Moments&);
+  void (*project_range)(const Bc1Texels&, const float*, float&, float&);
+  std::int32_t (*nearest)(const Bc1Texels&, const int (*)[3], int, std::uint8_t*);
+  void (*ls_sums)(const Bc1Texels&, const std::uint8_t*, const int*, int, Bc1LsSums&);
+};
+Bc1Kernels bc1_kernels();
+
 struct Bc1Texels {
   std::int32_t r[16], g[16], b[16];
   std::int32_t transparent[16];  // 1: takes index 3 (three-colour mode), no error
+  Bc1Kernels k = bc1_kernels();  // resolved once per block
 };
 
 // Over the opaque texels: their count, colour sums and products

@@ -123,6 +123,12 @@ HWY_EXPORT(Bc1ProjectRange);
 HWY_EXPORT(Bc1Nearest);
 HWY_EXPORT(Bc1LsSums_);
 
+Bc1Kernels bc1_kernels() {
+  if (force_scalar()) return {&ref::bc1_moments, &ref::bc1_project_range, &ref::bc1_nearest, &ref::bc1_ls_sums};
+  return {&HWY_DYNAMIC_DISPATCH(Bc1Moments_), &HWY_DYNAMIC_DISPATCH(Bc1ProjectRange),
+          &HWY_DYNAMIC_DISPATCH(Bc1Nearest), &HWY_DYNAMIC_DISPATCH(Bc1LsSums_)};
+}
+
 void bc1_moments(const Bc1Texels& tx, Bc1Moments& m) {
   if (force_scalar()) return ref::bc1_moments(tx, m);
   HWY_DYNAMIC_DISPATCH(Bc1Moments_)(tx, m);

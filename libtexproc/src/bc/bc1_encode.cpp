@@ -60,7 +60,7 @@ void assign(const Bc1Texels& tx, const Endpoints& e, bool four, bool allow_black
   palette(e, four, pal);
   r.e = e;
   r.four = four;
-  r.error = bc1_nearest(tx, pal, four ? 4 : (allow_black ? 4 : 3), r.idx);  // SIMD twins
+  r.error = tx.k.nearest(tx, pal, four ? 4 : (allow_black ? 4 : 3), r.idx);  // SIMD twins
 }
 
 int quantize(float v, int bits) {
@@ -86,7 +86,7 @@ bool refit(const Bc1Texels& tx, const Result& r, float a[3], float b[3]) {
   static constexpr int kFour[4] = {0, 3, 1, 2}, kThree[4] = {0, 2, 1, -1};
   const int den = r.four ? 3 : 2;
   Bc1LsSums s;
-  bc1_ls_sums(tx, r.idx, r.four ? kFour : kThree, den, s);  // SIMD twins
+  tx.k.ls_sums(tx, r.idx, r.four ? kFour : kThree, den, s);  // SIMD twins
   const double det = double(s.aa) * s.bb - double(s.ab) * s.ab;
   if (det == 0) return false;
   const double scale = den / det;
@@ -309,7 +309,7 @@ void encode_block_by_block(const Bc1Texels& tx, Bc1Mode mode, Quality q, std::ui
 
   // Opaque texels only decide the endpoints.
   Bc1Moments m;
-  bc1_moments(tx, m);  // SIMD twins
+  tx.k.moments(tx, m);  // SIMD twins
   const int n = m.n;
   const bool any_transparent = n < 16;
   if (n == 0) {  // fully transparent: any endpoints, every index 3
@@ -383,7 +383,7 @@ void encode_block_by_block(const Bc1Texels& tx, Bc1Mode mode, Quality q, std::ui
     }
   }
   float lo, hi;
-  bc1_project_range(tx, axis, lo, hi);  // SIMD twins
+  tx.k.project_range(tx, axis, lo, hi);  // SIMD twins
   const float mean_p = mean[0] * axis[0] + mean[1] * axis[1] + mean[2] * axis[2];
   float a[3], b[3];
   for (int ch = 0; ch < 3; ++ch) {

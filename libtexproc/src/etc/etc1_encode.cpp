@@ -44,7 +44,7 @@ void sort_tables(int* order, int count, Key key) {
 void try_base(const Texels& tx, int h, const int q[3], int bits, int t, bool non_opaque, HalfFit& best) {
   const int col[3] = {expand(q[0], bits), expand(q[1], bits), expand(q[2], bits)};
   std::uint8_t idx[8];
-  const long e = eval_half(tx.half[h], col, t, non_opaque, idx);
+  const long e = tx.half[h].eval(tx.half[h], col, t, non_opaque, idx);
   if (e < best.err) {
     best.err = e;
     std::memcpy(best.q, q, sizeof best.q);

@@ -160,7 +160,7 @@ void search_t_h(const Texels& tx, bool non_opaque, Quality q_level, Candidate& b
       int pal[4][3];
       for (int k = 0; k < 4; ++k)
         for (int c = 0; c < 3; ++c) pal[k][c] = clamp255(paint[k][c]);
-      return long(bc1_nearest(tx.planes, pal, 4, idx));
+      return long(tx.planes.k.nearest(tx.planes, pal, 4, idx));
     }
     long err = 0;
     for (int i = 0; i < 16; ++i) {

@@ -8,10 +8,18 @@
 namespace texproc::etc {
 
 // The 8 texels of a half block, as planes.
+struct HalfTexels;
+// eval_half as the dispatched target's twin, or the reference under
+// force_scalar(), resolved once: a half's search calls through the pointer
+// its texels carry instead of dispatching at every base and table.
+using EvalHalfFn = long (*)(const HalfTexels&, const int*, int, bool, std::uint8_t*);
+EvalHalfFn eval_half_kernel();
+
 struct HalfTexels {
   std::int32_t r[8], g[8], b[8];
   std::int32_t sum[8];          // r + g + b
   std::int32_t transparent[8];  // 1: punch-through transparent (index 2, no error)
+  EvalHalfFn eval = eval_half_kernel();  // resolved once per block
 };
 
 // Squared RGB error of the half against base `col` (8-bit) with table `t`,

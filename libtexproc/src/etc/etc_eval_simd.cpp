@@ -80,6 +80,8 @@ HWY_AFTER_NAMESPACE();
 namespace texproc::etc {
 HWY_EXPORT(EvalHalf);
 
+EvalHalfFn eval_half_kernel() { return force_scalar() ? &ref::eval_half : &HWY_DYNAMIC_DISPATCH(EvalHalf); }
+
 long eval_half(const HalfTexels& tx, const int col[3], int t, bool non_opaque, std::uint8_t idx[8]) {
   if (force_scalar()) return ref::eval_half(tx, col, t, non_opaque, idx);
   return HWY_DYNAMIC_DISPATCH(EvalHalf)(tx, col, t, non_opaque, idx);
