@@ -31,23 +31,30 @@ struct ConeGeometry {
   const unsigned char* exit_bits = nullptr;
 };
 
-// Relaxed cones: whether texel q, higher than p, has a lower 4-neighbour
-// behind it as seen from p (one step farther from p along x or y; both ways
-// when p and q share that coordinate, or are half the map apart with repeat).
-inline bool cone_exits(const ConeGeometry& g, int px, int py, int qx, int qy) {
+// The relaxed-cone exit rule, written once: the 4-neighbours of q that lie
+// behind q as seen from p, one step farther from p along x or y (both ways
+// when p and q share that coordinate, or are half the map apart with
+// repeat), as bits (0: +x, 1: -x, 2: +y, 3: -y). q counts for p only where
+// one of those neighbours is lower than q: the ray can leave the relief.
+inline unsigned exit_directions(int px, int py, int qx, int qy, int W, int H, bool repeat) {
   auto offset = [&](int p, int q, int n) {
     int d = q - p;
-    if (g.repeat) {
+    if (repeat) {
       if (d > n / 2) d -= n;
       if (d < -n / 2) d += n;
     }
     return d;
   };
-  const int ox = offset(px, qx, g.W), oy = offset(py, qy, g.H);
-  const bool both_x = g.repeat && 2 * (ox < 0 ? -ox : ox) == g.W, both_y = g.repeat && 2 * (oy < 0 ? -oy : oy) == g.H;
-  const unsigned bits = g.exit_bits[std::size_t(qy) * g.W + qx];
-  return ((ox >= 0 || both_x) && (bits & 1)) || ((ox <= 0 || both_x) && (bits & 2)) ||
-         ((oy >= 0 || both_y) && (bits & 4)) || ((oy <= 0 || both_y) && (bits & 8));
+  const int ox = offset(px, qx, W), oy = offset(py, qy, H);
+  const bool both_x = repeat && 2 * (ox < 0 ? -ox : ox) == W, both_y = repeat && 2 * (oy < 0 ? -oy : oy) == H;
+  return ((ox >= 0 || both_x) ? 1u : 0u) | ((ox <= 0 || both_x) ? 2u : 0u) | ((oy >= 0 || both_y) ? 4u : 0u) |
+         ((oy <= 0 || both_y) ? 8u : 0u);
+}
+
+// Relaxed cones: whether texel q, higher than p, has a lower 4-neighbour
+// behind it as seen from p (exit_directions against q's exit bits).
+inline bool cone_exits(const ConeGeometry& g, int px, int py, int qx, int qy) {
+  return (exit_directions(px, py, qx, qy, g.W, g.H, g.repeat) & g.exit_bits[std::size_t(qy) * g.W + qx]) != 0;
 }
 
 struct ConeCell {

@@ -113,23 +113,11 @@ struct Behind {
     }
     return h[std::size_t(ny) * W + nx] < hq;
   }
-  // dx, dy: q - p, the shortest way round with repeat (ties: both ways).
+  // The rule of exit_directions (cone_cells.h), on the heights themselves.
   bool exits(int px, int py, int qx, int qy, float hq) const {
-    const int ox = signed_offset(px, qx, W), oy = signed_offset(py, qy, H);
-    const bool both_x = repeat && 2 * std::abs(ox) == W, both_y = repeat && 2 * std::abs(oy) == H;
-    if ((ox >= 0 || both_x) && lower(qx, qy, hq, 1, 0)) return true;
-    if ((ox <= 0 || both_x) && lower(qx, qy, hq, -1, 0)) return true;
-    if ((oy >= 0 || both_y) && lower(qx, qy, hq, 0, 1)) return true;
-    if ((oy <= 0 || both_y) && lower(qx, qy, hq, 0, -1)) return true;
-    return false;
-  }
-  int signed_offset(int p, int q, int n) const {
-    int d = q - p;
-    if (repeat) {
-      if (d > n / 2) d -= n;
-      if (d < -n / 2) d += n;
-    }
-    return d;
+    const unsigned d = detail::exit_directions(px, py, qx, qy, W, H, repeat);
+    return ((d & 1) && lower(qx, qy, hq, 1, 0)) || ((d & 2) && lower(qx, qy, hq, -1, 0)) ||
+           ((d & 4) && lower(qx, qy, hq, 0, 1)) || ((d & 8) && lower(qx, qy, hq, 0, -1));
   }
 };
 
