@@ -472,12 +472,13 @@ void run_cubemap(const CubemapArgs& a, const std::string& input, const std::stri
       r.details["seams"] = seams;
     }
   } catch (const Error& e) {
+    // The batch puts the input in front of a message; with --faces the
+    // input is the +X face, so name the set, unless a face is named already.
+    if (a.faces.empty()) throw;
     const std::string what = e.what();
-    const std::string& named = a.faces.empty() ? input : a.faces[0];
-    bool has_name = what.rfind(named, 0) == 0;
-    for (const std::string& f : a.faces) has_name = has_name || what.rfind(f, 0) == 0;
-    if (has_name) throw;
-    throw Error(e.code(), (a.faces.empty() ? input : "--faces " + a.faces[0] + " ...") + ": " + what);
+    for (const std::string& f : a.faces)
+      if (what.rfind(f, 0) == 0) throw;
+    throw Error(e.code(), "--faces " + a.faces[0] + " ...: " + what);
   }
 }
 
@@ -540,14 +541,7 @@ void add_cubemap_command(CLI::App& app) {
         args->io.output = (fs::path(args->io.output) / "{stem}").string();
       }
     };
-    c.plan = [args](const InputFile& in, const std::string& out) {
-      try {
-        return make_plan(*args, in.path, out).all();
-      } catch (const Error& e) {
-        if (std::string(e.what()).rfind(in.path, 0) == 0) throw;
-        throw Error(e.code(), in.path + ": " + e.what());
-      }
-    };
+    c.plan = [args](const InputFile& in, const std::string& out) { return make_plan(*args, in.path, out).all(); };
     c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_cubemap(*args, in, out, r); };
     return run_batch(c, args->io, args->common);
   });
