@@ -428,7 +428,7 @@ void run_cubemap(const CubemapArgs& a, const std::string& input, const std::stri
     Cubemap specular, irradiance;
     if (a.mode == Ibl::specular || a.mode == Ibl::both) {
       SpecularOptions so;
-      so.size = s.cube.size();
+      so.size = a.size;  // 0: the library's default, the cube's size up to 256
       so.levels = levels;
       so.samples = a.samples;
       specular = prefilter_specular(env, so);

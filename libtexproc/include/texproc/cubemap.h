@@ -179,7 +179,8 @@ struct SpecularOptions {
 // The GGX-prefiltered radiance of the split-sum approximation (N = V = R):
 // level k is convolved with GGX D(h) (n.l) at roughness specular_roughness(k)
 // (level 0 is the mirror: the source resized). `source` needs level 0 only;
-// its seamless mips are made here.
+// its seamless mips are made here unless it holds them all already (as
+// generate_cube_mips made them), as for irradiance, SH and the preview.
 Cubemap prefilter_specular(const Cubemap& source, const SpecularOptions& options = {});
 
 // Diffuse irradiance E(n) / pi = (1 / pi) integral L(l) max(n.l, 0) dl,

@@ -52,6 +52,12 @@ struct TexelSet {
 };
 TexelSet texel_set(const CubeLevel& level);
 
+// The seamless chain of `cube` down to 1x1: the cube itself when it holds
+// every level already (generate_cube_mips made them), else level 0 and its
+// chain built into `scratch`. The chain is made once per call, not again by
+// every function that needs a coarser level.
+const Cubemap& full_chain(const Cubemap& cube, Cubemap& scratch);
+
 // An empty level of size n (faces allocated, uninitialized).
 CubeLevel make_level(int n);
 

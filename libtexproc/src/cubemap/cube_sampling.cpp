@@ -404,6 +404,23 @@ void generate_cube_mips(Cubemap& cube, int max_levels) {
   }
 }
 
+namespace cube {
+namespace {
+int mip_count(int n) {
+  int levels = 1;
+  while (n > 1) n = std::max(1, n / 2), ++levels;
+  return levels;
+}
+}  // namespace
+
+const Cubemap& full_chain(const Cubemap& cube, Cubemap& scratch) {
+  if (cube.levels.back().size == 1 && int(cube.levels.size()) == mip_count(cube.size())) return cube;
+  scratch.levels.assign(1, cube.levels[0]);
+  generate_cube_mips(scratch);
+  return scratch;
+}
+}  // namespace cube
+
 // ---- Trilinear sampling ---------------------------------------------------------------
 
 struct CubeSampler::Impl {
@@ -435,11 +452,13 @@ void CubeSampler::sample(const double dir[3], float lod, float rgba[4]) const {
 Cubemap resize_cubemap(const Cubemap& cube, int size) {
   if (cube.levels.empty()) throw Error(ErrorCode::bad_arguments, "resize_cubemap: the cube map has no level 0");
   if (size < 1) throw Error(ErrorCode::bad_arguments, "cube face size must be at least 1");
-  Cubemap src;
-  src.levels.push_back(cube.levels[0]);
-  if (size == cube.size()) return src;
-  generate_cube_mips(src);
-  const CubeSampler sampler(src);
+  if (size == cube.size()) {
+    Cubemap same;
+    same.levels.push_back(cube.levels[0]);
+    return same;
+  }
+  Cubemap scratch;
+  const CubeSampler sampler(cube::full_chain(cube, scratch));
   const float lod = std::max(0.0f, float(std::log2(double(cube.size()) / size)));
   Cubemap out;
   out.levels.push_back(cube::make_level(size));

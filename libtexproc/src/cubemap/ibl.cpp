@@ -135,8 +135,9 @@ Cubemap prefilter_specular(const Cubemap& source, const SpecularOptions& o) {
   if (source.levels.empty()) throw Error(ErrorCode::bad_arguments, "prefilter_specular: the source has no level 0");
   if (o.samples < 1) throw Error(ErrorCode::bad_arguments, "prefilter_specular: samples must be at least 1");
   const int size = o.size > 0 ? o.size : std::min(source.size(), 256);
-  Cubemap chain = resize_cubemap(source, size);
-  generate_cube_mips(chain);
+  Cubemap resized, scratch;
+  if (size != source.size()) resized = resize_cubemap(source, size);
+  const Cubemap& chain = cube::full_chain(size != source.size() ? resized : source, scratch);
   const int all = int(chain.levels.size());
   int levels = 1;
   while (levels < all && chain.levels[levels].size >= std::max(1, o.min_size)) ++levels;
@@ -169,9 +170,8 @@ Cubemap prefilter_specular(const Cubemap& source, const SpecularOptions& o) {
 Cubemap irradiance_cubemap(const Cubemap& source, int size) {
   if (source.levels.empty()) throw Error(ErrorCode::bad_arguments, "irradiance_cubemap: the source has no level 0");
   if (size < 1) throw Error(ErrorCode::bad_arguments, "irradiance map face size must be at least 1");
-  Cubemap chain;
-  chain.levels.push_back(source.levels[0]);
-  generate_cube_mips(chain);
+  Cubemap scratch;
+  const Cubemap& chain = cube::full_chain(source, scratch);
   std::size_t s = 0;
   while (s + 1 < chain.levels.size() && chain.levels[s].size > 32) ++s;
   Cubemap out;
@@ -207,10 +207,9 @@ void SphericalHarmonics9::irradiance(const double n[3], double rgb[3]) const {
 SphericalHarmonics9 project_sh9(const Cubemap& cube) {
   if (cube.levels.empty()) throw Error(ErrorCode::bad_arguments, "project_sh9: the cube map has no level 0");
   const CubeLevel* level = &cube.levels[0];
-  Cubemap chain;
+  Cubemap scratch;
   if (level->size > 128) {
-    chain.levels.push_back(cube.levels[0]);
-    generate_cube_mips(chain);
+    const Cubemap& chain = cube::full_chain(cube, scratch);
     std::size_t s = 0;
     while (chain.levels[s].size > 128) ++s;
     level = &chain.levels[s];

@@ -12,10 +12,9 @@ namespace texproc {
 Image render_cube_preview(const Cubemap& chain_in, const Cubemap* specular_in, float exposure) {
   if (chain_in.levels.empty()) throw Error(ErrorCode::bad_arguments, "render_cube_preview: the cube map is empty");
   // The crosses start at the first level of at most 256 texels a face.
-  Cubemap chain;
-  chain.levels.push_back(chain_in.levels[0]);
-  if (chain.size() > 256) chain = resize_cubemap(chain, 256);
-  generate_cube_mips(chain);
+  Cubemap resized, scratch;
+  if (chain_in.size() > 256) resized = resize_cubemap(chain_in, 256);
+  const Cubemap& chain = cube::full_chain(chain_in.size() > 256 ? resized : chain_in, scratch);
   Cubemap own;
   if (!specular_in) {
     SpecularOptions so;
