@@ -55,6 +55,10 @@ run compress "$S/normal_stein_256.png" -o "$O/normal_bc5_nm.ktx2" --format bc5 -
 run compress "$S/normal_stein_256.png" -o "$O/normal_bc3_nm.ktx2" --format bc3 --mips --normal-map
 if $astc; then run compress "$S/normal_stein_256.png" -o "$O/normal_astc_nm.ktx2" --format astc-6x6 --mips --normal-map; fi
 run compress "$S/albedo_desert_512.png" -o "$O/albedo_bc1_black.ktx2" --format bc1 --bc1-black
+for q in fast high; do  # the black index's candidates go block by block at every level
+  run compress "$S/albedo_desert_512.png" -o "$O/albedo_bc1_black_$q.ktx2" --format bc1 --bc1-black --quality "$q"
+done
+run compress "$W/crop.png" -o "$O/crop_bc1_black_max.ktx2" --format bc1 --bc1-black --quality max
 run mip "$S/albedo_desert_512.png" -o "$O/mip_albedo.ktx2"
 run mip "$S/cutout_fence_512x256.png" -o "$O/mip_cutout.dds" --alpha-coverage 0.5 --filter lanczos3
 run mip "$S/height_mount_250.png" -o "$O/mip_height.tif" --linear

@@ -13,7 +13,11 @@
 
 namespace texproc {
 
-// How hard the encoders search (per format in docs/compression.md). BC4/BC5:
+// How hard the encoders search. Each codec's levels are one table, a row per
+// level with each knob and its measured effect: libtexproc/src/bc/bc1_levels.h
+// (BC1, BC2/BC3 colour), bc/bc4_levels.h (BC4, BC5, BC3 alpha),
+// etc/etc_levels.h (ETC1, ETC2), etc/eac_levels.h (EAC); docs/compression.md
+// describes them. In short, BC4/BC5:
 // fast = the range's ends (and whole code steps over a narrow range);
 // normal = + both modes, least-squares refinement, +-1 window; high = +-2
 // window and 45 partition variants a mode; max = every endpoint pair. BC1:

@@ -266,46 +266,195 @@ void cluster_fit(const std::uint8_t rgb[16][3], const bool transparent[16], cons
   for (int k = 0; k < kept; ++k) out.push_back(quantize(best[k].a, best[k].b));
 }
 
-// Block by block: `max`, and the blocks the lanes leave (one opaque colour,
-// with or without transparent texels, or none opaque).
-void encode_block_by_block(const Bc1Texels& tx, Bc1Mode mode, Quality q, std::uint8_t out[8]) {
-  const bool three_allowed = mode != Bc1Mode::four_only;
+void keep_better(Result& best, const Result& r) {
+  if (best.error < 0 || r.error < best.error) best = r;
+}
+
+bool is_one_opaque_colour(const Bc1Texels& tx) {
+  bool one = !tx.transparent[0];
+  for (int i = 1; i < 16 && one; ++i)
+    one = !tx.transparent[i] && tx.r[i] == tx.r[0] && tx.g[i] == tx.g[0] && tx.b[i] == tx.b[0];
+  return one;
+}
+
+// One opaque colour (most of what the lanes leave here): the optimal
+// single-colour pair through index 2, each mode's palette entry nearest
+// the colour (the first of equals, as bc1_nearest picks) for all 16.
+Result one_colour_block(const Bc1Texels& tx, bool three_allowed) {
   Result best;
   best.error = -1;
-  auto keep = [&](const Result& r) {
-    if (best.error < 0 || r.error < best.error) best = r;
-  };
-
-  // One opaque colour (most of what the lanes leave here): the optimal
-  // single-colour pair through index 2, each mode's palette entry nearest
-  // the colour (the first of equals, as bc1_nearest picks) for all 16.
-  bool one_colour = !tx.transparent[0];
-  for (int i = 1; i < 16 && one_colour; ++i)
-    one_colour = !tx.transparent[i] && tx.r[i] == tx.r[0] && tx.g[i] == tx.g[0] && tx.b[i] == tx.b[0];
-  if (one_colour) {
-    const SingleColorTables& s = single();
-    const int c[3] = {tx.r[0], tx.g[0], tx.b[0]};
-    for (int md = 0; md < (three_allowed ? 2 : 1); ++md) {
-      Result r;
-      for (int k = 0; k < 2; ++k) {
-        r.e.c[k][0] = s.five[md][c[0]][k];
-        r.e.c[k][1] = s.six[md][c[1]][k];
-        r.e.c[k][2] = s.five[md][c[2]][k];
-      }
-      r.four = md == 0;
-      int pal[4][3], nearest = 0, least = -1;
-      palette(r.e, r.four, pal);
-      for (int k = 0; k < (r.four ? 4 : 3); ++k) {
-        const int d = (c[0] - pal[k][0]) * (c[0] - pal[k][0]) + (c[1] - pal[k][1]) * (c[1] - pal[k][1]) + (c[2] - pal[k][2]) * (c[2] - pal[k][2]);
-        if (least < 0 || d < least) least = d, nearest = k;
-      }
-      std::fill(r.idx, r.idx + 16, std::uint8_t(nearest));
-      r.error = 16LL * least;
-      keep(r);
+  const SingleColorTables& s = single();
+  const int c[3] = {tx.r[0], tx.g[0], tx.b[0]};
+  for (int md = 0; md < (three_allowed ? 2 : 1); ++md) {
+    Result r;
+    for (int k = 0; k < 2; ++k) {
+      r.e.c[k][0] = s.five[md][c[0]][k];
+      r.e.c[k][1] = s.six[md][c[1]][k];
+      r.e.c[k][2] = s.five[md][c[2]][k];
     }
-    write(best, out);
-    return;
+    r.four = md == 0;
+    int pal[4][3], nearest = 0, least = -1;
+    palette(r.e, r.four, pal);
+    for (int k = 0; k < (r.four ? 4 : 3); ++k) {
+      const int d = (c[0] - pal[k][0]) * (c[0] - pal[k][0]) + (c[1] - pal[k][1]) * (c[1] - pal[k][1]) + (c[2] - pal[k][2]) * (c[2] - pal[k][2]);
+      if (least < 0 || d < least) least = d, nearest = k;
+    }
+    std::fill(r.idx, r.idx + 16, std::uint8_t(nearest));
+    r.error = 16LL * least;
+    keep_better(best, r);
   }
+  return best;
+}
+
+// One opaque colour among transparent texels (punch-through: the
+// three-colour mode): the single-colour pair through the average (index
+// 2), or both ends at the colour's nearest 5:6:5 value (index 0),
+// whichever leaves less error; the holes take index 3.
+Result punch_one_colour_block(const Bc1Texels& tx) {
+  Result best;
+  best.error = -1;
+  int first = 0;
+  while (tx.transparent[first]) ++first;
+  const int c[3] = {tx.r[first], tx.g[first], tx.b[first]};
+  const SingleColorTables& s = single();
+  Endpoints through, ends;
+  for (int k = 0; k < 2; ++k) {
+    through.c[k][0] = s.five[1][c[0]][k], through.c[k][1] = s.six[1][c[1]][k], through.c[k][2] = s.five[1][c[2]][k];
+    for (int ch = 0; ch < 3; ++ch) {
+      const int bits = ch == 1 ? 6 : 5;
+      int nearest_q = 0;
+      for (int v = 1; v < (1 << bits); ++v)
+        if (std::abs((bits == 6 ? expand6(v) : expand5(v)) - c[ch]) < std::abs((bits == 6 ? expand6(nearest_q) : expand5(nearest_q)) - c[ch]))
+          nearest_q = v;
+      ends.c[k][ch] = nearest_q;
+    }
+  }
+  for (const Endpoints& e : {through, ends}) {
+    Result r;
+    assign(tx, e, false, false, r);
+    keep_better(best, r);
+  }
+  return best;
+}
+
+// Principal axis of the opaque colours from their covariance (times n^2):
+// power iteration, from its row of greatest variance, each step divided by
+// the largest component (the lanes multiply by its reciprocal instead:
+// bc1_lanes.h; the two round differently, so each keeps its own bytes).
+void principal_axis(const std::int64_t cov_n2[6], float axis[3]) {
+  const float cov[6] = {float(cov_n2[0]), float(cov_n2[1]), float(cov_n2[2]),
+                        float(cov_n2[3]), float(cov_n2[4]), float(cov_n2[5])};
+  const int row = cov[0] >= cov[3] && cov[0] >= cov[5] ? 0 : cov[3] >= cov[5] ? 1 : 2;
+  const float rows[3][3] = {{cov[0], cov[1], cov[2]}, {cov[1], cov[3], cov[4]}, {cov[2], cov[4], cov[5]}};
+  float v[3] = {rows[row][0], rows[row][1], rows[row][2]};
+  for (int it = 0; it < 4; ++it) {
+    const float len = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
+    if (len == 0.0f) break;
+    const float x = v[0] / len, y = v[1] / len, z = v[2] / len;
+    v[0] = cov[0] * x + cov[1] * y + cov[2] * z;
+    v[1] = cov[1] * x + cov[3] * y + cov[4] * z;
+    v[2] = cov[2] * x + cov[4] * y + cov[5] * z;
+  }
+  const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (len > 0.0f) {
+    for (int ch = 0; ch < 3; ++ch) axis[ch] = v[ch] / len;
+  } else {
+    axis[0] = axis[1] = axis[2] = 0.57735027f;
+  }
+}
+
+// A block's texels as the cluster fit takes them, and its principal axis.
+struct ClusterInput {
+  std::uint8_t rgb[16][3];
+  bool transparent[16];
+  double axis[3];
+};
+
+// The search in one mode (four or three colours) from the extent's ends a,
+// b: least-squares refits, then the cluster fits and the nudges the level
+// asks for (Bc1BlockSearch, bc1_levels.h).
+Result search_mode(const Bc1Texels& tx, bool four, const float a[3], const float b[3], const ClusterInput& in,
+                   const Bc1BlockSearch& search) {
+  Result r;
+  assign(tx, quantize(a, b), four, false, r);
+  for (int it = 0; it < search.refinements; ++it) {
+    float ra[3], rb[3];
+    if (!refit(tx, r, ra, rb)) break;
+    Result n2;
+    assign(tx, quantize(ra, rb), four, false, n2);
+    if (n2.error >= r.error) break;
+    r = n2;
+  }
+  // Cluster fit along the principal axis (and, iterated, along the best
+  // endpoints' axis): its best splits compete under the exact decoding.
+  double fit_axis[3] = {in.axis[0], in.axis[1], in.axis[2]};
+  for (int round = 0; round < search.cluster_rounds; ++round) {
+    std::vector<Endpoints> cands;
+    cluster_fit(in.rgb, in.transparent, fit_axis, four, search.cluster_kept, cands);
+    for (const Endpoints& e : cands) {
+      Result n2;
+      assign(tx, e, four, false, n2);
+      if (n2.error < r.error) r = n2;
+    }
+    double d[3], len = 0;
+    for (int c = 0; c < 3; ++c) {
+      const int hi_ch = c == 1 ? expand6(r.e.c[1][c]) : expand5(r.e.c[1][c]);
+      const int lo_ch = c == 1 ? expand6(r.e.c[0][c]) : expand5(r.e.c[0][c]);
+      d[c] = hi_ch - lo_ch, len += d[c] * d[c];
+    }
+    if (len < 1e-9) break;
+    for (int c = 0; c < 3; ++c) fit_axis[c] = d[c] / std::sqrt(len);
+  }
+  // Nudge each quantized endpoint channel by one step while it helps.
+  bool improved = search.nudge;  // off: no pass
+  for (int pass = 0; improved && pass < 4; ++pass) {
+    improved = false;
+    for (int k = 0; k < 2; ++k)
+      for (int ch = 0; ch < 3; ++ch)
+        for (int d : {-1, 1}) {
+          Endpoints e = r.e;
+          e.c[k][ch] += d;
+          if (e.c[k][ch] < 0 || e.c[k][ch] > (ch == 1 ? 63 : 31)) continue;
+          Result n2;
+          assign(tx, e, four, false, n2);
+          if (n2.error < r.error) r = n2, improved = true;
+        }
+  }
+  return r;
+}
+
+// The lanes' block for these texels at `lane` as a candidate (where the
+// lanes take the block and its mode is one the block may use).
+void keep_lane_block(const Bc1Texels& tx, Bc1Mode mode, const Bc1LaneSearch& lane, bool any_transparent, Result& best) {
+  const bool three_allowed = mode != Bc1Mode::four_only;
+  std::uint32_t texel[16][kBc1Batch] = {};
+  for (int i = 0; i < 16; ++i) {
+    const std::uint8_t px[4] = {std::uint8_t(tx.r[i]), std::uint8_t(tx.g[i]), std::uint8_t(tx.b[i]),
+                                std::uint8_t(tx.transparent[i] ? 0 : 255)};
+    texel[i][0] = pack_texel(px);
+  }
+  std::uint8_t block[1][8];
+  bool handled = false;
+  bc1_encode_lanes(texel, 1, lane, three_allowed, mode == Bc1Mode::bc1_punch_through, block, &handled);
+  if (!handled) return;
+  const std::uint16_t c0 = std::uint16_t(block[0][0] | block[0][1] << 8), c1 = std::uint16_t(block[0][2] | block[0][3] << 8);
+  const bool four = mode == Bc1Mode::four_only || c0 > c1;
+  if (!(four || three_allowed) || (four && any_transparent)) return;
+  Endpoints e;
+  for (int k = 0; k < 2; ++k) {
+    const int c = k ? c1 : c0;
+    e.c[k][0] = c >> 11, e.c[k][1] = c >> 5 & 63, e.c[k][2] = c & 31;
+  }
+  Result r;
+  assign(tx, e, four, false, r);
+  keep_better(best, r);
+}
+
+// Block by block: `max`, and the blocks the lanes leave (one opaque colour,
+// with or without transparent texels, or none opaque).
+void encode_block_by_block(const Bc1Texels& tx, Bc1Mode mode, const Bc1Level& level, std::uint8_t out[8]) {
+  const bool three_allowed = mode != Bc1Mode::four_only;
+  if (is_one_opaque_colour(tx)) return write(one_colour_block(tx, three_allowed), out);
 
   // Opaque texels only decide the endpoints.
   Bc1Moments m;
@@ -327,61 +476,10 @@ void encode_block_by_block(const Bc1Texels& tx, Bc1Mode mode, Quality q, std::ui
       std::int64_t(m.sq[4]) * n - std::int64_t(m.sum[1]) * m.sum[2], std::int64_t(m.sq[5]) * n - std::int64_t(m.sum[2]) * m.sum[2]};
   float mean[3];
   for (int ch = 0; ch < 3; ++ch) mean[ch] = float(m.sum[ch]) / float(n);
+  if (cov_n2[0] == 0 && cov_n2[3] == 0 && cov_n2[5] == 0 && any_transparent) return write(punch_one_colour_block(tx), out);
 
-  // One opaque colour among transparent texels (punch-through: the
-  // three-colour mode): the single-colour pair through the average (index
-  // 2), or both ends at the colour's nearest 5:6:5 value (index 0),
-  // whichever leaves less error; the holes take index 3.
-  if (cov_n2[0] == 0 && cov_n2[3] == 0 && cov_n2[5] == 0 && any_transparent) {
-    int first = 0;
-    while (tx.transparent[first]) ++first;
-    const int c[3] = {tx.r[first], tx.g[first], tx.b[first]};
-    const SingleColorTables& s = single();
-    Endpoints through, ends;
-    for (int k = 0; k < 2; ++k) {
-      through.c[k][0] = s.five[1][c[0]][k], through.c[k][1] = s.six[1][c[1]][k], through.c[k][2] = s.five[1][c[2]][k];
-      for (int ch = 0; ch < 3; ++ch) {
-        const int bits = ch == 1 ? 6 : 5;
-        int level = 0;
-        for (int v = 1; v < (1 << bits); ++v)
-          if (std::abs((bits == 6 ? expand6(v) : expand5(v)) - c[ch]) < std::abs((bits == 6 ? expand6(level) : expand5(level)) - c[ch]))
-            level = v;
-        ends.c[k][ch] = level;
-      }
-    }
-    for (const Endpoints& e : {through, ends}) {
-      Result r;
-      assign(tx, e, false, false, r);
-      keep(r);
-    }
-    write(best, out);
-    return;
-  }
-
-  // Principal axis of the opaque colours: power iteration on the covariance,
-  // from its row of greatest variance.
-  const float cov[6] = {float(cov_n2[0]), float(cov_n2[1]), float(cov_n2[2]),
-                        float(cov_n2[3]), float(cov_n2[4]), float(cov_n2[5])};
   float axis[3];
-  {
-    const int row = cov[0] >= cov[3] && cov[0] >= cov[5] ? 0 : cov[3] >= cov[5] ? 1 : 2;
-    const float rows[3][3] = {{cov[0], cov[1], cov[2]}, {cov[1], cov[3], cov[4]}, {cov[2], cov[4], cov[5]}};
-    float v[3] = {rows[row][0], rows[row][1], rows[row][2]};
-    for (int it = 0; it < 4; ++it) {
-      const float len = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
-      if (len == 0.0f) break;
-      const float x = v[0] / len, y = v[1] / len, z = v[2] / len;
-      v[0] = cov[0] * x + cov[1] * y + cov[2] * z;
-      v[1] = cov[1] * x + cov[3] * y + cov[4] * z;
-      v[2] = cov[2] * x + cov[4] * y + cov[5] * z;
-    }
-    const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (len > 0.0f) {
-      for (int ch = 0; ch < 3; ++ch) axis[ch] = v[ch] / len;
-    } else {
-      axis[0] = axis[1] = axis[2] = 0.57735027f;
-    }
-  }
+  principal_axis(cov_n2, axis);
   float lo, hi;
   tx.k.project_range(tx, axis, lo, hi);  // SIMD twins
   const float mean_p = mean[0] * axis[0] + mean[1] * axis[1] + mean[2] * axis[2];
@@ -390,106 +488,34 @@ void encode_block_by_block(const Bc1Texels& tx, Bc1Mode mode, Quality q, std::ui
     a[ch] = std::clamp(mean[ch] + (hi - mean_p) * axis[ch], 0.0f, 255.0f);
     b[ch] = std::clamp(mean[ch] + (lo - mean_p) * axis[ch], 0.0f, 255.0f);
   }
-  // The slow searches below work on double colours.
-  std::uint8_t rgb[16][3];
-  bool transparent[16];
-  const double axis_d[3] = {axis[0], axis[1], axis[2]};
+  // The cluster fit works on double colours.
+  ClusterInput in;
   for (int i = 0; i < 16; ++i) {
-    rgb[i][0] = std::uint8_t(tx.r[i]), rgb[i][1] = std::uint8_t(tx.g[i]), rgb[i][2] = std::uint8_t(tx.b[i]);
-    transparent[i] = tx.transparent[i] != 0;
+    in.rgb[i][0] = std::uint8_t(tx.r[i]), in.rgb[i][1] = std::uint8_t(tx.g[i]), in.rgb[i][2] = std::uint8_t(tx.b[i]);
+    in.transparent[i] = tx.transparent[i] != 0;
   }
-  const int refinements = q == Quality::fast ? 1 : q == Quality::normal ? 2 : 4;
+  for (int ch = 0; ch < 3; ++ch) in.axis[ch] = axis[ch];
+  Result best;
+  best.error = -1;
   for (int four = 1; four >= 0; --four) {
     if (!four && !three_allowed) continue;
     if (four && any_transparent) continue;  // transparent texels need the three-colour mode
-    Result r;
-    assign(tx, quantize(a, b), four, false, r);
-    for (int it = 0; it < refinements; ++it) {
-      float ra[3], rb[3];
-      if (!refit(tx, r, ra, rb)) break;
-      Result n2;
-      assign(tx, quantize(ra, rb), four, false, n2);
-      if (n2.error >= r.error) break;
-      r = n2;
-    }
-    if (q == Quality::high || q == Quality::max) {
-      // Cluster fit along the principal axis (and, iterated, along the best
-      // endpoints' axis): its best splits compete under the exact decoding.
-      double fit_axis[3] = {axis_d[0], axis_d[1], axis_d[2]};
-      for (int round = 0; round < (q == Quality::max ? 3 : 1); ++round) {
-        std::vector<Endpoints> cands;
-        cluster_fit(rgb, transparent, fit_axis, four, q == Quality::max ? 8 : 3, cands);
-        for (const Endpoints& e : cands) {
-          Result n2;
-          assign(tx, e, four, false, n2);
-          if (n2.error < r.error) r = n2;
-        }
-        double d[3], len = 0;
-        for (int c = 0; c < 3; ++c) {
-          const int hi_ch = c == 1 ? expand6(r.e.c[1][c]) : expand5(r.e.c[1][c]);
-          const int lo_ch = c == 1 ? expand6(r.e.c[0][c]) : expand5(r.e.c[0][c]);
-          d[c] = hi_ch - lo_ch, len += d[c] * d[c];
-        }
-        if (len < 1e-9) break;
-        for (int c = 0; c < 3; ++c) fit_axis[c] = d[c] / std::sqrt(len);
-      }
-      // Nudge each quantized endpoint channel by one step while it helps.
-      bool improved = true;
-      for (int pass = 0; improved && pass < 4; ++pass) {
-        improved = false;
-        for (int k = 0; k < 2; ++k)
-          for (int ch = 0; ch < 3; ++ch)
-            for (int d : {-1, 1}) {
-              Endpoints e = r.e;
-              e.c[k][ch] += d;
-              if (e.c[k][ch] < 0 || e.c[k][ch] > (ch == 1 ? 63 : 31)) continue;
-              Result n2;
-              assign(tx, e, four, false, n2);
-              if (n2.error < r.error) r = n2, improved = true;
-            }
-      }
-    }
-    keep(r);
+    keep_better(best, search_mode(tx, four != 0, a, b, in, level.block));
   }
-  if (q == Quality::max) {  // never below `high`: its endpoints compete too
-    std::uint32_t texel[16][kBc1Batch] = {};
-    for (int i = 0; i < 16; ++i) {
-      const std::uint8_t px[4] = {std::uint8_t(tx.r[i]), std::uint8_t(tx.g[i]), std::uint8_t(tx.b[i]),
-                                  std::uint8_t(tx.transparent[i] ? 0 : 255)};
-      texel[i][0] = pack_texel(px);
-    }
-    std::uint8_t block[1][8];
-    bool handled = false;
-    bc1_encode_lanes(texel, 1, lane_level(Quality::high), three_allowed, mode == Bc1Mode::bc1_punch_through, block, &handled);
-    if (handled) {
-      const std::uint16_t c0 = std::uint16_t(block[0][0] | block[0][1] << 8), c1 = std::uint16_t(block[0][2] | block[0][3] << 8);
-      const bool four = mode == Bc1Mode::four_only || c0 > c1;
-      if (four || three_allowed) {
-        Endpoints e;
-        for (int k = 0; k < 2; ++k) {
-          const int c = k ? c1 : c0;
-          e.c[k][0] = c >> 11, e.c[k][1] = c >> 5 & 63, e.c[k][2] = c & 31;
-        }
-        if (!(four && any_transparent)) {
-          Result r;
-          assign(tx, e, four, false, r);
-          keep(r);
-        }
-      }
-    }
-  }
+  // Never below the lanes' search: its endpoints compete too.
+  if (level.block.lane_candidate) keep_lane_block(tx, mode, level.lane, any_transparent, best);
   write(best, out);
 }
 
 }  // namespace
 
 void encode_bc1_color(const std::uint8_t rgba[16][4], Bc1Mode mode, Quality q, std::uint8_t out[8]) {
-  if (q != Quality::max) {  // as whole images do: bc1_lanes.h
+  if (bc1_level(q).lanes) {  // as whole images do: bc1_lanes.h
     std::uint32_t texel[16][kBc1Batch] = {};
     for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
     std::uint8_t block[1][8];
     bool handled = false;
-    bc1_encode_lanes(texel, 1, lane_level(q), mode != Bc1Mode::four_only,
+    bc1_encode_lanes(texel, 1, bc1_level(q).lane, mode != Bc1Mode::four_only,
                      mode == Bc1Mode::bc1_punch_through, block, &handled);
     if (handled) {
       std::memcpy(out, block[0], 8);
@@ -505,7 +531,7 @@ void encode_bc1_color_block_by_block(const std::uint8_t rgba[16][4], Bc1Mode mod
     tx.r[i] = rgba[i][0], tx.g[i] = rgba[i][1], tx.b[i] = rgba[i][2];
     tx.transparent[i] = mode == Bc1Mode::bc1_punch_through && rgba[i][3] < 128 ? 1 : 0;
   }
-  encode_block_by_block(tx, mode, q, out);
+  encode_block_by_block(tx, mode, bc1_level(q), out);
 }
 
 namespace {

@@ -158,7 +158,7 @@ void three_colour_search(const int rgb[16][3], const bool clear[16], float hi, f
 
 }  // namespace
 
-void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three, bool punch,
+void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three, bool punch,
                       std::uint8_t out[][8], bool handled[]) {
   for (int k = 0; k < count; ++k) {
     int rgb[16][3], n_opaque = 0;
@@ -216,7 +216,7 @@ void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int l
     endpoints(a, b, st.qa, st.qb);
     const State start = st;
     bool four = true;
-    if (level == 0) {
+    if (level.thirds_fit) {
       // Each texel at the nearest third of the extent along the axis; one
       // least-squares fit for those positions; then the nearest colours.
       const float scale = hi > lo ? 3.0f / (hi - lo) : 0.0f;
@@ -251,7 +251,7 @@ void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int l
       // Partition variants along the axis (a cluster fit's neighbourhood):
       // `normal` ranks 15 by their unquantized error and scores the best
       // two exactly; `high` scores all 45 exactly, each refitted once.
-      const int offsets = level >= 2 ? 4 : 2, stretches = level >= 2 ? 2 : 1;
+      const int offsets = level.variant_offsets, stretches = level.variant_stretches;
       float e1 = 0.0f, e2 = 0.0f;
       int have = 0, q1[2][3] = {}, q2[2][3] = {};
       for (int o = -offsets; o <= offsets; ++o)
@@ -264,7 +264,7 @@ void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int l
           if (!fit_positions(rgb, clear, w, ra, rb, red)) continue;
           State n;
           endpoints(ra, rb, n.qa, n.qb);
-          if (level >= 2) {
+          if (level.score_every_variant) {
             n.error = nearest(rgb, clear, n.qa, n.qb, true, n.codes);
             refit(rgb, clear, true, n);
             if (n.error < st.error) st = n;
@@ -292,7 +292,7 @@ void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int l
         t.error = nearest(rgb, clear, t.qa, t.qb, false, t.codes);
         refit(rgb, clear, false, t);
         if (transparent) refit(rgb, clear, false, t);  // the block's only mode: refitted twice
-        if (transparent && level >= 2) three_colour_search(rgb, clear, hi, lo, proj, t);
+        if (transparent && level.punch_variants) three_colour_search(rgb, clear, hi, lo, proj, t);
         if (transparent || t.error < st.error) st = t, four = false;
       }
     }

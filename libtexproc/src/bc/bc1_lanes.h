@@ -4,11 +4,11 @@
 //
 // Every level starts from the principal axis of the block's colours (power
 // iteration on the covariance, from its row of greatest variance) and the
-// colours' extent along it.
-// - `fast` (level 0): each texel at the nearest third of the extent, one
+// colours' extent along it. The knobs are a Bc1LaneSearch (bc1_levels.h):
+// - `fast` (thirds_fit): each texel at the nearest third of the extent, one
 //   least-squares fit of the endpoints for those positions, each texel's
 //   nearest colour of the quantized palette.
-// - `normal` (1): the extent's ends as endpoints, nearest colours and two
+// - `normal` (2 offsets, 1 stretch): the extent's ends as endpoints, nearest colours and two
 //   least-squares refits (each kept where it lowers the error); then
 //   partition variants along the axis: the thirds shifted (offsets of 0.15
 //   up to +-0.3) and stretched (+-15%), each a least-squares fit, the 15
@@ -17,13 +17,14 @@
 //   lowers the error (at most four passes over the twelve moves); with
 //   `three`, the three-colour mode (no black) from the extent's ends,
 //   refitted once.
-// - `high` (2): as normal, but 45 variants (offsets up to +-0.6, stretches
+// - `high` (4, 2, score_every_variant): as normal, but 45 variants (offsets up to +-0.6, stretches
 //   up to +-30%), every one scored exactly and refitted once.
 // Integer sums, and float expressions evaluated in the same order by both
 // twins (no FMA; divisions and square roots are correctly rounded on every
 // target).
 #pragma once
 
+#include "bc/bc1_levels.h"
 #include "core/block_batch.h"
 
 #include <cstdint>
@@ -41,7 +42,7 @@ constexpr int kBc1Batch = kBlockBatch;  // core/block_batch.h
 // 45 partition variants on halves of the extent and one-step nudges). Blocks
 // whose opaque texels are all one colour (or that have none) are left to
 // the caller (`handled[k]` false; their bytes are not written).
-void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three, bool punch,
+void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three, bool punch,
                       std::uint8_t out[][8], bool handled[]);
 
 namespace ref {
@@ -53,7 +54,7 @@ inline float variant_shift(int offset, int stretch) {
   return 0.5f + kVariantStep * float(offset) - kVariantStep * float(stretch) * 1.5f;
 }
 
-void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three, bool punch,
+void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three, bool punch,
                       std::uint8_t out[][8], bool handled[]);
 }  // namespace ref
 

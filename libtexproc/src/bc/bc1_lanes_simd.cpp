@@ -21,7 +21,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 // kPunch: BC1 with punch-through alpha (compiled apart, so opaque BC1 pays
 // nothing for the transparent texels' masks).
 template <bool kPunch>
-HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three,
+HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three,
                          std::uint8_t out[][8], bool handled[]) {
   using D = hn::CappedTag<std::int32_t, kBc1Batch>;
   const D d;
@@ -246,7 +246,7 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, in
         if (hn::AllFalse(d, hn::AndNot(flat, improved))) break;
       }
     };
-    if (level == 0) {
+    if (level.thirds_fit) {
       const auto wide = hn::Gt(hi, lo);
       const VF scale = hn::IfThenElseZero(wide, hn::Div(hn::Set(df, 3.0f), hn::IfThenElse(wide, hn::Sub(hi, lo), one)));
       const V three_i = hn::Set(d, 3);
@@ -284,7 +284,7 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, in
       refit(true, st);
       refit(true, st);
       // Partition variants along the axis (see the scalar reference).
-      const int offsets = level >= 2 ? 4 : 2, stretches = level >= 2 ? 2 : 1;
+      const int offsets = level.variant_offsets, stretches = level.variant_stretches;
       const auto wide = hn::Gt(hi, lo);
       const VF extent = hn::IfThenElse(wide, hn::Sub(hi, lo), one);
       VF e1 = hn::Zero(df), e2 = e1;
@@ -303,7 +303,7 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, in
           M solvable;
           VF red;
           fit_positions(w, n.qa, n.qb, solvable, red);
-          if (level >= 2) {
+          if (level.score_every_variant) {
             nearest(true, n);
             refit(true, n);
             select(hn::And(solvable, hn::Lt(n.error, st.error)), n, st);
@@ -324,7 +324,7 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, in
           e1 = hn::IfThenElse(hn::RebindMask(df, first), e, e1);
           have = hn::Min(hn::Add(have, hn::IfThenElseZero(hn::Or(first, second), hn::Set(d, 1))), hn::Set(d, 2));
         }
-      for (int m = 0; m < 2 && level < 2; ++m) {
+      for (int m = 0; m < 2 && !level.score_every_variant; ++m) {
         const M valid = hn::Gt(have, hn::Set(d, m));
         if (hn::AllFalse(d, valid)) continue;
         State n;
@@ -334,7 +334,7 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, in
       }
       nudge(true, hn::Eq(mask8, mask8), st);
     }
-    if (level >= 1 && (three || !hn::AllFalse(d, transparent))) {
+    if (!level.thirds_fit && (three || !hn::AllFalse(d, transparent))) {
       State t;
       for (int ch = 0; ch < 3; ++ch) t.qa[ch] = start_qa[ch], t.qb[ch] = start_qb[ch];
       nearest(false, t);
@@ -344,7 +344,7 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, in
         refit(false, t2);
         select(transparent, t2, t);
       }
-      if (kPunch && level >= 2 && !hn::AllFalse(d, transparent)) {
+      if (kPunch && level.punch_variants && !hn::AllFalse(d, transparent)) {
         // Their `high` search (see three_colour_search in the reference):
         // partition variants on halves of the extent, then nudges.
         const auto wide = hn::Gt(hi, lo);
@@ -411,7 +411,7 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, in
   }
 }
 
-void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three, bool punch,
+void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three, bool punch,
                     std::uint8_t out[][8], bool handled[]) {
   if (punch) {
     Bc1Lanes<true>(texel, count, level, three, out, handled);
@@ -428,7 +428,7 @@ HWY_AFTER_NAMESPACE();
 namespace texproc {
 HWY_EXPORT(Bc1EncodeLanes);
 
-void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, int level, bool three, bool punch,
+void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three, bool punch,
                       std::uint8_t out[][8], bool handled[]) {
   if (force_scalar()) return ref::bc1_encode_lanes(texel, count, level, three, punch, out, handled);
   HWY_DYNAMIC_DISPATCH(Bc1EncodeLanes)(texel, count, level, three, punch, out, handled);

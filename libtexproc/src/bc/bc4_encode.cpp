@@ -62,30 +62,33 @@ void write_block(const Candidate& c, bool snorm, std::uint8_t out[8]) {
   for (int b = 0; b < 6; ++b) out[2 + b] = std::uint8_t(bits >> (8 * b));
 }
 
+// One block through the lanes' search (lane 0 of a batch).
+void lane_block(const float v[16], bool snorm, const Bc4LaneSearch& search, std::uint8_t out[8]) {
+  float batch[16][kBc4Batch] = {};
+  for (int i = 0; i < 16; ++i) batch[i][0] = v[i];
+  std::uint8_t block[1][8];
+  bc4_encode_lanes(batch, 1, snorm, search, block);
+  std::memcpy(out, block[0], 8);
+}
+
 }  // namespace
 
 void encode_bc4_block(const float v[16], bool snorm, Quality q, std::uint8_t out[8]) {
-  if (q != Quality::max) {  // as whole images do: bc4_lanes.h
-    float batch[16][kBc4Batch] = {};
-    for (int i = 0; i < 16; ++i) batch[i][0] = v[i];
-    std::uint8_t block[1][8];
-    bc4_encode_lanes(batch, 1, snorm, lane_level(q), block);
-    std::memcpy(out, block[0], 8);
-    return;
-  }
-  // `max`: every endpoint pair in both modes, scored with the exact palette;
+  const Bc4Level& level = bc4_level(q);  // bc4_levels.h
+  if (level.lanes) return lane_block(v, snorm, level.lane, out);  // as whole images do: bc4_lanes.h
+  // Block by block (`max`): every endpoint pair in both modes, scored with the exact palette;
   // the first pair in this order with the least error, as scoring every pair
   // in full finds it, far sooner. The least starts just above the error of
-  // `high`'s block (the best pair's cannot exceed it). A pair is dropped
+  // the lanes' block at the row's lane settings (the best pair's cannot exceed it). A pair is dropped
   // once a partial sum reaches it with a margin (the values farthest from
   // the block's mean first, against the palette times 1/7 or 1/5: either
   // rounds differently from the exact sum by far less than the margin);
   // the pairs left are scored exactly, values in order, as `evaluate`
   // scores them.
   const int lo_code = snorm ? -127 : 0, hi_code = snorm ? 127 : 255;
-  std::uint8_t high[8];
-  encode_bc4_block(v, snorm, Quality::high, high);
-  double least = bc4_block_error(high, v, snorm);
+  std::uint8_t start[8];
+  lane_block(v, snorm, level.lane, start);
+  double least = bc4_block_error(start, v, snorm);
   least += least * 1e-9 + 1e-9;
   double t[16], mean = 0.0;
   for (int i = 0; i < 16; ++i) t[i] = std::min(std::max(double(v[i]), double(lo_code)), double(hi_code)), mean += t[i] / 16.0;

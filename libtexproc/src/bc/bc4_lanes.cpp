@@ -8,7 +8,7 @@
 
 namespace texproc::ref {
 
-void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]) {
+void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level, std::uint8_t out[][8]) {
   const float lo_code = snorm ? -127.0f : 0.0f, hi_code = snorm ? 127.0f : 255.0f;
   const int lo_int = int(lo_code), hi_int = int(hi_code);
   for (int k = 0; k < count; ++k) {
@@ -39,8 +39,8 @@ void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int l
       const float error6 = error_of(lo6, hi6);
       if (error6 < error) error = error6, r0 = lo6, r1 = hi6;
     }
-    if (level >= 1 && error > 0.0f) {
-      const int window = level >= 2 ? 2 : 1;
+    if (level.refine && error > 0.0f) {
+      const int window = level.window;
       for (int mode = 0; mode < 2; ++mode) {  // 0: eight values, 1: six
         if (mode == 0 && hi <= lo) continue;
         const int steps = mode == 0 ? 7 : 5;
@@ -77,7 +77,7 @@ void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int l
             }
         };
         window_at(m0, m1, window);
-        if (level < 2) continue;
+        if (!level.variants) continue;
         // `high`: partition variants from the starting endpoints.
         const float a0 = float(mode == 0 ? hi : lo6), a1 = float(mode == 0 ? lo : hi6);
         if (a0 == a1) continue;
@@ -91,8 +91,8 @@ void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int l
           in[i] = mode == 0 || (t[i] > lo_code + 0.5f && t[i] < hi_code - 0.5f);
           if (in[i]) sum_t += t[i], ++n_in;
         }
-        for (int o = -kVariantOffsets; o <= kVariantOffsets; ++o)
-          for (int sv = -kVariantStretches; sv <= kVariantStretches; ++sv) {
+        for (int o = -level.variant_offsets; o <= level.variant_offsets; ++o)
+          for (int sv = -level.variant_stretches; sv <= level.variant_stretches; ++sv) {
             const float stretch = variant_stretch(sv), shift = variant_shift(o, sv, steps);
             // The sums of the positions p, their squares and p * t (exact
             // small integers but the last) give the fit's sums, with u =

@@ -17,6 +17,7 @@
 // expressions in the same order on both twins, no FMA.
 #pragma once
 
+#include "bc/bc4_levels.h"
 #include "core/block_batch.h"
 
 #include <cstdint>
@@ -27,18 +28,18 @@ constexpr int kBc4Batch = kBlockBatch;  // core/block_batch.h
 
 // v[i][k]: value i (row by row) of block k in code units: [0, 255], or
 // [-127, 127] with `snorm` (clamped here).
-// level 0: `fast`, as above. 1: `normal` then, per mode (eight values from
+// level: the row's Bc4LaneSearch (bc4_levels.h). `fast`, as above. `normal` then, per mode (eight values from
 // the range; six from the inner range), alternates least-squares endpoints
 // for the codes (rounded) and codes for the endpoints, twice while that
-// helps, and tries the +-1 window around the result in the same mode. 2:
+// helps, and tries the +-1 window around the result in the same mode.
 // `high`, the same with a +-2 window, then 45 partition variants per mode:
 // the values placed on the mode's grid between its starting endpoints, the
 // grid shifted (up to +-0.6 of a step) and stretched (up to +-20%), each
 // position set fitted by least squares and scored.
-void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]);
+void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level, std::uint8_t out[][8]);
 
 namespace ref {
-void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]);
+void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level, std::uint8_t out[][8]);
 }  // namespace ref
 
 }  // namespace texproc

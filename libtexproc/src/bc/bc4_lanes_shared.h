@@ -52,7 +52,6 @@ inline float error6(const Values& v, int r0, int r1, int* pos) {
 // between its starting endpoints, the grid shifted by `offset` steps of
 // 0.15 and stretched by `stretch` steps of 10% about its middle, then a
 // least-squares fit for those positions.
-constexpr int kVariantOffsets = 4, kVariantStretches = 2;
 inline float variant_stretch(int stretch) { return 1.0f + 0.1f * float(stretch); }
 inline float variant_shift(int offset, int stretch, int steps) {
   return 0.5f + 0.15f * float(offset) - 0.1f * float(stretch) * float(steps) * 0.5f;

@@ -18,7 +18,7 @@ namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]) {
+void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level, std::uint8_t out[][8]) {
   using D = hn::CappedTag<float, kBc4Batch>;
   const D df;
   const hn::RebindToSigned<D> d;
@@ -95,8 +95,8 @@ void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, int lev
       take_where(hn::And(try6, hn::RebindMask(d, hn::Lt(e6, error))), lo6, hi6, e6);
     }
     const M need = hn::RebindMask(d, hn::Gt(error, hn::Zero(df)));
-    if (level >= 1 && !hn::AllFalse(d, need)) {
-      const int window = level >= 2 ? 2 : 1;
+    if (level.refine && !hn::AllFalse(d, need)) {
+      const int window = level.window;
       // As ref::ls_endpoints, per lane: `valid` loses the lanes without a
       // solution and, in the eight-value mode, those whose fit left it.
       auto ls_endpoints = [&](V aa, V ab, V bb, VF at, VF bt, VF fsteps, int mode, M& valid, V& ia, V& ib) {
@@ -158,7 +158,7 @@ void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, int lev
             }
         };
         window_at(m0, m1, window, mode_ok);
-        if (level < 2) continue;
+        if (!level.variants) continue;
         // `high`: partition variants from the starting endpoints (see the reference).
         const VF a0 = hn::ConvertTo(df, mode == 0 ? hi : lo6), a1 = hn::ConvertTo(df, mode == 0 ? lo : hi6);
         const auto distinct = hn::Ne(a0, a1);
@@ -175,8 +175,8 @@ void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, int lev
           n_in = hn::Add(n_in, hn::IfThenElseZero(hn::RebindMask(d, in[i]), hn::Set(d, 1)));
         }
         const VF top = hn::Set(df, float(steps_i));
-        for (int o = -ref::kVariantOffsets; o <= ref::kVariantOffsets; ++o)
-          for (int sv = -ref::kVariantStretches; sv <= ref::kVariantStretches; ++sv) {
+        for (int o = -level.variant_offsets; o <= level.variant_offsets; ++o)
+          for (int sv = -level.variant_stretches; sv <= level.variant_stretches; ++sv) {
             const VF stretch = hn::Set(df, ref::variant_stretch(sv)), shift = hn::Set(df, ref::variant_shift(o, sv, steps_i));
             VF sp = hn::Zero(df), spp = sp, spt = sp;
             for (int i = 0; i < 16; ++i) {
@@ -230,7 +230,7 @@ HWY_AFTER_NAMESPACE();
 namespace texproc {
 HWY_EXPORT(Bc4EncodeLanes);
 
-void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, int level, std::uint8_t out[][8]) {
+void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level, std::uint8_t out[][8]) {
   if (force_scalar()) return ref::bc4_encode_lanes(v, count, snorm, level, out);
   HWY_DYNAMIC_DISPATCH(Bc4EncodeLanes)(v, count, snorm, level, out);
 }

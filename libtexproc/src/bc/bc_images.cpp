@@ -38,9 +38,11 @@ std::vector<std::uint8_t> compress_bc13(const ImageView& img, TexelFormat format
   const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * block_bytes);
   const Bc1Mode color_mode = bc1 ? Bc1Mode::bc1 : bc1a ? Bc1Mode::bc1_punch_through : Bc1Mode::four_only;
-  // Below `max` the colour (bc1_lanes.h) and BC3's alpha (bc4_lanes.h) go a
-  // block per lane; `max` block by block.
-  const bool lanes = q != Quality::max;
+  // The colour (bc1_lanes.h) and BC3's alpha (bc4_lanes.h) go a block per
+  // lane where their levels say so (bc1_levels.h, bc4_levels.h); else block by block.
+  const Bc1Level& level = bc1_level(q);
+  const Bc4Level& alpha_level = bc4_level(q);
+  const bool lanes = level.lanes;
   const bool colour_only = bc1 || bc1a;  // no alpha block; the lanes read alpha from the texels
   const bool black = bc1 && options.bc1_black;
   for_each_row_block(bh, 4, [&](int by0, int by1) {
@@ -66,7 +68,7 @@ std::vector<std::uint8_t> compress_bc13(const ImageView& img, TexelFormat format
         }
         // Sixteen blocks at a time; those of one opaque colour (or none) are
         // left to the block-by-block encoder's single-colour tables.
-        if (lanes) bc1_encode_lanes(texel, count, lane_level(q), colour_only, bc1a, color, handled);
+        if (lanes) bc1_encode_lanes(texel, count, level.lane, colour_only, bc1a, color, handled);
         for (int k = 0; k < count; ++k) {
           std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes;
           std::uint8_t* color_dst = colour_only ? dst : dst + 8;
@@ -95,7 +97,7 @@ std::vector<std::uint8_t> compress_bc13(const ImageView& img, TexelFormat format
             if (!gathered) gather_rgba8(img, bx0 + k, by, rgba[k]), gathered = true;
             return rgba[k];
           };
-          if (q != Quality::fast && (lanes ? two_colours(texel, k) : two_colours_rgba(rgba[k])))
+          if (level.two_colours && (lanes ? two_colours(texel, k) : two_colours_rgba(rgba[k])))
             bc1_try_two_colours(texels(), color_mode, color_dst);
           if (black) bc1_try_black(texels(), q, color_dst);
           if (colour_only) continue;
@@ -106,16 +108,16 @@ std::vector<std::uint8_t> compress_bc13(const ImageView& img, TexelFormat format
               const int a0 = (alpha_of(i) * 15 + 127) / 255, a1 = (alpha_of(i + 1) * 15 + 127) / 255;
               dst[i / 2] = std::uint8_t(a0 | a1 << 4);
             }
-          } else if (lanes) {  // BC3: the alpha as a BC4 block, in lanes below
+          } else if (alpha_level.lanes) {  // BC3: the alpha as a BC4 block, in lanes below
             for (int i = 0; i < 16; ++i) alpha[i][k] = float(alpha_of(i));
           } else {
             float a[16];
-            for (int i = 0; i < 16; ++i) a[i] = rgba[k][i][3];
+            for (int i = 0; i < 16; ++i) a[i] = float(alpha_of(i));
             encode_bc4_block(a, false, q, dst);
           }
         }
-        if (!colour_only && !bc2 && lanes) {
-          bc4_encode_lanes(alpha, count, false, lane_level(q), alpha_blocks);
+        if (!colour_only && !bc2 && alpha_level.lanes) {
+          bc4_encode_lanes(alpha, count, false, alpha_level.lane, alpha_blocks);
           for (int k = 0; k < count; ++k) std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes, alpha_blocks[k], 8);
         }
       }
@@ -145,7 +147,8 @@ std::vector<std::uint8_t> compress_bc45(const ImageView& img, TexelFormat format
     }
     return code_units(v);
   };
-  const bool lanes = q != Quality::max;  // a block per lane (bc4_lanes.h)
+  const Bc4Level& level = bc4_level(q);  // bc4_levels.h
+  const bool lanes = level.lanes;  // a block per lane (bc4_lanes.h)
   float u8_value[256];
   for (int i = 0; i < 256; ++i) {
     u8_value[i] = code_units(float(i) / 255.0f);
@@ -188,7 +191,7 @@ std::vector<std::uint8_t> compress_bc45(const ImageView& img, TexelFormat format
               }
           }
           if (!lanes) continue;
-          bc4_encode_lanes(batch, count, snorm, lane_level(q), blocks);  // sixteen blocks at a time
+          bc4_encode_lanes(batch, count, snorm, level.lane, blocks);  // sixteen blocks at a time
           for (int k = 0; k < count; ++k)
             std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes + 8 * ch, blocks[k], 8);
         }

@@ -73,10 +73,6 @@ inline void gather_rgba8(const ImageView& img, int bx, int by, std::uint8_t rgba
 // as texel[i][k]: texel i (row by row) of block k, R | G << 8 | B << 16 |
 // A << 24 (only BC1 with punch-through alpha reads A). kBlockBatch: core/block_batch.h.
 
-// The lanes' search level for a quality below `max` (which goes block by
-// block): 0 `fast`, 1 `normal`, 2 `high`.
-inline int lane_level(Quality q) { return q == Quality::fast ? 0 : q == Quality::normal ? 1 : 2; }
-
 // Whether block k's texels (R | G << 8 | B << 16 | A << 24) hold exactly
 // two RGB colours, alpha aside; `a` gets texel 0's, `b` the other.
 inline bool two_colours(const std::uint32_t texel[16][kBlockBatch], int k, std::uint32_t* a = nullptr, std::uint32_t* b = nullptr) {

@@ -47,16 +47,18 @@ void eac_try(const double t[16], EacKind kind, int base, int mult, int table, Ea
 }  // namespace
 
 double encode_eac_block(const float targets[16], EacKind kind, Quality q, std::uint8_t out[8]) {
-  if (q != Quality::max) {  // as whole images do: eac_lanes.h
+  const EacLevel& level = eac_level(q);  // eac_levels.h
+  if (level.lanes) {  // as whole images do: eac_lanes.h
     float v[16][kEacBatch] = {};
     for (int i = 0; i < 16; ++i) v[i][0] = targets[i];
     std::uint8_t block[1][8];
     float err[1];
-    eac_encode_lanes(v, 1, kind, lane_level(q), block, err);
+    eac_encode_lanes(v, 1, kind, level.lanes_window, block, err);
     std::memcpy(out, block[0], 8);
     return err[0];
   }
-  // `max`: every multiplier and +-8 bases around each one's centring base.
+  // Block by block (`max`): the level's window around each table's
+  // estimate (every multiplier and +-8 bases).
   const double lo_end = kind == EacKind::r11_signed ? -1023 : 0, hi_end = kind == EacKind::alpha8 ? 255 : kind == EacKind::r11 ? 2047 : 1023;
   double t[16], lo = hi_end, hi = lo_end;
   for (int i = 0; i < 16; ++i) {
@@ -66,21 +68,20 @@ double encode_eac_block(const float targets[16], EacKind kind, Quality q, std::u
   }
   const int base_lo = kind == EacKind::r11_signed ? -127 : 0, base_hi = kind == EacKind::r11_signed ? 127 : 255;
   const double unit = kind == EacKind::alpha8 ? 1.0 : 8.0, offset = kind == EacKind::r11 ? 4.0 : 0.0;
-  const int base_r = q == Quality::fast ? 0 : q == Quality::normal ? 1 : q == Quality::high ? 2 : 8;
-  const int mult_r = q == Quality::fast ? 0 : q == Quality::normal ? 1 : q == Quality::high ? 2 : 15;
+  const EacWindow& window = level.block_window;
   EacCandidate best;
   const double centre = (lo + hi) / 2;
   for (int table = 0; table < 16; ++table) {
     const int mn = kEacModifiers[table][3], mx = kEacModifiers[table][7];
     const double mf = (hi - lo) / ((mx - mn) * unit);
     const int m0 = int(std::lround(mf));
-    for (int mult = std::max(0, m0 - mult_r); mult <= std::min(15, m0 + mult_r + (q == Quality::fast ? 0 : 1)); ++mult) {
+    for (int mult = std::max(0, m0 - window.mult_below); mult <= std::min(15, m0 + window.mult_above); ++mult) {
       // Multiplier 0 steps by the modifiers themselves (R11: 1/8 of the
       // multiplier-1 step); for 8-bit alpha it is a constant block.
       const double step = mult == 0 ? (kind == EacKind::alpha8 ? 0.0 : 1.0) : mult * unit;
       const double bf = (centre - offset - (mn + mx) / 2.0 * step) / unit;
       const int b0 = std::clamp(int(std::lround(bf)), base_lo, base_hi);
-      for (int base = std::max(base_lo, b0 - base_r); base <= std::min(base_hi, b0 + base_r); ++base) {
+      for (int base = std::max(base_lo, b0 - window.base_radius); base <= std::min(base_hi, b0 + window.base_radius); ++base) {
         eac_try(t, kind, base, mult, table, best);
       }
     }

@@ -11,7 +11,7 @@
 namespace texproc::etc {
 namespace ref {
 
-void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]) {
+void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, const EacWindow& window, std::uint8_t out[][8], float error[]) {
   const eac::Kind K = eac::kind_of(kind);
   for (int k = 0; k < count; ++k) {
     float t[16], lo = K.hi_end, hi = K.lo_end;
@@ -25,12 +25,12 @@ void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, int
     for (int table = 0; table < 16; ++table) {
       const int mn = kEacModifiers[table][3], mx = kEacModifiers[table][7];
       const int m0 = int(std::floor((hi - lo) / (float(mx - mn) * K.unit) + 0.5f));
-      for (int mult = m0 - eac::mult_below(level); mult <= m0 + eac::mult_above(level); ++mult) {
+      for (int mult = m0 - window.mult_below; mult <= m0 + window.mult_above; ++mult) {
         if (mult < 0 || mult > 15) continue;
         const float step = mult == 0 ? float(K.zero_step) : float(mult) * K.unit;
         const float bf = (centre - K.offset - float(mn + mx) * 0.5f * step) / K.unit;
         const int b0 = std::clamp(int(std::floor(bf + 0.5f)), K.base_lo, K.base_hi);
-        for (int base = b0 - eac::base_radius(level); base <= b0 + eac::base_radius(level); ++base) {
+        for (int base = b0 - window.base_radius; base <= b0 + window.base_radius; ++base) {
           if (base < K.base_lo || base > K.base_hi) continue;
           const float err = eac::candidate_error(K, t, base, mult, table);
           if (best < 0.0f || err < best) best = err, best_base = base, best_mult = mult, best_table = table;

@@ -32,12 +32,6 @@ inline Kind kind_of(EacKind k) {
   return {};
 }
 
-// The search window by level: multipliers m0 - mult_below .. m0 + mult_above,
-// bases b0 +- base_r.
-inline int mult_below(int level) { return level < 2 ? 0 : 1; }
-inline int mult_above(int level) { return level == 0 ? 0 : level == 1 ? 1 : 2; }
-inline int base_radius(int level) { return level == 0 ? 0 : level == 1 ? 2 : 5; }
-
 // The palette of (base, mult, table) in ascending order of modifier, as
 // floats clamped to the kind's range.
 inline void palette(const Kind& K, int base, int mult, int table, float pal[8]) {

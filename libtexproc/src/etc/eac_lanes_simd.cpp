@@ -19,7 +19,7 @@ namespace texproc::etc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]) {
+void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, const EacWindow& window, std::uint8_t out[][8], float error[]) {
   using DF = hn::CappedTag<float, kEacBatch>;
   const DF df;
   const hn::RebindToSigned<DF> d;
@@ -66,7 +66,7 @@ void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, int l
     for (int table = 0; table < 16; ++table) {
       const int mn = kEacModifiers[table][3], mx = kEacModifiers[table][7];
       const V m0 = hn::ConvertTo(d, hn::Floor(hn::Add(hn::Div(hn::Sub(hi, lo), hn::Set(df, float(mx - mn) * K.unit)), half)));
-      for (int dm = -eac::mult_below(level); dm <= eac::mult_above(level); ++dm) {
+      for (int dm = -window.mult_below; dm <= window.mult_above; ++dm) {
         const V mult = hn::Add(m0, hn::Set(d, dm));
         auto valid = hn::And(hn::Not(hn::Lt(mult, hn::Zero(d))), hn::Not(hn::Gt(mult, hn::Set(d, 15))));
         if (hn::AllFalse(d, valid)) continue;
@@ -78,7 +78,7 @@ void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, int l
         const V b0 = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(bf, half))), hn::Set(d, K.base_lo)), hn::Set(d, K.base_hi));
         // Per modifier: what it adds (multiplier 0: the modifier unscaled).
         const V scale = hn::IfThenElse(zero_mult, hn::Set(d, K.zero_step), hn::Mul(mult, hn::Set(d, K.unit_i)));
-        for (int db = -eac::base_radius(level); db <= eac::base_radius(level); ++db) {
+        for (int db = -window.base_radius; db <= window.base_radius; ++db) {
           const V base = hn::Add(b0, hn::Set(d, db));
           const auto ok = hn::And(valid, hn::And(hn::Not(hn::Lt(base, hn::Set(d, K.base_lo))), hn::Not(hn::Gt(base, hn::Set(d, K.base_hi)))));
           if (hn::AllFalse(d, ok)) continue;
@@ -121,9 +121,9 @@ HWY_AFTER_NAMESPACE();
 namespace texproc::etc {
 HWY_EXPORT(EacEncodeLanes);
 
-void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, int level, std::uint8_t out[][8], float error[]) {
-  if (force_scalar()) return ref::eac_encode_lanes(v, count, kind, level, out, error);
-  HWY_DYNAMIC_DISPATCH(EacEncodeLanes)(v, count, kind, level, out, error);
+void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, const EacWindow& window, std::uint8_t out[][8], float error[]) {
+  if (force_scalar()) return ref::eac_encode_lanes(v, count, kind, window, out, error);
+  HWY_DYNAMIC_DISPATCH(EacEncodeLanes)(v, count, kind, window, out, error);
 }
 }  // namespace texproc::etc
 #endif

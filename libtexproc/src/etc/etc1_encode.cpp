@@ -56,7 +56,7 @@ void try_base(const Texels& tx, int h, const int q[3], int bits, int t, bool non
 }  // namespace
 
 // The best base and table for half h at `bits` (4 or 5).
-HalfFit fit_half(const Texels& tx, int h, int bits, Quality q, bool non_opaque) {
+HalfFit fit_half(const Texels& tx, int h, int bits, const Etc1BlockSearch& search, bool non_opaque) {
   const HalfLayout& L = halves()[std::size_t(h)];
   double mean[3] = {0, 0, 0};
   int visible = 0;
@@ -78,7 +78,7 @@ HalfFit fit_half(const Texels& tx, int h, int bits, Quality q, bool non_opaque) 
   // modifier seeds the search where the mean alone would lock the indices
   // one step off.
   int bright = -1, dark = -1;
-  for (int i = 0; i < 8 && q != Quality::fast; ++i) {  // seeds are not used at `fast`
+  for (int i = 0; i < 8 && search.seeds > 0; ++i) {  // only seeds use them
     const int p = L.y[i] * 4 + L.x[i];
     if (non_opaque && tx.transparent[p]) continue;
     const int sum = tx.rgb[p][0] + tx.rgb[p][1] + tx.rgb[p][2];
@@ -91,7 +91,7 @@ HalfFit fit_half(const Texels& tx, int h, int bits, Quality q, bool non_opaque) 
   // around the mean); `normal` refines the best three, `high` all.
   HalfFit at_mean[8];
   int order[8], tables = 0;
-  if (q == Quality::fast) {
+  if (!search.all_tables) {
     double spread = 0;
     const double mean_sum = mean[0] + mean[1] + mean[2];
     for (int i = 0; i < 8; ++i) {
@@ -111,7 +111,7 @@ HalfFit fit_half(const Texels& tx, int h, int bits, Quality q, bool non_opaque) 
   }
   for (int k = 0; k < tables; ++k) try_base(tx, h, q0, bits, order[k], non_opaque, at_mean[order[k]]);
   sort_tables(order, tables, [&](int t) { return at_mean[t].err; });
-  const int refine = q == Quality::fast ? 0 : q == Quality::normal ? std::min(tables, 3) : tables;
+  const int refine = std::min(tables, search.refined_tables);
   HalfFit refined[8];
   for (int k = 0; k < tables; ++k) {
     const int t = order[k];
@@ -120,7 +120,7 @@ HalfFit fit_half(const Texels& tx, int h, int bits, Quality q, bool non_opaque) 
       // Seeds: the extremes minus the extreme modifiers (+-b; at high also +-a).
       const int big = kModifiers[t][1], small = kModifiers[t][0];
       const int offsets[4][2] = {{bright, big}, {dark, -big}, {bright, small}, {dark, -small}};
-      const int seeds = q == Quality::normal ? 2 : 4;
+      const int seeds = search.seeds;
       for (int sd = 0; sd < seeds; ++sd) {
         if (non_opaque && sd >= 2) break;  // +-a are 0 with punch-through
         const int* p = tx.rgb[offsets[sd][0]];
@@ -150,12 +150,12 @@ HalfFit fit_half(const Texels& tx, int h, int bits, Quality q, bool non_opaque) 
     refined[t] = fit;
     if (fit.err < best.err) best = fit;
   }
-  if (q == Quality::high || q == Quality::max) {
-    // The neighbourhood of the quantized base, for the best two tables
-    // after refinement (`max`: every table, +-2).
+  if (search.neighbour_tables > 0) {
+    // The neighbourhood of the quantized base, for the best tables after
+    // refinement (`high`: two, +-1; `max`: every table, +-2).
     sort_tables(order, tables, [&](int t) { return refined[t].err; });
-    const int r = q == Quality::max ? 2 : 1, top = (1 << bits) - 1;
-    const int searched = q == Quality::max ? tables : std::min(tables, 2);
+    const int r = search.neighbour_radius, top = (1 << bits) - 1;
+    const int searched = std::min(tables, search.neighbour_tables);
     for (int k = 0; k < searched; ++k) {
       const int t = order[k];
       HalfFit fit = refined[t];
@@ -210,18 +210,18 @@ void keep_pair(Candidate& best, const HalfFit& a, const HalfFit& b, bool flip, b
 }
 
 // Individual and differential modes, both flips.
-void search_etc1_modes(const Texels& tx, Quality q, bool allow_individual, bool non_opaque, int bit33_diff,
+void search_etc1_modes(const Texels& tx, const Etc1BlockSearch& search, bool allow_individual, bool non_opaque, int bit33_diff,
                        Candidate& best) {
   HalfFit h4[4], h5[4];
-  for (int h = 0; h < 4; ++h) h5[h] = fit_half(tx, h, 5, q, non_opaque);
+  for (int h = 0; h < 4; ++h) h5[h] = fit_half(tx, h, 5, search, non_opaque);
   for (int flip = 0; flip < 2; ++flip) {
     const int a = flip ? 2 : 0, b = flip ? 3 : 1;
     // Individual mode (4-bit bases) can only win when the halves are too far
     // apart for the differential delta, or at `high` and above, where it is
     // always tried.
-    if (allow_individual && (q == Quality::high || q == Quality::max || !delta_fits(h5[a].q, h5[b].q))) {
+    if (allow_individual && (search.individual_always || !delta_fits(h5[a].q, h5[b].q))) {
       for (int hh : {a, b})
-        if (h4[hh].err == kNone) h4[hh] = fit_half(tx, hh, 4, q, non_opaque);
+        if (h4[hh].err == kNone) h4[hh] = fit_half(tx, hh, 4, search, non_opaque);
       keep_pair(best, h4[a], h4[b], flip, false, 0);
     }
     if (delta_fits(h5[a].q, h5[b].q)) {

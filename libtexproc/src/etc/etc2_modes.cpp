@@ -13,7 +13,7 @@ namespace texproc::etc {
 
 // Planar: per channel a least-squares plane, quantized (6/7/6 bits), with a
 // +-1 search of each of O, H, V (channels are scored independently).
-void search_planar(const Texels& tx, Quality q, Candidate& best) {
+void search_planar(const Texels& tx, const Etc2Modes& modes, Candidate& best) {
   int o[3], hq[3], vq[3];
   long total = 0;
   for (int c = 0; c < 3; ++c) {
@@ -30,7 +30,7 @@ void search_planar(const Texels& tx, Quality q, Candidate& best) {
     const int c0[3] = {qz(O), qz(O + 4 * a), qz(O + 4 * b)};
     int be = std::numeric_limits<int>::max();
     int bo = c0[0], bh = c0[1], bv = c0[2];
-    const int r = q == Quality::high || q == Quality::max ? 1 : 0;
+    const int r = modes.planar_radius;
     for (int d0 = -r; d0 <= r; ++d0)
       for (int d1 = -r; d1 <= r; ++d1)
         for (int d2 = -r; d2 <= r; ++d2) {
@@ -79,7 +79,7 @@ std::uint64_t pack_planar(const int o[3], const int hq[3], const int vq[3]) {
 }
 
 // T and H modes: two clusters along the principal axis.
-void search_t_h(const Texels& tx, bool non_opaque, Quality q_level, Candidate& best) {
+void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candidate& best) {
   int n = 0;
   double mean[3] = {0, 0, 0};
   for (int i = 0; i < 16; ++i) {
@@ -139,7 +139,7 @@ void search_t_h(const Texels& tx, bool non_opaque, Quality q_level, Candidate& b
   // spread about their centres (the mean absolute deviation along the
   // channels); `high` tries all eight.
   int d_lo = 0, d_hi = 7;
-  if (q_level != Quality::high && q_level != Quality::max) {
+  if (!modes.t_h_every_distance) {
     double spread = 0;
     int cnt = 0;
     for (int i = 0; i < 16; ++i) {
@@ -266,7 +266,7 @@ void search_t_h(const Texels& tx, bool non_opaque, Quality q_level, Candidate& b
   try_colours(q);
   // Where T or H came close to the other modes (within a quarter), at
   // `high`: the quantization's other neighbours too.
-  if ((q_level == Quality::high || q_level == Quality::max) && th_min < before + before / 4) {
+  if (modes.t_h_requantize && th_min < before + before / 4) {
     // Each centre rounded down or up instead of to nearest (the clamps keep
     // 0..15): the quantization's other neighbours.
     for (int va = 0; va < 3; ++va)

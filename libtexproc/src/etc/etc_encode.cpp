@@ -67,10 +67,21 @@ long block_error(const std::uint8_t rgba[16][4], const std::uint8_t block[8], Et
   return err;
 }
 
-// Opaque colour goes sixteen blocks at a time (etc_lanes.h) at every quality
-// but `max`: every block of ETC1 and ETC2 RGB, and punch-through's opaque
-// blocks (differential mode only: its bit 33 is the opaque flag).
-bool etc_blocks_in_lanes(Quality q) { return q != Quality::max; }
+// Opaque colour goes sixteen blocks at a time (etc_lanes.h) where the level
+// says so (etc_levels.h: every level but `max`): every block of ETC1 and
+// ETC2 RGB, and punch-through's opaque blocks (differential mode only: its
+// bit 33 is the opaque flag).
+
+// The lanes' ETC1 blocks at `lane`; `error` gets their squared RGB errors
+// (not at `fast`, whose kernel does not count them).
+void etc1_lanes(Etc1Lanes lane, const std::uint32_t texel[16][kEtcBatch], int count, bool punch,
+                std::uint8_t out[][8], std::int32_t error[]) {
+  if (lane == Etc1Lanes::fast) {
+    etc1_fast_lanes(texel, count, punch, out);
+  } else {
+    etc1_search_lanes(texel, count, lane == Etc1Lanes::high, punch, out, error);
+  }
+}
 
 // Punch-through's blocks with a texel of alpha below 128 (transparent).
 bool any_transparent(const std::uint8_t rgba[16][4]) {
@@ -79,12 +90,11 @@ bool any_transparent(const std::uint8_t rgba[16][4]) {
   return false;
 }
 
-// ETC2 at `normal` and `high`: the planar mode, and the T and H modes (at
-// `normal` only where the lanes' ETC1 block, its error `err`, leaves more
-// than 120 per texel, squared RGB), tried against it; the block is replaced
-// if one wins. The texels come as the lanes took them (row by row,
+// ETC2 above `fast`: the planar mode, and the T and H modes (only where the
+// lanes' ETC1 block, its error `err`, leaves more than modes.t_h_above per
+// texel, squared RGB), tried against it; the block is replaced if one wins. The texels come as the lanes took them (row by row,
 // R | G << 8 | B << 16).
-long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err, Quality q, std::uint8_t block[8]) {
+long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err, const Etc2Modes& modes, std::uint8_t block[8]) {
   Texels tx;
   for (int i = 0; i < 16; ++i) {
     const std::uint32_t t = texel[i][k];
@@ -95,8 +105,8 @@ long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err
   Candidate best;
   best.err = err;
   best.bits = load_be64(block);
-  search_planar(tx, q, best);
-  if (q != Quality::normal || best.err > 16 * 120) search_t_h(tx, false, q, best);
+  search_planar(tx, modes, best);
+  if (modes.t_h_above == 0 || best.err > 16L * modes.t_h_above) search_t_h(tx, false, modes, best);
   store_be64(best.bits, block);
   return best.err;
 }
@@ -240,7 +250,7 @@ long best_flat_holes_block(const std::uint8_t rgba[16][4], const int rgb[3], std
 // ETC1 block shares one base and table between the halves' texels and
 // leaves such blocks far off (44 times the error of `normal` on random
 // pairs). The block is replaced where one wins.
-void two_colour_t_h(const std::uint32_t texel[16][kEtcBatch], int k, EtcMode mode, std::uint8_t block[8]) {
+void two_colour_t_h(const std::uint32_t texel[16][kEtcBatch], int k, EtcMode mode, const Etc2Modes& modes, std::uint8_t block[8]) {
   if (!two_colours(texel, k)) return;
   Texels tx;
   for (int i = 0; i < 16; ++i) {
@@ -255,7 +265,7 @@ void two_colour_t_h(const std::uint32_t texel[16][kEtcBatch], int k, EtcMode mod
   Candidate best;
   best.err = block_error(rgba, block, mode);
   best.bits = load_be64(block);
-  search_t_h(tx, false, Quality::fast, best);
+  search_t_h(tx, false, modes, best);
   store_be64(best.bits, block);
 }
 
@@ -277,23 +287,19 @@ long encode_color_block(const std::uint8_t rgba[16][4], EtcMode mode, Quality q,
   const bool opaque = !punch || !any_transparent(rgba);
   std::uint32_t texel[16][kEtcBatch] = {};  // lane 0: this block, for the lanes
   for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
-  if (etc_blocks_in_lanes(q) && opaque) {  // as whole images do: etc_lanes.h
+  const EtcLevel& level = etc_level(q);  // etc_levels.h
+  if (level.lanes && opaque) {  // as whole images do: etc_lanes.h
     std::uint8_t block[1][8];
-    long err = 0;
-    if (q == Quality::fast) {
-      etc1_fast_lanes(texel, 1, punch, block);
-      err = block_error(rgba, block[0]);
-    } else {
-      std::int32_t e[1];
-      etc1_search_lanes(texel, 1, q == Quality::high, punch, block, e);
-      err = mode == EtcMode::etc1 ? e[0] : finish_etc2_block(texel, 0, e[0], q, block[0]);
-    }
+    std::int32_t e[1] = {};
+    etc1_lanes(level.lane, texel, 1, punch, block, e);
+    long err = level.lane == Etc1Lanes::fast ? block_error(rgba, block[0]) : e[0];
+    if (mode != EtcMode::etc1 && level.etc2.search) err = finish_etc2_block(texel, 0, err, level.etc2, block[0]);
     int rgb[3];
     if (flat_colour(texel, 0, mode, rgb)) {
       best_flat_block(rgb, mode, block[0]);
       err = block_error(rgba, block[0], mode);
-    } else if (q == Quality::fast && mode != EtcMode::etc1) {  // as compress_etc
-      two_colour_t_h(texel, 0, mode, block[0]);
+    } else if (level.etc2.two_colour_t_h && mode != EtcMode::etc1) {  // as compress_etc
+      two_colour_t_h(texel, 0, mode, level.etc2, block[0]);
       err = block_error(rgba, block[0], mode);
     }
     std::memcpy(out, block[0], 8);
@@ -301,20 +307,20 @@ long encode_color_block(const std::uint8_t rgba[16][4], EtcMode mode, Quality q,
   }
   const Texels tx = make_texels(rgba, mode);
   Candidate best;
-  if (q == Quality::max && opaque) {  // never below `high`: its block is the first candidate
+  if (level.lane_candidate && opaque && level.lane != Etc1Lanes::fast) {  // never below the lanes: their block is the first candidate
     std::uint8_t block[1][8];
     std::int32_t e[1];
-    etc1_search_lanes(texel, 1, true, punch, block, e);
+    etc1_lanes(level.lane, texel, 1, punch, block, e);
     best.err = e[0];
     best.bits = load_be64(block[0]);
   }
   const bool non_opaque = punch && tx.any_transparent;
   // Bit 33: the differential flag, or with punch-through the opaque flag.
   const int bit33 = punch ? (non_opaque ? 0 : 1) : 1;
-  search_etc1_modes(tx, q, !punch, non_opaque, bit33, best);
-  if (mode != EtcMode::etc1 && q != Quality::fast) {
-    if (!non_opaque) search_planar(tx, q, best);
-    search_t_h(tx, non_opaque, q, best);
+  search_etc1_modes(tx, level.block, !punch, non_opaque, bit33, best);
+  if (mode != EtcMode::etc1 && level.etc2.search) {
+    if (!non_opaque) search_planar(tx, level.etc2, best);
+    search_t_h(tx, non_opaque, level.etc2, best);
   }
   store_be64(best.bits, out);
   int rgb[3];
@@ -350,10 +356,12 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
                                                                                          : EtcMode::etc2;
   // Opaque colour: sixteen blocks at a time (etc_lanes.h); ETC2 then tries
   // its planar, T and H modes block by block.
-  const bool batched = etc_blocks_in_lanes(q);
+  const EtcLevel& level = etc_level(q);  // etc_levels.h
+  const EacLevel& eac_lv = eac_level(q);  // eac_levels.h
+  const bool batched = level.lanes;
   const bool punch = mode == EtcMode::etc2_punch;
-  const bool finish = batched && q != Quality::fast && mode != EtcMode::etc1;  // ETC2: planar, T, H per block
-  const bool eac_lanes = q != Quality::max;
+  const bool finish = batched && level.etc2.search && mode != EtcMode::etc1;  // ETC2: planar, T, H per block
+  const bool eac_lanes = eac_lv.lanes;
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::int32_t errors[kEtcBatch];
     std::uint8_t rgba[kEtcBatch][16][4];
@@ -366,7 +374,7 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
     // The EAC blocks of eac_values, written `offset` bytes into their blocks.
     auto eac_encode = [&](int by, int bx0, int count, EacKind kind, int offset) {
       if (eac_lanes) {
-        eac_encode_lanes(eac_values, count, kind, lane_level(q), eac_out, eac_err);
+        eac_encode_lanes(eac_values, count, kind, eac_lv.lanes_window, eac_out, eac_err);
       } else {
         for (int k = 0; k < count; ++k) {
           for (int i = 0; i < 16; ++i) values[i] = eac_values[i][k];
@@ -409,20 +417,16 @@ std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format,
         if (rgba8) eac_encode(by, bx0, count, EacKind::alpha8, 0);
         if (!batched) continue;
         if (rows_direct) std::fill(lanes_block, lanes_block + count, true);
-        if (q == Quality::fast) {
-          etc1_fast_lanes(texel, count, punch, color);
-        } else {
-          etc1_search_lanes(texel, count, q == Quality::high, punch, color, errors);
-          for (int k = 0; k < count && finish; ++k)
-            if (lanes_block[k]) finish_etc2_block(texel, k, errors[k], q, color[k]);
-        }
+        etc1_lanes(level.lane, texel, count, punch, color, errors);
+        for (int k = 0; k < count && finish; ++k)
+          if (lanes_block[k]) finish_etc2_block(texel, k, errors[k], level.etc2, color[k]);
         for (int k = 0; k < count; ++k) {
           if (!lanes_block[k]) continue;
           int rgb[3];
           if (flat_colour(texel, k, mode, rgb)) {
             best_flat_block(rgb, mode, color[k]);  // one colour: the format's best
-          } else if (q == Quality::fast && mode != EtcMode::etc1) {
-            two_colour_t_h(texel, k, mode, color[k]);
+          } else if (level.etc2.two_colour_t_h && mode != EtcMode::etc1) {
+            two_colour_t_h(texel, k, mode, level.etc2, color[k]);
           }
           std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + (rgba8 ? 8 : 0), color[k], 8);
         }

@@ -11,6 +11,7 @@
 
 #include "bc/bc1_assign.h"
 #include "etc/etc_eval.h"
+#include "etc/etc_levels.h"
 #include "etc/etc_tables.h"
 #include "texproc/block_encode.h"
 
@@ -79,16 +80,16 @@ inline bool delta_fits(const int a[3], const int b[3]) {
 }
 
 // etc1_encode.cpp
-HalfFit fit_half(const Texels& tx, int h, int bits, Quality q, bool non_opaque);
+HalfFit fit_half(const Texels& tx, int h, int bits, const Etc1BlockSearch& search, bool non_opaque);
 HalfFit fit_fixed(const Texels& tx, int h, const int q[3], bool non_opaque);
 std::uint64_t pack_halves(const HalfFit& a, const HalfFit& b, bool flip, bool differential, int bit33);
 void keep_pair(Candidate& best, const HalfFit& a, const HalfFit& b, bool flip, bool differential, int bit33);
-void search_etc1_modes(const Texels& tx, Quality q, bool allow_individual, bool non_opaque, int bit33_diff,
+void search_etc1_modes(const Texels& tx, const Etc1BlockSearch& search, bool allow_individual, bool non_opaque, int bit33_diff,
                        Candidate& best);
 
 // etc2_modes.cpp
-void search_planar(const Texels& tx, Quality q, Candidate& best);
+void search_planar(const Texels& tx, const Etc2Modes& modes, Candidate& best);
 std::uint64_t pack_planar(const int o[3], const int hq[3], const int vq[3]);
-void search_t_h(const Texels& tx, bool non_opaque, Quality q_level, Candidate& best);
+void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candidate& best);
 
 }  // namespace texproc::etc
