@@ -13,7 +13,7 @@ ROOT = sys.argv[1] if len(sys.argv) > 1 and sys.argv[1] != "--self-test" else os
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
 
 # What makes a header an encoder's: the block searches and their kernels.
-ENCODER = re.compile(r'(^|/)(\w*_encode|\w*_lanes|\w*_eval|bc1_cluster|bc1_assign|block_gather)\.h$|^texproc/block_encode\.h$')
+ENCODER = re.compile(r'(^|/)(\w*_encode|\w*_lanes|\w*_eval|bc1_cluster|rgb_block|value_palette|block_gather)\.h$|^texproc/block_encode\.h$')
 
 
 def includes(path):
@@ -34,12 +34,20 @@ def rules(rel):
                     lambda k, h: (k == '"' and not h.startswith("texproc/")) or
                     (k == "<" and (h.startswith("hwy/") or h.startswith("tbb/") or h.startswith("OpenImageIO/")))))
     base = os.path.basename(rel)
-    if re.search(r"_decode\.(cpp|h)$", base) or rel.startswith("libtexproc/src/container/"):
+    if re.search(r"_decode\.(cpp|h)$", base) or re.match(r"libtexproc/src/(container|decode)/", rel):
         out.append(("decoders and containers include no encoder", lambda k, h: k == '"' and bool(ENCODER.search(h))))
     if re.match(r"libtexproc/src/(image|mip|normalmap|sat|conemap|cubemap)/", rel):
         out.append(("the image layers (image, mip, normalmap, sat, conemap, cubemap) include no encoder or codec internals",
                     lambda k, h: k == '"' and (bool(ENCODER.search(h)) or
                                                re.match(r"(bc|etc|astc|encode|container)/", h) is not None)))
+    codec = re.match(r"libtexproc/src/(bc|etc|astc)/", rel)
+    if codec:
+        out.append(("a codec includes no other codec's internals (what they share is in block/)",
+                    lambda k, h, own=codec.group(1): k == '"' and re.match(r"(bc|etc|astc)/", h) is not None
+                    and not h.startswith(own + "/")))
+    if rel.startswith("libtexproc/src/block/"):
+        out.append(("block/ (the primitives every codec shares) includes core/, block/ and texproc/ only",
+                    lambda k, h: k == '"' and not re.match(r"(core|block|texproc)/", h)))
     if rel.startswith("libtexproc/src/core/"):
         out.append(("core/ is the bottom layer: core/ and texproc/ only",
                     lambda k, h: k == '"' and not (h.startswith("core/") or h.startswith("texproc/"))))
@@ -77,6 +85,9 @@ def self_test():
         "libtexproc/src/container/ktx9.cpp": '#include "texproc/block_encode.h"\n',
         "libtexproc/src/core/x.cpp": '#include "image/ocio.h"\n',
         "libtexproc/src/cubemap/x.cpp": '#include "bc/bc_images.h"\n',
+        "libtexproc/src/etc/x.cpp": '#include "bc/bc1_lanes.h"\n',
+        "libtexproc/src/decode/x.cpp": '#include "etc/etc_encode.h"\n',
+        "libtexproc/src/block/x.cpp": '#include "etc/etc_tables.h"\n',
     }
     with tempfile.TemporaryDirectory() as tmp:
         for rel, text in breaks.items():

@@ -12,50 +12,27 @@
 #include <vector>
 
 #include "bc/bc1_encode.h"
-#include "bc/bc1_assign.h"
+#include "bc/bc1_block.h"
+#include "block/rgb_block.h"
 #include "bc/bc1_cluster.h"
 #include "bc/bc1_lanes.h"
-#include "bc/block_gather.h"
+#include "block/block_gather.h"
 
 namespace texproc {
+
+using bc1::Endpoints;
+using bc1::expand5;
+using bc1::expand6;
+using bc1::palette;
+using bc1::Result;
+
 namespace {
-
-int expand5(int v) { return v << 3 | v >> 2; }
-int expand6(int v) { return v << 2 | v >> 4; }
-
-struct Endpoints {
-  int c[2][3];  // quantized: 5, 6, 5 bits
-};
 
 std::uint16_t pack(const int q[3]) { return std::uint16_t(q[0] << 11 | q[1] << 5 | q[2]); }
 
-void palette(const Endpoints& e, bool four, int pal[4][3]) {
-  for (int k = 0; k < 2; ++k) {
-    pal[k][0] = expand5(e.c[k][0]);
-    pal[k][1] = expand6(e.c[k][1]);
-    pal[k][2] = expand5(e.c[k][2]);
-  }
-  for (int ch = 0; ch < 3; ++ch) {
-    if (four) {
-      pal[2][ch] = (2 * pal[0][ch] + pal[1][ch] + 1) / 3;
-      pal[3][ch] = (pal[0][ch] + 2 * pal[1][ch] + 1) / 3;
-    } else {
-      pal[2][ch] = (pal[0][ch] + pal[1][ch] + 1) / 2;
-      pal[3][ch] = 0;
-    }
-  }
-}
-
-struct Result {
-  Endpoints e;
-  bool four = true;
-  std::uint8_t idx[16] = {};
-  long long error = 0;
-};
-
 // Best index per texel for endpoints in a mode; `transparent[i]` texels take
 // index 3 of the three-colour mode; `allow_black`: opaque texels may use it.
-void assign(const Bc1Texels& tx, const Endpoints& e, bool four, bool allow_black, Result& r) {
+void assign(const RgbBlock& tx, const Endpoints& e, bool four, bool allow_black, Result& r) {
   int pal[4][3];
   palette(e, four, pal);
   r.e = e;
@@ -82,10 +59,10 @@ Endpoints quantize(const float a[3], const float b[3]) {
 // Least-squares endpoints for the current indices (weights along c0 -> c1
 // for the palette positions, in thirds or halves: integer sums, exact).
 // False if singular (all texels at one end).
-bool refit(const Bc1Texels& tx, const Result& r, float a[3], float b[3]) {
+bool refit(const RgbBlock& tx, const Result& r, float a[3], float b[3]) {
   static constexpr int kFour[4] = {0, 3, 1, 2}, kThree[4] = {0, 2, 1, -1};
   const int den = r.four ? 3 : 2;
-  Bc1LsSums s;
+  RgbLsSums s;
   tx.k.ls_sums(tx, r.idx, r.four ? kFour : kThree, den, s);  // SIMD twins
   const double det = double(s.aa) * s.bb - double(s.ab) * s.ab;
   if (det == 0) return false;
@@ -142,28 +119,6 @@ const SingleColorTables& single() {
   return t;
 }
 
-void write(const Result& r, std::uint8_t out[8]) {
-  Endpoints e = r.e;
-  std::uint8_t idx[16];
-  std::memcpy(idx, r.idx, 16);
-  std::uint16_t c0 = pack(e.c[0]), c1 = pack(e.c[1]);
-  if (r.four) {
-    if (c0 < c1) {
-      std::swap(c0, c1);
-      for (auto& i : idx) i = std::uint8_t(i < 2 ? 1 - i : 5 - i);  // 0<->1, 2<->3
-    } else if (c0 == c1) {
-      for (auto& i : idx) i = 0;  // a flat block: every index may be c0
-      // c0 == c1 reads as the three-colour mode; index 0 is c0 there too.
-    }
-  } else if (c0 > c1) {
-    std::swap(c0, c1);
-    for (auto& i : idx) i = std::uint8_t(i == 0 ? 1 : i == 1 ? 0 : i);  // 0<->1; 2 (average) and 3 stay
-  }
-  out[0] = std::uint8_t(c0), out[1] = std::uint8_t(c0 >> 8), out[2] = std::uint8_t(c1), out[3] = std::uint8_t(c1 >> 8);
-  std::uint32_t bits = 0;
-  for (int i = 0; i < 16; ++i) bits |= std::uint32_t(idx[i]) << (2 * i);
-  for (int b = 0; b < 4; ++b) out[4 + b] = std::uint8_t(bits >> (8 * b));
-}
 
 // Cluster fit (as libsquish's, with every candidate scored exactly): the
 // opaque texels ordered along `axis` are split into consecutive clusters,
@@ -270,7 +225,7 @@ void keep_better(Result& best, const Result& r) {
   if (best.error < 0 || r.error < best.error) best = r;
 }
 
-bool is_one_opaque_colour(const Bc1Texels& tx) {
+bool is_one_opaque_colour(const RgbBlock& tx) {
   bool one = !tx.transparent[0];
   for (int i = 1; i < 16 && one; ++i)
     one = !tx.transparent[i] && tx.r[i] == tx.r[0] && tx.g[i] == tx.g[0] && tx.b[i] == tx.b[0];
@@ -279,8 +234,8 @@ bool is_one_opaque_colour(const Bc1Texels& tx) {
 
 // One opaque colour (most of what the lanes leave here): the optimal
 // single-colour pair through index 2, each mode's palette entry nearest
-// the colour (the first of equals, as bc1_nearest picks) for all 16.
-Result one_colour_block(const Bc1Texels& tx, bool three_allowed) {
+// the colour (the first of equals, as rgb_palette_nearest picks) for all 16.
+Result one_colour_block(const RgbBlock& tx, bool three_allowed) {
   Result best;
   best.error = -1;
   const SingleColorTables& s = single();
@@ -310,7 +265,7 @@ Result one_colour_block(const Bc1Texels& tx, bool three_allowed) {
 // three-colour mode): the single-colour pair through the average (index
 // 2), or both ends at the colour's nearest 5:6:5 value (index 0),
 // whichever leaves less error; the holes take index 3.
-Result punch_one_colour_block(const Bc1Texels& tx) {
+Result punch_one_colour_block(const RgbBlock& tx) {
   Result best;
   best.error = -1;
   int first = 0;
@@ -373,7 +328,7 @@ struct ClusterInput {
 // The search in one mode (four or three colours) from the extent's ends a,
 // b: least-squares refits, then the cluster fits and the nudges the level
 // asks for (Bc1BlockSearch, bc1_levels.h).
-Result search_mode(const Bc1Texels& tx, bool four, const float a[3], const float b[3], const ClusterInput& in,
+Result search_mode(const RgbBlock& tx, bool four, const float a[3], const float b[3], const ClusterInput& in,
                    const Bc1BlockSearch& search) {
   Result r;
   assign(tx, quantize(a, b), four, false, r);
@@ -425,7 +380,7 @@ Result search_mode(const Bc1Texels& tx, bool four, const float a[3], const float
 
 // The lanes' block for these texels at `lane` as a candidate (where the
 // lanes take the block and its mode is one the block may use).
-void keep_lane_block(const Bc1Texels& tx, Bc1Mode mode, const Bc1LaneSearch& lane, bool any_transparent, Result& best) {
+void keep_lane_block(const RgbBlock& tx, Bc1Mode mode, const Bc1LaneSearch& lane, bool any_transparent, Result& best) {
   const bool three_allowed = mode != Bc1Mode::four_only;
   std::uint32_t texel[16][kBc1Batch] = {};
   for (int i = 0; i < 16; ++i) {
@@ -452,12 +407,12 @@ void keep_lane_block(const Bc1Texels& tx, Bc1Mode mode, const Bc1LaneSearch& lan
 
 // Block by block: `max`, and the blocks the lanes leave (one opaque colour,
 // with or without transparent texels, or none opaque).
-void encode_block_by_block(const Bc1Texels& tx, Bc1Mode mode, const Bc1Level& level, std::uint8_t out[8]) {
+void encode_block_by_block(const RgbBlock& tx, Bc1Mode mode, const Bc1Level& level, std::uint8_t out[8]) {
   const bool three_allowed = mode != Bc1Mode::four_only;
   if (is_one_opaque_colour(tx)) return write(one_colour_block(tx, three_allowed), out);
 
   // Opaque texels only decide the endpoints.
-  Bc1Moments m;
+  RgbMoments m;
   tx.k.moments(tx, m);  // SIMD twins
   const int n = m.n;
   const bool any_transparent = n < 16;
@@ -526,7 +481,7 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], Bc1Mode mode, Quality q, s
 }
 
 void encode_bc1_color_block_by_block(const std::uint8_t rgba[16][4], Bc1Mode mode, Quality q, std::uint8_t out[8]) {
-  Bc1Texels tx;
+  RgbBlock tx;
   for (int i = 0; i < 16; ++i) {
     tx.r[i] = rgba[i][0], tx.g[i] = rgba[i][1], tx.b[i] = rgba[i][2];
     tx.transparent[i] = mode == Bc1Mode::bc1_punch_through && rgba[i][3] < 128 ? 1 : 0;
@@ -534,132 +489,27 @@ void encode_bc1_color_block_by_block(const std::uint8_t rgba[16][4], Bc1Mode mod
   encode_block_by_block(tx, mode, bc1_level(q), out);
 }
 
-namespace {
-// Each texel's squared RGB error under `block` as the decoder reads it (the
-// three-colour mode's index 3 as black); returns their sum.
-long long block_errors(const std::uint8_t block[8], const std::uint8_t rgba[16][4], int err[16]) {
-  const int c0 = block[0] | block[1] << 8, c1 = block[2] | block[3] << 8;
-  Endpoints e;
-  for (int k = 0; k < 2; ++k) {
-    const int c = k ? c1 : c0;
-    e.c[k][0] = c >> 11, e.c[k][1] = c >> 5 & 63, e.c[k][2] = c & 31;
-  }
-  int pal[4][3];
-  palette(e, c0 > c1, pal);
-  const std::uint32_t bits = std::uint32_t(block[4]) | std::uint32_t(block[5]) << 8 | std::uint32_t(block[6]) << 16 | std::uint32_t(block[7]) << 24;
-  long long total = 0;
-  for (int i = 0; i < 16; ++i) {
-    const int* p = pal[bits >> (2 * i) & 3];
-    err[i] = 0;
-    for (int c = 0; c < 3; ++c) err[i] += (rgba[i][c] - p[c]) * (rgba[i][c] - p[c]);
-    total += err[i];
-  }
-  return total;
-}
-}  // namespace
-
-void bc1_try_two_colours(const std::uint8_t rgba[16][4], Bc1Mode mode, std::uint8_t block[8]) {
-  // Exactly two colours, every texel opaque where alpha matters.
-  const int a[3] = {rgba[0][0], rgba[0][1], rgba[0][2]};
-  int b[3] = {-1, -1, -1}, nb = 0;
-  bool is_b[16] = {};
-  for (int i = 0; i < 16; ++i) {
-    if (mode == Bc1Mode::bc1_punch_through && rgba[i][3] < 128) return;
-    if (rgba[i][0] == a[0] && rgba[i][1] == a[1] && rgba[i][2] == a[2]) continue;
-    if (b[0] < 0) b[0] = rgba[i][0], b[1] = rgba[i][1], b[2] = rgba[i][2];
-    if (rgba[i][0] != b[0] || rgba[i][1] != b[1] || rgba[i][2] != b[2]) return;  // a third colour
-    is_b[i] = true, ++nb;
-  }
-  if (nb == 0) return;
-  const int na = 16 - nb;
-  Result best;
-  best.error = -1;
-  for (int four = 1; four >= 0; --four) {
-    if (!four && mode == Bc1Mode::four_only) continue;
-    const int den = four ? 3 : 2;
-    // Palette positions in steps of 1/den from the first end, and their indices.
-    auto index_of = [&](int pos) { return four ? (pos == 0 ? 0 : pos == 3 ? 1 : pos == 1 ? 2 : 3) : (pos == 0 ? 0 : pos == 2 ? 1 : 2); };
-    for (int ta = 0; ta <= den; ++ta)
-      for (int tb = ta + 1; tb <= den; ++tb) {
-        Result r;
-        r.four = four != 0;
-        r.error = 0;
-        for (int c = 0; c < 3; ++c) {
-          const int bits = c == 1 ? 6 : 5, top = (1 << bits) - 1;
-          auto ex = [&](int v) { return bits == 6 ? expand6(v) : expand5(v); };
-          auto value = [&](int e0, int e1, int pos) {  // the decoder's palette entry
-            const int x = ex(e0), y = ex(e1);
-            if (pos == 0) return x;
-            if (pos == den) return y;
-            return four ? (pos == 1 ? (2 * x + y + 1) / 3 : (x + 2 * y + 1) / 3) : (x + y + 1) / 2;
-          };
-          // The ends that put a at ta and b at tb exactly, then the quantized
-          // neighbours of each.
-          const double span = double(b[c] - a[c]) * den / (tb - ta), e0 = a[c] - ta * span / den, e1 = e0 + span;
-          const int q0 = std::clamp(int(std::lround(e0 * top / 255.0)), 0, top), q1 = std::clamp(int(std::lround(e1 * top / 255.0)), 0, top);
-          long channel = -1;
-          for (int d0 = -1; d0 <= 1; ++d0)
-            for (int d1 = -1; d1 <= 1; ++d1) {
-              const int v0 = q0 + d0, v1 = q1 + d1;
-              if (v0 < 0 || v0 > top || v1 < 0 || v1 > top) continue;
-              const long da = a[c] - value(v0, v1, ta), db = b[c] - value(v0, v1, tb);
-              const long e = na * da * da + nb * db * db;
-              if (channel < 0 || e < channel) channel = e, r.e.c[0][c] = v0, r.e.c[1][c] = v1;
-            }
-          r.error += channel;
-        }
-        if (best.error >= 0 && r.error >= best.error) continue;
-        for (int i = 0; i < 16; ++i) r.idx[i] = std::uint8_t(index_of(is_b[i] ? tb : ta));
-        best = r;
-      }
-  }
-  std::uint8_t candidate[8];
-  write(best, candidate);
-  int err[16];
-  const long long current = block_errors(block, rgba, err), mine = block_errors(candidate, rgba, err);
-  if (mine < current) std::memcpy(block, candidate, 8);
-}
-
-void bc1_try_black(const std::uint8_t rgba[16][4], Quality q, std::uint8_t block[8]) {
-  int err[16], dark[16];
-  long long total = block_errors(block, rgba, err);
-  for (int i = 0; i < 16; ++i) dark[i] = rgba[i][0] * rgba[i][0] + rgba[i][1] * rgba[i][1] + rgba[i][2] * rgba[i][2];
-  // The texel sets given index 3: those nearer black than to their colour
-  // now, and those within a distance of black (about 4, 8 and 16 levels a
-  // channel); then once more from the best block's colours.
-  std::uint32_t tried[5];  // the sets tried, a bit per texel
-  int n_tried = 0;
-  auto attempt = [&](std::uint32_t set) {
-    if (set == 0 || total == 0) return;
-    for (int t = 0; t < n_tried; ++t)
-      if (tried[t] == set) return;
-    tried[n_tried++] = set;
-    std::uint8_t marked[16][4];
-    for (int i = 0; i < 16; ++i) {
-      std::memcpy(marked[i], rgba[i], 3);
-      marked[i][3] = set >> i & 1 ? 0 : 255;  // alpha 0: index 3, out of the fit
+void bc1::write(const Result& r, std::uint8_t out[8]) {
+  Endpoints e = r.e;
+  std::uint8_t idx[16];
+  std::memcpy(idx, r.idx, 16);
+  std::uint16_t c0 = pack(e.c[0]), c1 = pack(e.c[1]);
+  if (r.four) {
+    if (c0 < c1) {
+      std::swap(c0, c1);
+      for (auto& i : idx) i = std::uint8_t(i < 2 ? 1 - i : 5 - i);  // 0<->1, 2<->3
+    } else if (c0 == c1) {
+      for (auto& i : idx) i = 0;  // a flat block: every index may be c0
+      // c0 == c1 reads as the three-colour mode; index 0 is c0 there too.
     }
-    std::uint8_t candidate[8];
-    encode_bc1_color_block_by_block(marked, Bc1Mode::bc1_punch_through, q, candidate);
-    int cand_err[16];
-    const long long cand_total = block_errors(candidate, rgba, cand_err);
-    if (cand_total >= total) return;
-    std::memcpy(block, candidate, 8);
-    std::memcpy(err, cand_err, sizeof err);
-    total = cand_total;
-  };
-  auto nearer_black = [&] {
-    std::uint32_t set = 0;
-    for (int i = 0; i < 16; ++i) set |= std::uint32_t(dark[i] < err[i]) << i;
-    return set;
-  };
-  attempt(nearer_black());
-  for (int within : {48, 192, 768}) {
-    std::uint32_t set = 0;
-    for (int i = 0; i < 16; ++i) set |= std::uint32_t(dark[i] <= within) << i;
-    attempt(set);
+  } else if (c0 > c1) {
+    std::swap(c0, c1);
+    for (auto& i : idx) i = std::uint8_t(i == 0 ? 1 : i == 1 ? 0 : i);  // 0<->1; 2 (average) and 3 stay
   }
-  attempt(nearer_black());
+  out[0] = std::uint8_t(c0), out[1] = std::uint8_t(c0 >> 8), out[2] = std::uint8_t(c1), out[3] = std::uint8_t(c1 >> 8);
+  std::uint32_t bits = 0;
+  for (int i = 0; i < 16; ++i) bits |= std::uint32_t(idx[i]) << (2 * i);
+  for (int b = 0; b < 4; ++b) out[4 + b] = std::uint8_t(bits >> (8 * b));
 }
 
 }  // namespace texproc

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <cstring>
 
-#include "bc/bc4_eval.h"
+#include "block/value_palette.h"
 #include "bc/bc4_lanes.h"
-#include "bc/block_gather.h"
+#include "block/block_gather.h"
 #include "texproc/block_decode.h"
 #include "texproc/block_encode.h"
 #include "texproc/error.h"
@@ -46,7 +46,7 @@ void evaluate(const float v[16], int r0, int r1, bool snorm, Candidate& c) {
   double pal[8], t[16], errors[16];
   palette(r0, r1, snorm, pal);
   for (int i = 0; i < 16; ++i) t[i] = std::min(std::max(double(v[i]), lo_end), hi_end);
-  bc4_nearest(t, pal, c.indices, errors);  // SIMD twins
+  value_palette_nearest(t, pal, c.indices, errors);  // SIMD twins
   double err = 0.0;
   for (int i = 0; i < 16; ++i) err += errors[i];  // in order: the same sum on every target
   c.r0 = r0;

@@ -11,7 +11,7 @@
 #include "bc/bc1_encode.h"
 #include "bc/bc1_lanes.h"
 #include "bc/bc4_lanes.h"
-#include "bc/block_gather.h"
+#include "block/block_gather.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstring>
 
-#include "bc/bc4_eval.h"
-#include "bc/block_gather.h"
+#include "block/value_palette.h"
+#include "block/block_gather.h"
 #include "etc/eac_lanes.h"
 #include "etc/etc_encode.h"
 #include "etc/etc_search.h"
@@ -35,7 +35,7 @@ void eac_try(const double t[16], EacKind kind, int base, int mult, int table, Ea
   double vals[8], errors[16];
   for (int k = 0; k < 8; ++k) vals[k] = eac_value(kind, base, mult, kEacModifiers[table][k]);
   std::uint8_t idx[16];
-  bc4_nearest(t, vals, idx, errors);  // each value's nearest of the 8 (SIMD twins, as for BC4)
+  value_palette_nearest(t, vals, idx, errors);  // each value's nearest of the 8 (SIMD twins, as for BC4)
   double err = 0;
   for (int i = 0; i < 16; ++i) err += errors[i];
   if (err >= best.err) return;

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "bc/bc1_assign.h"
+#include "block/rgb_block.h"
 #include "etc/etc_search.h"
 
 namespace texproc::etc {

@@ -16,9 +16,9 @@
 #include <cstring>
 #include <limits>
 
-#include "bc/bc1_assign.h"
-#include "bc/bc4_eval.h"
-#include "bc/block_gather.h"
+#include "block/rgb_block.h"
+#include "block/value_palette.h"
+#include "block/block_gather.h"
 #include "etc/etc_tables.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "bc/bc1_assign.h"
+#include "block/rgb_block.h"
 #include "etc/etc_eval.h"
 #include "etc/etc_levels.h"
 #include "etc/etc_tables.h"
@@ -30,7 +30,7 @@ struct Texels {
   bool transparent[16];  // punch-through: alpha < 128
   bool any_transparent = false;
   HalfTexels half[4];    // the texels of each half block, as planes (for eval_half)
-  Bc1Texels planes;      // all 16 as planes (for bc1_nearest: T and H of opaque blocks)
+  RgbBlock planes;      // all 16 as planes (for rgb_palette_nearest: T and H of opaque blocks)
 };
 
 struct HalfFit {

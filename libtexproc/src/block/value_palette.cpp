@@ -1,9 +1,9 @@
-// The scalar reference of bc4_eval.h (namespace ref): what bc4_eval_simd.cpp, its
+// The scalar reference of value_palette.h (namespace ref): what value_palette_simd.cpp, its
 // Highway twin, must equal byte for byte (tests compare them on every target).
-#include "bc/bc4_eval.h"
+#include "block/value_palette.h"
 
 namespace texproc::ref {
-void bc4_nearest(const double t[16], const double pal[8], std::uint8_t codes[16], double errors[16]) {
+void value_palette_nearest(const double t[16], const double pal[8], std::uint8_t codes[16], double errors[16]) {
   for (int i = 0; i < 16; ++i) {
     int best = 0;
     double be = (t[i] - pal[0]) * (t[i] - pal[0]);

@@ -1,11 +1,11 @@
-// BC4 palette scoring: the Highway twin of the scalar reference in bc4_eval.cpp (lanes over
+// Shared block primitive (BC4, BC5, BC3 alpha, EAC): 16 values scored against an 8-entry palette: the Highway twin of the scalar reference in value_palette.cpp (lanes over
 // the 16 values). Same operations, no FMA: identical results.
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "bc/bc4_eval_simd.cpp"
+#define HWY_TARGET_INCLUDE "block/value_palette_simd.cpp"
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
 
-#include "bc/bc4_eval.h"
+#include "block/value_palette.h"
 #include "texproc/runtime.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -43,8 +43,8 @@ HWY_AFTER_NAMESPACE();
 namespace texproc {
 HWY_EXPORT(Bc4Nearest);
 
-void bc4_nearest(const double t[16], const double pal[8], std::uint8_t codes[16], double errors[16]) {
-  if (force_scalar()) return ref::bc4_nearest(t, pal, codes, errors);
+void value_palette_nearest(const double t[16], const double pal[8], std::uint8_t codes[16], double errors[16]) {
+  if (force_scalar()) return ref::value_palette_nearest(t, pal, codes, errors);
   HWY_DYNAMIC_DISPATCH(Bc4Nearest)(t, pal, codes, errors);
 }
 }  // namespace texproc

@@ -1,14 +1,14 @@
-// BC1's per-texel work: the Highway twins of the scalar references in bc1_assign.cpp (lanes
+// The RGB block primitives: the Highway twins of the scalar references in rgb_block.cpp (lanes
 // over the 16 texels, 32-bit lanes; integer sums, and one float expression
 // evaluated per texel in the same order: identical results).
 #undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "bc/bc1_assign_simd.cpp"
+#define HWY_TARGET_INCLUDE "block/rgb_block_simd.cpp"
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
 
 #include <algorithm>
 
-#include "bc/bc1_assign.h"
+#include "block/rgb_block.h"
 #include "texproc/runtime.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -21,7 +21,7 @@ using V = hn::Vec<D>;
 
 HWY_INLINE std::int32_t Total(D d, V v) { return hn::GetLane(hn::SumOfLanes(d, v)); }
 
-void Bc1Moments_(const Bc1Texels& tx, Bc1Moments& m) {
+void Bc1Moments_(const RgbBlock& tx, RgbMoments& m) {
   const D d;
   const int lanes = int(hn::Lanes(d));
   V n = hn::Zero(d), sr = n, sg = n, sb = n, rr = n, rg = n, rb = n, gg = n, gb = n, bb = n;
@@ -40,7 +40,7 @@ void Bc1Moments_(const Bc1Texels& tx, Bc1Moments& m) {
   m.sq[3] = Total(d, gg), m.sq[4] = Total(d, gb), m.sq[5] = Total(d, bb);
 }
 
-void Bc1ProjectRange(const Bc1Texels& tx, const float axis[3], float& lo, float& hi) {
+void Bc1ProjectRange(const RgbBlock& tx, const float axis[3], float& lo, float& hi) {
   const D d;
   const hn::Rebind<float, D> df;
   const int lanes = int(hn::Lanes(d));
@@ -58,7 +58,7 @@ void Bc1ProjectRange(const Bc1Texels& tx, const float axis[3], float& lo, float&
   hi = hn::GetLane(hn::MaxOfLanes(df, vhi));
 }
 
-std::int32_t Bc1Nearest(const Bc1Texels& tx, const int pal[4][3], int candidates, std::uint8_t codes[16]) {
+std::int32_t Bc1Nearest(const RgbBlock& tx, const int pal[4][3], int candidates, std::uint8_t codes[16]) {
   const D d;
   const int lanes = int(hn::Lanes(d));
   HWY_ALIGN std::int32_t code_out[16];
@@ -86,7 +86,7 @@ std::int32_t Bc1Nearest(const Bc1Texels& tx, const int pal[4][3], int candidates
   return Total(d, total);
 }
 
-void Bc1LsSums_(const Bc1Texels& tx, const std::uint8_t codes[16], const int weight[4], int den, Bc1LsSums& s) {
+void Bc1LsSums_(const RgbBlock& tx, const std::uint8_t codes[16], const int weight[4], int den, RgbLsSums& s) {
   const D d;
   const int lanes = int(hn::Lanes(d));
   HWY_ALIGN std::int32_t code32[16];
@@ -123,26 +123,26 @@ HWY_EXPORT(Bc1ProjectRange);
 HWY_EXPORT(Bc1Nearest);
 HWY_EXPORT(Bc1LsSums_);
 
-Bc1Kernels bc1_kernels() {
-  if (force_scalar()) return {&ref::bc1_moments, &ref::bc1_project_range, &ref::bc1_nearest, &ref::bc1_ls_sums};
+RgbBlockKernels rgb_block_kernels() {
+  if (force_scalar()) return {&ref::rgb_moments, &ref::rgb_project_range, &ref::rgb_palette_nearest, &ref::rgb_ls_sums};
   return {&HWY_DYNAMIC_DISPATCH(Bc1Moments_), &HWY_DYNAMIC_DISPATCH(Bc1ProjectRange),
           &HWY_DYNAMIC_DISPATCH(Bc1Nearest), &HWY_DYNAMIC_DISPATCH(Bc1LsSums_)};
 }
 
-void bc1_moments(const Bc1Texels& tx, Bc1Moments& m) {
-  if (force_scalar()) return ref::bc1_moments(tx, m);
+void rgb_moments(const RgbBlock& tx, RgbMoments& m) {
+  if (force_scalar()) return ref::rgb_moments(tx, m);
   HWY_DYNAMIC_DISPATCH(Bc1Moments_)(tx, m);
 }
-void bc1_project_range(const Bc1Texels& tx, const float axis[3], float& lo, float& hi) {
-  if (force_scalar()) return ref::bc1_project_range(tx, axis, lo, hi);
+void rgb_project_range(const RgbBlock& tx, const float axis[3], float& lo, float& hi) {
+  if (force_scalar()) return ref::rgb_project_range(tx, axis, lo, hi);
   HWY_DYNAMIC_DISPATCH(Bc1ProjectRange)(tx, axis, lo, hi);
 }
-std::int32_t bc1_nearest(const Bc1Texels& tx, const int pal[4][3], int candidates, std::uint8_t codes[16]) {
-  if (force_scalar()) return ref::bc1_nearest(tx, pal, candidates, codes);
+std::int32_t rgb_palette_nearest(const RgbBlock& tx, const int pal[4][3], int candidates, std::uint8_t codes[16]) {
+  if (force_scalar()) return ref::rgb_palette_nearest(tx, pal, candidates, codes);
   return HWY_DYNAMIC_DISPATCH(Bc1Nearest)(tx, pal, candidates, codes);
 }
-void bc1_ls_sums(const Bc1Texels& tx, const std::uint8_t codes[16], const int weight[4], int den, Bc1LsSums& s) {
-  if (force_scalar()) return ref::bc1_ls_sums(tx, codes, weight, den, s);
+void rgb_ls_sums(const RgbBlock& tx, const std::uint8_t codes[16], const int weight[4], int den, RgbLsSums& s) {
+  if (force_scalar()) return ref::rgb_ls_sums(tx, codes, weight, den, s);
   HWY_DYNAMIC_DISPATCH(Bc1LsSums_)(tx, codes, weight, den, s);
 }
 }  // namespace texproc

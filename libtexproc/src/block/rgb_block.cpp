@@ -1,13 +1,13 @@
-// The scalar reference of bc1_assign.h (namespace ref): what bc1_assign_simd.cpp, its
+// The scalar reference of rgb_block.h (namespace ref): what rgb_block_simd.cpp, its
 // Highway twin, must equal byte for byte (tests compare them on every target).
-#include "bc/bc1_assign.h"
+#include "block/rgb_block.h"
 
 #include <algorithm>
 
 namespace texproc::ref {
 
-void bc1_moments(const Bc1Texels& tx, Bc1Moments& m) {
-  m = Bc1Moments{};
+void rgb_moments(const RgbBlock& tx, RgbMoments& m) {
+  m = RgbMoments{};
   for (int i = 0; i < 16; ++i) {
     if (tx.transparent[i]) continue;
     const std::int32_t r = tx.r[i], g = tx.g[i], b = tx.b[i];
@@ -17,7 +17,7 @@ void bc1_moments(const Bc1Texels& tx, Bc1Moments& m) {
   }
 }
 
-void bc1_project_range(const Bc1Texels& tx, const float axis[3], float& lo, float& hi) {
+void rgb_project_range(const RgbBlock& tx, const float axis[3], float& lo, float& hi) {
   lo = 1e30f, hi = -1e30f;
   for (int i = 0; i < 16; ++i) {
     if (tx.transparent[i]) continue;
@@ -26,7 +26,7 @@ void bc1_project_range(const Bc1Texels& tx, const float axis[3], float& lo, floa
   }
 }
 
-std::int32_t bc1_nearest(const Bc1Texels& tx, const int pal[4][3], int candidates, std::uint8_t codes[16]) {
+std::int32_t rgb_palette_nearest(const RgbBlock& tx, const int pal[4][3], int candidates, std::uint8_t codes[16]) {
   std::int32_t total = 0;
   for (int i = 0; i < 16; ++i) {
     if (tx.transparent[i]) {
@@ -46,8 +46,8 @@ std::int32_t bc1_nearest(const Bc1Texels& tx, const int pal[4][3], int candidate
   return total;
 }
 
-void bc1_ls_sums(const Bc1Texels& tx, const std::uint8_t codes[16], const int weight[4], int den, Bc1LsSums& s) {
-  s = Bc1LsSums{};
+void rgb_ls_sums(const RgbBlock& tx, const std::uint8_t codes[16], const int weight[4], int den, RgbLsSums& s) {
+  s = RgbLsSums{};
   for (int i = 0; i < 16; ++i) {
     const int w = weight[codes[i]];
     if (tx.transparent[i] || w < 0) continue;

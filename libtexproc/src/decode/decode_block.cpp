@@ -1,0 +1,154 @@
+// The block decoders' dispatcher: one block of any block format (BC1-BC5,
+// ETC1, ETC2, EAC, ASTC) by its format, and whole images and texture levels
+// decoded block by block. Above the formats, as encode/ is for the encoders.
+#include <cmath>
+#include <cstring>
+
+#include "astc/astc_decode.h"
+#include "bc/bc_decode.h"
+#include "etc/etc_tables.h"
+#include "texproc/block_decode.h"
+#include "texproc/error.h"
+#include "texproc/runtime.h"
+
+namespace texproc {
+
+using bc::decode_color;
+using bc::decode_rgtc;
+
+void decode_block(TexelFormat f, const std::uint8_t* b, float out[16][4]) {
+  for (int i = 0; i < 16; ++i) {
+    out[i][0] = out[i][1] = out[i][2] = 0.0f;
+    out[i][3] = 1.0f;
+  }
+  using F = TexelFormat;
+  switch (f) {
+    case F::bc1_rgb_unorm:
+    case F::bc1_rgb_srgb: decode_color(b, false, false, out); break;
+    case F::bc1_rgba_unorm:
+    case F::bc1_rgba_srgb: decode_color(b, false, true, out); break;
+    case F::bc2_unorm:
+    case F::bc2_srgb: {
+      decode_color(b + 8, true, false, out);
+      for (int i = 0; i < 16; ++i) {
+        const int a = b[i / 2] >> (4 * (i & 1)) & 15;
+        out[i][3] = float(a * 17) / 255.0f;
+      }
+      break;
+    }
+    case F::bc3_unorm:
+    case F::bc3_srgb:
+      decode_color(b + 8, true, false, out);
+      decode_rgtc(b, false, 3, out);
+      break;
+    case F::bc4_unorm: decode_rgtc(b, false, 0, out); break;
+    case F::bc4_snorm: decode_rgtc(b, true, 0, out); break;
+    case F::bc5_unorm:
+      decode_rgtc(b, false, 0, out);
+      decode_rgtc(b + 8, false, 1, out);
+      break;
+    case F::bc5_snorm:
+      decode_rgtc(b, true, 0, out);
+      decode_rgtc(b + 8, true, 1, out);
+      break;
+    case F::etc1_rgb:
+    case F::etc2_rgb_unorm:
+    case F::etc2_rgb_srgb:
+    case F::etc2_rgba1_unorm:
+    case F::etc2_rgba1_srgb:
+    case F::etc2_rgba8_unorm:
+    case F::etc2_rgba8_srgb: {
+      const bool rgba8 = f == F::etc2_rgba8_unorm || f == F::etc2_rgba8_srgb;
+      const std::uint8_t* color = rgba8 ? b + 8 : b;
+      std::uint8_t px[16][4];
+      if (f == F::etc1_rgb) {
+        etc::decode_etc1(color, px);
+      } else {
+        etc::decode_etc2(color, f == F::etc2_rgba1_unorm || f == F::etc2_rgba1_srgb, px);
+      }
+      std::uint8_t alpha[16];
+      if (rgba8) etc::decode_eac8(b, alpha);
+      for (int i = 0; i < 16; ++i) {
+        for (int c = 0; c < 3; ++c) out[i][c] = px[i][c] / 255.0f;
+        out[i][3] = (rgba8 ? alpha[i] : px[i][3]) / 255.0f;
+      }
+      break;
+    }
+    case F::eac_r11_unorm:
+    case F::eac_r11_snorm:
+    case F::eac_rg11_unorm:
+    case F::eac_rg11_snorm: {
+      const bool snorm = f == F::eac_r11_snorm || f == F::eac_rg11_snorm;
+      const int channels = f == F::eac_rg11_unorm || f == F::eac_rg11_snorm ? 2 : 1;
+      for (int i = 0; i < 16; ++i) out[i][0] = out[i][1] = out[i][2] = 0.0f, out[i][3] = 1.0f;
+      for (int c = 0; c < channels; ++c) {
+        int v[16];
+        etc::decode_eac11(b + 8 * c, snorm, v);
+        for (int i = 0; i < 16; ++i) out[i][c] = float(v[i]) / (snorm ? 1023.0f : 2047.0f);
+      }
+      break;
+    }
+    default:
+      throw Error(ErrorCode::unsupported, std::string("decoding ") + format_info(f).name + " is not supported yet");
+  }
+}
+
+Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t layer, std::uint32_t face,
+                           PixelType type) {
+  const FormatInfo& info = format_info(t.format);
+  if (!info.compressed) {
+    Image raw = image_from_texture(t, level, layer, face);
+    if (raw.type() == type) return raw;
+    Image out = Image::uninitialized(raw.width(), raw.height(), raw.channels(), type);
+    for (int y = 0; y < raw.height(); ++y)
+      for (int x = 0; x < raw.width(); ++x)
+        for (int c = 0; c < raw.channels(); ++c) out.set(x, y, c, raw.get(x, y, c));
+    return out;
+  }
+  if (is_astc(t.format)) {
+    const PixelBytes& data = t.image(level, layer, face);
+    Image decoded = astc::decode(data.data(), data.size(), int(t.level_width(level)), int(t.level_height(level)), t.format);
+    if (decoded.type() == type) return decoded;
+    Image out = Image::uninitialized(decoded.width(), decoded.height(), 4, type);
+    for_each_row_block(decoded.height(), 64, [&](int y0, int y1) {
+      for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < decoded.width(); ++x)
+          for (int c = 0; c < 4; ++c) out.set(x, y, c, decoded.get(x, y, c));
+    });
+    return out;
+  }
+  if (info.block_width != 4) {
+    throw Error(ErrorCode::unsupported, std::string("decoding ") + info.name + " is not supported");
+  }
+  const int w = int(t.level_width(level)), h = int(t.level_height(level));
+  const int C = info.channels;
+  Image out = Image::uninitialized(w, h, C, type);
+  const PixelBytes& data = t.image(level, layer, face);
+  const int bw = (w + 3) / 4, bh = (h + 3) / 4;
+  float texels[16][4];
+  for (int by = 0; by < bh; ++by)
+    for (int bx = 0; bx < bw; ++bx) {
+      decode_block(t.format, data.data() + (std::size_t(by) * bw + bx) * info.block_bytes, texels);
+      for (int i = 0; i < 16; ++i) {
+        const int x = bx * 4 + i % 4, y = by * 4 + i / 4;
+        if (x >= w || y >= h) continue;
+        for (int c = 0; c < C; ++c) {  // 1: R, 2: RG, 3: RGB, 4: RGBA
+          float v = texels[i][c];
+          if (type != PixelType::f32 && info.snorm) v = (v + 1.0f) * 0.5f;  // the usual biased storage
+          out.set(x, y, c, v);
+        }
+      }
+    }
+  return out;
+}
+
+Image decompress_image(std::vector<std::uint8_t> blocks, int width, int height, TexelFormat format, PixelType type) {
+  Texture t;
+  t.format = format;
+  t.width = std::uint32_t(width);
+  t.height = std::uint32_t(height);
+  t.images.emplace_back(blocks.begin(), blocks.end());
+  return decode_texture_image(t, 0, 0, 0, type);
+}
+
+}  // namespace texproc
