@@ -18,24 +18,71 @@ namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-// kPunch: BC1 with punch-through alpha (compiled apart, so opaque BC1 pays
-// nothing for the transparent texels' masks).
+using D = hn::CappedTag<std::int32_t, kBc1Batch>;
+using DF = hn::Rebind<float, D>;
+using DU = hn::Rebind<std::uint32_t, D>;
+using V = hn::Vec<D>;
+using VF = hn::Vec<DF>;
+using M = hn::Mask<D>;
+
+// The endpoints, codes and error of a candidate in every lane.
+struct State {
+  V qa[3], qb[3], codes[16], error;
+};
+
+// The lanes' blocks through the search, stage by stage (each the scalar
+// reference's function of the same name in bc1_lanes.cpp): load (texels,
+// principal axis, extent), thirds_fit (`fast`), variants, nudge,
+// three_colour, pack. kPunch: BC1 with punch-through alpha (compiled apart,
+// so opaque BC1 pays nothing for the transparent texels' masks).
 template <bool kPunch>
-HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three,
-                         std::uint8_t out[][8], bool handled[]) {
-  using D = hn::CappedTag<std::int32_t, kBc1Batch>;
+struct Bc1Batch {
   const D d;
-  const hn::Rebind<float, D> df;
-  const hn::Rebind<std::uint32_t, D> du;
-  using V = hn::Vec<D>;
-  using VF = hn::Vec<decltype(df)>;
-  using M = hn::Mask<D>;
-  const int lanes = int(hn::Lanes(d));
-  for (int k0 = 0; k0 < count; k0 += lanes) {
-    V r[16], g[16], b[16];
-    M clear[16];  // punch-through: transparent texels (index 3 of the three-colour mode)
-    V s0 = hn::Zero(d), s1 = s0, s2 = s0, q0 = s0, q1 = s0, q2 = s0, q3 = s0, q4 = s0, q5 = s0, n_opaque = s0;
-    const V mask8 = hn::Set(d, 255);
+  const DF df;
+  const DU du;
+  V r[16], g[16], b[16];
+  M clear[16];  // punch-through: transparent texels (index 3 of the three-colour mode)
+  V n_opaque;
+  M transparent;  // lanes with any transparent texel
+  M flat;         // lanes whose opaque texels are one colour (or none): left to the caller
+  VF hi, lo, proj[16];
+  VF m0, m1, m2, ax, ay, az, mean_p;
+  const VF one, zero_f, top, half;
+  const V mask8;
+
+  // Written out (not default member initializers): the implicit constructor
+  // would be compiled without the target's attributes.
+  HWY_ATTR Bc1Batch()
+      : one(hn::Set(df, 1.0f)), zero_f(hn::Zero(df)), top(hn::Set(df, 255.0f)), half(hn::Set(df, 0.5f)), mask8(hn::Set(d, 255)) {}
+
+  // v where texel i is opaque, else 0 (punch-through only).
+  HWY_INLINE V opaque_only(int i, V v) const {
+    if constexpr (kPunch) {
+      return hn::IfThenZeroElse(clear[i], v);
+    } else {
+      (void)i;
+      return v;
+    }
+  }
+  HWY_INLINE VF clamp255(VF x) const { return hn::Min(hn::Max(x, zero_f), top); }
+  HWY_INLINE V quantize(VF x, int max) const {
+    const V qv = hn::ConvertTo(d, hn::Add(hn::Mul(x, hn::Set(df, float(max) / 255.0f)), half));
+    return hn::Min(hn::Max(qv, hn::Zero(d)), hn::Set(d, max));
+  }
+  HWY_INLINE void select(M take, const State& n, State& st) const {
+    for (int ch = 0; ch < 3; ++ch)
+      st.qa[ch] = hn::IfThenElse(take, n.qa[ch], st.qa[ch]), st.qb[ch] = hn::IfThenElse(take, n.qb[ch], st.qb[ch]);
+    for (int i = 0; i < 16; ++i) st.codes[i] = hn::IfThenElse(take, n.codes[i], st.codes[i]);
+    st.error = hn::IfThenElse(take, n.error, st.error);
+  }
+
+  // The texels of blocks k0.., their moments, the principal axis (power
+  // iteration from the covariance's row of greatest variance), each
+  // texel's projection and the opaque texels' extent; `flat_out` gets the
+  // lanes left to the caller.
+  HWY_INLINE void load(const std::uint32_t texel[16][kBc1Batch], int k0, std::int32_t flat_out[]) {
+    V s0 = hn::Zero(d), s1 = s0, s2 = s0, q0 = s0, q1 = s0, q2 = s0, q3 = s0, q4 = s0, q5 = s0;
+    n_opaque = s0;
     for (int i = 0; i < 16; ++i) {
       const auto tu = hn::LoadU(du, texel[i] + k0);
       const V t = hn::BitCast(d, tu);
@@ -50,22 +97,12 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, co
       q0 = hn::Add(q0, hn::Mul(r[i], r[i])), q1 = hn::Add(q1, hn::Mul(r[i], g[i])), q2 = hn::Add(q2, hn::Mul(r[i], b[i]));
       q3 = hn::Add(q3, hn::Mul(g[i], g[i])), q4 = hn::Add(q4, hn::Mul(g[i], b[i])), q5 = hn::Add(q5, hn::Mul(b[i], b[i]));
     }
-    const M transparent = hn::Lt(n_opaque, hn::Set(d, 16));
-    // v where texel i is opaque, else 0 (punch-through only).
-    auto opaque_only = [&](int i, V v) {
-      if constexpr (kPunch) {
-        return hn::IfThenZeroElse(clear[i], v);
-      } else {
-        (void)i;
-        return v;
-      }
-    };  // only the three-colour mode can have transparent texels
+    transparent = hn::Lt(n_opaque, hn::Set(d, 16));
     const V no = n_opaque;
     const V c0i = hn::Sub(hn::Mul(no, q0), hn::Mul(s0, s0)), c1i = hn::Sub(hn::Mul(no, q1), hn::Mul(s0, s1)),
             c2i = hn::Sub(hn::Mul(no, q2), hn::Mul(s0, s2)), c3i = hn::Sub(hn::Mul(no, q3), hn::Mul(s1, s1)),
             c4i = hn::Sub(hn::Mul(no, q4), hn::Mul(s1, s2)), c5i = hn::Sub(hn::Mul(no, q5), hn::Mul(s2, s2));
-    const auto flat = hn::And(hn::And(hn::Eq(c0i, hn::Zero(d)), hn::Eq(c3i, hn::Zero(d))), hn::Eq(c5i, hn::Zero(d)));
-    HWY_ALIGN std::int32_t flat_out[kBc1Batch];
+    flat = hn::And(hn::And(hn::Eq(c0i, hn::Zero(d)), hn::Eq(c3i, hn::Zero(d))), hn::Eq(c5i, hn::Zero(d)));
     hn::Store(hn::VecFromMask(d, flat), d, flat_out);
     const VF c0 = hn::ConvertTo(df, c0i), c1 = hn::ConvertTo(df, c1i), c2 = hn::ConvertTo(df, c2i),
              c3 = hn::ConvertTo(df, c3i), c4 = hn::ConvertTo(df, c4i), c5 = hn::ConvertTo(df, c5i);
@@ -75,7 +112,6 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, co
     VF v1 = hn::IfThenElse(row0, c1, hn::IfThenElse(row1, c3, c4));
     VF v2 = hn::IfThenElse(row0, c2, hn::IfThenElse(row1, c4, c5));
     // Flat lanes (skipped) divide by 1 instead of 0.
-    const VF one = hn::Set(df, 1.0f);
     const auto flat_f = hn::RebindMask(df, flat);
     for (int it = 0; it < 4; ++it) {
       const VF inv = hn::Div(one, hn::IfThenElse(flat_f, one, hn::Max(hn::Abs(v0), hn::Max(hn::Abs(v1), hn::Abs(v2)))));
@@ -87,8 +123,8 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, co
     const VF len = hn::IfThenElse(
         flat_f, one, hn::Sqrt(hn::Add(hn::Add(hn::Mul(v0, v0), hn::Mul(v1, v1)), hn::Mul(v2, v2))));
     const VF inv_len = hn::Div(one, len);
-    const VF ax = hn::Mul(v0, inv_len), ay = hn::Mul(v1, inv_len), az = hn::Mul(v2, inv_len);
-    VF lo = hn::Set(df, 1e30f), hi = hn::Set(df, -1e30f), proj[16];
+    ax = hn::Mul(v0, inv_len), ay = hn::Mul(v1, inv_len), az = hn::Mul(v2, inv_len);
+    lo = hn::Set(df, 1e30f), hi = hn::Set(df, -1e30f);
     for (int i = 0; i < 16; ++i) {
       const VF p = hn::Add(hn::Add(hn::Mul(hn::ConvertTo(df, r[i]), ax), hn::Mul(hn::ConvertTo(df, g[i]), ay)),
                            hn::Mul(hn::ConvertTo(df, b[i]), az));
@@ -101,292 +137,263 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, co
       proj[i] = p;
     }
     const VF fn = hn::ConvertTo(df, hn::Max(n_opaque, hn::Set(d, 1)));  // no opaque texel: a flat lane, skipped
-    const VF m0 = hn::Div(hn::ConvertTo(df, s0), fn), m1 = hn::Div(hn::ConvertTo(df, s1), fn), m2 = hn::Div(hn::ConvertTo(df, s2), fn);
-    const VF mean_p = hn::Add(hn::Add(hn::Mul(m0, ax), hn::Mul(m1, ay)), hn::Mul(m2, az));
-    const VF zero_f = hn::Zero(df), top = hn::Set(df, 255.0f), half = hn::Set(df, 0.5f);
-    auto clamp255 = [&](VF x) { return hn::Min(hn::Max(x, zero_f), top); };
-    auto quantize = [&](VF x, int max) {
-      const V qv = hn::ConvertTo(d, hn::Add(hn::Mul(x, hn::Set(df, float(max) / 255.0f)), half));
-      return hn::Min(hn::Max(qv, hn::Zero(d)), hn::Set(d, max));
-    };
-    struct State {
-      V qa[3], qb[3], codes[16], error;
-    };
-    auto select = [&](M take, const State& n, State& st) {
-      for (int ch = 0; ch < 3; ++ch)
-        st.qa[ch] = hn::IfThenElse(take, n.qa[ch], st.qa[ch]), st.qb[ch] = hn::IfThenElse(take, n.qb[ch], st.qb[ch]);
-      for (int i = 0; i < 16; ++i) st.codes[i] = hn::IfThenElse(take, n.codes[i], st.codes[i]);
-      st.error = hn::IfThenElse(take, n.error, st.error);
-    };
-    // Nearest palette entry per texel (x / 3 as x * 43691 >> 17, exact for
-    // x < 1536); st.codes and st.error.
-    auto nearest = [&](bool four, State& st) {
-      V pal[4][3];
-      for (int ch = 0; ch < 3; ++ch) {
-        const V qa = st.qa[ch], qb = st.qb[ch];
-        const V ea = ch == 1 ? hn::Or(hn::ShiftLeft<2>(qa), hn::ShiftRight<4>(qa)) : hn::Or(hn::ShiftLeft<3>(qa), hn::ShiftRight<2>(qa));
-        const V eb = ch == 1 ? hn::Or(hn::ShiftLeft<2>(qb), hn::ShiftRight<4>(qb)) : hn::Or(hn::ShiftLeft<3>(qb), hn::ShiftRight<2>(qb));
-        const V third = hn::Set(d, 43691), one_i = hn::Set(d, 1);
-        pal[0][ch] = ea, pal[1][ch] = eb;
-        pal[2][ch] = four ? hn::ShiftRight<17>(hn::Mul(hn::Add(hn::Add(hn::Add(ea, ea), eb), one_i), third))
-                          : hn::ShiftRight<1>(hn::Add(hn::Add(ea, eb), one_i));
-        pal[3][ch] = hn::ShiftRight<17>(hn::Mul(hn::Add(hn::Add(hn::Add(eb, eb), ea), one_i), third));
-      }
-      V total = hn::Zero(d);
-      for (int i = 0; i < 16; ++i) {
-        V be = hn::Zero(d), best = hn::Zero(d);
-        for (int k = 0; k < (four ? 4 : 3); ++k) {
-          const V dr = hn::Sub(r[i], pal[k][0]), dg = hn::Sub(g[i], pal[k][1]), db = hn::Sub(b[i], pal[k][2]);
-          const V e = hn::Add(hn::Add(hn::Mul(dr, dr), hn::Mul(dg, dg)), hn::Mul(db, db));
-          if (k == 0) {
-            be = e;
-            continue;
-          }
-          const auto better = hn::Lt(e, be);
-          be = hn::IfThenElse(better, e, be);
-          best = hn::IfThenElse(better, hn::Set(d, k), best);
-        }
-        st.codes[i] = kPunch ? hn::IfThenElse(clear[i], hn::Set(d, 3), best) : best;
-        total = hn::Add(total, opaque_only(i, be));
-      }
-      st.error = total;
-    };
-    // One least-squares refit; weights by code in thirds (0, 3, 1, 2) or halves (0, 2, 1).
-    auto refit = [&](bool four, State& st) {
-      const int den_s = four ? 3 : 2;
-      const V den = hn::Set(d, den_s), one_i = hn::Set(d, 1);
-      V aa = hn::Zero(d), ab = aa, bb = aa, at[3] = {aa, aa, aa}, bt[3] = {aa, aa, aa};
-      for (int i = 0; i < 16; ++i) {
-        const V c = st.codes[i];
-        V w = hn::IfThenElse(hn::Eq(c, one_i), den, hn::IfThenElseZero(hn::Gt(c, one_i), hn::Sub(c, one_i)));
-        V u = hn::Sub(den, w);
-        if (kPunch && !four) {  // transparent texels (code 3) are out of the fit
-          const M out_of_fit = hn::Eq(c, hn::Set(d, 3));
-          w = hn::IfThenZeroElse(out_of_fit, w), u = hn::IfThenZeroElse(out_of_fit, u);
-        } else if (kPunch) {
-          w = opaque_only(i, w), u = opaque_only(i, u);
-        }
-        aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w)), bb = hn::Add(bb, hn::Mul(w, w));
-        at[0] = hn::Add(at[0], hn::Mul(u, r[i])), at[1] = hn::Add(at[1], hn::Mul(u, g[i])), at[2] = hn::Add(at[2], hn::Mul(u, b[i]));
-        bt[0] = hn::Add(bt[0], hn::Mul(w, r[i])), bt[1] = hn::Add(bt[1], hn::Mul(w, g[i])), bt[2] = hn::Add(bt[2], hn::Mul(w, b[i]));
-      }
-      const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
-      const auto solvable = hn::Ne(det, hn::Zero(d));
-      const VF inv_det = hn::Div(hn::Set(df, 1.0f), hn::ConvertTo(df, hn::IfThenElse(solvable, det, one_i)));
-      State n;
-      for (int ch = 0; ch < 3; ++ch) {
-        const int max = ch == 1 ? 63 : 31;
-        const V na = hn::Mul(den, hn::Sub(hn::Mul(at[ch], bb), hn::Mul(bt[ch], ab)));
-        const V nb = hn::Mul(den, hn::Sub(hn::Mul(bt[ch], aa), hn::Mul(at[ch], ab)));
-        n.qa[ch] = quantize(clamp255(hn::Mul(hn::ConvertTo(df, na), inv_det)), max);
-        n.qb[ch] = quantize(clamp255(hn::Mul(hn::ConvertTo(df, nb), inv_det)), max);
-      }
-      nearest(four, n);
-      select(hn::And(solvable, hn::Lt(n.error, st.error)), n, st);
-    };
+    m0 = hn::Div(hn::ConvertTo(df, s0), fn), m1 = hn::Div(hn::ConvertTo(df, s1), fn), m2 = hn::Div(hn::ConvertTo(df, s2), fn);
+    mean_p = hn::Add(hn::Add(hn::Mul(m0, ax), hn::Mul(m1, ay)), hn::Mul(m2, az));
+  }
+
+  // The extent's ends as quantized endpoints (codes and error not scored yet: 0).
+  HWY_INLINE void extent_ends(State& st) const {
+    for (int i = 0; i < 16; ++i) st.codes[i] = hn::Zero(d);
+    st.error = hn::Zero(d);
     const VF dhi = hn::Sub(hi, mean_p), dlo = hn::Sub(lo, mean_p);
-    State st;
     st.qa[0] = quantize(clamp255(hn::Add(m0, hn::Mul(dhi, ax))), 31);
     st.qa[1] = quantize(clamp255(hn::Add(m1, hn::Mul(dhi, ay))), 63);
     st.qa[2] = quantize(clamp255(hn::Add(m2, hn::Mul(dhi, az))), 31);
     st.qb[0] = quantize(clamp255(hn::Add(m0, hn::Mul(dlo, ax))), 31);
     st.qb[1] = quantize(clamp255(hn::Add(m1, hn::Mul(dlo, ay))), 63);
     st.qb[2] = quantize(clamp255(hn::Add(m2, hn::Mul(dlo, az))), 31);
-    const V start_qa[3] = {st.qa[0], st.qa[1], st.qa[2]}, start_qb[3] = {st.qb[0], st.qb[1], st.qb[2]};
-    M four = hn::Eq(hn::Zero(d), hn::Zero(d));
-    // Least-squares endpoints (quantized) for the four-colour positions w
-    // (thirds on the second endpoint); `solvable`: the system is not
-    // singular; `red`: the unquantized fit's reduction of the squared error.
-    auto fit_positions = [&](const V w[16], V qa[3], V qb[3], M& solvable, VF& red) {
-      const V three_i = hn::Set(d, 3);
-      V aa = hn::Zero(d), ab = aa, bb = aa, at[3] = {aa, aa, aa}, bt[3] = {aa, aa, aa};
-      for (int i = 0; i < 16; ++i) {
-        const V wi = opaque_only(i, w[i]), u = opaque_only(i, hn::Sub(three_i, w[i]));
-        aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, wi)), bb = hn::Add(bb, hn::Mul(wi, wi));
-        at[0] = hn::Add(at[0], hn::Mul(u, r[i])), at[1] = hn::Add(at[1], hn::Mul(u, g[i])), at[2] = hn::Add(at[2], hn::Mul(u, b[i]));
-        bt[0] = hn::Add(bt[0], hn::Mul(wi, r[i])), bt[1] = hn::Add(bt[1], hn::Mul(wi, g[i])), bt[2] = hn::Add(bt[2], hn::Mul(wi, b[i]));
+  }
+
+  // Nearest palette entry per texel (x / 3 as x * 43691 >> 17, exact for
+  // x < 1536); st.codes and st.error.
+  HWY_INLINE void nearest(bool four, State& st) const {
+    V pal[4][3];
+    for (int ch = 0; ch < 3; ++ch) {
+      const V qa = st.qa[ch], qb = st.qb[ch];
+      const V ea = ch == 1 ? hn::Or(hn::ShiftLeft<2>(qa), hn::ShiftRight<4>(qa)) : hn::Or(hn::ShiftLeft<3>(qa), hn::ShiftRight<2>(qa));
+      const V eb = ch == 1 ? hn::Or(hn::ShiftLeft<2>(qb), hn::ShiftRight<4>(qb)) : hn::Or(hn::ShiftLeft<3>(qb), hn::ShiftRight<2>(qb));
+      const V third = hn::Set(d, 43691), one_i = hn::Set(d, 1);
+      pal[0][ch] = ea, pal[1][ch] = eb;
+      pal[2][ch] = four ? hn::ShiftRight<17>(hn::Mul(hn::Add(hn::Add(hn::Add(ea, ea), eb), one_i), third))
+                        : hn::ShiftRight<1>(hn::Add(hn::Add(ea, eb), one_i));
+      pal[3][ch] = hn::ShiftRight<17>(hn::Mul(hn::Add(hn::Add(hn::Add(eb, eb), ea), one_i), third));
+    }
+    V total = hn::Zero(d);
+    for (int i = 0; i < 16; ++i) {
+      V be = hn::Zero(d), best = hn::Zero(d);
+      for (int k = 0; k < (four ? 4 : 3); ++k) {
+        const V dr = hn::Sub(r[i], pal[k][0]), dg = hn::Sub(g[i], pal[k][1]), db = hn::Sub(b[i], pal[k][2]);
+        const V e = hn::Add(hn::Add(hn::Mul(dr, dr), hn::Mul(dg, dg)), hn::Mul(db, db));
+        if (k == 0) {
+          be = e;
+          continue;
+        }
+        const auto better = hn::Lt(e, be);
+        be = hn::IfThenElse(better, e, be);
+        best = hn::IfThenElse(better, hn::Set(d, k), best);
       }
-      const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
-      solvable = hn::Ne(det, hn::Zero(d));
-      const VF inv_det = hn::Div(one, hn::ConvertTo(df, hn::IfThenElse(solvable, det, hn::Set(d, 1))));
+      st.codes[i] = kPunch ? hn::IfThenElse(clear[i], hn::Set(d, 3), best) : best;
+      total = hn::Add(total, opaque_only(i, be));
+    }
+    st.error = total;
+  }
+
+  // Least-squares endpoints for `w` and u = den - w weights (the sums of
+  // every fit below), quantized; `solvable`: the system is not singular.
+  HWY_INLINE void solve(const V w[16], const V u[16], int den_s, V qa[3], V qb[3], M& solvable, VF* red) const {
+    const V den = hn::Set(d, den_s);
+    V aa = hn::Zero(d), ab = aa, bb = aa, at[3] = {aa, aa, aa}, bt[3] = {aa, aa, aa};
+    for (int i = 0; i < 16; ++i) {
+      aa = hn::Add(aa, hn::Mul(u[i], u[i])), ab = hn::Add(ab, hn::Mul(u[i], w[i])), bb = hn::Add(bb, hn::Mul(w[i], w[i]));
+      at[0] = hn::Add(at[0], hn::Mul(u[i], r[i])), at[1] = hn::Add(at[1], hn::Mul(u[i], g[i])), at[2] = hn::Add(at[2], hn::Mul(u[i], b[i]));
+      bt[0] = hn::Add(bt[0], hn::Mul(w[i], r[i])), bt[1] = hn::Add(bt[1], hn::Mul(w[i], g[i])), bt[2] = hn::Add(bt[2], hn::Mul(w[i], b[i]));
+    }
+    const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
+    solvable = hn::Ne(det, hn::Zero(d));
+    const VF inv_det = hn::Div(one, hn::ConvertTo(df, hn::IfThenElse(solvable, det, hn::Set(d, 1))));
+    if (red) {  // the unquantized fit's reduction of the squared error
       const VF faa = hn::ConvertTo(df, aa), fab = hn::ConvertTo(df, ab), fbb = hn::ConvertTo(df, bb), two = hn::Set(df, 2.0f);
-      red = hn::Zero(df);
+      *red = hn::Zero(df);
       for (int ch = 0; ch < 3; ++ch) {
-        const int max = ch == 1 ? 63 : 31;
         const VF x = hn::ConvertTo(df, at[ch]), y = hn::ConvertTo(df, bt[ch]);
         const VF t = hn::Add(hn::Sub(hn::Mul(hn::Mul(x, x), fbb), hn::Mul(hn::Mul(hn::Mul(two, x), y), fab)), hn::Mul(hn::Mul(y, y), faa));
-        red = hn::Add(red, hn::Mul(t, inv_det));
-        const V na = hn::Mul(three_i, hn::Sub(hn::Mul(at[ch], bb), hn::Mul(bt[ch], ab)));
-        const V nb = hn::Mul(three_i, hn::Sub(hn::Mul(bt[ch], aa), hn::Mul(at[ch], ab)));
-        qa[ch] = quantize(clamp255(hn::Mul(hn::ConvertTo(df, na), inv_det)), max);
-        qb[ch] = quantize(clamp255(hn::Mul(hn::ConvertTo(df, nb), inv_det)), max);
+        *red = hn::Add(*red, hn::Mul(t, inv_det));
       }
-    };
-    // The reference's nudge() in the lanes `moving`: each quantized endpoint
-    // channel moved by one step while that lowers the error (at most four
-    // passes; a lane whose pass found nothing is done, and the loop ends
-    // when every lane is).
-    auto nudge = [&](bool four_colours, M moving, State& s) {
-      for (int pass = 0; pass < 4; ++pass) {
-        M improved = hn::Lt(hn::Zero(d), hn::Zero(d));
-        for (int m = 0; m < 12; ++m) {
-          const int ch = m % 6 / 2, max = ch == 1 ? 63 : 31;
-          State n = s;
-          V* q = m < 6 ? n.qa : n.qb;  // a pointer, as in the reference (GCC 12.2, sanitizers)
-          V& v = q[ch];
-          v = hn::Add(v, hn::Set(d, m % 2 ? 1 : -1));
-          const auto valid = hn::And(moving, hn::And(hn::Not(hn::Lt(v, hn::Zero(d))), hn::Not(hn::Gt(v, hn::Set(d, max)))));
-          if (hn::AllFalse(d, valid)) continue;
-          v = hn::Min(hn::Max(v, hn::Zero(d)), hn::Set(d, max));
-          nearest(four_colours, n);
-          const auto take = hn::And(valid, hn::Lt(n.error, s.error));
-          select(take, n, s);
-          improved = hn::Or(improved, take);
-        }
-        if (hn::AllFalse(d, hn::AndNot(flat, improved))) break;
+    }
+    for (int ch = 0; ch < 3; ++ch) {
+      const int max = ch == 1 ? 63 : 31;
+      const V na = hn::Mul(den, hn::Sub(hn::Mul(at[ch], bb), hn::Mul(bt[ch], ab)));
+      const V nb = hn::Mul(den, hn::Sub(hn::Mul(bt[ch], aa), hn::Mul(at[ch], ab)));
+      qa[ch] = quantize(clamp255(hn::Mul(hn::ConvertTo(df, na), inv_det)), max);
+      qb[ch] = quantize(clamp255(hn::Mul(hn::ConvertTo(df, nb), inv_det)), max);
+    }
+  }
+
+  // One least-squares refit of st's codes; weights by code in thirds (0, 3,
+  // 1, 2) or halves (0, 2, 1); kept where it lowers the error.
+  HWY_INLINE void refit(bool four, State& st) const {
+    const int den_s = four ? 3 : 2;
+    const V den = hn::Set(d, den_s), one_i = hn::Set(d, 1);
+    V w[16], u[16];
+    for (int i = 0; i < 16; ++i) {
+      const V c = st.codes[i];
+      w[i] = hn::IfThenElse(hn::Eq(c, one_i), den, hn::IfThenElseZero(hn::Gt(c, one_i), hn::Sub(c, one_i)));
+      u[i] = hn::Sub(den, w[i]);
+      if (kPunch && !four) {  // transparent texels (code 3) are out of the fit
+        const M out_of_fit = hn::Eq(c, hn::Set(d, 3));
+        w[i] = hn::IfThenZeroElse(out_of_fit, w[i]), u[i] = hn::IfThenZeroElse(out_of_fit, u[i]);
+      } else if (kPunch) {
+        w[i] = opaque_only(i, w[i]), u[i] = opaque_only(i, u[i]);
       }
-    };
-    if (level.thirds_fit) {
-      const auto wide = hn::Gt(hi, lo);
-      const VF scale = hn::IfThenElseZero(wide, hn::Div(hn::Set(df, 3.0f), hn::IfThenElse(wide, hn::Sub(hi, lo), one)));
-      const V three_i = hn::Set(d, 3);
-      V aa = hn::Zero(d), ab = aa, bb = aa, at[3] = {aa, aa, aa}, bt[3] = {aa, aa, aa};
-      for (int i = 0; i < 16; ++i) {
-        const V w = opaque_only(i, hn::Min(hn::ConvertTo(d, hn::Add(hn::Mul(hn::Sub(hi, proj[i]), scale), half)), three_i));
-        const V u = opaque_only(i, hn::Sub(three_i, w));
-        aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w)), bb = hn::Add(bb, hn::Mul(w, w));
-        at[0] = hn::Add(at[0], hn::Mul(u, r[i])), at[1] = hn::Add(at[1], hn::Mul(u, g[i])), at[2] = hn::Add(at[2], hn::Mul(u, b[i]));
-        bt[0] = hn::Add(bt[0], hn::Mul(w, r[i])), bt[1] = hn::Add(bt[1], hn::Mul(w, g[i])), bt[2] = hn::Add(bt[2], hn::Mul(w, b[i]));
-      }
-      const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
-      const auto solvable = hn::Ne(det, hn::Zero(d));
-      const VF inv_det = hn::Div(one, hn::ConvertTo(df, hn::IfThenElse(solvable, det, hn::Set(d, 1))));
-      for (int ch = 0; ch < 3; ++ch) {
-        const int max = ch == 1 ? 63 : 31;
-        const V na = hn::Mul(three_i, hn::Sub(hn::Mul(at[ch], bb), hn::Mul(bt[ch], ab)));
-        const V nb = hn::Mul(three_i, hn::Sub(hn::Mul(bt[ch], aa), hn::Mul(at[ch], ab)));
-        st.qa[ch] = hn::IfThenElse(solvable, quantize(clamp255(hn::Mul(hn::ConvertTo(df, na), inv_det)), max), st.qa[ch]);
-        st.qb[ch] = hn::IfThenElse(solvable, quantize(clamp255(hn::Mul(hn::ConvertTo(df, nb), inv_det)), max), st.qb[ch]);
-      }
-      nearest(true, st);
-      if (!hn::AllFalse(d, transparent)) {  // the three-colour mode from the extent's ends, refitted once
-        State t;
-        for (int ch = 0; ch < 3; ++ch) t.qa[ch] = start_qa[ch], t.qb[ch] = start_qb[ch];
-        nearest(false, t);
-        refit(false, t);
-        select(transparent, t, st);
-        four = hn::AndNot(transparent, four);
-      }
-    } else if (kPunch && hn::AllTrue(d, hn::Or(transparent, flat))) {
-      nearest(true, st);  // every lane takes the three-colour mode below
-    } else {
-      nearest(true, st);
-      refit(true, st);
-      refit(true, st);
-      // Partition variants along the axis (see the scalar reference).
-      const int offsets = level.variant_offsets, stretches = level.variant_stretches;
-      const auto wide = hn::Gt(hi, lo);
-      const VF extent = hn::IfThenElse(wide, hn::Sub(hi, lo), one);
-      VF e1 = hn::Zero(df), e2 = e1;
-      V have = hn::Zero(d), kept1[2][3], kept2[2][3];
-      for (int ch = 0; ch < 3; ++ch) kept1[0][ch] = kept1[1][ch] = kept2[0][ch] = kept2[1][ch] = hn::Zero(d);
-      for (int o = -offsets; o <= offsets; ++o)
-        for (int sv = -stretches; sv <= stretches; ++sv) {
-          const VF scale = hn::IfThenElseZero(
-              wide, hn::Div(hn::Set(df, 3.0f * (1.0f + ref::kVariantStep * float(sv))), extent));
-          const VF shift = hn::Set(df, ref::variant_shift(o, sv));
-          V w[16];
-          for (int i = 0; i < 16; ++i)
-            w[i] = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(hn::Mul(hn::Sub(hi, proj[i]), scale), shift))), hn::Zero(d)),
-                           hn::Set(d, 3));
-          State n;
-          M solvable;
-          VF red;
-          fit_positions(w, n.qa, n.qb, solvable, red);
-          if (level.score_every_variant) {
-            nearest(true, n);
-            refit(true, n);
-            select(hn::And(solvable, hn::Lt(n.error, st.error)), n, st);
-            continue;
-          }
-          const VF e = hn::Neg(red);
-          const M none = hn::Eq(have, hn::Zero(d)), one_kept = hn::Eq(have, hn::Set(d, 1));
-          const M first = hn::And(solvable, hn::Or(none, hn::RebindMask(d, hn::Lt(e, e1))));
-          const M second = hn::AndNot(first, hn::And(solvable, hn::Or(one_kept, hn::RebindMask(d, hn::Lt(e, e2)))));
-          const M shift_down = hn::AndNot(none, first);
-          e2 = hn::IfThenElse(hn::RebindMask(df, shift_down), e1, hn::IfThenElse(hn::RebindMask(df, second), e, e2));
-          for (int k = 0; k < 2; ++k)
-            for (int ch = 0; ch < 3; ++ch) {
-              const V nq = k ? n.qb[ch] : n.qa[ch];
-              kept2[k][ch] = hn::IfThenElse(shift_down, kept1[k][ch], hn::IfThenElse(second, nq, kept2[k][ch]));
-              kept1[k][ch] = hn::IfThenElse(first, nq, kept1[k][ch]);
-            }
-          e1 = hn::IfThenElse(hn::RebindMask(df, first), e, e1);
-          have = hn::Min(hn::Add(have, hn::IfThenElseZero(hn::Or(first, second), hn::Set(d, 1))), hn::Set(d, 2));
-        }
-      for (int m = 0; m < 2 && !level.score_every_variant; ++m) {
-        const M valid = hn::Gt(have, hn::Set(d, m));
+    }
+    State n;
+    M solvable;
+    solve(w, u, den_s, n.qa, n.qb, solvable, nullptr);
+    nearest(four, n);
+    select(hn::And(solvable, hn::Lt(n.error, st.error)), n, st);
+  }
+
+  // Texels at positions p (0..den) along the extent: hi - proj scaled by
+  // `scale`, plus `shift`, floored and clamped; their least-squares fit.
+  HWY_INLINE void fit_positions(VF scale, VF shift, int den_s, V qa[3], V qb[3], M& solvable, VF* red) const {
+    const V den = hn::Set(d, den_s);
+    V w[16], u[16];
+    for (int i = 0; i < 16; ++i) {
+      const V p = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(hn::Mul(hn::Sub(hi, proj[i]), scale), shift))), hn::Zero(d)), den);
+      w[i] = opaque_only(i, p), u[i] = opaque_only(i, hn::Sub(den, p));
+    }
+    solve(w, u, den_s, qa, qb, solvable, red);
+  }
+
+  // The reference's nudge() in the lanes `moving`: each quantized endpoint
+  // channel moved by one step while that lowers the error (at most four
+  // passes; a lane whose pass found nothing is done, and the loop ends
+  // when every lane is).
+  HWY_INLINE void nudge(bool four_colours, M moving, State& s) const {
+    for (int pass = 0; pass < 4; ++pass) {
+      M improved = hn::Lt(hn::Zero(d), hn::Zero(d));
+      for (int m = 0; m < 12; ++m) {
+        const int ch = m % 6 / 2, max = ch == 1 ? 63 : 31;
+        State n = s;
+        V* q = m < 6 ? n.qa : n.qb;  // a pointer, as in the reference (GCC 12.2, sanitizers)
+        V& v = q[ch];
+        v = hn::Add(v, hn::Set(d, m % 2 ? 1 : -1));
+        const auto valid = hn::And(moving, hn::And(hn::Not(hn::Lt(v, hn::Zero(d))), hn::Not(hn::Gt(v, hn::Set(d, max)))));
         if (hn::AllFalse(d, valid)) continue;
+        v = hn::Min(hn::Max(v, hn::Zero(d)), hn::Set(d, max));
+        nearest(four_colours, n);
+        const auto take = hn::And(valid, hn::Lt(n.error, s.error));
+        select(take, n, s);
+        improved = hn::Or(improved, take);
+      }
+      if (hn::AllFalse(d, hn::AndNot(flat, improved))) break;
+    }
+  }
+
+  // `fast` (thirds_fit): each texel at the nearest third of the extent, one
+  // least-squares fit for those positions (kept where solvable), the
+  // nearest colours. st: the extent's ends on entry.
+  HWY_INLINE void thirds_fit(State& st) const {
+    const auto wide = hn::Gt(hi, lo);
+    const VF scale = hn::IfThenElseZero(wide, hn::Div(hn::Set(df, 3.0f), hn::IfThenElse(wide, hn::Sub(hi, lo), one)));
+    const V three_i = hn::Set(d, 3);
+    V w[16], u[16];
+    for (int i = 0; i < 16; ++i) {
+      w[i] = opaque_only(i, hn::Min(hn::ConvertTo(d, hn::Add(hn::Mul(hn::Sub(hi, proj[i]), scale), half)), three_i));
+      u[i] = opaque_only(i, hn::Sub(three_i, w[i]));
+    }
+    State n;
+    M solvable;
+    solve(w, u, 3, n.qa, n.qb, solvable, nullptr);
+    for (int ch = 0; ch < 3; ++ch)
+      st.qa[ch] = hn::IfThenElse(solvable, n.qa[ch], st.qa[ch]), st.qb[ch] = hn::IfThenElse(solvable, n.qb[ch], st.qb[ch]);
+    nearest(true, st);
+  }
+
+  // Partition variants along the axis (see the scalar reference): `normal`
+  // ranks them by their unquantized error and scores the best two exactly;
+  // `high` (score_every_variant) scores every one, each refitted once.
+  HWY_INLINE void variants(const Bc1LaneSearch& level, State& st) const {
+    const int offsets = level.variant_offsets, stretches = level.variant_stretches;
+    const auto wide = hn::Gt(hi, lo);
+    const VF extent = hn::IfThenElse(wide, hn::Sub(hi, lo), one);
+    VF e1 = hn::Zero(df), e2 = e1;
+    V have = hn::Zero(d), kept1[2][3], kept2[2][3];
+    for (int ch = 0; ch < 3; ++ch) kept1[0][ch] = kept1[1][ch] = kept2[0][ch] = kept2[1][ch] = hn::Zero(d);
+    for (int o = -offsets; o <= offsets; ++o)
+      for (int sv = -stretches; sv <= stretches; ++sv) {
+        const VF scale = hn::IfThenElseZero(
+            wide, hn::Div(hn::Set(df, 3.0f * (1.0f + ref::kVariantStep * float(sv))), extent));
+        const VF shift = hn::Set(df, ref::variant_shift(o, sv));
         State n;
-        for (int ch = 0; ch < 3; ++ch) n.qa[ch] = (m ? kept2 : kept1)[0][ch], n.qb[ch] = (m ? kept2 : kept1)[1][ch];
-        nearest(true, n);
-        select(hn::And(valid, hn::Lt(n.error, st.error)), n, st);
-      }
-      nudge(true, hn::Eq(mask8, mask8), st);
-    }
-    if (!level.thirds_fit && (three || !hn::AllFalse(d, transparent))) {
-      State t;
-      for (int ch = 0; ch < 3; ++ch) t.qa[ch] = start_qa[ch], t.qb[ch] = start_qb[ch];
-      nearest(false, t);
-      refit(false, t);
-      if (kPunch) {  // blocks with transparent texels: their only mode, refitted twice
-        State t2 = t;
-        refit(false, t2);
-        select(transparent, t2, t);
-      }
-      if (kPunch && level.punch_variants && !hn::AllFalse(d, transparent)) {
-        // Their `high` search (see three_colour_search in the reference):
-        // partition variants on halves of the extent, then nudges.
-        const auto wide = hn::Gt(hi, lo);
-        const VF extent = hn::IfThenElse(wide, hn::Sub(hi, lo), one);
-        const V two_i = hn::Set(d, 2);
-        for (int o = -4; o <= 4; ++o)
-          for (int sv = -2; sv <= 2; ++sv) {
-            const VF scale = hn::IfThenElseZero(wide, hn::Div(hn::Set(df, 2.0f * (1.0f + ref::kVariantStep * float(sv))), extent));
-            const VF shift = hn::Set(df, 0.5f + ref::kVariantStep * float(o) - ref::kVariantStep * float(sv));
-            V aa = hn::Zero(d), ab = aa, bb = aa, at[3] = {aa, aa, aa}, bt[3] = {aa, aa, aa};
-            for (int i = 0; i < 16; ++i) {
-              const V w = opaque_only(i, hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(hn::Mul(hn::Sub(hi, proj[i]), scale), shift))),
-                                                         hn::Zero(d)), two_i));
-              const V u = opaque_only(i, hn::Sub(two_i, w));
-              aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w)), bb = hn::Add(bb, hn::Mul(w, w));
-              at[0] = hn::Add(at[0], hn::Mul(u, r[i])), at[1] = hn::Add(at[1], hn::Mul(u, g[i])), at[2] = hn::Add(at[2], hn::Mul(u, b[i]));
-              bt[0] = hn::Add(bt[0], hn::Mul(w, r[i])), bt[1] = hn::Add(bt[1], hn::Mul(w, g[i])), bt[2] = hn::Add(bt[2], hn::Mul(w, b[i]));
-            }
-            const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
-            const auto solvable = hn::And(transparent, hn::Ne(det, hn::Zero(d)));
-            if (hn::AllFalse(d, solvable)) continue;
-            const VF inv_det = hn::Div(one, hn::ConvertTo(df, hn::IfThenElse(solvable, det, hn::Set(d, 1))));
-            State n;
-            for (int ch = 0; ch < 3; ++ch) {
-              const int max = ch == 1 ? 63 : 31;
-              const V na = hn::Mul(two_i, hn::Sub(hn::Mul(at[ch], bb), hn::Mul(bt[ch], ab)));
-              const V nb = hn::Mul(two_i, hn::Sub(hn::Mul(bt[ch], aa), hn::Mul(at[ch], ab)));
-              n.qa[ch] = quantize(clamp255(hn::Mul(hn::ConvertTo(df, na), inv_det)), max);
-              n.qb[ch] = quantize(clamp255(hn::Mul(hn::ConvertTo(df, nb), inv_det)), max);
-            }
-            nearest(false, n);
-            refit(false, n);
-            select(hn::And(solvable, hn::Lt(n.error, t.error)), n, t);
+        M solvable;
+        VF red;
+        fit_positions(scale, shift, 3, n.qa, n.qb, solvable, &red);
+        if (level.score_every_variant) {
+          nearest(true, n);
+          refit(true, n);
+          select(hn::And(solvable, hn::Lt(n.error, st.error)), n, st);
+          continue;
+        }
+        const VF e = hn::Neg(red);
+        const M none = hn::Eq(have, hn::Zero(d)), one_kept = hn::Eq(have, hn::Set(d, 1));
+        const M first = hn::And(solvable, hn::Or(none, hn::RebindMask(d, hn::Lt(e, e1))));
+        const M second = hn::AndNot(first, hn::And(solvable, hn::Or(one_kept, hn::RebindMask(d, hn::Lt(e, e2)))));
+        const M shift_down = hn::AndNot(none, first);
+        e2 = hn::IfThenElse(hn::RebindMask(df, shift_down), e1, hn::IfThenElse(hn::RebindMask(df, second), e, e2));
+        for (int k = 0; k < 2; ++k)
+          for (int ch = 0; ch < 3; ++ch) {
+            const V nq = k ? n.qb[ch] : n.qa[ch];
+            kept2[k][ch] = hn::IfThenElse(shift_down, kept1[k][ch], hn::IfThenElse(second, nq, kept2[k][ch]));
+            kept1[k][ch] = hn::IfThenElse(first, nq, kept1[k][ch]);
           }
-        nudge(false, transparent, t);
+        e1 = hn::IfThenElse(hn::RebindMask(df, first), e, e1);
+        have = hn::Min(hn::Add(have, hn::IfThenElseZero(hn::Or(first, second), hn::Set(d, 1))), hn::Set(d, 2));
       }
-      const auto take = hn::Or(transparent, three ? hn::Lt(t.error, st.error) : hn::Lt(mask8, mask8));
-      select(take, t, st);
-      four = hn::AndNot(take, four);
+    for (int m = 0; m < 2 && !level.score_every_variant; ++m) {
+      const M valid = hn::Gt(have, hn::Set(d, m));
+      if (hn::AllFalse(d, valid)) continue;
+      State n;
+      for (int ch = 0; ch < 3; ++ch) n.qa[ch] = (m ? kept2 : kept1)[0][ch], n.qb[ch] = (m ? kept2 : kept1)[1][ch];
+      nearest(true, n);
+      select(hn::And(valid, hn::Lt(n.error, st.error)), n, st);
     }
-    // Pack. Four colours: c0 > c1 (swapping the ends flips the codes' low
-    // bit; equal ends: every code 0). Three: c0 <= c1 (swapping exchanges codes 0 and 1).
+  }
+
+  // Punch-through lanes with transparent texels at `high` (see
+  // three_colour_search in the reference): partition variants on halves of
+  // the extent, each scored and refitted, then nudges.
+  HWY_INLINE void three_colour_search(State& t) const {
+    const auto wide = hn::Gt(hi, lo);
+    const VF extent = hn::IfThenElse(wide, hn::Sub(hi, lo), one);
+    for (int o = -4; o <= 4; ++o)
+      for (int sv = -2; sv <= 2; ++sv) {
+        const VF scale = hn::IfThenElseZero(wide, hn::Div(hn::Set(df, 2.0f * (1.0f + ref::kVariantStep * float(sv))), extent));
+        const VF shift = hn::Set(df, 0.5f + ref::kVariantStep * float(o) - ref::kVariantStep * float(sv));
+        State n;
+        M solvable;
+        fit_positions(scale, shift, 2, n.qa, n.qb, solvable, nullptr);
+        solvable = hn::And(transparent, solvable);
+        if (hn::AllFalse(d, solvable)) continue;
+        nearest(false, n);
+        refit(false, n);
+        select(hn::And(solvable, hn::Lt(n.error, t.error)), n, t);
+      }
+    nudge(false, transparent, t);
+  }
+
+  // The three-colour mode (no black) from the extent's ends `start`, refitted
+  // once (lanes with transparent texels: their only mode, refitted twice, and
+  // at `high` searched further); taken where it wins or must be used.
+  HWY_INLINE void three_colour(const Bc1LaneSearch& level, bool three, const State& start, State& st, M& four) const {
+    State t = start;
+    nearest(false, t);
+    refit(false, t);
+    if (kPunch) {
+      State t2 = t;
+      refit(false, t2);
+      select(transparent, t2, t);
+    }
+    if (kPunch && level.punch_variants && !hn::AllFalse(d, transparent)) three_colour_search(t);
+    const auto take = hn::Or(transparent, three ? hn::Lt(t.error, st.error) : hn::Lt(mask8, mask8));
+    select(take, t, st);
+    four = hn::AndNot(take, four);
+  }
+
+  // The blocks' bytes. Four colours: c0 > c1 (swapping the ends flips the
+  // codes' low bit; equal ends: every code 0). Three: c0 <= c1 (swapping
+  // exchanges codes 0 and 1).
+  HWY_INLINE void pack(const State& st, M four, std::uint32_t head[], std::uint32_t bits_out[]) const {
     const V e0 = hn::Or(hn::Or(hn::ShiftLeft<11>(st.qa[0]), hn::ShiftLeft<5>(st.qa[1])), st.qa[2]);
     const V e1 = hn::Or(hn::Or(hn::ShiftLeft<11>(st.qb[0]), hn::ShiftLeft<5>(st.qb[1])), st.qb[2]);
     const auto swap_m = hn::Or(hn::And(four, hn::Lt(e0, e1)), hn::AndNot(four, hn::Gt(e0, e1)));
@@ -399,9 +406,44 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, co
       bits = hn::Or(bits, hn::ShiftLeftSame(hn::BitCast(du, code), 2 * i));
     }
     const V hi_end = hn::IfThenElse(swap_m, e1, e0), lo_end = hn::IfThenElse(swap_m, e0, e1);
-    HWY_ALIGN std::uint32_t head[kBc1Batch], bits_out[kBc1Batch];
     hn::Store(hn::BitCast(du, hn::Or(hi_end, hn::ShiftLeft<16>(lo_end))), du, head);
     hn::Store(bits, du, bits_out);
+  }
+};
+
+template <bool kPunch>
+HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three,
+                         std::uint8_t out[][8], bool handled[]) {
+  const int lanes = int(hn::Lanes(D()));
+  for (int k0 = 0; k0 < count; k0 += lanes) {
+    Bc1Batch<kPunch> batch;
+    HWY_ALIGN std::int32_t flat_out[kBc1Batch];
+    batch.load(texel, k0, flat_out);
+    State st;
+    batch.extent_ends(st);
+    const State start = st;
+    M four = hn::Eq(hn::Zero(batch.d), hn::Zero(batch.d));
+    if (level.thirds_fit) {
+      batch.thirds_fit(st);
+      if (!hn::AllFalse(batch.d, batch.transparent)) {  // the three-colour mode from the extent's ends, refitted once
+        State t = start;
+        batch.nearest(false, t);
+        batch.refit(false, t);
+        batch.select(batch.transparent, t, st);
+        four = hn::AndNot(batch.transparent, four);
+      }
+    } else if (kPunch && hn::AllTrue(batch.d, hn::Or(batch.transparent, batch.flat))) {
+      batch.nearest(true, st);  // every lane takes the three-colour mode below
+    } else {
+      batch.nearest(true, st);
+      batch.refit(true, st);
+      batch.refit(true, st);
+      batch.variants(level, st);
+      batch.nudge(true, hn::Eq(batch.mask8, batch.mask8), st);
+    }
+    if (!level.thirds_fit && (three || !hn::AllFalse(batch.d, batch.transparent))) batch.three_colour(level, three, start, st, four);
+    HWY_ALIGN std::uint32_t head[kBc1Batch], bits_out[kBc1Batch];
+    batch.pack(st, four, head, bits_out);
     for (int k = 0; k < lanes && k0 + k < count; ++k) {
       handled[k0 + k] = flat_out[k] == 0;
       if (!handled[k0 + k]) continue;
