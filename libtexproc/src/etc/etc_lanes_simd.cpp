@@ -120,14 +120,34 @@ HWY_INLINE void PackBlocks(V flip, V differential, const Fit& a, const Fit& b, i
     store_be64(std::uint64_t(hi_o[k]) << 32 | lo_o[k], out[k0 + k]);
 }
 
-void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool differential_only, std::uint8_t out[][8]) {
+HWY_INLINE void SelectFit(M m, const Fit& from, Fit& to) {
+  to.err = hn::IfThenElse(m, from.err, to.err);
+  to.table = hn::IfThenElse(m, from.table, to.table);
+  for (int c = 0; c < 3; ++c) to.q[c] = hn::IfThenElse(m, from.q[c], to.q[c]);
+  for (int i = 0; i < 8; ++i) to.idx[i] = hn::IfThenElse(m, from.idx[i], to.idx[i]);
+}
+
+// Lanes where bases `to` are within the differential delta's reach of
+// `from` (to - from in [-4, 3] in every channel).
+HWY_INLINE M Reach(const V from[3], const V to[3]) {
   const D d;
-  const hn::Rebind<float, D> df;
-  const int lanes = int(hn::Lanes(d));
-  for (int k0 = 0; k0 < count; k0 += lanes) {
-    V r[16], g[16], b[16];
-    LoadTexels(texel, k0, r, g, b);
-    V t0[4];
+  M ok = hn::Eq(hn::Zero(d), hn::Zero(d));
+  for (int c = 0; c < 3; ++c) {
+    const V delta = hn::Sub(to[c], from[c]);
+    ok = hn::And(ok, hn::And(hn::Not(hn::Lt(delta, hn::Set(d, -4))), hn::Not(hn::Gt(delta, hn::Set(d, 3)))));
+  }
+  return ok;
+}
+
+// `fast`, stage by stage (the reference's fast:: functions in etc_lanes.cpp):
+// spread_tables, fit, choose (the flip and mode per lane), reclamp.
+struct Etc1FastBatch {
+  const D d{};
+  const hn::Rebind<float, D> df{};
+  V r[16], g[16], b[16];
+  V t0[4];  // per half: the table whose modifiers are nearest the half's spread
+
+  HWY_INLINE void spread_tables() {
     for (int h = 0; h < 4; ++h) {
       V total = hn::Zero(d), spread = hn::Zero(d);
       for (int i = 0; i < 8; ++i) {
@@ -147,81 +167,85 @@ void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool dif
       }
       t0[h] = best_t;
     }
-    auto fit = [&](int h, int bits, Fit& best, const V* fixed_q) {
-      V sum[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
+  }
+
+  // Half h at `bits` (base: the mean, or fixed_q): three tables around t0
+  // (or the far-reaching table), each texel at the modifier nearest a third
+  // of its offset from the base (unclamped).
+  HWY_INLINE void fit(int h, int bits, Fit& best, const V* fixed_q) const {
+    V sum[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
+    for (int i = 0; i < 8; ++i) {
+      const int p = fast::kHalf[h][i];
+      sum[0] = hn::Add(sum[0], r[p]), sum[1] = hn::Add(sum[1], g[p]), sum[2] = hn::Add(sum[2], b[p]);
+    }
+    V base[3];
+    for (int c = 0; c < 3; ++c) {
+      const V num = hn::Add(hn::Mul(hn::Set(d, bits == 5 ? 62 : 30), sum[c]), hn::Set(d, 2040));
+      best.q[c] = fixed_q ? fixed_q[c] : hn::ConvertTo(d, hn::Div(hn::ConvertTo(df, num), hn::Set(df, 4080.0f)));
+      base[c] = Extend(best.q[c], bits);
+    }
+    const V zero = hn::Zero(d);
+    V d2[8], dl[8];
+    for (int i = 0; i < 8; ++i) {
+      const int p = fast::kHalf[h][i];
+      const V dr = hn::Sub(r[p], base[0]), dg = hn::Sub(g[p], base[1]), db = hn::Sub(b[p], base[2]);
+      d2[i] = hn::Add(hn::Add(hn::Mul(dr, dr), hn::Mul(dg, dg)), hn::Mul(db, db));
+      dl[i] = hn::Add(hn::Add(dr, dg), db);
+    }
+    V reach = zero, t_far = zero;
+    for (int i = 0; i < 8; ++i) reach = hn::Max(reach, hn::Abs(dl[i]));
+    V far_dist = hn::Abs(hn::Sub(hn::Set(d, 3 * kModifiers[0][1]), reach));
+    for (int t = 1; t < 8; ++t) {
+      const V dist = hn::Abs(hn::Sub(hn::Set(d, 3 * kModifiers[t][1]), reach));
+      const M closer = hn::Lt(dist, far_dist);
+      far_dist = hn::IfThenElse(closer, dist, far_dist);
+      t_far = hn::IfThenElse(closer, hn::Set(d, t), t_far);
+    }
+    for (int dt = -1; dt <= 1; ++dt) {
+      const V t = dt == -1 ? hn::IfThenElse(hn::Gt(t_far, hn::Add(t0[h], hn::Set(d, 1))), t_far, hn::Max(hn::Sub(t0[h], hn::Set(d, 1)), zero))
+                           : hn::Min(hn::Add(t0[h], hn::Set(d, dt)), hn::Set(d, 7));
+      const V ma = Modifier(t, 0), mb = Modifier(t, 1);
+      const V edge = hn::Mul(hn::Set(d, 3), hn::Add(ma, mb));
+      V err = zero, idx[8];
       for (int i = 0; i < 8; ++i) {
-        const int p = fast::kHalf[h][i];
-        sum[0] = hn::Add(sum[0], r[p]), sum[1] = hn::Add(sum[1], g[p]), sum[2] = hn::Add(sum[2], b[p]);
+        const M up = hn::Not(hn::Lt(dl[i], zero));
+        const V twice = hn::Add(dl[i], dl[i]);
+        const M far = hn::Or(hn::And(up, hn::Gt(twice, edge)), hn::AndNot(up, hn::Lt(twice, hn::Neg(edge))));
+        const V mag = hn::IfThenElse(far, mb, ma);
+        const V m = hn::IfThenElse(up, mag, hn::Neg(mag));
+        idx[i] = hn::Add(hn::IfThenElseZero(far, hn::Set(d, 1)), hn::IfThenZeroElse(up, hn::Set(d, 2)));
+        err = hn::Add(err, hn::Add(d2[i], hn::Mul(m, hn::Sub(hn::Mul(hn::Set(d, 3), m), twice))));
       }
-      V base[3];
-      for (int c = 0; c < 3; ++c) {
-        const V num = hn::Add(hn::Mul(hn::Set(d, bits == 5 ? 62 : 30), sum[c]), hn::Set(d, 2040));
-        best.q[c] = fixed_q ? fixed_q[c] : hn::ConvertTo(d, hn::Div(hn::ConvertTo(df, num), hn::Set(df, 4080.0f)));
-        base[c] = Extend(best.q[c], bits);
+      if (dt == -1) {
+        best.err = err, best.table = t;
+        for (int i = 0; i < 8; ++i) best.idx[i] = idx[i];
+        continue;
       }
-      const V zero = hn::Zero(d);
-      V d2[8], dl[8];
-      for (int i = 0; i < 8; ++i) {
-        const int p = fast::kHalf[h][i];
-        const V dr = hn::Sub(r[p], base[0]), dg = hn::Sub(g[p], base[1]), db = hn::Sub(b[p], base[2]);
-        d2[i] = hn::Add(hn::Add(hn::Mul(dr, dr), hn::Mul(dg, dg)), hn::Mul(db, db));
-        dl[i] = hn::Add(hn::Add(dr, dg), db);
-      }
-      V reach = zero, t_far = zero;
-      for (int i = 0; i < 8; ++i) reach = hn::Max(reach, hn::Abs(dl[i]));
-      V far_dist = hn::Abs(hn::Sub(hn::Set(d, 3 * kModifiers[0][1]), reach));
-      for (int t = 1; t < 8; ++t) {
-        const V dist = hn::Abs(hn::Sub(hn::Set(d, 3 * kModifiers[t][1]), reach));
-        const M closer = hn::Lt(dist, far_dist);
-        far_dist = hn::IfThenElse(closer, dist, far_dist);
-        t_far = hn::IfThenElse(closer, hn::Set(d, t), t_far);
-      }
-      for (int dt = -1; dt <= 1; ++dt) {
-        const V t = dt == -1 ? hn::IfThenElse(hn::Gt(t_far, hn::Add(t0[h], hn::Set(d, 1))), t_far, hn::Max(hn::Sub(t0[h], hn::Set(d, 1)), zero))
-                             : hn::Min(hn::Add(t0[h], hn::Set(d, dt)), hn::Set(d, 7));
-        const V ma = Modifier(t, 0), mb = Modifier(t, 1);
-        const V edge = hn::Mul(hn::Set(d, 3), hn::Add(ma, mb));
-        V err = zero, idx[8];
-        for (int i = 0; i < 8; ++i) {
-          const M up = hn::Not(hn::Lt(dl[i], zero));
-          const V twice = hn::Add(dl[i], dl[i]);
-          const M far = hn::Or(hn::And(up, hn::Gt(twice, edge)), hn::AndNot(up, hn::Lt(twice, hn::Neg(edge))));
-          const V mag = hn::IfThenElse(far, mb, ma);
-          const V m = hn::IfThenElse(up, mag, hn::Neg(mag));
-          idx[i] = hn::Add(hn::IfThenElseZero(far, hn::Set(d, 1)), hn::IfThenZeroElse(up, hn::Set(d, 2)));
-          err = hn::Add(err, hn::Add(d2[i], hn::Mul(m, hn::Sub(hn::Mul(hn::Set(d, 3), m), twice))));
-        }
-        if (dt == -1) {
-          best.err = err, best.table = t;
-          for (int i = 0; i < 8; ++i) best.idx[i] = idx[i];
-          continue;
-        }
-        const M better = hn::Lt(err, best.err);
-        best.err = hn::IfThenElse(better, err, best.err);
-        best.table = hn::IfThenElse(better, t, best.table);
-        for (int i = 0; i < 8; ++i) best.idx[i] = hn::IfThenElse(better, idx[i], best.idx[i]);
-      }
-    };
+      const M better = hn::Lt(err, best.err);
+      best.err = hn::IfThenElse(better, err, best.err);
+      best.table = hn::IfThenElse(better, t, best.table);
+      for (int i = 0; i < 8; ++i) best.idx[i] = hn::IfThenElse(better, idx[i], best.idx[i]);
+    }
+  }
+
+  // Per flip, the halves' fits: differential where the 5-bit bases' delta
+  // fits; elsewhere individual (4-bit), or with differential_only either
+  // base pulled within the delta of the other. The flip with less error
+  // wins; pa, pb its halves.
+  HWY_INLINE void choose(bool differential_only, M& flip, M& differential, Fit& pa, Fit& pb) const {
     Fit f5[4], f4[4];
     for (int h = 0; h < 4; ++h) fit(h, 5, f5[h], nullptr);
     M fits[2];
-    for (int flip = 0; flip < 2; ++flip) {
-      const int a = 2 * flip, bb = a + 1;
-      fits[flip] = hn::Eq(hn::Zero(d), hn::Zero(d));
-      for (int c = 0; c < 3; ++c) {
-        const V delta = hn::Sub(f5[bb].q[c], f5[a].q[c]);
-        fits[flip] = hn::And(fits[flip], hn::And(hn::Not(hn::Lt(delta, hn::Set(d, -4))), hn::Not(hn::Gt(delta, hn::Set(d, 3)))));
-      }
-    }
+    for (int fl = 0; fl < 2; ++fl) fits[fl] = Reach(f5[2 * fl].q, f5[2 * fl + 1].q);
     // Individual mode only where a flip's delta does not fit (lanes that do
     // not need it ignore it).
     V err[2];
     Fit chosen[2][2];
-    for (int flip = 0; flip < 2; ++flip) {
-      const bool any4 = !hn::AllTrue(d, fits[flip]);
+    for (int fl = 0; fl < 2; ++fl) {
+      const bool any4 = !hn::AllTrue(d, fits[fl]);
       for (int s = 0; s < 2; ++s) {
-        const int h = 2 * flip + s;
-        chosen[flip][s] = f5[h];
+        const int h = 2 * fl + s;
+        chosen[fl][s] = f5[h];
         if (!any4) continue;
         if (differential_only) {  // as the reference: either base pulled within the delta of the other
           if (s == 0) continue;
@@ -231,306 +255,320 @@ void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool dif
             qa[c] = hn::Min(hn::Max(f5[ha].q[c], hn::Sub(f5[h].q[c], hn::Set(d, 3))), hn::Add(f5[h].q[c], hn::Set(d, 4)));
             qb[c] = hn::Min(hn::Max(f5[h].q[c], hn::Sub(f5[ha].q[c], hn::Set(d, 4))), hn::Add(f5[ha].q[c], hn::Set(d, 3)));
           }
-          Fit pulled_a, pulled_b;
+          Fit pulled_a{}, pulled_b{};  // (zeroed: GCC cannot see fit() set every field)
           fit(ha, 5, pulled_a, qa);
           fit(h, 5, pulled_b, qb);
-          const M far = hn::Not(fits[flip]);
+          const M far = hn::Not(fits[fl]);
           const M move_a = hn::And(far, hn::Lt(hn::Add(pulled_a.err, f5[h].err), hn::Add(f5[ha].err, pulled_b.err)));
           const M move_b = hn::AndNot(move_a, far);
-          Fit& ca = chosen[flip][0];
-          Fit& cb = chosen[flip][1];
-          ca.err = hn::IfThenElse(move_a, pulled_a.err, ca.err), cb.err = hn::IfThenElse(move_b, pulled_b.err, cb.err);
-          ca.table = hn::IfThenElse(move_a, pulled_a.table, ca.table), cb.table = hn::IfThenElse(move_b, pulled_b.table, cb.table);
-          for (int c = 0; c < 3; ++c)
-            ca.q[c] = hn::IfThenElse(move_a, pulled_a.q[c], ca.q[c]), cb.q[c] = hn::IfThenElse(move_b, pulled_b.q[c], cb.q[c]);
-          for (int i = 0; i < 8; ++i)
-            ca.idx[i] = hn::IfThenElse(move_a, pulled_a.idx[i], ca.idx[i]), cb.idx[i] = hn::IfThenElse(move_b, pulled_b.idx[i], cb.idx[i]);
+          SelectFit(move_a, pulled_a, chosen[fl][0]);
+          SelectFit(move_b, pulled_b, chosen[fl][1]);
           continue;
         }
         fit(h, 4, f4[h], nullptr);
-        Fit& c = chosen[flip][s];
-        const M m = fits[flip];
-        c.err = hn::IfThenElse(m, f5[h].err, f4[h].err);
-        c.table = hn::IfThenElse(m, f5[h].table, f4[h].table);
-        for (int ch = 0; ch < 3; ++ch) c.q[ch] = hn::IfThenElse(m, f5[h].q[ch], f4[h].q[ch]);
-        for (int i = 0; i < 8; ++i) c.idx[i] = hn::IfThenElse(m, f5[h].idx[i], f4[h].idx[i]);
+        chosen[fl][s] = f4[h];
+        SelectFit(fits[fl], f5[h], chosen[fl][s]);
       }
-      err[flip] = hn::Add(chosen[flip][0].err, chosen[flip][1].err);
+      err[fl] = hn::Add(chosen[fl][0].err, chosen[fl][1].err);
     }
-    const M flip = hn::Lt(err[1], err[0]);
-    const M differential =
-        differential_only ? hn::Eq(hn::Zero(d), hn::Zero(d)) : hn::Or(hn::And(flip, fits[1]), hn::AndNot(flip, fits[0]));
-    Fit pa = chosen[0][0], pb = chosen[0][1];
+    flip = hn::Lt(err[1], err[0]);
+    differential = differential_only ? hn::Eq(hn::Zero(d), hn::Zero(d)) : hn::Or(hn::And(flip, fits[1]), hn::AndNot(flip, fits[0]));
+    pa = chosen[0][0], pb = chosen[0][1];
+    SelectFit(flip, chosen[1][0], pa);
+    SelectFit(flip, chosen[1][1], pb);
+  }
+
+  // The modifiers again under the decoder's clamping (as the reference):
+  // each lane's chosen halves gathered into texels 0-7 and 8-15.
+  HWY_INLINE void reclamp(M flip, M differential, Fit& pa, Fit& pb) const {
+    V hr[16], hg[16], hb[16];
+    for (int s = 0; s < 2; ++s)
+      for (int i = 0; i < 8; ++i) {
+        const int p0 = fast::kHalf[s][i], p1 = fast::kHalf[2 + s][i];
+        hr[8 * s + i] = hn::IfThenElse(flip, r[p1], r[p0]);
+        hg[8 * s + i] = hn::IfThenElse(flip, g[p1], g[p0]);
+        hb[8 * s + i] = hn::IfThenElse(flip, b[p1], b[p0]);
+      }
+    static constexpr int kFirst[8] = {0, 1, 2, 3, 4, 5, 6, 7}, kSecond[8] = {8, 9, 10, 11, 12, 13, 14, 15};
     for (int s = 0; s < 2; ++s) {
-      const Fit& f1 = chosen[1][s];
       Fit& f = s ? pb : pa;
-      for (int c = 0; c < 3; ++c) f.q[c] = hn::IfThenElse(flip, f1.q[c], f.q[c]);
-      f.table = hn::IfThenElse(flip, f1.table, f.table);
-      for (int i = 0; i < 8; ++i) f.idx[i] = hn::IfThenElse(flip, f1.idx[i], f.idx[i]);
+      V base[3];
+      for (int c = 0; c < 3; ++c) base[c] = hn::IfThenElse(differential, Extend(f.q[c], 5), Extend(f.q[c], 4));
+      const Fit e = EvalExact(hr, hg, hb, s ? kSecond : kFirst, base, f.table);
+      for (int i = 0; i < 8; ++i) f.idx[i] = e.idx[i];
     }
-    // The modifiers again under the decoder's clamping (as the reference):
-    // each lane's chosen halves gathered into texels 0-7 and 8-15.
-    {
-      V hr[16], hg[16], hb[16];
-      for (int s = 0; s < 2; ++s)
-        for (int i = 0; i < 8; ++i) {
-          const int p0 = fast::kHalf[s][i], p1 = fast::kHalf[2 + s][i];
-          hr[8 * s + i] = hn::IfThenElse(flip, r[p1], r[p0]);
-          hg[8 * s + i] = hn::IfThenElse(flip, g[p1], g[p0]);
-          hb[8 * s + i] = hn::IfThenElse(flip, b[p1], b[p0]);
-        }
-      static constexpr int kFirst[8] = {0, 1, 2, 3, 4, 5, 6, 7}, kSecond[8] = {8, 9, 10, 11, 12, 13, 14, 15};
-      for (int s = 0; s < 2; ++s) {
-        Fit& f = s ? pb : pa;
-        V base[3];
-        for (int c = 0; c < 3; ++c) base[c] = hn::IfThenElse(differential, Extend(f.q[c], 5), Extend(f.q[c], 4));
-        const Fit e = EvalExact(hr, hg, hb, s ? kSecond : kFirst, base, f.table);
-        for (int i = 0; i < 8; ++i) f.idx[i] = e.idx[i];
-      }
-    }
+  }
+};
+
+void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool differential_only, std::uint8_t out[][8]) {
+  const D d;
+  const int lanes = int(hn::Lanes(d));
+  for (int k0 = 0; k0 < count; k0 += lanes) {
+    Etc1FastBatch batch;
+    LoadTexels(texel, k0, batch.r, batch.g, batch.b);
+    batch.spread_tables();
+    M flip, differential;
+    Fit pa, pb;
+    batch.choose(differential_only, flip, differential, pa, pb);
+    batch.reclamp(flip, differential, pa, pb);
     PackBlocks(hn::IfThenElseZero(flip, hn::Set(d, 1)), hn::IfThenElseZero(differential, hn::Set(d, 1)), pa, pb, k0, count, out);
   }
 }
 
-void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, bool differential_only,
-                     std::uint8_t out[][8], std::int32_t error[]) {
-  const D d;
-  const hn::Rebind<float, D> df;
-  const int lanes = int(hn::Lanes(d));
-  const V zero = hn::Zero(d);
-  auto select = [&](M m, const Fit& from, Fit& to) {
-    to.err = hn::IfThenElse(m, from.err, to.err);
-    to.table = hn::IfThenElse(m, from.table, to.table);
-    for (int c = 0; c < 3; ++c) to.q[c] = hn::IfThenElse(m, from.q[c], to.q[c]);
-    for (int i = 0; i < 8; ++i) to.idx[i] = hn::IfThenElse(m, from.idx[i], to.idx[i]);
-  };
-  auto quantize = [&](V sum, int bits) {  // as fast::quantize_centre
+// The best block so far per lane: its error, flip, mode and halves.
+struct Choice {
+  V err, flip, diff;
+  Fit a, b;
+  HWY_INLINE void consider(M m, int fl, bool differential, const Fit& fa, const Fit& fb) {
+    const D d;
+    const V e = hn::Add(fa.err, fb.err);
+    const M take = hn::And(m, hn::Lt(e, err));
+    err = hn::IfThenElse(take, e, err);
+    flip = hn::IfThenElse(take, hn::Set(d, fl), flip);
+    diff = hn::IfThenElse(take, hn::Set(d, differential ? 1 : 0), diff);
+    SelectFit(take, fa, a);
+    SelectFit(take, fb, b);
+  }
+};
+
+// `normal` and `high`, stage by stage (the reference's search:: functions in
+// etc_lanes.cpp): eval, recentre, fit_normal (its seeds in extremes, `high`'s
+// per-table refinement and neighbourhood in fit_high), fit_fixed, and per
+// flip search_flip.
+struct Etc1SearchBatch {
+  const D d{};
+  const hn::Rebind<float, D> df{};
+  const V zero;
+  V r[16], g[16], b[16];
+
+  HWY_ATTR Etc1SearchBatch() : zero(hn::Zero(d)) {}  // not a default member initializer: the target's attributes
+
+  HWY_INLINE V quantize(V sum, int bits) const {  // as fast::quantize_centre
     const V num = hn::Add(hn::Mul(hn::Set(d, bits == 5 ? 62 : 30), sum), hn::Set(d, 2040));
     const V q = hn::ConvertTo(d, hn::Div(hn::ConvertTo(df, num), hn::Set(df, 4080.0f)));
     return hn::Min(hn::Max(q, zero), hn::Set(d, bits == 5 ? 31 : 15));
-  };
-  for (int k0 = 0; k0 < count; k0 += lanes) {
-    V r[16], g[16], b[16];
-    LoadTexels(texel, k0, r, g, b);
-    auto eval = [&](int h, const V q[3], int bits, V t) {
-      const V base[3] = {Extend(q[0], bits), Extend(q[1], bits), Extend(q[2], bits)};
-      Fit f = EvalExact(r, g, b, fast::kHalf[h], base, t);
-      for (int c = 0; c < 3; ++c) f.q[c] = q[c];
-      return f;
-    };
-    // Re-centres `cur` (its table per lane) up to `passes` times while that helps.
-    auto recentre = [&](int h, int bits, Fit cur, int passes) {
-      const V ma = Modifier(cur.table, 0), mb = Modifier(cur.table, 1);
-      M active = hn::Eq(zero, zero);
-      for (int pass = 0; pass < passes; ++pass) {
-        V centre[3] = {zero, zero, zero};
-        for (int i = 0; i < 8; ++i) {
-          const int p = fast::kHalf[h][i];
-          const V idx = cur.idx[i];
-          const V mag = hn::IfThenElse(hn::Eq(hn::And(idx, hn::Set(d, 1)), zero), ma, mb);
-          const V m = hn::IfThenElse(hn::Lt(idx, hn::Set(d, 2)), mag, hn::Neg(mag));
-          centre[0] = hn::Add(centre[0], hn::Sub(r[p], m));
-          centre[1] = hn::Add(centre[1], hn::Sub(g[p], m));
-          centre[2] = hn::Add(centre[2], hn::Sub(b[p], m));
-        }
-        const V q1[3] = {quantize(centre[0], bits), quantize(centre[1], bits), quantize(centre[2], bits)};
-        const M same = hn::And(hn::And(hn::Eq(q1[0], cur.q[0]), hn::Eq(q1[1], cur.q[1])), hn::Eq(q1[2], cur.q[2]));
-        active = hn::AndNot(same, active);
-        if (hn::AllFalse(d, active)) break;
-        const Fit next = eval(h, q1, bits, cur.table);
-        active = hn::And(active, hn::Lt(next.err, cur.err));
-        select(active, next, cur);
-      }
-      return cur;
-    };
-    // The two tables with the least error (first of equals).
-    auto best_two = [&](const V err[8], V& t1, V& t2) {
-      V e1 = err[0], e2 = hn::Set(d, -1);
-      t1 = zero, t2 = zero;
-      for (int t = 1; t < 8; ++t) {
-        const V tv = hn::Set(d, t);
-        const M first = hn::Lt(err[t], e1);
-        const M second = hn::AndNot(first, hn::Or(hn::Lt(e2, zero), hn::Lt(err[t], e2)));
-        e2 = hn::IfThenElse(first, e1, hn::IfThenElse(second, err[t], e2));
-        t2 = hn::IfThenElse(first, t1, hn::IfThenElse(second, tv, t2));
-        e1 = hn::IfThenElse(first, err[t], e1);
-        t1 = hn::IfThenElse(first, tv, t1);
-      }
-    };
-    auto fit_normal = [&](int h, int bits, Fit* per_table) {
-      V sum[3] = {zero, zero, zero};
+  }
+  HWY_INLINE Fit eval(int h, const V q[3], int bits, V t) const {
+    const V base[3] = {Extend(q[0], bits), Extend(q[1], bits), Extend(q[2], bits)};
+    Fit f = EvalExact(r, g, b, fast::kHalf[h], base, t);
+    for (int c = 0; c < 3; ++c) f.q[c] = q[c];
+    return f;
+  }
+  // Re-centres `cur` (its table per lane) up to `passes` times while that helps.
+  HWY_INLINE Fit recentre(int h, int bits, Fit cur, int passes) const {
+    const V ma = Modifier(cur.table, 0), mb = Modifier(cur.table, 1);
+    M active = hn::Eq(zero, zero);
+    for (int pass = 0; pass < passes; ++pass) {
+      V centre[3] = {zero, zero, zero};
       for (int i = 0; i < 8; ++i) {
         const int p = fast::kHalf[h][i];
-        sum[0] = hn::Add(sum[0], r[p]), sum[1] = hn::Add(sum[1], g[p]), sum[2] = hn::Add(sum[2], b[p]);
+        const V idx = cur.idx[i];
+        const V mag = hn::IfThenElse(hn::Eq(hn::And(idx, hn::Set(d, 1)), zero), ma, mb);
+        const V m = hn::IfThenElse(hn::Lt(idx, hn::Set(d, 2)), mag, hn::Neg(mag));
+        centre[0] = hn::Add(centre[0], hn::Sub(r[p], m));
+        centre[1] = hn::Add(centre[1], hn::Sub(g[p], m));
+        centre[2] = hn::Add(centre[2], hn::Sub(b[p], m));
       }
-      const V q0[3] = {quantize(sum[0], bits), quantize(sum[1], bits), quantize(sum[2], bits)};
-      Fit at_mean[8];
-      V err[8];
-      for (int t = 0; t < 8; ++t) at_mean[t] = eval(h, q0, bits, hn::Set(d, t)), err[t] = at_mean[t].err;
-      auto pick = [&](const Fit* fits, V t) {  // fits[t] per lane
-        Fit f = fits[0];
-        for (int j = 1; j < 8; ++j) select(hn::Eq(t, hn::Set(d, j)), fits[j], f);
-        return f;
-      };
-      // Seeds: the brightest and darkest texels (first of equals) minus the
-      // table's extreme modifiers.
-      V bright[3], dark[3], bright_sum, dark_sum;
-      {
-        const int p0 = fast::kHalf[h][0];
-        bright[0] = dark[0] = r[p0], bright[1] = dark[1] = g[p0], bright[2] = dark[2] = b[p0];
-        bright_sum = dark_sum = hn::Add(hn::Add(r[p0], g[p0]), b[p0]);
-        for (int i = 1; i < 8; ++i) {
-          const int p = fast::kHalf[h][i];
-          const V sp = hn::Add(hn::Add(r[p], g[p]), b[p]);
-          const M up = hn::Gt(sp, bright_sum), down = hn::Lt(sp, dark_sum);
-          bright_sum = hn::IfThenElse(up, sp, bright_sum), dark_sum = hn::IfThenElse(down, sp, dark_sum);
-          const V px[3] = {r[p], g[p], b[p]};
-          for (int c = 0; c < 3; ++c) bright[c] = hn::IfThenElse(up, px[c], bright[c]), dark[c] = hn::IfThenElse(down, px[c], dark[c]);
-        }
-      }
-      const int top = bits == 5 ? 31 : 15;
-      auto quantize8 = [&](V v) {
-        const V q = hn::ConvertTo(d, hn::Add(hn::Div(hn::ConvertTo(df, hn::Mul(v, hn::Set(d, top))), hn::Set(df, 255.0f)),
-                                             hn::Set(df, 0.5f)));
-        return hn::Min(hn::Max(q, zero), hn::Set(d, top));
-      };
-      auto seed = [&](Fit& start, const V px[3], V m, V t) {
-        const V q[3] = {quantize8(hn::Sub(px[0], m)), quantize8(hn::Sub(px[1], m)), quantize8(hn::Sub(px[2], m))};
-        const Fit f = eval(h, q, bits, t);
-        select(hn::Lt(f.err, start.err), f, start);
-      };
-      Fit best;
-      if (!high) {
-        V t1, t2;
-        best_two(err, t1, t2);
-        Fit start = pick(at_mean, t1);
-        const V far = Modifier(t1, 1);
-        seed(start, bright, far, t1);
-        seed(start, dark, hn::Neg(far), t1);
-        best = recentre(h, bits, start, 2);
-        Fit start2 = pick(at_mean, t2);
-        const V far2 = Modifier(t2, 1);
-        seed(start2, bright, far2, t2);
-        seed(start2, dark, hn::Neg(far2), t2);
-        const Fit second = recentre(h, bits, start2, 2);
-        select(hn::Lt(second.err, best.err), second, best);
-        return best;
-      }
-      Fit refined[8];
-      for (int t = 0; t < 8; ++t) {
-        Fit start = at_mean[t];
-        const V tv = hn::Set(d, t);
-        const int seeds[4] = {kModifiers[t][1], -kModifiers[t][1], kModifiers[t][0], -kModifiers[t][0]};
-        for (int sd = 0; sd < 4; ++sd) seed(start, sd % 2 ? dark : bright, hn::Set(d, seeds[sd]), tv);
-        refined[t] = recentre(h, bits, start, 3), err[t] = refined[t].err;
-        if (t == 0) {
-          best = refined[0];
-        } else {
-          select(hn::Lt(refined[t].err, best.err), refined[t], best);
-        }
-      }
-      V t1, t2;
-      best_two(err, t1, t2);
-      for (int which = 0; which < 2; ++which) {
-        const Fit base = pick(refined, which ? t2 : t1);
-        for (int dr = -1; dr <= 1; ++dr)
-          for (int dg = -1; dg <= 1; ++dg)
-            for (int db = -1; db <= 1; ++db) {
-              const V q[3] = {hn::Add(base.q[0], hn::Set(d, dr)), hn::Add(base.q[1], hn::Set(d, dg)), hn::Add(base.q[2], hn::Set(d, db))};
-              M valid = hn::Eq(zero, zero);
-              for (int c = 0; c < 3; ++c) valid = hn::And(valid, hn::And(hn::Not(hn::Lt(q[c], zero)), hn::Not(hn::Gt(q[c], hn::Set(d, top)))));
-              if (hn::AllFalse(d, valid)) continue;
-              const Fit f = eval(h, q, bits, base.table);
-              select(hn::And(valid, hn::Lt(f.err, best.err)), f, best);
-            }
-      }
-      if (per_table) {
-        std::copy(refined, refined + 8, per_table);
-        per_table[8] = best;
-      }
-      return best;
+      const V q1[3] = {quantize(centre[0], bits), quantize(centre[1], bits), quantize(centre[2], bits)};
+      const M same = hn::And(hn::And(hn::Eq(q1[0], cur.q[0]), hn::Eq(q1[1], cur.q[1])), hn::Eq(q1[2], cur.q[2]));
+      active = hn::AndNot(same, active);
+      if (hn::AllFalse(d, active)) break;
+      const Fit next = eval(h, q1, bits, cur.table);
+      active = hn::And(active, hn::Lt(next.err, cur.err));
+      SelectFit(active, next, cur);
+    }
+    return cur;
+  }
+  // The two tables with the least error (first of equals).
+  HWY_INLINE void best_two(const V err[8], V& t1, V& t2) const {
+    V e1 = err[0], e2 = hn::Set(d, -1);
+    t1 = zero, t2 = zero;
+    for (int t = 1; t < 8; ++t) {
+      const V tv = hn::Set(d, t);
+      const M first = hn::Lt(err[t], e1);
+      const M second = hn::AndNot(first, hn::Or(hn::Lt(e2, zero), hn::Lt(err[t], e2)));
+      e2 = hn::IfThenElse(first, e1, hn::IfThenElse(second, err[t], e2));
+      t2 = hn::IfThenElse(first, t1, hn::IfThenElse(second, tv, t2));
+      e1 = hn::IfThenElse(first, err[t], e1);
+      t1 = hn::IfThenElse(first, tv, t1);
+    }
+  }
+  HWY_INLINE Fit pick(const Fit* fits, V t) const {  // fits[t] per lane
+    Fit f = fits[0];
+    for (int j = 1; j < 8; ++j) SelectFit(hn::Eq(t, hn::Set(d, j)), fits[j], f);
+    return f;
+  }
+  // Half h's brightest and darkest texels (by R + G + B, first of equals).
+  HWY_INLINE void extremes(int h, V bright[3], V dark[3]) const {
+    const int p0 = fast::kHalf[h][0];
+    bright[0] = dark[0] = r[p0], bright[1] = dark[1] = g[p0], bright[2] = dark[2] = b[p0];
+    V bright_sum = hn::Add(hn::Add(r[p0], g[p0]), b[p0]), dark_sum = bright_sum;
+    for (int i = 1; i < 8; ++i) {
+      const int p = fast::kHalf[h][i];
+      const V sp = hn::Add(hn::Add(r[p], g[p]), b[p]);
+      const M up = hn::Gt(sp, bright_sum), down = hn::Lt(sp, dark_sum);
+      bright_sum = hn::IfThenElse(up, sp, bright_sum), dark_sum = hn::IfThenElse(down, sp, dark_sum);
+      const V px[3] = {r[p], g[p], b[p]};
+      for (int c = 0; c < 3; ++c) bright[c] = hn::IfThenElse(up, px[c], bright[c]), dark[c] = hn::IfThenElse(down, px[c], dark[c]);
+    }
+  }
+  // start replaced by the fit at base = px - m (quantized) where better.
+  HWY_INLINE void seed(int h, int bits, Fit& start, const V px[3], V m, V t) const {
+    const int top = bits == 5 ? 31 : 15;
+    auto quantize8 = [&](V v) {
+      const V q = hn::ConvertTo(d, hn::Add(hn::Div(hn::ConvertTo(df, hn::Mul(v, hn::Set(d, top))), hn::Set(df, 255.0f)),
+                                           hn::Set(df, 0.5f)));
+      return hn::Min(hn::Max(q, zero), hn::Set(d, top));
     };
-    auto fit_fixed = [&](int h, const V q[3]) {
-      Fit best = eval(h, q, 5, zero);
-      for (int t = 1; t < 8; ++t) {
-        const Fit f = eval(h, q, 5, hn::Set(d, t));
-        select(hn::Lt(f.err, best.err), f, best);
-      }
-      return best;
-    };
-    Fit f5[4], tables[4][9];
-    for (int h = 0; h < 4; ++h) f5[h] = fit_normal(h, 5, high ? tables[h] : nullptr);
-    V best_err = hn::Set(d, 0x7fffffff), best_flip = zero, best_diff = zero;
-    Fit best_a = f5[0], best_b = f5[1];
-    auto consider = [&](M m, int flip, bool differential, const Fit& a, const Fit& bb) {
-      const V err = hn::Add(a.err, bb.err);
-      const M take = hn::And(m, hn::Lt(err, best_err));
-      best_err = hn::IfThenElse(take, err, best_err);
-      best_flip = hn::IfThenElse(take, hn::Set(d, flip), best_flip);
-      best_diff = hn::IfThenElse(take, hn::Set(d, differential ? 1 : 0), best_diff);
-      select(take, a, best_a);
-      select(take, bb, best_b);
-    };
-    for (int flip = 0; flip < 2; ++flip) {
-      const int a = 2 * flip, bh = a + 1;
-      M fits = hn::Eq(zero, zero);
-      for (int c = 0; c < 3; ++c) {
-        const V delta = hn::Sub(f5[bh].q[c], f5[a].q[c]);
-        fits = hn::And(fits, hn::And(hn::Not(hn::Lt(delta, hn::Set(d, -4))), hn::Not(hn::Gt(delta, hn::Set(d, 3)))));
-      }
-      consider(fits, flip, true, f5[a], f5[bh]);
-      // Lanes where the bases q and r are within the delta's reach (r - q in [-4, 3]).
-      auto reach = [&](const V from[3], const V to[3]) {
-        M ok = hn::Eq(zero, zero);
-        for (int c = 0; c < 3; ++c) {
-          const V delta = hn::Sub(to[c], from[c]);
-          ok = hn::And(ok, hn::And(hn::Not(hn::Lt(delta, hn::Set(d, -4))), hn::Not(hn::Gt(delta, hn::Set(d, 3)))));
-        }
-        return ok;
-      };
-      if (high)
-        for (int ta = 0; ta < 9; ++ta)
-          for (int tb = 0; tb < 9; ++tb) {
-            const M ok = reach(tables[a][ta].q, tables[bh][tb].q);
-            if (!hn::AllFalse(d, ok)) consider(ok, flip, true, tables[a][ta], tables[bh][tb]);
-          }
-      if (hn::AllTrue(d, fits) && !high) continue;
-      const M far = hn::Not(fits);
-      if (!differential_only)
-        consider(high ? hn::Eq(zero, zero) : far, flip, false, fit_normal(a, 4, nullptr), fit_normal(bh, 4, nullptr));  // `high`: always
-      if (hn::AllTrue(d, fits)) continue;
-      V qa[3], qb[3];
-      for (int c = 0; c < 3; ++c)
-        qa[c] = hn::Min(hn::Max(f5[a].q[c], hn::Sub(f5[bh].q[c], hn::Set(d, 3))), hn::Add(f5[bh].q[c], hn::Set(d, 4)));
-      const Fit pa = fit_fixed(a, qa);
-      consider(far, flip, true, pa, f5[bh]);
-      for (int c = 0; c < 3; ++c)
-        qb[c] = hn::Min(hn::Max(f5[bh].q[c], hn::Sub(f5[a].q[c], hn::Set(d, 4))), hn::Add(f5[a].q[c], hn::Set(d, 3)));
-      const Fit pb = fit_fixed(bh, qb);
-      consider(far, flip, true, f5[a], pb);
-      if (!high) continue;
-      const V top5 = hn::Set(d, 31);
-      auto in_range = [&](const V q[3]) {
-        M ok = hn::Eq(zero, zero);
-        for (int c = 0; c < 3; ++c) ok = hn::And(ok, hn::And(hn::Not(hn::Lt(q[c], zero)), hn::Not(hn::Gt(q[c], top5))));
-        return ok;
-      };
-      for (int n = 0; n < 27; ++n) {  // as the reference
-        if (n == 13) continue;
-        const int dd[3] = {n / 9 - 1, n / 3 % 3 - 1, n % 3 - 1};
-        V q[3];
-        for (int c = 0; c < 3; ++c) q[c] = hn::Add(qa[c], hn::Set(d, dd[c]));
-        M ok = hn::And(far, hn::And(in_range(q), reach(q, f5[bh].q)));
-        if (!hn::AllFalse(d, ok)) consider(ok, flip, true, eval(a, q, 5, pa.table), f5[bh]);
-        for (int c = 0; c < 3; ++c) q[c] = hn::Add(qb[c], hn::Set(d, dd[c]));
-        ok = hn::And(far, hn::And(in_range(q), reach(f5[a].q, q)));
-        if (!hn::AllFalse(d, ok)) consider(ok, flip, true, f5[a], eval(bh, q, 5, pb.table));
+    const V q[3] = {quantize8(hn::Sub(px[0], m)), quantize8(hn::Sub(px[1], m)), quantize8(hn::Sub(px[2], m))};
+    const Fit f = eval(h, q, bits, t);
+    SelectFit(hn::Lt(f.err, start.err), f, start);
+  }
+  // `high`: every table seeded from the extremes minus its extreme
+  // modifiers and re-centred three times, then the +-1 neighbourhood of the
+  // two best bases; per_table (if set) gets every table's fit and the best.
+  HWY_INLINE Fit fit_high(int h, int bits, const Fit at_mean[8], const V bright[3], const V dark[3], Fit* per_table) const {
+    const int top = bits == 5 ? 31 : 15;
+    Fit best, refined[8];
+    V err[8];
+    for (int t = 0; t < 8; ++t) {
+      Fit start = at_mean[t];
+      const V tv = hn::Set(d, t);
+      const int seeds[4] = {kModifiers[t][1], -kModifiers[t][1], kModifiers[t][0], -kModifiers[t][0]};
+      for (int sd = 0; sd < 4; ++sd) seed(h, bits, start, sd % 2 ? dark : bright, hn::Set(d, seeds[sd]), tv);
+      refined[t] = recentre(h, bits, start, 3), err[t] = refined[t].err;
+      if (t == 0) {
+        best = refined[0];
+      } else {
+        SelectFit(hn::Lt(refined[t].err, best.err), refined[t], best);
       }
     }
+    V t1, t2;
+    best_two(err, t1, t2);
+    for (int which = 0; which < 2; ++which) {
+      const Fit base = pick(refined, which ? t2 : t1);
+      for (int dr = -1; dr <= 1; ++dr)
+        for (int dg = -1; dg <= 1; ++dg)
+          for (int db = -1; db <= 1; ++db) {
+            const V q[3] = {hn::Add(base.q[0], hn::Set(d, dr)), hn::Add(base.q[1], hn::Set(d, dg)), hn::Add(base.q[2], hn::Set(d, db))};
+            M valid = hn::Eq(zero, zero);
+            for (int c = 0; c < 3; ++c) valid = hn::And(valid, hn::And(hn::Not(hn::Lt(q[c], zero)), hn::Not(hn::Gt(q[c], hn::Set(d, top)))));
+            if (hn::AllFalse(d, valid)) continue;
+            const Fit f = eval(h, q, bits, base.table);
+            SelectFit(hn::And(valid, hn::Lt(f.err, best.err)), f, best);
+          }
+    }
+    if (per_table) {
+      std::copy(refined, refined + 8, per_table);
+      per_table[8] = best;
+    }
+    return best;
+  }
+  // Half h at `bits`: every table at the mean; `normal`: the best two
+  // seeded from the extremes minus the far modifier and re-centred twice;
+  // `high`: fit_high.
+  HWY_INLINE Fit fit_normal(int h, int bits, bool high, Fit* per_table) const {
+    V sum[3] = {zero, zero, zero};
+    for (int i = 0; i < 8; ++i) {
+      const int p = fast::kHalf[h][i];
+      sum[0] = hn::Add(sum[0], r[p]), sum[1] = hn::Add(sum[1], g[p]), sum[2] = hn::Add(sum[2], b[p]);
+    }
+    const V q0[3] = {quantize(sum[0], bits), quantize(sum[1], bits), quantize(sum[2], bits)};
+    Fit at_mean[8];
+    V err[8];
+    for (int t = 0; t < 8; ++t) at_mean[t] = eval(h, q0, bits, hn::Set(d, t)), err[t] = at_mean[t].err;
+    V bright[3], dark[3];
+    extremes(h, bright, dark);
+    if (high) return fit_high(h, bits, at_mean, bright, dark, per_table);
+    V t1, t2;
+    best_two(err, t1, t2);
+    Fit start = pick(at_mean, t1);
+    const V far = Modifier(t1, 1);
+    seed(h, bits, start, bright, far, t1);
+    seed(h, bits, start, dark, hn::Neg(far), t1);
+    Fit best = recentre(h, bits, start, 2);
+    Fit start2 = pick(at_mean, t2);
+    const V far2 = Modifier(t2, 1);
+    seed(h, bits, start2, bright, far2, t2);
+    seed(h, bits, start2, dark, hn::Neg(far2), t2);
+    const Fit second = recentre(h, bits, start2, 2);
+    SelectFit(hn::Lt(second.err, best.err), second, best);
+    return best;
+  }
+  HWY_INLINE Fit fit_fixed(int h, const V q[3]) const {
+    Fit best = eval(h, q, 5, zero);
+    for (int t = 1; t < 8; ++t) {
+      const Fit f = eval(h, q, 5, hn::Set(d, t));
+      SelectFit(hn::Lt(f.err, best.err), f, best);
+    }
+    return best;
+  }
+  // One flip's candidates: the halves' fits where the delta reaches; at
+  // `high` every pair of per-table fits it reaches; the individual mode
+  // (where it must, or at `high` always); either base pulled within the
+  // delta of the other (at `high` with its neighbours).
+  HWY_INLINE void search_flip(int flip, bool high, bool differential_only, const Fit f5[4], const Fit tables[4][9], Choice& best) const {
+    const int a = 2 * flip, bh = a + 1;
+    const M fits = Reach(f5[a].q, f5[bh].q);
+    best.consider(fits, flip, true, f5[a], f5[bh]);
+    if (high)
+      for (int ta = 0; ta < 9; ++ta)
+        for (int tb = 0; tb < 9; ++tb) {
+          const M ok = Reach(tables[a][ta].q, tables[bh][tb].q);
+          if (!hn::AllFalse(d, ok)) best.consider(ok, flip, true, tables[a][ta], tables[bh][tb]);
+        }
+    if (hn::AllTrue(d, fits) && !high) return;
+    const M far = hn::Not(fits);
+    if (!differential_only)  // `high`: always
+      best.consider(high ? hn::Eq(zero, zero) : far, flip, false, fit_normal(a, 4, high, nullptr), fit_normal(bh, 4, high, nullptr));
+    if (hn::AllTrue(d, fits)) return;
+    V qa[3], qb[3];
+    for (int c = 0; c < 3; ++c)
+      qa[c] = hn::Min(hn::Max(f5[a].q[c], hn::Sub(f5[bh].q[c], hn::Set(d, 3))), hn::Add(f5[bh].q[c], hn::Set(d, 4)));
+    const Fit pa = fit_fixed(a, qa);
+    best.consider(far, flip, true, pa, f5[bh]);
+    for (int c = 0; c < 3; ++c)
+      qb[c] = hn::Min(hn::Max(f5[bh].q[c], hn::Sub(f5[a].q[c], hn::Set(d, 4))), hn::Add(f5[a].q[c], hn::Set(d, 3)));
+    const Fit pb = fit_fixed(bh, qb);
+    best.consider(far, flip, true, f5[a], pb);
+    if (!high) return;
+    const V top5 = hn::Set(d, 31);
+    auto in_range = [&](const V q[3]) {
+      M ok = hn::Eq(zero, zero);
+      for (int c = 0; c < 3; ++c) ok = hn::And(ok, hn::And(hn::Not(hn::Lt(q[c], zero)), hn::Not(hn::Gt(q[c], top5))));
+      return ok;
+    };
+    for (int n = 0; n < 27; ++n) {  // as the reference
+      if (n == 13) continue;
+      const int dd[3] = {n / 9 - 1, n / 3 % 3 - 1, n % 3 - 1};
+      V q[3];
+      for (int c = 0; c < 3; ++c) q[c] = hn::Add(qa[c], hn::Set(d, dd[c]));
+      M ok = hn::And(far, hn::And(in_range(q), Reach(q, f5[bh].q)));
+      if (!hn::AllFalse(d, ok)) best.consider(ok, flip, true, eval(a, q, 5, pa.table), f5[bh]);
+      for (int c = 0; c < 3; ++c) q[c] = hn::Add(qb[c], hn::Set(d, dd[c]));
+      ok = hn::And(far, hn::And(in_range(q), Reach(f5[a].q, q)));
+      if (!hn::AllFalse(d, ok)) best.consider(ok, flip, true, f5[a], eval(bh, q, 5, pb.table));
+    }
+  }
+};
+
+void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, bool differential_only,
+                     std::uint8_t out[][8], std::int32_t error[]) {
+  const D d;
+  const int lanes = int(hn::Lanes(d));
+  for (int k0 = 0; k0 < count; k0 += lanes) {
+    Etc1SearchBatch batch;
+    LoadTexels(texel, k0, batch.r, batch.g, batch.b);
+    Fit f5[4], tables[4][9];
+    for (int h = 0; h < 4; ++h) f5[h] = batch.fit_normal(h, 5, high, high ? tables[h] : nullptr);
+    Choice best;
+    best.err = hn::Set(d, 0x7fffffff), best.flip = hn::Zero(d), best.diff = hn::Zero(d);
+    best.a = f5[0], best.b = f5[1];
+    for (int flip = 0; flip < 2; ++flip) batch.search_flip(flip, high, differential_only, f5, tables, best);
     HWY_ALIGN std::int32_t err_o[kEtcBatch];
-    hn::Store(best_err, d, err_o);
+    hn::Store(best.err, d, err_o);
     for (int k = 0; k < lanes && k0 + k < count; ++k) error[k0 + k] = err_o[k];
-    PackBlocks(best_flip, best_diff, best_a, best_b, k0, count, out);
+    PackBlocks(best.flip, best.diff, best.a, best.b, k0, count, out);
   }
 }
 
