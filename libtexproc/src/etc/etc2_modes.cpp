@@ -78,8 +78,13 @@ std::uint64_t pack_planar(const int o[3], const int hq[3], const int vq[3]) {
   return v;
 }
 
-// T and H modes: two clusters along the principal axis.
-void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candidate& best) {
+namespace {
+
+// The block's colours as two clusters: split by the sign of their
+// projection on the principal axis, refined by k-means (three steps).
+// False where there are not two (fewer than two visible texels, or a
+// cluster empties).
+bool two_clusters(const Texels& tx, bool non_opaque, double centre[2][3], bool side[16]) {
   int n = 0;
   double mean[3] = {0, 0, 0};
   for (int i = 0; i < 16; ++i) {
@@ -87,7 +92,7 @@ void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candi
     for (int c = 0; c < 3; ++c) mean[c] += tx.rgb[i][c];
     ++n;
   }
-  if (n < 2) return;
+  if (n < 2) return false;
   for (double& m : mean) m /= n;
   double cov[3][3] = {};
   for (int i = 0; i < 16; ++i) {
@@ -97,6 +102,8 @@ void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candi
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) cov[a][b] += d[a] * d[b];
   }
+  // Power iteration in double from (1, 1, 1), normalized each step (ETC2's
+  // own: the BC1 searches' float iterations differ in order and so in bytes).
   double axis[3] = {1, 1, 1};
   for (int it = 0; it < 8; ++it) {
     double nx[3] = {0, 0, 0};
@@ -106,9 +113,6 @@ void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candi
     if (len < 1e-9) break;
     for (int a = 0; a < 3; ++a) axis[a] = nx[a] / len;
   }
-  // Two clusters by the sign of the projection, refined by two k-means steps.
-  bool side[16] = {};
-  double centre[2][3] = {};
   for (int i = 0; i < 16; ++i) {
     double p = 0;
     for (int c = 0; c < 3; ++c) p += (tx.rgb[i][c] - mean[c]) * axis[c];
@@ -116,13 +120,13 @@ void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candi
   }
   for (int it = 0; it < 3; ++it) {
     int count[2] = {0, 0};
-    std::memset(centre, 0, sizeof centre);
+    std::memset(centre, 0, sizeof(double) * 6);
     for (int i = 0; i < 16; ++i) {
       if (non_opaque && tx.transparent[i]) continue;
       for (int c = 0; c < 3; ++c) centre[side[i]][c] += tx.rgb[i][c];
       ++count[side[i]];
     }
-    if (count[0] == 0 || count[1] == 0) return;
+    if (count[0] == 0 || count[1] == 0) return false;
     for (int s = 0; s < 2; ++s)
       for (int c = 0; c < 3; ++c) centre[s][c] /= count[s];
     for (int i = 0; i < 16; ++i) {
@@ -132,31 +136,22 @@ void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candi
       side[i] = d[1] < d[0];
     }
   }
-  int q[2][3];
-  for (int s = 0; s < 2; ++s)
-    for (int c = 0; c < 3; ++c) q[s][c] = quantize(centre[s][c], 4);
-  // Distances worth trying: at `normal`, the three nearest to the clusters'
-  // spread about their centres (the mean absolute deviation along the
-  // channels); `high` tries all eight.
-  int d_lo = 0, d_hi = 7;
-  if (!modes.t_h_every_distance) {
-    double spread = 0;
-    int cnt = 0;
-    for (int i = 0; i < 16; ++i) {
-      if (non_opaque && tx.transparent[i]) continue;
-      for (int c = 0; c < 3; ++c) spread += std::fabs(tx.rgb[i][c] - centre[side[i]][c]) / 3.0;
-      ++cnt;
-    }
-    spread /= cnt;
-    int nearest = 0;
-    for (int di = 1; di < 8; ++di)
-      if (std::fabs(kDistances[di] - spread) < std::fabs(kDistances[nearest] - spread)) nearest = di;
-    d_lo = std::max(0, nearest - 1), d_hi = std::min(7, nearest + 1);
-  }
+  return true;
+}
 
-  // Scores four paint colours; `usable[k]`: index k may be used.
-  auto score = [&](const int paint[4][3], std::uint8_t idx[16]) {
-    if (!non_opaque) {  // each texel's nearest paint colour, first of equals (SIMD twins)
+// T and H for pairs of 4-bit cluster colours, distances d_lo..d_hi; `best`
+// replaced where one wins; th_min the least T or H error seen.
+struct THSearch {
+  const Texels& tx;
+  bool non_opaque;
+  int d_lo, d_hi;
+  Candidate& best;
+  long th_min = kNone;
+  int opaque_bit() const { return non_opaque ? 0 : 1; }  // bit 33: the differential flag, or punch-through's opaque flag
+
+  // Scores four paint colours: each texel's nearest (first of equals).
+  long score(const int paint[4][3], std::uint8_t idx[16]) const {
+    if (!non_opaque) {  // SIMD twins
       int pal[4][3];
       for (int k = 0; k < 4; ++k)
         for (int c = 0; c < 3; ++c) pal[k][c] = clamp255(paint[k][c]);
@@ -164,14 +159,14 @@ void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candi
     }
     long err = 0;
     for (int i = 0; i < 16; ++i) {
-      if (non_opaque && tx.transparent[i]) {
+      if (tx.transparent[i]) {
         idx[i] = 2;
         continue;
       }
       long be = kNone;
       int bk = 0;
       for (int k = 0; k < 4; ++k) {
-        if (non_opaque && k == 2) continue;
+        if (k == 2) continue;  // punch-through's transparent index
         long e = 0;
         for (int c = 0; c < 3; ++c) {
           const long d = clamp255(paint[k][c]) - tx.rgb[i][c];
@@ -183,16 +178,13 @@ void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candi
       err += be;
     }
     return err;
-  };
-  auto put_indices = [&](std::uint64_t& v, const std::uint8_t idx[16]) {
+  }
+  static void put_indices(std::uint64_t& v, const std::uint8_t idx[16]) {
     for (int i = 0; i < 16; ++i) put_index(v, i % 4, i / 4, idx[i]);
-  };
-  const int opaque_bit = non_opaque ? 0 : 1;  // bit 33: the differential flag, or punch-through's opaque flag
-  // Scores T and H for one pair of 4-bit cluster colours.
-  long th_min = kNone;  // the least T or H error seen
-  const long before = best.err;  // the best of the other modes
-  auto try_colours = [&](const int (&qc)[2][3]) {
-    // T: one cluster is the single colour C1, the other C2 +- d.
+  }
+
+  // T: one cluster is the single colour C1, the other C2 +- d.
+  void try_t(const int (&qc)[2][3]) {
     for (int single = 0; single < 2; ++single) {
       const int* c1 = qc[single];
       const int* c2 = qc[1 - single];
@@ -212,7 +204,7 @@ void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candi
         std::uint64_t v = 0;
         put(v, 60, 2, c1[0] >> 2), put(v, 57, 2, c1[0] & 3), put(v, 55, 4, c1[1]), put(v, 51, 4, c1[2]);
         put(v, 47, 4, c2[0]), put(v, 43, 4, c2[1]), put(v, 39, 4, c2[2]);
-        put(v, 35, 2, di >> 1), put(v, 32, 1, di & 1), put(v, 33, 1, opaque_bit);
+        put(v, 35, 2, di >> 1), put(v, 32, 1, di & 1), put(v, 33, 1, opaque_bit());
         if ((c1[0] >> 2) + (c1[0] & 3) > 3) {
           put(v, 63, 3, 7), put(v, 58, 1, 0);
         } else {
@@ -222,8 +214,11 @@ void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candi
         keep(best, e, v);
       }
     }
-    // H: C1 +- d and C2 +- d; the distance index's low bit is the order of
-    // the two colours, so a colour pair in the wrong order is swapped.
+  }
+
+  // H: C1 +- d and C2 +- d; the distance index's low bit is the order of
+  // the two colours, so a colour pair in the wrong order is swapped.
+  void try_h(const int (&qc)[2][3]) {
     for (int di = d_lo; di <= d_hi; ++di) {
       const int* c1 = qc[0];
       const int* c2 = qc[1];
@@ -247,7 +242,7 @@ void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candi
       put(v, 62, 4, c1[0]), put(v, 58, 3, c1[1] >> 1), put(v, 52, 1, c1[1] & 1);
       put(v, 51, 1, c1[2] >> 3), put(v, 49, 2, c1[2] >> 1 & 3), put(v, 47, 1, c1[2] & 1);
       put(v, 46, 4, c2[0]), put(v, 42, 3, c2[1] >> 1), put(v, 39, 1, c2[1] & 1), put(v, 38, 4, c2[2]);
-      put(v, 34, 1, di >> 2), put(v, 32, 1, di >> 1 & 1), put(v, 33, 1, opaque_bit);
+      put(v, 34, 1, di >> 2), put(v, 32, 1, di >> 1 & 1), put(v, 33, 1, opaque_bit());
       // Red in range (bit 63), green out of range (bits 55-53 and 50).
       {
         const int s = c1[0] + ((c1[1] >> 1) >= 4 ? (c1[1] >> 1) - 8 : (c1[1] >> 1));
@@ -262,11 +257,49 @@ void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candi
       put_indices(v, idx);
       keep(best, e, v);
     }
-  };
-  try_colours(q);
+  }
+
+  void try_colours(const int (&qc)[2][3]) {
+    try_t(qc);
+    try_h(qc);
+  }
+};
+
+}  // namespace
+
+// T and H modes: two clusters along the principal axis.
+void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candidate& best) {
+  double centre[2][3] = {};
+  bool side[16] = {};
+  if (!two_clusters(tx, non_opaque, centre, side)) return;
+  int q[2][3];
+  for (int s = 0; s < 2; ++s)
+    for (int c = 0; c < 3; ++c) q[s][c] = quantize(centre[s][c], 4);
+  // Distances worth trying: at `normal`, the three nearest to the clusters'
+  // spread about their centres (the mean absolute deviation along the
+  // channels); `high` tries all eight.
+  int d_lo = 0, d_hi = 7;
+  if (!modes.t_h_every_distance) {
+    double spread = 0;
+    int cnt = 0;
+    for (int i = 0; i < 16; ++i) {
+      if (non_opaque && tx.transparent[i]) continue;
+      for (int c = 0; c < 3; ++c) spread += std::fabs(tx.rgb[i][c] - centre[side[i]][c]) / 3.0;
+      ++cnt;
+    }
+    spread /= cnt;
+    int nearest = 0;
+    for (int di = 1; di < 8; ++di)
+      if (std::fabs(kDistances[di] - spread) < std::fabs(kDistances[nearest] - spread)) nearest = di;
+    d_lo = std::max(0, nearest - 1), d_hi = std::min(7, nearest + 1);
+  }
+
+  THSearch search{tx, non_opaque, d_lo, d_hi, best};
+  const long before = best.err;  // the best of the other modes
+  search.try_colours(q);
   // Where T or H came close to the other modes (within a quarter), at
   // `high`: the quantization's other neighbours too.
-  if (modes.t_h_requantize && th_min < before + before / 4) {
+  if (modes.t_h_requantize && search.th_min < before + before / 4) {
     // Each centre rounded down or up instead of to nearest (the clamps keep
     // 0..15): the quantization's other neighbours.
     for (int va = 0; va < 3; ++va)
@@ -278,7 +311,7 @@ void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candi
           alt[0][c] = std::clamp(va == 0 ? q[0][c] : va == 1 ? int(std::floor(ca)) : int(std::ceil(ca)), 0, 15);
           alt[1][c] = std::clamp(vb == 0 ? q[1][c] : vb == 1 ? int(std::floor(cb)) : int(std::ceil(cb)), 0, 15);
         }
-        try_colours(alt);
+        search.try_colours(alt);
       }
   }
 }
