@@ -135,19 +135,33 @@ std::vector<std::uint8_t> supercompressed_level(const ByteReader& r, std::uint32
   return out;
 }
 
-}  // namespace
+// The header's fields (KTX2 specification, "file structure").
+struct Header {
+  std::uint32_t vk, type_size, width, height, depth, layer_count, faces, level_count, scheme;
+  std::uint32_t dfd_offset, dfd_length, kvd_offset, kvd_length;
+  std::uint64_t sgd_offset, sgd_length;
+};
 
-Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& limits) {
-  ByteReader r(data, size, name);
+Header read_header(const ByteReader& r, std::size_t size) {
   if (size < 12 || std::memcmp(r.at(0, 12, "identifier"), kIdentifier, 12) != 0) r.fail("not a KTX2 file (bad identifier)");
-  const std::uint32_t vk = r.u32(12, "vkFormat"), type_size = r.u32(16, "typeSize");
-  const std::uint32_t width = r.u32(20, "pixelWidth"), height = r.u32(24, "pixelHeight"),
-                      depth = r.u32(28, "pixelDepth"), layer_count = r.u32(32, "layerCount"),
-                      faces = r.u32(36, "faceCount"), level_count = r.u32(40, "levelCount"),
-                      scheme = r.u32(44, "supercompressionScheme");
-  const std::uint32_t dfd_offset = r.u32(48, "dfdByteOffset"), dfd_length = r.u32(52, "dfdByteLength");
-  const std::uint32_t kvd_offset = r.u32(56, "kvdByteOffset"), kvd_length = r.u32(60, "kvdByteLength");
-  const std::uint64_t sgd_offset = r.u64(64, "sgdByteOffset"), sgd_length = r.u64(72, "sgdByteLength");
+  Header h;
+  h.vk = r.u32(12, "vkFormat"), h.type_size = r.u32(16, "typeSize");
+  h.width = r.u32(20, "pixelWidth"), h.height = r.u32(24, "pixelHeight"), h.depth = r.u32(28, "pixelDepth");
+  h.layer_count = r.u32(32, "layerCount"), h.faces = r.u32(36, "faceCount"), h.level_count = r.u32(40, "levelCount");
+  h.scheme = r.u32(44, "supercompressionScheme");
+  h.dfd_offset = r.u32(48, "dfdByteOffset"), h.dfd_length = r.u32(52, "dfdByteLength");
+  h.kvd_offset = r.u32(56, "kvdByteOffset"), h.kvd_length = r.u32(60, "kvdByteLength");
+  h.sgd_offset = r.u64(64, "sgdByteOffset"), h.sgd_length = r.u64(72, "sgdByteLength");
+  return h;
+}
+
+// The header's values against the specification's validity rules and
+// texproc's limits; the format they name.
+const FormatInfo& check_header(const ByteReader& r, std::size_t size, const Header& h, const ReadLimits& limits) {
+  const std::uint32_t vk = h.vk, type_size = h.type_size, width = h.width, height = h.height, depth = h.depth,
+                      layer_count = h.layer_count, faces = h.faces, level_count = h.level_count, scheme = h.scheme;
+  const std::uint32_t dfd_offset = h.dfd_offset, dfd_length = h.dfd_length;
+  const std::uint64_t sgd_offset = h.sgd_offset, sgd_length = h.sgd_length;
   // Zstandard (2) and zlib (3) compress each level on its own; BasisLZ (1)
   // is a codec of its own, with global data.
   if (scheme == 1) r.unsupported("supercompression scheme 1, BasisLZ (ETC1S), is not one texproc reads (valid: 0 none, 2 Zstandard, 3 zlib)");
@@ -187,8 +201,14 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
     r.fail("supercompression global data (sgdByteLength " + std::to_string(sgd_length) + ") with scheme " +
            std::to_string(scheme) + ", which has none");
   }
-  // The DFD must be the one this format has (texproc reads what it writes,
-  // and what libktx writes for the same VkFormat).
+  return *fi;
+}
+
+// The data format descriptor: the one this format has (texproc reads what
+// it writes, and what libktx writes for the same VkFormat), or another
+// writer's whose transfer function agrees with the format.
+void check_dfd(const ByteReader& r, const Header& h, const FormatInfo* fi) {
+  const std::uint32_t dfd_offset = h.dfd_offset, dfd_length = h.dfd_length, level_count = h.level_count;
   const std::vector<std::uint8_t> want_dfd = ktx2_dfd(fi->format);
   if (dfd_offset < kHeaderEnd + 24ull * level_count) r.fail("dfdByteOffset overlaps the level index");
   const std::uint8_t* dfd = r.at(dfd_offset, dfd_length, "data format descriptor");
@@ -199,47 +219,53 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
     const std::uint32_t transfer = (r.u32(dfd_offset + 12, "DFD transfer") >> 16) & 0xFF;
     if ((transfer == 2) != fi->srgb) r.fail("DFD transfer function contradicts vkFormat");
   }
+}
+
+// The key/value data: every entry's length inside the block, keys
+// NUL-terminated; values without their trailing NULs.
+std::map<std::string, std::string> read_key_values(const ByteReader& r, const Header& h) {
+  const std::uint32_t kvd_offset = h.kvd_offset, kvd_length = h.kvd_length, dfd_offset = h.dfd_offset, dfd_length = h.dfd_length;
   std::map<std::string, std::string> kv;
-  if (kvd_length) {
-    r.at(kvd_offset, kvd_length, "key/value data");
-    // Walk the entries: every length must stay inside the block.
-    std::uint64_t p = kvd_offset, end = std::uint64_t(kvd_offset) + kvd_length;
-    if (kvd_offset < dfd_offset + std::uint64_t(dfd_length)) r.fail("kvdByteOffset overlaps the data format descriptor");
-    while (p < end) {
-      if (end - p < 4) {
-        r.fail("key/value data: " + std::to_string(end - p) + " bytes left at byte " + std::to_string(p) +
-               ", fewer than an entry's 4-byte keyAndValueByteLength");
-      }
-      const std::uint32_t len = r.u32(p, "key/value length");
-      if (len > end - p - 4) {
-        r.fail("key/value entry at byte " + std::to_string(p) + ": keyAndValueByteLength " + std::to_string(len) +
-               " runs past the key/value data (" + std::to_string(end - p - 4) + " bytes left)");
-      }
-      const std::uint8_t* entry = r.at(p + 4, len, "key/value entry");
-      const void* nul = std::memchr(entry, 0, len);
-      if (len < 2 || !nul || nul == entry) {
-        r.fail("key/value entry at byte " + std::to_string(p) + ": the key is not a non-empty NUL-terminated string");
-      }
-      {
-        const auto* key_end = static_cast<const std::uint8_t*>(nul);
-        std::string value(reinterpret_cast<const char*>(key_end + 1), reinterpret_cast<const char*>(entry + len));
-        while (!value.empty() && value.back() == '\0') value.pop_back();
-        kv[std::string(reinterpret_cast<const char*>(entry), reinterpret_cast<const char*>(key_end))] = value;
-      }
-      const std::uint64_t next = p + 4 + ((std::uint64_t(len) + 3) & ~std::uint64_t(3));
-      if (next > end) r.fail("key/value entry at byte " + std::to_string(p) + ": its padding runs past the key/value data");
-      p = next;
+  if (!kvd_length) return kv;
+  r.at(kvd_offset, kvd_length, "key/value data");
+  // Walk the entries: every length must stay inside the block.
+  std::uint64_t p = kvd_offset, end = std::uint64_t(kvd_offset) + kvd_length;
+  if (kvd_offset < dfd_offset + std::uint64_t(dfd_length)) r.fail("kvdByteOffset overlaps the data format descriptor");
+  while (p < end) {
+    if (end - p < 4) {
+      r.fail("key/value data: " + std::to_string(end - p) + " bytes left at byte " + std::to_string(p) +
+             ", fewer than an entry's 4-byte keyAndValueByteLength");
     }
+    const std::uint32_t len = r.u32(p, "key/value length");
+    if (len > end - p - 4) {
+      r.fail("key/value entry at byte " + std::to_string(p) + ": keyAndValueByteLength " + std::to_string(len) +
+             " runs past the key/value data (" + std::to_string(end - p - 4) + " bytes left)");
+    }
+    const std::uint8_t* entry = r.at(p + 4, len, "key/value entry");
+    const void* nul = std::memchr(entry, 0, len);
+    if (len < 2 || !nul || nul == entry) {
+      r.fail("key/value entry at byte " + std::to_string(p) + ": the key is not a non-empty NUL-terminated string");
+    }
+    {
+      const auto* key_end = static_cast<const std::uint8_t*>(nul);
+      std::string value(reinterpret_cast<const char*>(key_end + 1), reinterpret_cast<const char*>(entry + len));
+      while (!value.empty() && value.back() == '\0') value.pop_back();
+      kv[std::string(reinterpret_cast<const char*>(entry), reinterpret_cast<const char*>(key_end))] = value;
+    }
+    const std::uint64_t next = p + 4 + ((std::uint64_t(len) + 3) & ~std::uint64_t(3));
+    if (next > end) r.fail("key/value entry at byte " + std::to_string(p) + ": its padding runs past the key/value data");
+    p = next;
   }
-  Texture t;
-  t.format = fi->format;
-  t.width = width;
-  t.height = height;
-  t.levels = level_count;
-  t.faces = faces;
-  t.layers = std::max(layer_count, 1u);
-  t.is_array = layer_count > 0;
-  t.images.resize(std::size_t(t.levels) * t.layers * t.faces);
+  return kv;
+}
+
+// Each level's images from the level index (inflated where supercompressed);
+// the levels in place, aligned, without overlap, with nothing but alignment
+// padding between them, and nothing after the last.
+void read_levels(const ByteReader& r, std::size_t size, const Header& h, const FormatInfo* fi, Texture& t) {
+  const std::uint32_t level_count = h.level_count, scheme = h.scheme, dfd_offset = h.dfd_offset, dfd_length = h.dfd_length,
+                      kvd_offset = h.kvd_offset, kvd_length = h.kvd_length;
+  const std::uint64_t sgd_offset = h.sgd_offset, sgd_length = h.sgd_length;
   // Supercompressed levels need no alignment (KTX2 specification, "mip level array").
   const std::uint32_t align = scheme ? 1 : level_alignment(*fi);
   // Levels lie after every other block, in place, without overlap, with
@@ -302,6 +328,11 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
     prev_end = offset + placed_length[l];
   }
   if (covered != size) r.fail(std::to_string(size - covered) + " trailing bytes after the last level");
+}
+
+// KTXswizzle and KTXorientation: texproc hands texels over as stored, rows
+// top to bottom.
+void apply_key_values(const ByteReader& r, const std::map<std::string, std::string>& kv, const FormatInfo* fi, Texture& t) {
   // KTXswizzle: texproc hands texels over as stored, so only the identity is honest.
   if (auto sw = kv.find("KTXswizzle"); sw != kv.end() && sw->second != "rgba") {
     r.unsupported("KTXswizzle '" + sw->second + "' (texproc reads texels as stored: 'rgba' only)");
@@ -328,6 +359,27 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
       }
     }
   }
+}
+
+}  // namespace
+
+Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& limits) {
+  ByteReader r(data, size, name);
+  const Header h = read_header(r, size);
+  const FormatInfo* fi = &check_header(r, size, h, limits);
+  check_dfd(r, h, fi);
+  const std::map<std::string, std::string> kv = read_key_values(r, h);
+  Texture t;
+  t.format = fi->format;
+  t.width = h.width;
+  t.height = h.height;
+  t.levels = h.level_count;
+  t.faces = h.faces;
+  t.layers = std::max(h.layer_count, 1u);
+  t.is_array = h.layer_count > 0;
+  t.images.resize(std::size_t(t.levels) * t.layers * t.faces);
+  read_levels(r, size, h, fi, t);
+  apply_key_values(r, kv, fi, t);
   return t;
 }
 
