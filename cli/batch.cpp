@@ -197,6 +197,168 @@ std::vector<InputFile> expand_inputs(const BatchInputs& b, const std::vector<std
   return files;
 }
 
+namespace {
+
+// Every file planned (names, existence, overwrites) before any work; a
+// file that cannot be planned is failed with its reason.
+std::vector<FileReport> plan_files(const BatchCommand& c, const std::vector<InputFile>& files,
+                                   const std::vector<std::string>& outputs, const std::vector<std::string>& shared_inputs) {
+  std::vector<FileReport> reports(files.size());
+  std::error_code ec;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    FileReport& r = reports[i];
+    r.input = files[i].path;
+    r.inputs.push_back(r.input);
+    r.inputs.insert(r.inputs.end(), shared_inputs.begin(), shared_inputs.end());
+    try {
+      if (!fs::is_regular_file(r.input, ec)) {
+        throw Error(ErrorCode::io, r.input + (fs::exists(r.input, ec) ? ": not a file" : ": no such file"));
+      }
+      r.outputs = c.plan(files[i], outputs[i]);
+    } catch (const Error& e) {
+      fail(r, e.code(), e.what());
+    }
+  }
+  return reports;
+}
+
+// What a file's run writes: its planned outputs, or the output it was named.
+std::vector<std::string> claimed_outputs(const FileReport& r, const std::string& output) {
+  return r.outputs.empty() ? std::vector{output} : r.outputs;
+}
+
+// No output may be a file that any input of this run is (the same file
+// through a symlink, "..", or a hard link: compared by device and inode),
+// checked before any work, whatever --force says.
+void check_no_input_overwritten(const std::vector<FileReport>& reports, const std::vector<std::string>& outputs) {
+  std::map<std::pair<dev_t, ino_t>, std::string> input_files;
+  for (const FileReport& r : reports) {
+    for (const std::string& in : r.inputs) {
+      struct stat st {};
+      if (::stat(in.c_str(), &st) == 0) input_files.emplace(std::pair{st.st_dev, st.st_ino}, in);
+    }
+  }
+  for (std::size_t i = 0; i < reports.size(); ++i) {
+    const std::vector<std::string> claimed = claimed_outputs(reports[i], outputs[i]);
+    for (const auto& o : claimed) {
+      struct stat st {};
+      std::error_code wc;
+      if (::stat(o.c_str(), &st) != 0) continue;
+      const auto it = input_files.find({st.st_dev, st.st_ino});
+      if (it == input_files.end()) continue;
+      const bool own = fs::equivalent(reports[i].input, it->second, wc);
+      throw Error(ErrorCode::bad_arguments,
+                  o + ": output would overwrite the input " + it->second +
+                      (own ? "" : " (another input of this run: " + reports[i].input + " writes here)") +
+                      "; outputs never overwrite inputs: choose another name or folder");
+    }
+  }
+}
+
+// One writer per output (extra outputs such as a preview included),
+// before any folder is made; names compared after symlinks and "..".
+void check_one_writer(const std::vector<FileReport>& reports, const std::vector<std::string>& outputs) {
+  std::map<std::string, std::size_t> writer;
+  for (std::size_t i = 0; i < reports.size(); ++i) {
+    const std::vector<std::string> claimed = claimed_outputs(reports[i], outputs[i]);
+    for (const auto& o : claimed) {
+      std::error_code wc;
+      fs::path key = fs::weakly_canonical(fs::absolute(o, wc), wc);
+      if (wc) key = fs::path(o).lexically_normal();
+      auto [it, fresh] = writer.emplace(key.string(), i);
+      if (!fresh && it->second != i) {
+        throw Error(ErrorCode::bad_arguments, o + ": both " + reports[it->second].input + " and " + reports[i].input +
+                                                  " would write this output; name outputs with a template ({stem}, "
+                                                  "{name}, {dir})");
+      }
+    }
+  }
+}
+
+// Up to date: every output exists and none is older than any input (the
+// file's, an OCIO config among them, and the recipe's).
+bool up_to_date(const FileReport& r, const SessionOptions& s) {
+  std::error_code ec;
+  fs::file_time_type newest_input = fs::file_time_type::min();
+  bool inputs_known = true;
+  std::vector<std::string> deps = r.inputs;
+  deps.insert(deps.end(), s.run_inputs.begin(), s.run_inputs.end());
+  for (const std::string& in : deps) {
+    const auto t = fs::last_write_time(in, ec);
+    if (ec) inputs_known = false;
+    else newest_input = std::max(newest_input, t);
+  }
+  return inputs_known && !r.outputs.empty() &&
+         std::all_of(r.outputs.begin(), r.outputs.end(), [&](const std::string& f) {
+           const auto t = fs::last_write_time(f, ec);
+           return !ec && t >= newest_input;
+         });
+}
+
+// The files to run: not failed, not skipped (--incremental, --skip-existing),
+// their outputs free to write.
+std::vector<std::size_t> select_work(std::vector<FileReport>& reports, const SessionOptions& s, const CommonOptions& common) {
+  std::error_code ec;
+  std::vector<std::size_t> todo;
+  for (std::size_t i = 0; i < reports.size(); ++i) {
+    FileReport& r = reports[i];
+    if (r.status == "failed") continue;
+    if (s.incremental && !common.force && up_to_date(r, s)) {
+      r.status = "skipped";
+      continue;
+    }
+    if (s.skip_existing && std::all_of(r.outputs.begin(), r.outputs.end(),
+                                       [&](const std::string& f) { return fs::exists(f, ec); })) {
+      r.status = "skipped";
+      continue;
+    }
+    try {
+      for (const auto& out : r.outputs) check_output(out, {r.input}, common.force || s.incremental);
+      todo.push_back(i);
+    } catch (const Error& e) {
+      fail(r, e.code(), e.what());
+    }
+  }
+  return todo;
+}
+
+// One file's work (on a worker thread): any failure is the file's, its
+// warnings and phase times go into its report.
+void run_file(const BatchCommand& c, FileReport& r, const std::string& output, const CommonOptions& common) {
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    c.run(r.input, output, r);
+  } catch (const Error& e) {
+    fail(r, e.code(), e.what());
+  } catch (const std::bad_alloc&) {
+    fail(r, ErrorCode::runtime, r.input + ": out of memory");
+  } catch (const std::exception& e) {
+    fail(r, ErrorCode::runtime, r.input + ": " + e.what());
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!r.warnings.empty()) {
+    Json::Value w(Json::arrayValue);
+    for (const std::string& m : r.warnings) w.append(m);
+    r.details["warnings"] = w;
+  }
+  if (r.phases.read >= 0) {
+    Json::Value ph(Json::objectValue);
+    ph["read_ms"] = r.phases.read;
+    ph["compute_ms"] = r.phases.compute;
+    ph["write_ms"] = r.phases.write;
+    r.details["phases"] = ph;
+    if (common.verbose && !r.line.empty()) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "\n  read %.1f ms, compute %.1f ms, write %.1f ms", r.phases.read,
+                    r.phases.compute, r.phases.write);
+      const std::size_t nl = r.line.find('\n');
+      r.line.insert(nl == std::string::npos ? r.line.size() : nl, buf);
+    }
+  }
+}
+
+}  // namespace
+
 int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& common) {
   const SessionOptions& s = session_options();
   ThreadLimit threads(common.threads);
@@ -217,105 +379,10 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
   if (!write_if_changed()) {
     set_commit_policy(common.force || s.incremental ? CommitPolicy::replace : CommitPolicy::no_replace);
   }
-
-  // Plan every file (names, existence, overwrites) before any work.
-  std::vector<FileReport> reports(files.size());
-  std::error_code ec;
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    FileReport& r = reports[i];
-    r.input = files[i].path;
-    r.inputs.push_back(r.input);
-    r.inputs.insert(r.inputs.end(), shared_inputs.begin(), shared_inputs.end());
-    try {
-      if (!fs::is_regular_file(r.input, ec)) {
-        throw Error(ErrorCode::io, r.input + (fs::exists(r.input, ec) ? ": not a file" : ": no such file"));
-      }
-      r.outputs = c.plan(files[i], outputs[i]);
-    } catch (const Error& e) {
-      fail(r, e.code(), e.what());
-    }
-  }
-  // No output may be a file that any input of this run is (the same file
-  // through a symlink, "..", or a hard link: compared by device and inode),
-  // checked before any work, whatever --force says.
-  {
-    std::map<std::pair<dev_t, ino_t>, std::string> input_files;
-    for (const FileReport& r : reports) {
-      for (const std::string& in : r.inputs) {
-        struct stat st {};
-        if (::stat(in.c_str(), &st) == 0) input_files.emplace(std::pair{st.st_dev, st.st_ino}, in);
-      }
-    }
-    for (std::size_t i = 0; i < reports.size(); ++i) {
-      const std::vector<std::string> claimed = reports[i].outputs.empty() ? std::vector{outputs[i]} : reports[i].outputs;
-      for (const auto& o : claimed) {
-        struct stat st {};
-        std::error_code wc;
-        if (::stat(o.c_str(), &st) != 0) continue;
-        const auto it = input_files.find({st.st_dev, st.st_ino});
-        if (it == input_files.end()) continue;
-        const bool own = fs::equivalent(reports[i].input, it->second, wc);
-        throw Error(ErrorCode::bad_arguments,
-                    o + ": output would overwrite the input " + it->second +
-                        (own ? "" : " (another input of this run: " + reports[i].input + " writes here)") +
-                        "; outputs never overwrite inputs: choose another name or folder");
-      }
-    }
-  }
-  // One writer per output (extra outputs such as a preview included),
-  // before any folder is made; names compared after symlinks and "..".
-  std::map<std::string, std::size_t> writer;
-  for (std::size_t i = 0; i < reports.size(); ++i) {
-    const std::vector<std::string> claimed = reports[i].outputs.empty() ? std::vector{outputs[i]} : reports[i].outputs;
-    for (const auto& o : claimed) {
-      std::error_code wc;
-      fs::path key = fs::weakly_canonical(fs::absolute(o, wc), wc);
-      if (wc) key = fs::path(o).lexically_normal();
-      auto [it, fresh] = writer.emplace(key.string(), i);
-      if (!fresh && it->second != i) {
-        throw Error(ErrorCode::bad_arguments, o + ": both " + reports[it->second].input + " and " + reports[i].input +
-                                                  " would write this output; name outputs with a template ({stem}, "
-                                                  "{name}, {dir})");
-      }
-    }
-  }
-  std::vector<std::size_t> todo;
-  for (std::size_t i = 0; i < reports.size(); ++i) {
-    FileReport& r = reports[i];
-    if (r.status == "failed") continue;
-    if (s.incremental && !common.force) {
-      // Up to date: every output exists and none is older than any input.
-      fs::file_time_type newest_input = fs::file_time_type::min();
-      bool inputs_known = true;
-      std::vector<std::string> deps = r.inputs;  // the file's (an OCIO config among them), and the recipe
-      deps.insert(deps.end(), s.run_inputs.begin(), s.run_inputs.end());
-      for (const std::string& in : deps) {
-        const auto t = fs::last_write_time(in, ec);
-        if (ec) inputs_known = false;
-        else newest_input = std::max(newest_input, t);
-      }
-      const bool up_to_date = inputs_known && !r.outputs.empty() &&
-                              std::all_of(r.outputs.begin(), r.outputs.end(), [&](const std::string& f) {
-                                const auto t = fs::last_write_time(f, ec);
-                                return !ec && t >= newest_input;
-                              });
-      if (up_to_date) {
-        r.status = "skipped";
-        continue;
-      }
-    }
-    if (s.skip_existing && std::all_of(r.outputs.begin(), r.outputs.end(),
-                                       [&](const std::string& f) { return fs::exists(f, ec); })) {
-      r.status = "skipped";
-      continue;
-    }
-    try {
-      for (const auto& out : r.outputs) check_output(out, {r.input}, common.force || s.incremental);
-      todo.push_back(i);
-    } catch (const Error& e) {
-      fail(r, e.code(), e.what());
-    }
-  }
+  std::vector<FileReport> reports = plan_files(c, files, outputs, shared_inputs);
+  check_no_input_overwritten(reports, outputs);
+  check_one_writer(reports, outputs);
+  const std::vector<std::size_t> todo = select_work(reports, s, common);
   auto finish = [&]() {
     int rc = 0;
     for (const auto& r : reports) {
@@ -358,36 +425,7 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
         FileReport& r = reports[todo[k]];
         progress.started(r.input);
         r.progress = [&progress, &r](double done) { progress.fraction(r.input, done); };
-        const auto t0 = std::chrono::steady_clock::now();
-        try {
-          c.run(r.input, outputs[todo[k]], r);
-        } catch (const Error& e) {
-          fail(r, e.code(), e.what());
-        } catch (const std::bad_alloc&) {
-          fail(r, ErrorCode::runtime, r.input + ": out of memory");
-        } catch (const std::exception& e) {
-          fail(r, ErrorCode::runtime, r.input + ": " + e.what());
-        }
-        r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        if (!r.warnings.empty()) {
-          Json::Value w(Json::arrayValue);
-          for (const std::string& m : r.warnings) w.append(m);
-          r.details["warnings"] = w;
-        }
-        if (r.phases.read >= 0) {
-          Json::Value ph(Json::objectValue);
-          ph["read_ms"] = r.phases.read;
-          ph["compute_ms"] = r.phases.compute;
-          ph["write_ms"] = r.phases.write;
-          r.details["phases"] = ph;
-          if (common.verbose && !r.line.empty()) {
-            char buf[160];
-            std::snprintf(buf, sizeof buf, "\n  read %.1f ms, compute %.1f ms, write %.1f ms", r.phases.read,
-                          r.phases.compute, r.phases.write);
-            const std::size_t nl = r.line.find('\n');
-            r.line.insert(nl == std::string::npos ? r.line.size() : nl, buf);
-          }
-        }
+        run_file(c, r, outputs[todo[k]], common);
       },
       [&](std::size_t k) {
         FileReport& r = reports[todo[k]];
