@@ -20,11 +20,7 @@
 
 namespace texproc {
 
-using bc1::Endpoints;
-using bc1::expand5;
-using bc1::expand6;
-using bc1::palette;
-using bc1::Result;
+using namespace bc1;  // the block as bc1_block.h defines it
 
 namespace {
 

@@ -90,11 +90,8 @@ bool any_transparent(const std::uint8_t rgba[16][4]) {
   return false;
 }
 
-// ETC2 above `fast`: the planar mode, and the T and H modes (only where the
-// lanes' ETC1 block, its error `err`, leaves more than modes.t_h_above per
-// texel, squared RGB), tried against it; the block is replaced if one wins. The texels come as the lanes took them (row by row,
-// R | G << 8 | B << 16).
-long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err, const Etc2Modes& modes, std::uint8_t block[8]) {
+// Block k of a lanes batch as opaque Texels (row by row, R | G << 8 | B << 16).
+Texels lane_texels(const std::uint32_t texel[16][kEtcBatch], int k) {
   Texels tx;
   for (int i = 0; i < 16; ++i) {
     const std::uint32_t t = texel[i][k];
@@ -102,6 +99,14 @@ long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err
     tx.rgb[i][2] = tx.planes.b[i] = int(t >> 16 & 255);
     tx.transparent[i] = false, tx.planes.transparent[i] = 0;
   }
+  return tx;
+}
+
+// ETC2 above `fast`: the planar mode, and the T and H modes (only where the
+// lanes' ETC1 block, its error `err`, leaves more than modes.t_h_above per
+// texel, squared RGB), tried against it; the block is replaced if one wins.
+long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err, const Etc2Modes& modes, std::uint8_t block[8]) {
+  const Texels tx = lane_texels(texel, k);
   Candidate best;
   best.err = err;
   best.bits = load_be64(block);
@@ -252,13 +257,7 @@ long best_flat_holes_block(const std::uint8_t rgba[16][4], const int rgb[3], std
 // pairs). The block is replaced where one wins.
 void two_colour_t_h(const std::uint32_t texel[16][kEtcBatch], int k, EtcMode mode, const Etc2Modes& modes, std::uint8_t block[8]) {
   if (!two_colours(texel, k)) return;
-  Texels tx;
-  for (int i = 0; i < 16; ++i) {
-    const std::uint32_t t = texel[i][k];
-    tx.rgb[i][0] = tx.planes.r[i] = int(t & 255), tx.rgb[i][1] = tx.planes.g[i] = int(t >> 8 & 255);
-    tx.rgb[i][2] = tx.planes.b[i] = int(t >> 16 & 255);
-    tx.transparent[i] = false, tx.planes.transparent[i] = 0;
-  }
+  const Texels tx = lane_texels(texel, k);
   std::uint8_t rgba[16][4];
   for (int i = 0; i < 16; ++i)
     for (int c = 0; c < 4; ++c) rgba[i][c] = std::uint8_t(texel[i][k] >> (8 * c));
