@@ -17,6 +17,8 @@
 #include "bc/bc1_cluster.h"
 #include "bc/bc1_lanes.h"
 #include "block/block_gather.h"
+#include "block/principal_axis.h"
+#include "block/quantize.h"
 
 namespace texproc {
 
@@ -36,10 +38,7 @@ void assign(const RgbBlock& tx, const Endpoints& e, bool four, bool allow_black,
   r.error = tx.k.nearest(tx, pal, four ? 4 : (allow_black ? 4 : 3), r.idx);  // SIMD twins
 }
 
-int quantize(float v, int bits) {
-  const int max = (1 << bits) - 1;
-  return std::clamp(int(v * float(max) / 255.0f + 0.5f), 0, max);  // v in [0, 255]
-}
+int quantize(float v, int bits) { return quantize_channel(v, (1 << bits) - 1); }  // block/quantize.h
 
 Endpoints quantize(const float a[3], const float b[3]) {
   Endpoints e;
@@ -288,30 +287,13 @@ Result punch_one_colour_block(const RgbBlock& tx) {
   return best;
 }
 
-// Principal axis of the opaque colours from their covariance (times n^2):
-// power iteration, from its row of greatest variance, each step divided by
-// the largest component (the lanes multiply by its reciprocal instead:
-// bc1_lanes.h; the two round differently, so each keeps its own bytes).
-void principal_axis(const std::int64_t cov_n2[6], float axis[3]) {
+// Principal axis of the opaque colours from their covariance (times n^2),
+// each power-iteration step divided by its largest component
+// (block/principal_axis.h: the lanes multiply by its reciprocal instead).
+void colour_axis(const std::int64_t cov_n2[6], float axis[3]) {
   const float cov[6] = {float(cov_n2[0]), float(cov_n2[1]), float(cov_n2[2]),
                         float(cov_n2[3]), float(cov_n2[4]), float(cov_n2[5])};
-  const int row = cov[0] >= cov[3] && cov[0] >= cov[5] ? 0 : cov[3] >= cov[5] ? 1 : 2;
-  const float rows[3][3] = {{cov[0], cov[1], cov[2]}, {cov[1], cov[3], cov[4]}, {cov[2], cov[4], cov[5]}};
-  float v[3] = {rows[row][0], rows[row][1], rows[row][2]};
-  for (int it = 0; it < 4; ++it) {
-    const float len = std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])});
-    if (len == 0.0f) break;
-    const float x = v[0] / len, y = v[1] / len, z = v[2] / len;
-    v[0] = cov[0] * x + cov[1] * y + cov[2] * z;
-    v[1] = cov[1] * x + cov[3] * y + cov[4] * z;
-    v[2] = cov[2] * x + cov[4] * y + cov[5] * z;
-  }
-  const float len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (len > 0.0f) {
-    for (int ch = 0; ch < 3; ++ch) axis[ch] = v[ch] / len;
-  } else {
-    axis[0] = axis[1] = axis[2] = 0.57735027f;
-  }
+  principal_axis<AxisScaling::divide>(cov, axis);
 }
 
 // A block's texels as the cluster fit takes them, and its principal axis.
@@ -430,7 +412,7 @@ void encode_block_by_block(const RgbBlock& tx, Bc1Mode mode, const Bc1Level& lev
   if (cov_n2[0] == 0 && cov_n2[3] == 0 && cov_n2[5] == 0 && any_transparent) return write(punch_one_colour_block(tx), out);
 
   float axis[3];
-  principal_axis(cov_n2, axis);
+  colour_axis(cov_n2, axis);
   float lo, hi;
   tx.k.project_range(tx, axis, lo, hi);  // SIMD twins
   const float mean_p = mean[0] * axis[0] + mean[1] * axis[1] + mean[2] * axis[2];

@@ -1,6 +1,8 @@
 // The scalar reference of bc1_lanes.h (namespace ref): what bc1_lanes_simd.cpp, its
 // Highway twin, must equal byte for byte (tests compare them on every target).
 #include "bc/bc1_lanes.h"
+#include "block/principal_axis.h"
+#include "block/quantize.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +11,7 @@
 namespace texproc::ref {
 namespace {
 
-int quantize(float v, int max) { return std::clamp(int(v * (float(max) / 255.0f) + 0.5f), 0, max); }
+int quantize(float v, int max) { return quantize_channel(v, max); }  // block/quantize.h
 
 // The palette of quantized endpoints qa, qb (four colours, or three: the
 // average and no black); each texel's nearest entry (first of equals); the
@@ -188,27 +190,11 @@ bool load(const std::uint32_t texel[16][kBc1Batch], int k, bool punch, Block& bl
                              no * q[3] - s[1] * s[1], no * q[4] - s[1] * s[2], no * q[5] - s[2] * s[2]};
   blk.transparent = no < 16;
   if (c[0] == 0 && c[3] == 0 && c[5] == 0) return false;
-  // The principal axis: power iteration from the covariance's row of
-  // greatest variance, each step scaled by the reciprocal of its largest
-  // component (the SIMD twin's order).
+  // The principal axis, each step scaled by the reciprocal of its largest
+  // component (the SIMD twin's order: block/principal_axis.h).
   const float cov[6] = {float(c[0]), float(c[1]), float(c[2]), float(c[3]), float(c[4]), float(c[5])};
-  float v[3];
-  if (cov[0] >= cov[3] && cov[0] >= cov[5]) {
-    v[0] = cov[0], v[1] = cov[1], v[2] = cov[2];
-  } else if (cov[3] >= cov[5]) {
-    v[0] = cov[1], v[1] = cov[3], v[2] = cov[4];
-  } else {
-    v[0] = cov[2], v[1] = cov[4], v[2] = cov[5];
-  }
-  for (int it = 0; it < 4; ++it) {
-    const float inv = 1.0f / std::max(std::abs(v[0]), std::max(std::abs(v[1]), std::abs(v[2])));
-    const float x = v[0] * inv, y = v[1] * inv, z = v[2] * inv;
-    v[0] = cov[0] * x + cov[1] * y + cov[2] * z;
-    v[1] = cov[1] * x + cov[3] * y + cov[4] * z;
-    v[2] = cov[2] * x + cov[4] * y + cov[5] * z;
-  }
-  const float inv = 1.0f / std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  const float axis[3] = {v[0] * inv, v[1] * inv, v[2] * inv};
+  float axis[3];
+  principal_axis<AxisScaling::reciprocal>(cov, axis);
   float lo = 1e30f, hi = -1e30f;
   for (int i = 0; i < 16; ++i) {
     const float p = float(blk.rgb[i][0]) * axis[0] + float(blk.rgb[i][1]) * axis[1] + float(blk.rgb[i][2]) * axis[2];

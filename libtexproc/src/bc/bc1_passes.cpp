@@ -10,6 +10,7 @@
 
 #include "bc/bc1_block.h"
 #include "bc/bc1_encode.h"
+#include "block/block_gather.h"
 
 namespace texproc {
 
@@ -40,18 +41,18 @@ long long block_errors(const std::uint8_t block[8], const std::uint8_t rgba[16][
 }  // namespace
 
 void bc1_try_two_colours(const std::uint8_t rgba[16][4], Bc1Mode mode, std::uint8_t block[8]) {
-  // Exactly two colours, every texel opaque where alpha matters.
-  const int a[3] = {rgba[0][0], rgba[0][1], rgba[0][2]};
-  int b[3] = {-1, -1, -1}, nb = 0;
-  bool is_b[16] = {};
-  for (int i = 0; i < 16; ++i) {
+  // Exactly two colours (block_gather.h), every texel opaque where alpha matters.
+  std::uint32_t texel[16][kBlockBatch];
+  for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
+  std::uint32_t first = 0, second = 0;
+  if (!two_colours(texel, 0, &first, &second)) return;
+  for (int i = 0; i < 16; ++i)
     if (mode == Bc1Mode::bc1_punch_through && rgba[i][3] < 128) return;
-    if (rgba[i][0] == a[0] && rgba[i][1] == a[1] && rgba[i][2] == a[2]) continue;
-    if (b[0] < 0) b[0] = rgba[i][0], b[1] = rgba[i][1], b[2] = rgba[i][2];
-    if (rgba[i][0] != b[0] || rgba[i][1] != b[1] || rgba[i][2] != b[2]) return;  // a third colour
-    is_b[i] = true, ++nb;
-  }
-  if (nb == 0) return;
+  const int a[3] = {int(first & 255), int(first >> 8 & 255), int(first >> 16 & 255)};
+  const int b[3] = {int(second & 255), int(second >> 8 & 255), int(second >> 16 & 255)};
+  bool is_b[16] = {};
+  int nb = 0;
+  for (int i = 0; i < 16; ++i) is_b[i] = (texel[i][0] & 0xFFFFFF) == second, nb += is_b[i] ? 1 : 0;
   const int na = 16 - nb;
   Result best;
   best.error = -1;

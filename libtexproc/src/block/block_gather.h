@@ -89,6 +89,16 @@ inline bool two_colours(const std::uint32_t texel[16][kBlockBatch], int k, std::
   return second != first;
 }
 
+// Whether block k's texels are one RGB colour and, with `opaque`, none has
+// alpha under 128 (punch-through's transparent texels); `rgb` gets it.
+inline bool one_colour(const std::uint32_t texel[16][kBlockBatch], int k, bool opaque, std::uint32_t* rgb = nullptr) {
+  const std::uint32_t first = texel[0][k];
+  for (int i = 0; i < 16; ++i)
+    if ((texel[i][k] & 0xFFFFFF) != (first & 0xFFFFFF) || (opaque && (texel[i][k] >> 24) < 128)) return false;
+  if (rgb) *rgb = first & 0xFFFFFF;
+  return true;
+}
+
 inline std::uint32_t pack_texel(const std::uint8_t px[4]) {
   return std::uint32_t(px[0]) | std::uint32_t(px[1]) << 8 | std::uint32_t(px[2]) << 16 | std::uint32_t(px[3]) << 24;
 }

@@ -271,11 +271,9 @@ void two_colour_t_h(const std::uint32_t texel[16][kEtcBatch], int k, EtcMode mod
 // Whether the 16 texels (R | G << 8 | B << 16 | A << 24) are one colour,
 // opaque where `mode` reads alpha (punch-through); `rgb` gets it.
 bool flat_colour(const std::uint32_t texel[16][kEtcBatch], int k, EtcMode mode, int rgb[3]) {
-  const bool punch = mode == EtcMode::etc2_punch;
-  const std::uint32_t first = texel[0][k];
-  for (int i = 0; i < 16; ++i)
-    if ((texel[i][k] & 0xFFFFFF) != (first & 0xFFFFFF) || (punch && (texel[i][k] >> 24) < 128)) return false;
-  rgb[0] = int(first & 255), rgb[1] = int(first >> 8 & 255), rgb[2] = int(first >> 16 & 255);
+  std::uint32_t c = 0;
+  if (!one_colour(texel, k, mode == EtcMode::etc2_punch, &c)) return false;  // block_gather.h
+  rgb[0] = int(c & 255), rgb[1] = int(c >> 8 & 255), rgb[2] = int(c >> 16 & 255);
   return true;
 }
 
