@@ -18,6 +18,8 @@ enum class TexelFormat {
   // BC (S3TC / RGTC)
   bc1_rgb_unorm, bc1_rgb_srgb, bc1_rgba_unorm, bc1_rgba_srgb, bc2_unorm, bc2_srgb, bc3_unorm, bc3_srgb,
   bc4_unorm, bc4_snorm, bc5_unorm, bc5_snorm,
+  // BPTC: BC6H (HDR RGB, unsigned and signed half floats) and BC7 (RGBA)
+  bc6h_ufloat, bc6h_sfloat, bc7_unorm, bc7_srgb,
   // ETC / EAC (ETC1 is written as ETC2 RGB, of which it is a subset)
   etc1_rgb, etc2_rgb_unorm, etc2_rgb_srgb, etc2_rgba1_unorm, etc2_rgba1_srgb, etc2_rgba8_unorm, etc2_rgba8_srgb,
   eac_r11_unorm, eac_r11_snorm, eac_rg11_unorm, eac_rg11_snorm,

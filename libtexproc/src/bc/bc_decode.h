@@ -17,4 +17,12 @@ void decode_color(const std::uint8_t* block, bool always_four, bool punch_throug
 // SNORM / 127).
 void decode_rgtc(const std::uint8_t* block, bool snorm, int ch, float out[16][4]);
 
+// A BC7 block: RGBA8 texels, row by row (ARB_texture_compression_bptc; the
+// reserved mode decodes to 0 in every channel, as Direct3D's does).
+void decode_bc7(const std::uint8_t* block, std::uint8_t out[16][4]);
+
+// A BC6H block: RGB half-float bits, row by row (`is_signed`: SF16, else
+// UF16; reserved modes decode to 0).
+void decode_bc6h(const std::uint8_t* block, bool is_signed, std::uint16_t out[16][3]);
+
 }  // namespace texproc::bc

@@ -1,6 +1,8 @@
-// The block decoders' dispatcher: one block of any block format (BC1-BC5,
+// The block decoders' dispatcher: one block of any block format (BC1-BC7,
 // ETC1, ETC2, EAC, ASTC) by its format, and whole images and texture levels
 // decoded block by block. Above the formats, as encode/ is for the encoders.
+#include <Imath/half.h>
+
 #include <cmath>
 #include <cstring>
 
@@ -51,6 +53,26 @@ void decode_block(TexelFormat f, const std::uint8_t* b, float out[16][4]) {
       decode_rgtc(b, true, 0, out);
       decode_rgtc(b + 8, true, 1, out);
       break;
+    case F::bc6h_ufloat:
+    case F::bc6h_sfloat: {
+      std::uint16_t h[16][3];
+      bc::decode_bc6h(b, f == F::bc6h_sfloat, h);
+      for (int i = 0; i < 16; ++i)
+        for (int c = 0; c < 3; ++c) {
+          Imath::half v;
+          v.setBits(h[i][c]);
+          out[i][c] = float(v);
+        }
+      break;
+    }
+    case F::bc7_unorm:
+    case F::bc7_srgb: {
+      std::uint8_t px[16][4];
+      bc::decode_bc7(b, px);
+      for (int i = 0; i < 16; ++i)
+        for (int c = 0; c < 4; ++c) out[i][c] = float(px[i][c]) / 255.0f;
+      break;
+    }
     case F::etc1_rgb:
     case F::etc2_rgb_unorm:
     case F::etc2_rgb_srgb:

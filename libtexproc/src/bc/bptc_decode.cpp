@@ -1,0 +1,269 @@
+// BC7 and BC6H block decoding, to the OpenGL extension
+// ARB_texture_compression_bptc (the Khronos Data Format Specification's
+// BPTC chapter says the same): the bit layout, partitions, anchors, p-bits,
+// rotations and index selection of BC7; the fourteen modes, transformed
+// endpoints, unquantization and final scaling of BC6H. Depends on nothing
+// under the encoders.
+#include <cstring>
+#include <utility>
+
+#include "bc/bc_decode.h"
+#include "bc/bptc_tables.h"
+
+namespace texproc::bc {
+namespace {
+
+// The block's 128 bits, read from the lowest up.
+class BitReader {
+ public:
+  explicit BitReader(const std::uint8_t* block) {
+    std::memcpy(&lo_, block, 8);  // little-endian hosts (as the rest of texproc)
+    std::memcpy(&hi_, block + 8, 8);
+  }
+  std::uint32_t read(int n) {
+    std::uint32_t v = 0;
+    if (n > 0) {
+      const int p = pos_;
+      if (p >= 64) {
+        v = std::uint32_t(hi_ >> (p - 64));
+      } else if (p + n <= 64) {
+        v = std::uint32_t(lo_ >> p);
+      } else {
+        v = std::uint32_t(lo_ >> p | hi_ << (64 - p));
+      }
+      v &= n == 32 ? ~0u : (1u << n) - 1;
+    }
+    pos_ += n;
+    return v;
+  }
+  int position() const { return pos_; }
+
+ private:
+  std::uint64_t lo_ = 0, hi_ = 0;
+  int pos_ = 0;
+};
+
+// The anchor texels of a partition (subset 0's is texel 0).
+void anchors(int subsets, int partition, int anchor[3]) {
+  anchor[0] = 0;
+  anchor[1] = subsets == 2 ? bptc::kAnchor2[partition] : subsets == 3 ? bptc::kAnchor3a[partition] : -1;
+  anchor[2] = subsets == 3 ? bptc::kAnchor3b[partition] : -1;
+}
+
+// 16 indices of `bits` bits, one bit less at each anchor texel.
+void read_indices(BitReader& r, int bits, const int anchor[3], int subsets, int out[16]) {
+  for (int i = 0; i < 16; ++i) {
+    bool is_anchor = false;
+    for (int s = 0; s < subsets; ++s) is_anchor = is_anchor || anchor[s] == i;
+    out[i] = int(r.read(is_anchor ? bits - 1 : bits));
+  }
+}
+
+}  // namespace
+
+void decode_bc7(const std::uint8_t* block, std::uint8_t out[16][4]) {
+  const int mode = block[0] == 0 ? 8 : __builtin_ctz(block[0]);
+  if (mode == 8) {  // reserved: every texel 0 (as Direct3D decodes it)
+    std::memset(out, 0, 64);
+    return;
+  }
+  const bptc::Bc7Mode& M = bptc::kBc7Modes[mode];
+  BitReader r(block);
+  r.read(mode + 1);
+  const int partition = int(r.read(M.partition_bits));
+  const int rotation = int(r.read(M.rotation_bits));
+  const int index_selection = int(r.read(M.index_selection_bits));
+  const int ns = M.subsets;
+  int e[3][2][4];  // subset, endpoint, channel
+  for (int c = 0; c < 3; ++c)
+    for (int s = 0; s < ns; ++s)
+      for (int k = 0; k < 2; ++k) e[s][k][c] = int(r.read(M.color_bits));
+  for (int s = 0; s < ns; ++s)
+    for (int k = 0; k < 2; ++k) e[s][k][3] = M.alpha_bits ? int(r.read(M.alpha_bits)) : 255;
+  int pbit[3][2] = {};
+  if (M.endpoint_pbits) {
+    for (int s = 0; s < ns; ++s)
+      for (int k = 0; k < 2; ++k) pbit[s][k] = int(r.read(1));
+  } else if (M.shared_pbits) {
+    for (int s = 0; s < ns; ++s) pbit[s][0] = pbit[s][1] = int(r.read(1));
+  }
+  const int has_p = M.endpoint_pbits || M.shared_pbits ? 1 : 0;
+  // Endpoints to 8 bits: the p-bit below the stored bits, the top bits
+  // replicated into the rest.
+  for (int s = 0; s < ns; ++s)
+    for (int k = 0; k < 2; ++k)
+      for (int c = 0; c < 4; ++c) {
+        const int stored = c < 3 ? M.color_bits : M.alpha_bits;
+        if (stored == 0) continue;  // alpha 255
+        const int n = stored + has_p;
+        const int v = e[s][k][c] << has_p | pbit[s][k];
+        e[s][k][c] = (v << (8 - n) | v >> (2 * n - 8)) & 255;
+      }
+  int anchor[3];
+  anchors(ns, partition, anchor);
+  int primary[16], secondary[16];
+  read_indices(r, M.index_bits, anchor, ns, primary);
+  if (M.index2_bits) read_indices(r, M.index2_bits, anchor, 1, secondary);
+  const std::uint32_t part = ns == 2 ? bptc::kPartitions2[partition] : ns == 3 ? bptc::kPartitions3[partition] : 0;
+  // Colour from the secondary indices where the index selection bit is set,
+  // alpha from the secondary ones where there are any and it is not.
+  const bool swap = index_selection != 0;
+  const int color_bits = swap ? M.index2_bits : M.index_bits;
+  const int alpha_bits = M.index2_bits && !swap ? M.index2_bits : swap ? M.index_bits : M.index_bits;
+  const std::uint8_t* wc = bptc::weights(color_bits);
+  const std::uint8_t* wa = bptc::weights(alpha_bits);
+  for (int i = 0; i < 16; ++i) {
+    const int s = ns == 1 ? 0 : bptc::subset(part, i);
+    const int ci = swap ? secondary[i] : primary[i];
+    const int ai = M.index2_bits ? (swap ? primary[i] : secondary[i]) : primary[i];
+    int px[4];
+    for (int c = 0; c < 3; ++c) px[c] = bptc::interpolate(e[s][0][c], e[s][1][c], wc[ci]);
+    px[3] = bptc::interpolate(e[s][0][3], e[s][1][3], wa[ai]);
+    if (rotation) std::swap(px[3], px[rotation - 1]);
+    for (int c = 0; c < 4; ++c) out[i][c] = std::uint8_t(px[c]);
+  }
+}
+
+namespace {
+
+// BC6H's layout strings, parsed once: each field's variable (m, r0-r3,
+// g0-g3, b0-b3), its bit count and where its first bit goes.
+struct Field {
+  int var;     // 0: m; 1 + 4 * channel + endpoint: r0..r3, g0..g3, b0..b3
+  int count;   // bits
+  int first;   // the variable's bit that takes the first bit read
+  int step;    // +1 or -1: where the next goes
+};
+struct Layout {
+  Field fields[32];
+  int n = 0;
+};
+
+Layout parse_layout(const char* s) {
+  Layout L;
+  while (*s) {
+    Field f{};
+    if (*s == 'm') {
+      f.var = 0, ++s;
+    } else {
+      const int ch = *s == 'r' ? 0 : *s == 'g' ? 1 : 2;
+      f.var = 1 + 4 * ch + (s[1] - '0');
+      s += 2;
+    }
+    ++s;  // '['
+    int a = 0, b = -1;
+    while (*s >= '0' && *s <= '9') a = a * 10 + (*s++ - '0');
+    if (*s == ':') {
+      ++s;
+      b = 0;
+      while (*s >= '0' && *s <= '9') b = b * 10 + (*s++ - '0');
+    } else {
+      b = a;
+    }
+    ++s;  // ']'
+    if (*s == ',') ++s;
+    f.count = (a >= b ? a - b : b - a) + 1;
+    f.first = b;
+    f.step = a >= b ? 1 : -1;
+    L.fields[L.n++] = f;
+  }
+  return L;
+}
+
+struct Layouts {
+  Layout modes[14];
+  int by_number[32];  // mode number -> index in kBc6hModes, -1 reserved
+  Layouts() {
+    for (int& v : by_number) v = -1;
+    for (int k = 0; k < 14; ++k) {
+      modes[k] = parse_layout(bptc::kBc6hModes[k].layout);
+      by_number[bptc::kBc6hModes[k].number] = k;
+    }
+  }
+};
+const Layouts& layouts() {
+  static const Layouts L;
+  return L;
+}
+
+int sign_extend(int v, int bits) { return v & (1 << (bits - 1)) ? v - (1 << bits) : v; }
+
+int unquantize(int x, int bits, bool is_signed) {
+  if (!is_signed) {
+    if (bits >= 15) return x;
+    if (x == 0) return 0;
+    if (x == (1 << bits) - 1) return 0xFFFF;
+    return ((x << 15) + 0x4000) >> (bits - 1);
+  }
+  if (bits >= 16) return x;
+  const bool negative = x < 0;
+  if (negative) x = -x;
+  int unq;
+  if (x == 0) {
+    unq = 0;
+  } else if (x >= (1 << (bits - 1)) - 1) {
+    unq = 0x7FFF;
+  } else {
+    unq = ((x << 15) + 0x4000) >> (bits - 1);
+  }
+  return negative ? -unq : unq;
+}
+
+// The interpolated value to half-float bits.
+std::uint16_t finish(int v, bool is_signed) {
+  if (!is_signed) return std::uint16_t((v * 31) >> 6);
+  return v < 0 ? std::uint16_t(0x8000 | ((-v * 31) >> 5)) : std::uint16_t((v * 31) >> 5);
+}
+
+}  // namespace
+
+void decode_bc6h(const std::uint8_t* block, bool is_signed, std::uint16_t out[16][3]) {
+  const int low2 = block[0] & 3;
+  const int number = low2 < 2 ? low2 : block[0] & 31;
+  const Layouts& L = layouts();
+  const int k = L.by_number[number];
+  if (k < 0) {  // reserved: (0, 0, 0)
+    std::memset(out, 0, 96);
+    return;
+  }
+  const bptc::Bc6hMode& M = bptc::kBc6hModes[k];
+  BitReader r(block);
+  int v[13] = {};
+  for (int f = 0; f < L.modes[k].n; ++f) {
+    const Field& fd = L.modes[k].fields[f];
+    for (int b = 0; b < fd.count; ++b) v[fd.var] |= int(r.read(1)) << (fd.first + fd.step * b);
+  }
+  const int ns = M.partition_bits ? 2 : 1;
+  const int partition = int(r.read(M.partition_bits));
+  const int nend = 2 * ns;
+  int e[4][3];  // endpoint (subset 0: 0, 1; subset 1: 2, 3), channel
+  for (int c = 0; c < 3; ++c)
+    for (int j = 0; j < nend; ++j) e[j][c] = v[1 + 4 * c + j];
+  const int eb = M.endpoint_bits;
+  for (int c = 0; c < 3; ++c) {
+    if (is_signed) e[0][c] = sign_extend(e[0][c], eb);
+    for (int j = 1; j < nend; ++j) {
+      if (M.transformed) {
+        e[j][c] = sign_extend(e[j][c], M.delta_bits[c]);
+        e[j][c] = (e[0][c] + e[j][c]) & ((1 << eb) - 1);
+        if (is_signed) e[j][c] = sign_extend(e[j][c], eb);
+      } else if (is_signed) {
+        e[j][c] = sign_extend(e[j][c], eb);
+      }
+    }
+    for (int j = 0; j < nend; ++j) e[j][c] = unquantize(e[j][c], eb, is_signed);
+  }
+  int anchor[3];
+  anchors(ns, partition, anchor);
+  const int index_bits = ns == 2 ? 3 : 4;
+  int idx[16];
+  read_indices(r, index_bits, anchor, ns, idx);
+  const std::uint8_t* w = bptc::weights(index_bits);
+  const std::uint32_t part = ns == 2 ? bptc::kPartitions2[partition] : 0;
+  for (int i = 0; i < 16; ++i) {
+    const int s = ns == 1 ? 0 : bptc::subset(part, i);
+    for (int c = 0; c < 3; ++c) out[i][c] = finish(bptc::interpolate(e[2 * s][c], e[2 * s + 1][c], w[idx[i]]), is_signed);
+  }
+}
+
+}  // namespace texproc::bc
