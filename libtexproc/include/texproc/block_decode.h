@@ -1,4 +1,4 @@
-// texproc/block_decode.h: decoding BC1-BC5, ETC1, ETC2 and EAC blocks and
+// texproc/block_decode.h: decoding BC1-BC7, ETC1, ETC2 and EAC blocks and
 // block-compressed textures, to the Khronos Data Format Specification 1.3
 // (S3TC, RGTC, ETC1 and ETC2 chapters).
 #pragma once
@@ -12,8 +12,9 @@
 namespace texproc {
 
 // Decodes one 4x4 block of `format` (a BC, ETC or EAC format) into texels[16][4], RGBA,
-// row by row. UNORM results are in [0, 1], SNORM in [-1, 1]; channels the
-// format lacks are 0 (green, blue) and 1 (alpha).
+// row by row. UNORM results are in [0, 1], SNORM in [-1, 1], BC6H the half
+// floats it holds (ARB_texture_compression_bptc); channels the format lacks
+// are 0 (green, blue) and 1 (alpha).
 //
 // Rounding: the RGTC values (BC4, BC5 and BC2/BC3 alpha interpolation) are
 // exact, (a (7 - k) + b k) / 7 / 255 in float, as GPUs return them. BC1

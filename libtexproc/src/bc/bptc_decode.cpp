@@ -109,7 +109,7 @@ void decode_bc7(const std::uint8_t* block, std::uint8_t out[16][4]) {
   // alpha from the secondary ones where there are any and it is not.
   const bool swap = index_selection != 0;
   const int color_bits = swap ? M.index2_bits : M.index_bits;
-  const int alpha_bits = M.index2_bits && !swap ? M.index2_bits : swap ? M.index_bits : M.index_bits;
+  const int alpha_bits = M.index2_bits && !swap ? M.index2_bits : M.index_bits;
   const std::uint8_t* wc = bptc::weights(color_bits);
   const std::uint8_t* wa = bptc::weights(alpha_bits);
   for (int i = 0; i < 16; ++i) {
