@@ -1,4 +1,4 @@
-// texproc compress: block compression (BC1-BC5, ETC1, ETC2, EAC, ASTC) into
+// texproc compress: block compression (BC1-BC5, BC7, ETC1, ETC2, EAC, ASTC) into
 // DDS, KTX2, KTX1, PKM or .astc, optionally with a mip chain.
 #include <algorithm>
 #include <chrono>
@@ -53,6 +53,7 @@ TexelFormat format_for(const std::string& f, bool srgb) {
       {"bc2", {F::bc2_unorm, F::bc2_srgb}},           {"bc3", {F::bc3_unorm, F::bc3_srgb}},
       {"bc4", {F::bc4_unorm, F::bc4_unorm}},          {"bc4s", {F::bc4_snorm, F::bc4_snorm}},
       {"bc5", {F::bc5_unorm, F::bc5_unorm}},          {"bc5s", {F::bc5_snorm, F::bc5_snorm}},
+      {"bc7", {F::bc7_unorm, F::bc7_srgb}},
       {"etc1", {F::etc1_rgb, F::etc1_rgb}},           {"etc2", {F::etc2_rgb_unorm, F::etc2_rgb_srgb}},
       {"etc2a1", {F::etc2_rgba1_unorm, F::etc2_rgba1_srgb}},
       {"etc2a", {F::etc2_rgba8_unorm, F::etc2_rgba8_srgb}},
@@ -62,7 +63,7 @@ TexelFormat format_for(const std::string& f, bool srgb) {
   // The names other tools use (texconv, nvcompress, Compressonator), in any case.
   static const std::map<std::string, std::string> aliases = {
       {"dxt1", "bc1"}, {"dxt1a", "bc1a"}, {"dxt3", "bc2"}, {"dxt5", "bc3"}, {"ati1", "bc4"}, {"bc4u", "bc4"},
-      {"ati2", "bc5"}, {"bc5u", "bc5"}, {"3dc", "bc5"}, {"etc2a8", "etc2a"}, {"etc2-rgba", "etc2a"},
+      {"ati2", "bc5"}, {"bc5u", "bc5"}, {"3dc", "bc5"}, {"bc7u", "bc7"}, {"etc2a8", "etc2a"}, {"etc2-rgba", "etc2a"},
       {"r11", "eac-r11"}, {"rg11", "eac-rg11"}};
   std::string name = f;
   for (auto& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
@@ -282,7 +283,7 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
 
 void add_compress_command(CLI::App& app) {
   auto args = std::make_shared<CompressArgs>();
-  CLI::App* cmd = app.add_subcommand("compress", "Block-compress images (BC1-BC5, ETC1, ETC2, EAC, ASTC) into DDS, KTX2, KTX1, PKM or .astc.");
+  CLI::App* cmd = app.add_subcommand("compress", "Block-compress images (BC1-BC5, BC7, ETC1, ETC2, EAC, ASTC) into DDS, KTX2, KTX1, PKM or .astc.");
   cmd->footer(
       "BC4 and EAC R11 store one channel, BC5 and EAC RG11 two (the red and green of the input; for a normal\n"
       "map its X and Y, the shader rebuilds Z). SNORM variants map the stored [0, 1] to [-1, 1]. Values are\n"
@@ -294,12 +295,12 @@ void add_compress_command(CLI::App& app) {
                    "Output texture (.dds, .ktx2, .ktx, .pkm, .astc), folder (DIR/: {stem}.dds each; .ktx2 for ETC/EAC/ASTC) or "
                    "template ('out/{stem}.ktx2')");
   cmd->add_option("--format", args->format,
-                 "bc1, bc1a (1-bit alpha), bc2, bc3, bc4, bc4s, bc5, bc5s; etc1, etc2, etc2a1 (punch-through alpha), "
+                 "bc1, bc1a (1-bit alpha), bc2, bc3, bc4, bc4s, bc5, bc5s, bc7; etc1, etc2, etc2a1 (punch-through alpha), "
                  "etc2a (EAC alpha), eac-r11, eac-r11s, eac-rg11, eac-rg11s; astc-4x4, astc-5x4, astc-5x5, astc-6x5, "
                  "astc-6x6, astc-8x5, astc-8x6, astc-8x8, astc-10x5, astc-10x6, astc-10x8, astc-10x10, astc-12x10, "
                  "astc-12x12, each also -hdr (astc-6x6-hdr)")
       ->required();
-  cmd->add_flag("--srgb", args->srgb, "BC1-BC3: write the sRGB format (the default for 8/16-bit colour input)");
+  cmd->add_flag("--srgb", args->srgb, "BC1-BC3, BC7: write the sRGB format (the default for 8/16-bit colour input)");
   cmd->add_flag("--linear", args->linear, "The input is data: UNORM formats, linear mip filtering");
   cmd->add_option("--quality", args->quality, "fast, normal, high, max (widest search; slow)")->capture_default_str();
   cmd->add_flag("--clip", args->clip,

@@ -11,6 +11,7 @@
 #include "bc/bc1_encode.h"
 #include "bc/bc1_lanes.h"
 #include "bc/bc4_lanes.h"
+#include "bc/bc7_lanes.h"
 #include "block/block_gather.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
@@ -120,6 +121,28 @@ std::vector<std::uint8_t> compress_bc13(const ImageView& img, TexelFormat format
           bc4_encode_lanes(alpha, count, false, alpha_level.lane, alpha_blocks);
           for (int k = 0; k < count; ++k) std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * block_bytes, alpha_blocks[k], 8);
         }
+      }
+  }, options.progress);
+  return out;
+}
+
+std::vector<std::uint8_t> compress_bc7(const ImageView& img, Quality q, const EncodeOptions& options) {
+  const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
+  std::vector<std::uint8_t> out(std::size_t(bw) * bh * 16);
+  const Bc7Level& level = bc7_level(q);  // bc7_levels.h
+  for_each_row_block(bh, 4, [&](int by0, int by1) {
+    std::uint8_t rgba[16][4];
+    std::uint32_t texel[16][kBc7Batch] = {};
+    for (int by = by0; by < by1; ++by)
+      for (int bx0 = 0; bx0 < bw; bx0 += kBc7Batch) {
+        const int count = std::min(kBc7Batch, bw - bx0);
+        if (!gather_rows_rgba8(img, bx0, by, count, texel)) {
+          for (int k = 0; k < count; ++k) {
+            gather_rgba8(img, bx0 + k, by, rgba);
+            for (int i = 0; i < 16; ++i) texel[i][k] = pack_texel(rgba[i]);
+          }
+        }
+        bc7_encode_lanes(texel, count, level, reinterpret_cast<std::uint8_t(*)[16]>(out.data() + (std::size_t(by) * bw + bx0) * 16));
       }
   }, options.progress);
   return out;

@@ -54,6 +54,7 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
   if (is_astc(format)) return astc::encode(img, format, q, options);
   if (format >= F::bc1_rgb_unorm && format <= F::bc3_srgb) return compress_bc13(img, format, q, options);
   if (format >= F::bc4_unorm && format <= F::bc5_snorm) return compress_bc45(img, format, q, options);
+  if (format == F::bc7_unorm || format == F::bc7_srgb) return compress_bc7(img, q, options);
   if (format >= F::etc1_rgb && format <= F::eac_rg11_snorm) return etc::compress_etc(img, format, q, options);
   throw Error(ErrorCode::unsupported, std::string("encoding ") + format_info(format).name + " is not supported");
 }

@@ -1,0 +1,394 @@
+// The scalar reference of bc7_lanes.h (namespace ref), one block at a time,
+// plainly: what bc7_lanes_simd.cpp, its Highway twin, must equal byte for
+// byte (tests compare them on every target).
+#include "bc/bc7_lanes.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <utility>
+
+#include "bc/bc7_shared.h"
+
+namespace texproc::ref {
+namespace {
+
+using bc7::Choice;
+using bc7::EndpointFormat;
+using bc7::Pbit;
+
+// One index set's fit: endpoint codes, p-bits and 8-bit values (channels
+// c0..c0 + n - 1), each member texel's index, the squared error over those
+// channels.
+struct SetFit {
+  int code[2][4] = {}, pbit[2] = {}, value[2][4] = {};
+  std::uint8_t index[16] = {};
+  int error = 0;
+};
+
+// A set of texels: the block's (possibly rotated) texels, which of them
+// (members, a bit each), and which channels.
+struct Set {
+  const int (*x)[4];
+  unsigned members;
+  int c0, n;
+  bool has(int i) const { return members >> i & 1; }
+};
+
+// The endpoints from the set's principal axis: the texels' extent along it.
+void line_ends(const Set& s, float e[2][4]) {
+  int cnt = 0, S[4] = {}, Q[4][4] = {};  // Q[a][b], a <= b
+  int mn[4] = {255, 255, 255, 255}, mx[4] = {};
+  for (int i = 0; i < 16; ++i) {
+    if (!s.has(i)) continue;
+    ++cnt;
+    for (int a = 0; a < s.n; ++a) {
+      const int xa = s.x[i][s.c0 + a];
+      S[a] += xa, mn[a] = std::min(mn[a], xa), mx[a] = std::max(mx[a], xa);
+      for (int b = a; b < s.n; ++b) Q[a][b] += xa * s.x[i][s.c0 + b];
+    }
+  }
+  float mean[4];
+  for (int a = 0; a < s.n; ++a) mean[a] = float(S[a]) / float(cnt);
+  if (s.n == 1) {
+    e[0][s.c0] = float(mn[0]), e[1][s.c0] = float(mx[0]);
+    return;
+  }
+  float C[4][4] = {};
+  for (int a = 0; a < s.n; ++a)
+    for (int b = a; b < s.n; ++b) C[a][b] = C[b][a] = float(cnt * Q[a][b] - S[a] * S[b]);
+  int jmax = 0;
+  for (int a = 1; a < s.n; ++a)
+    if (C[a][a] > C[jmax][jmax]) jmax = a;
+  if (C[jmax][jmax] == 0.0f) {  // one colour
+    for (int a = 0; a < s.n; ++a) e[0][s.c0 + a] = e[1][s.c0 + a] = mean[a];
+    return;
+  }
+  float v[4];
+  for (int a = 0; a < s.n; ++a) v[a] = C[a][jmax];
+  for (int it = 0; it < 3; ++it) {
+    float w[4], m = 0.0f;
+    for (int a = 0; a < s.n; ++a) {
+      w[a] = 0.0f;
+      for (int b = 0; b < s.n; ++b) w[a] += C[a][b] * v[b];
+      m = std::max(m, std::fabs(w[a]));
+    }
+    if (m == 0.0f) break;
+    const float inv = 1.0f / m;
+    for (int a = 0; a < s.n; ++a) v[a] = w[a] * inv;
+  }
+  float tmin = INFINITY, tmax = -INFINITY, tmean = 0.0f, vv = 0.0f;
+  for (int i = 0; i < 16; ++i) {
+    if (!s.has(i)) continue;
+    float t = 0.0f;
+    for (int a = 0; a < s.n; ++a) t += v[a] * float(s.x[i][s.c0 + a]);
+    tmin = std::min(tmin, t), tmax = std::max(tmax, t);
+  }
+  for (int a = 0; a < s.n; ++a) tmean += v[a] * mean[a], vv += v[a] * v[a];
+  const float s0 = (tmin - tmean) / vv, s1 = (tmax - tmean) / vv;
+  for (int a = 0; a < s.n; ++a) e[0][s.c0 + a] = mean[a] + s0 * v[a], e[1][s.c0 + a] = mean[a] + s1 * v[a];
+}
+
+// Float endpoints to the format's codes: each channel rounded to 8 bits,
+// then the nearest code; the p-bit that quantizes the endpoint (unique) or
+// both endpoints (shared) with less error, ties to 0; 1 where forced.
+void quantize_ends(const Set& s, const float e[2][4], EndpointFormat f, bool force_p1, SetFit& fit) {
+  int v[2][4];
+  for (int k = 0; k < 2; ++k)
+    for (int a = 0; a < s.n; ++a) v[k][a] = int(std::nearbyint(std::min(std::max(e[k][s.c0 + a], 0.0f), 255.0f)));
+  auto error = [&](int k, int p) {
+    int t = 0;
+    for (int a = 0; a < s.n; ++a) {
+      const int d = bc7::quantize(f.bits, p, v[k][a]).value - v[k][a];
+      t += d * d;
+    }
+    return t;
+  };
+  int p[2] = {-1, -1};
+  if (f.pbit != Pbit::none && force_p1) {
+    p[0] = p[1] = 1;
+  } else if (f.pbit == Pbit::unique) {
+    for (int k = 0; k < 2; ++k) p[k] = error(k, 1) < error(k, 0) ? 1 : 0;
+  } else if (f.pbit == Pbit::shared) {
+    p[0] = p[1] = error(0, 1) + error(1, 1) < error(0, 0) + error(1, 0) ? 1 : 0;
+  }
+  for (int k = 0; k < 2; ++k) {
+    fit.pbit[k] = std::max(p[k], 0);
+    for (int a = 0; a < s.n; ++a) {
+      const bc7::Quantized q = bc7::quantize(f.bits, p[k], v[k][a]);
+      fit.code[k][s.c0 + a] = q.code, fit.value[k][s.c0 + a] = q.value;
+    }
+  }
+}
+
+// Each member's index for the fit's endpoints: its projection onto their
+// line, rounded; with `exact`, the neighbouring index on either side where
+// it decodes closer (the lower one tried first). The error over the set.
+void assign(const Set& s, int bits, bool exact, SetFit& fit) {
+  const int L = (1 << bits) - 1;
+  int d[4], dd = 0, pal[16][4];
+  for (int a = 0; a < s.n; ++a) d[a] = fit.value[1][s.c0 + a] - fit.value[0][s.c0 + a], dd += d[a] * d[a];
+  for (int j = 0; j <= L; ++j)
+    for (int a = 0; a < s.n; ++a)
+      pal[j][a] = bptc::interpolate(fit.value[0][s.c0 + a], fit.value[1][s.c0 + a], bptc::weights(bits)[j]);
+  const float scale = dd > 0 ? float(L) / float(dd) : 0.0f;
+  auto texel_error = [&](int i, int j) {
+    int t = 0;
+    for (int a = 0; a < s.n; ++a) {
+      const int e = pal[j][a] - s.x[i][s.c0 + a];
+      t += e * e;
+    }
+    return t;
+  };
+  fit.error = 0;
+  for (int i = 0; i < 16; ++i) {
+    if (!s.has(i)) continue;
+    int t = 0;
+    for (int a = 0; a < s.n; ++a) t += (s.x[i][s.c0 + a] - fit.value[0][s.c0 + a]) * d[a];
+    int j = std::clamp(int(std::nearbyint(float(t) * scale)), 0, L);
+    int e = texel_error(i, j);
+    if (exact) {
+      const int j0 = j;
+      if (j0 > 0 && texel_error(i, j0 - 1) < e) e = texel_error(i, j0 - 1), j = j0 - 1;
+      if (j0 < L && texel_error(i, j0 + 1) < e) e = texel_error(i, j0 + 1), j = j0 + 1;
+    }
+    fit.index[i] = std::uint8_t(j);
+    fit.error += e;
+  }
+}
+
+// Least-squares endpoints for the fit's indices (weights out of 64); false
+// where they are not determined (every index the same).
+bool lsq_ends(const Set& s, int bits, const SetFit& fit, float e[2][4]) {
+  int AA = 0, AB = 0, BB = 0, RA[4] = {}, RB[4] = {};
+  for (int i = 0; i < 16; ++i) {
+    if (!s.has(i)) continue;
+    const int b = bptc::weights(bits)[fit.index[i]], a = 64 - b;
+    AA += a * a, AB += a * b, BB += b * b;
+    for (int c = 0; c < s.n; ++c) RA[c] += a * s.x[i][s.c0 + c], RB[c] += b * s.x[i][s.c0 + c];
+  }
+  const float det = float(AA) * float(BB) - float(AB) * float(AB);
+  if (!(det > 0.0f)) return false;
+  const float inv = 64.0f / det;
+  for (int c = 0; c < s.n; ++c) {
+    e[0][s.c0 + c] = (float(RA[c]) * float(BB) - float(RB[c]) * float(AB)) * inv;
+    e[1][s.c0 + c] = (float(RB[c]) * float(AA) - float(RA[c]) * float(AB)) * inv;
+  }
+  return true;
+}
+
+// One index set fitted: the line's endpoints, then up to level.refine
+// least-squares rounds while the error falls.
+SetFit fit_set(const Set& s, EndpointFormat f, int bits, bool force_p1, const Bc7Level& level) {
+  float e[2][4] = {};
+  line_ends(s, e);
+  SetFit best;
+  quantize_ends(s, e, f, force_p1, best);
+  assign(s, bits, level.exact_indices, best);
+  for (int pass = 0; pass < level.refine && best.error > 0; ++pass) {
+    if (!lsq_ends(s, bits, best, e)) break;
+    SetFit next;
+    quantize_ends(s, e, f, force_p1, next);
+    assign(s, bits, level.exact_indices, next);
+    if (next.error >= best.error) break;
+    best = next;
+  }
+  return best;
+}
+
+// The partition estimate of one subset from its sums: the squared residual
+// off its principal axis.
+float subset_residual(int cnt, const int S[3], const int Q[6]) {
+  if (cnt == 0) return 0.0f;
+  const float c00 = float(cnt * Q[0] - S[0] * S[0]), c01 = float(cnt * Q[1] - S[0] * S[1]),
+              c02 = float(cnt * Q[2] - S[0] * S[2]), c11 = float(cnt * Q[3] - S[1] * S[1]),
+              c12 = float(cnt * Q[4] - S[1] * S[2]), c22 = float(cnt * Q[5] - S[2] * S[2]);
+  const float trace = c00 + c11 + c22;
+  float v0 = c00, v1 = c01, v2 = c02;  // the column of the largest diagonal
+  if (c11 > c00 && c11 >= c22) v0 = c01, v1 = c11, v2 = c12;
+  if (c22 > c00 && c22 > c11) v0 = c02, v1 = c12, v2 = c22;
+  for (int it = 0; it < 2; ++it) {
+    const float w0 = c00 * v0 + c01 * v1 + c02 * v2, w1 = c01 * v0 + c11 * v1 + c12 * v2,
+                w2 = c02 * v0 + c12 * v1 + c22 * v2;
+    const float m = std::max(std::max(std::fabs(w0), std::fabs(w1)), std::fabs(w2));
+    if (m == 0.0f) break;
+    const float inv = 1.0f / m;
+    v0 = w0 * inv, v1 = w1 * inv, v2 = w2 * inv;
+  }
+  const float w0 = c00 * v0 + c01 * v1 + c02 * v2, w1 = c01 * v0 + c11 * v1 + c12 * v2,
+              w2 = c02 * v0 + c12 * v1 + c22 * v2;
+  const float vv = v0 * v0 + v1 * v1 + v2 * v2, vcv = v0 * w0 + v1 * w1 + v2 * w2;
+  const float lambda = vv > 0.0f ? vcv / vv : 0.0f;
+  return (trace - lambda) / float(cnt);
+}
+
+// The K partitions of least estimate, in order (ties: the lower partition).
+struct Ranked {
+  float est[64];
+  int partition[64];
+  int k = 0;
+  void init(int keep) {
+    k = keep;
+    for (int j = 0; j < k; ++j) est[j] = INFINITY, partition[j] = 0;
+  }
+  void insert(float e, int p) {
+    for (int j = 0; j < k; ++j)
+      if (e < est[j]) std::swap(e, est[j]), std::swap(p, partition[j]);
+  }
+};
+
+struct Block {
+  int x[16][4];
+  int alpha_error;  // modes 0-3's: every alpha decodes to 255
+  bool opaque, solid;
+};
+
+// Rank the partitions of `subsets` subsets by the estimate: subset sums
+// over RGB, the last subset's by subtraction from the block's.
+void rank_partitions(const Block& b, int subsets, Ranked& all, Ranked* first16) {
+  int tS[3] = {}, tQ[6] = {};
+  int prod[16][6];
+  for (int i = 0; i < 16; ++i) {
+    const int* x = b.x[i];
+    const int p[6] = {x[0] * x[0], x[0] * x[1], x[0] * x[2], x[1] * x[1], x[1] * x[2], x[2] * x[2]};
+    for (int c = 0; c < 3; ++c) tS[c] += x[c];
+    for (int q = 0; q < 6; ++q) prod[i][q] = p[q], tQ[q] += p[q];
+  }
+  for (int part = 0; part < 64; ++part) {
+    const std::uint32_t bits = subsets == 2 ? bptc::kPartitions2[part] : bptc::kPartitions3[part];
+    int cnt[3] = {}, S[3][3] = {}, Q[3][6] = {};
+    for (int i = 0; i < 16; ++i) {
+      const int s = bptc::subset(bits, i);
+      if (s == subsets - 1) continue;
+      ++cnt[s];
+      for (int c = 0; c < 3; ++c) S[s][c] += b.x[i][c];
+      for (int q = 0; q < 6; ++q) Q[s][q] += prod[i][q];
+    }
+    const int last = subsets - 1;
+    cnt[last] = 16;
+    for (int c = 0; c < 3; ++c) S[last][c] = tS[c];
+    for (int q = 0; q < 6; ++q) Q[last][q] = tQ[q];
+    for (int s = 0; s < last; ++s) {
+      cnt[last] -= cnt[s];
+      for (int c = 0; c < 3; ++c) S[last][c] -= S[s][c];
+      for (int q = 0; q < 6; ++q) Q[last][q] -= Q[s][q];
+    }
+    float est = 0.0f;
+    for (int s = 0; s < subsets; ++s) est += subset_residual(cnt[s], S[s], Q[s]);
+    all.insert(est, part);
+    if (first16 && part < 16) first16->insert(est, part);
+  }
+}
+
+// The candidates' Choice and error, kept where the error is less.
+struct Best {
+  Choice choice;
+  int error = INT_MAX;
+  void offer(const Choice& c, int e) {
+    if (e < error) choice = c, error = e;
+  }
+};
+
+// A partitioned mode (0, 1, 2, 3 or 7) on one partition: each subset fitted.
+void try_partitioned(const Block& b, int mode, int part, const Bc7Level& level, Best& best) {
+  const bptc::Bc7Mode& M = bptc::kBc7Modes[mode];
+  const std::uint32_t bits = M.subsets == 2 ? bptc::kPartitions2[part] : bptc::kPartitions3[part];
+  const int n = M.alpha_bits ? 4 : 3;
+  Choice c;
+  c.mode = mode, c.partition = part;
+  int error = n == 3 ? b.alpha_error : 0;
+  for (int s = 0; s < M.subsets; ++s) {
+    unsigned members = 0;
+    for (int i = 0; i < 16; ++i) members |= unsigned(bptc::subset(bits, i) == s) << i;
+    const Set set{b.x, members, 0, n};
+    const SetFit f = fit_set(set, bc7::color_format(mode), M.index_bits, b.opaque && n == 4, level);
+    error += f.error;
+    for (int k = 0; k < 2; ++k) {
+      c.pbit[s][k] = f.pbit[k];
+      for (int a = 0; a < n; ++a) c.code[s][k][a] = f.code[k][a];
+    }
+    for (int i = 0; i < 16; ++i)
+      if (set.has(i)) c.color_index[i] = f.index[i];
+  }
+  best.offer(c, error);
+}
+
+// Mode 4 or 5 with a rotation (the scalar channel swapped with alpha) and
+// index selection: a colour set and an alpha set.
+void try_rotated(const Block& b, int mode, int rotation, int isel, const Bc7Level& level, Best& best) {
+  const bptc::Bc7Mode& M = bptc::kBc7Modes[mode];
+  int y[16][4];
+  for (int i = 0; i < 16; ++i) {
+    for (int c = 0; c < 4; ++c) y[i][c] = b.x[i][c];
+    if (rotation) std::swap(y[i][3], y[i][rotation - 1]);
+  }
+  const int color_bits = isel ? M.index2_bits : M.index_bits, alpha_bits = isel ? M.index_bits : M.index2_bits;
+  const SetFit rgb = fit_set(Set{y, 0xFFFF, 0, 3}, {M.color_bits, Pbit::none}, color_bits, false, level);
+  const SetFit alpha = fit_set(Set{y, 0xFFFF, 3, 1}, {M.alpha_bits, Pbit::none}, alpha_bits, false, level);
+  Choice c;
+  c.mode = mode, c.rotation = rotation, c.index_selection = isel;
+  for (int k = 0; k < 2; ++k) {
+    for (int a = 0; a < 3; ++a) c.code[0][k][a] = rgb.code[k][a];
+    c.code[0][k][3] = alpha.code[k][3];
+  }
+  for (int i = 0; i < 16; ++i) c.color_index[i] = rgb.index[i], c.alpha_index[i] = alpha.index[i];
+  best.offer(c, rgb.error + alpha.error);
+}
+
+Choice encode_block(const Block& b, const Bc7Level& level) {
+  if (b.solid) return bc7::solid_choice(b.x[0]);
+  Best best;
+  {
+    const SetFit f = fit_set(Set{b.x, 0xFFFF, 0, 4}, bc7::color_format(6), 4, b.opaque, level);
+    Choice c;
+    c.mode = 6;
+    for (int k = 0; k < 2; ++k) {
+      c.pbit[0][k] = f.pbit[k];
+      for (int a = 0; a < 4; ++a) c.code[0][k][a] = f.code[k][a];
+    }
+    for (int i = 0; i < 16; ++i) c.color_index[i] = f.index[i];
+    best.offer(c, f.error);
+  }
+  Ranked two;
+  two.init(std::min(level.partitions2, 64));
+  if (level.partitions2 > 0) {
+    rank_partitions(b, 2, two, nullptr);
+    for (int r = 0; r < two.k; ++r) {
+      try_partitioned(b, 1, two.partition[r], level, best);
+      if (level.mode3) try_partitioned(b, 3, two.partition[r], level, best);
+    }
+  }
+  if (level.partitions3 > 0) {
+    Ranked three, three16;
+    three.init(std::min(level.partitions3, 64)), three16.init(std::min(level.partitions3, 16));
+    rank_partitions(b, 3, three, &three16);
+    for (int r = 0; r < three16.k; ++r) try_partitioned(b, 0, three16.partition[r], level, best);
+    for (int r = 0; r < three.k; ++r) try_partitioned(b, 2, three.partition[r], level, best);
+  }
+  if (!b.opaque) {
+    for (int rot = 0; rot < level.rotations; ++rot) try_rotated(b, 5, rot, 0, level, best);
+    for (int rot = 0; rot < level.rotations; ++rot)
+      for (int isel = 0; isel < (level.index_selection ? 2 : 1); ++isel) try_rotated(b, 4, rot, isel, level, best);
+    if (level.mode7)
+      for (int r = 0; r < two.k; ++r) try_partitioned(b, 7, two.partition[r], level, best);
+  }
+  return best.choice;
+}
+
+}  // namespace
+
+void bc7_encode_lanes(const std::uint32_t texel[16][kBc7Batch], int count, const Bc7Level& level, std::uint8_t out[][16]) {
+  for (int k = 0; k < count; ++k) {
+    Block b{};
+    b.opaque = b.solid = true;
+    for (int i = 0; i < 16; ++i) {
+      for (int c = 0; c < 4; ++c) b.x[i][c] = int(texel[i][k] >> (8 * c) & 255);
+      b.opaque = b.opaque && b.x[i][3] == 255;
+      b.solid = b.solid && texel[i][k] == texel[0][k];
+      b.alpha_error += (255 - b.x[i][3]) * (255 - b.x[i][3]);
+    }
+    bc7::pack_block(encode_block(b, level), out[k]);
+  }
+}
+
+}  // namespace texproc::ref

@@ -1,0 +1,557 @@
+// BC7, a block per lane: the Highway twin of the scalar reference in
+// bc7_lanes.cpp. Both evaluate the same expressions in the same order (see
+// bc7_lanes.h); where the reference stops early for a block (a refinement
+// that no longer helps), the lane stops updating. Lanes with one colour are
+// packed from bc7_shared.h's table, as the reference does.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "bc/bc7_lanes_simd.cpp"
+#include <hwy/foreach_target.h>  // must come before highway.h
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <climits>
+
+#include "bc/bc7_lanes.h"
+#include "bc/bc7_shared.h"
+#include "texproc/runtime.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace texproc {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using DI = hn::CappedTag<std::int32_t, kBc7Batch>;
+using DF = hn::Rebind<float, DI>;
+using V = hn::Vec<DI>;
+using VF = hn::Vec<DF>;
+using M = hn::Mask<DI>;
+
+using bc7::EndpointFormat;
+using bc7::Pbit;
+
+// As the reference's SetFit, a lane each.
+struct SetFitV {
+  V code[2][4], pbit[2], value[2][4];
+  V index[16];
+  V error;
+};
+
+// As the reference's Set: the texels (possibly rotated), the members (a
+// mask per texel), the channels.
+struct SetV {
+  const V (*x)[4];
+  const M* member;
+  int c0, n;
+};
+
+// The lanes' best candidate so far (the reference's Best and Choice).
+struct BestV {
+  V error, mode, partition, rotation, isel;
+  V code[3][2][4], pbit[3][2];
+  V color_index[16], alpha_index[16];
+};
+
+struct Bc7Batch {
+  const DI d;
+  const DF df;
+  const Bc7Level& level;
+  V x[16][4];
+  M opaque, solid;
+  V alpha_error;
+  BestV best;
+  M all_members[16];
+
+  HWY_ATTR explicit Bc7Batch(const Bc7Level& l) : level(l) {
+    for (auto& m : all_members) m = hn::FirstN(d, kBc7Batch);
+  }
+
+  HWY_INLINE VF f(V v) const { return hn::ConvertTo(df, v); }
+
+  HWY_INLINE void load(const std::uint32_t texel[16][kBc7Batch], int k0) {
+    opaque = hn::FirstN(d, kBc7Batch), solid = opaque;
+    alpha_error = hn::Zero(d);
+    const V first = hn::LoadU(d, reinterpret_cast<const std::int32_t*>(texel[0]) + k0);
+    for (int i = 0; i < 16; ++i) {
+      const V t = hn::LoadU(d, reinterpret_cast<const std::int32_t*>(texel[i]) + k0);
+      for (int c = 0; c < 4; ++c) x[i][c] = hn::And(hn::ShiftRightSame(t, 8 * c), hn::Set(d, 255));  // masked: the shift is arithmetic
+      opaque = hn::And(opaque, hn::Eq(x[i][3], hn::Set(d, 255)));
+      solid = hn::And(solid, hn::Eq(t, first));
+      const V da = hn::Sub(hn::Set(d, 255), x[i][3]);
+      alpha_error = hn::Add(alpha_error, hn::Mul(da, da));
+    }
+    best.error = hn::IfThenElse(solid, hn::Zero(d), hn::Set(d, INT_MAX));
+  }
+
+  // As ref::line_ends.
+  HWY_INLINE void line_ends(const SetV& s, VF e[2][4]) const {
+    V cnt = hn::Zero(d), S[4], Q[4][4], mn[4], mx[4];
+    for (int a = 0; a < s.n; ++a) {
+      S[a] = hn::Zero(d), mn[a] = hn::Set(d, 255), mx[a] = hn::Zero(d);
+      for (int b = a; b < s.n; ++b) Q[a][b] = hn::Zero(d);
+    }
+    for (int i = 0; i < 16; ++i) {
+      const M m = s.member[i];
+      cnt = hn::Add(cnt, hn::IfThenElseZero(m, hn::Set(d, 1)));
+      for (int a = 0; a < s.n; ++a) {
+        const V xa = s.x[i][s.c0 + a];
+        S[a] = hn::Add(S[a], hn::IfThenElseZero(m, xa));
+        mn[a] = hn::IfThenElse(m, hn::Min(mn[a], xa), mn[a]), mx[a] = hn::IfThenElse(m, hn::Max(mx[a], xa), mx[a]);
+        for (int b = a; b < s.n; ++b) Q[a][b] = hn::Add(Q[a][b], hn::IfThenElseZero(m, hn::Mul(xa, s.x[i][s.c0 + b])));
+      }
+    }
+    VF mean[4];
+    for (int a = 0; a < s.n; ++a) mean[a] = hn::Div(f(S[a]), f(cnt));
+    if (s.n == 1) {
+      e[0][s.c0] = f(mn[0]), e[1][s.c0] = f(mx[0]);
+      return;
+    }
+    VF C[4][4];
+    for (int a = 0; a < s.n; ++a)
+      for (int b = a; b < s.n; ++b) C[a][b] = C[b][a] = f(hn::Sub(hn::Mul(cnt, Q[a][b]), hn::Mul(S[a], S[b])));
+    VF diag = C[0][0], v[4];
+    for (int a = 0; a < s.n; ++a) v[a] = C[a][0];
+    for (int j = 1; j < s.n; ++j) {
+      const auto gt = hn::Gt(C[j][j], diag);
+      diag = hn::IfThenElse(gt, C[j][j], diag);
+      for (int a = 0; a < s.n; ++a) v[a] = hn::IfThenElse(gt, C[a][j], v[a]);
+    }
+    const auto flat = hn::Eq(diag, hn::Zero(df));
+    for (int it = 0; it < 3; ++it) {
+      VF w[4], m = hn::Zero(df);
+      for (int a = 0; a < s.n; ++a) {
+        w[a] = hn::Zero(df);
+        for (int b = 0; b < s.n; ++b) w[a] = hn::Add(w[a], hn::Mul(C[a][b], v[b]));
+        m = hn::Max(m, hn::Abs(w[a]));
+      }
+      const auto moved = hn::Ne(m, hn::Zero(df));
+      const VF inv = hn::Div(hn::Set(df, 1.0f), hn::IfThenElse(moved, m, hn::Set(df, 1.0f)));
+      for (int a = 0; a < s.n; ++a) v[a] = hn::IfThenElse(moved, hn::Mul(w[a], inv), v[a]);
+    }
+    VF tmin = hn::Set(df, HUGE_VALF), tmax = hn::Set(df, -HUGE_VALF), tmean = hn::Zero(df), vv = hn::Zero(df);
+    for (int i = 0; i < 16; ++i) {
+      VF t = hn::Zero(df);
+      for (int a = 0; a < s.n; ++a) t = hn::Add(t, hn::Mul(v[a], f(s.x[i][s.c0 + a])));
+      const auto m = hn::RebindMask(df, s.member[i]);
+      tmin = hn::IfThenElse(m, hn::Min(tmin, t), tmin), tmax = hn::IfThenElse(m, hn::Max(tmax, t), tmax);
+    }
+    for (int a = 0; a < s.n; ++a) tmean = hn::Add(tmean, hn::Mul(v[a], mean[a])), vv = hn::Add(vv, hn::Mul(v[a], v[a]));
+    const VF safe_vv = hn::IfThenElse(flat, hn::Set(df, 1.0f), vv);
+    const VF s0 = hn::Div(hn::Sub(tmin, tmean), safe_vv), s1 = hn::Div(hn::Sub(tmax, tmean), safe_vv);
+    for (int a = 0; a < s.n; ++a) {
+      e[0][s.c0 + a] = hn::IfThenElse(flat, mean[a], hn::Add(mean[a], hn::Mul(s0, v[a])));
+      e[1][s.c0 + a] = hn::IfThenElse(flat, mean[a], hn::Add(mean[a], hn::Mul(s1, v[a])));
+    }
+  }
+
+  // As ref::quantize_ends; `force_p1` per lane.
+  HWY_INLINE void quantize_ends(const SetV& s, const VF e[2][4], EndpointFormat fmt, M force_p1, SetFitV& fit) const {
+    const std::int32_t* table = bc7::kQuantPacked[fmt.bits - 4];
+    V v[2][4], q0[2][4], q1[2][4];
+    V err0[2] = {hn::Zero(d), hn::Zero(d)}, err1[2] = {hn::Zero(d), hn::Zero(d)};
+    const int base0 = fmt.pbit == Pbit::none ? 0 : 256, base1 = fmt.pbit == Pbit::none ? 0 : 512;
+    for (int k = 0; k < 2; ++k)
+      for (int a = 0; a < s.n; ++a) {
+        const VF c = hn::Min(hn::Max(e[k][s.c0 + a], hn::Zero(df)), hn::Set(df, 255.0f));
+        v[k][a] = hn::ConvertTo(d, hn::Round(c));
+        q0[k][a] = hn::GatherIndex(d, table + base0, v[k][a]);
+        q1[k][a] = hn::GatherIndex(d, table + base1, v[k][a]);
+        const V d0 = hn::Sub(hn::ShiftRight<8>(q0[k][a]), v[k][a]), d1 = hn::Sub(hn::ShiftRight<8>(q1[k][a]), v[k][a]);
+        err0[k] = hn::Add(err0[k], hn::Mul(d0, d0)), err1[k] = hn::Add(err1[k], hn::Mul(d1, d1));
+      }
+    M p1[2] = {hn::FirstN(d, 0), hn::FirstN(d, 0)};
+    if (fmt.pbit == Pbit::unique) {
+      for (int k = 0; k < 2; ++k) p1[k] = hn::Or(force_p1, hn::Lt(err1[k], err0[k]));
+    } else if (fmt.pbit == Pbit::shared) {
+      p1[0] = p1[1] = hn::Or(force_p1, hn::Lt(hn::Add(err1[0], err1[1]), hn::Add(err0[0], err0[1])));
+    }
+    for (int k = 0; k < 2; ++k) {
+      fit.pbit[k] = hn::IfThenElseZero(p1[k], hn::Set(d, 1));
+      for (int a = 0; a < s.n; ++a) {
+        const V q = hn::IfThenElse(p1[k], q1[k][a], q0[k][a]);
+        fit.code[k][s.c0 + a] = hn::And(q, hn::Set(d, 255)), fit.value[k][s.c0 + a] = hn::ShiftRight<8>(q);
+      }
+    }
+  }
+
+  // The weight (out of 64) of index j of 2^bits: round(64 j / L), as
+  // floor((128 j + L) / 2L), which is never a whole number, so the float
+  // product floors exactly (the tables' values: tests compare).
+  HWY_INLINE V weight(V j, int L) const {
+    const VF num = f(hn::Add(hn::Mul(j, hn::Set(d, 128)), hn::Set(d, L)));
+    return hn::ConvertTo(d, hn::Floor(hn::Mul(num, hn::Set(df, 1.0f / float(2 * L)))));
+  }
+  HWY_INLINE V texel_error(const SetV& s, const SetFitV& fit, int i, V j, int L) const {
+    const V w = weight(j, L), u = hn::Sub(hn::Set(d, 64), w);
+    V t = hn::Zero(d);
+    for (int a = 0; a < s.n; ++a) {
+      const V p = hn::ShiftRight<6>(hn::Add(hn::Add(hn::Mul(u, fit.value[0][s.c0 + a]), hn::Mul(w, fit.value[1][s.c0 + a])), hn::Set(d, 32)));
+      const V e = hn::Sub(p, s.x[i][s.c0 + a]);
+      t = hn::Add(t, hn::Mul(e, e));
+    }
+    return t;
+  }
+
+  // As ref::assign.
+  HWY_INLINE void assign(const SetV& s, int bits, SetFitV& fit) const {
+    const int L = (1 << bits) - 1;
+    V dv[4], dd = hn::Zero(d);
+    for (int a = 0; a < s.n; ++a) dv[a] = hn::Sub(fit.value[1][s.c0 + a], fit.value[0][s.c0 + a]), dd = hn::Add(dd, hn::Mul(dv[a], dv[a]));
+    const auto spread = hn::RebindMask(df, hn::Gt(dd, hn::Zero(d)));
+    const VF scale = hn::IfThenElseZero(spread, hn::Div(hn::Set(df, float(L)), f(hn::Max(dd, hn::Set(d, 1)))));
+    fit.error = hn::Zero(d);
+    for (int i = 0; i < 16; ++i) {
+      V t = hn::Zero(d);
+      for (int a = 0; a < s.n; ++a) t = hn::Add(t, hn::Mul(hn::Sub(s.x[i][s.c0 + a], fit.value[0][s.c0 + a]), dv[a]));
+      V j = hn::ConvertTo(d, hn::Round(hn::Mul(f(t), scale)));
+      j = hn::Min(hn::Max(j, hn::Zero(d)), hn::Set(d, L));
+      V e = texel_error(s, fit, i, j, L);
+      if (level.exact_indices) {
+        const V j0 = j, lo = hn::Sub(j0, hn::Set(d, 1)), hi = hn::Add(j0, hn::Set(d, 1));
+        const V elo = texel_error(s, fit, i, hn::Max(lo, hn::Zero(d)), L);
+        const M take_lo = hn::And(hn::Gt(j0, hn::Zero(d)), hn::Lt(elo, e));
+        e = hn::IfThenElse(take_lo, elo, e), j = hn::IfThenElse(take_lo, lo, j);
+        const V ehi = texel_error(s, fit, i, hn::Min(hi, hn::Set(d, L)), L);
+        const M take_hi = hn::And(hn::Lt(j0, hn::Set(d, L)), hn::Lt(ehi, e));
+        e = hn::IfThenElse(take_hi, ehi, e), j = hn::IfThenElse(take_hi, hi, j);
+      }
+      fit.index[i] = hn::IfThenElse(s.member[i], j, fit.index[i]);
+      fit.error = hn::Add(fit.error, hn::IfThenElseZero(s.member[i], e));
+    }
+  }
+
+  // As ref::lsq_ends: the mask of lanes with a determined solution.
+  HWY_INLINE M lsq_ends(const SetV& s, int bits, const SetFitV& fit, VF e[2][4]) const {
+    const int L = (1 << bits) - 1;
+    V AA = hn::Zero(d), AB = AA, BB = AA, RA[4], RB[4];
+    for (int c = 0; c < s.n; ++c) RA[c] = RB[c] = hn::Zero(d);
+    for (int i = 0; i < 16; ++i) {
+      const M m = s.member[i];
+      const V b = hn::IfThenElseZero(m, weight(fit.index[i], L)), a = hn::IfThenElseZero(m, hn::Sub(hn::Set(d, 64), b));
+      AA = hn::Add(AA, hn::Mul(a, a)), AB = hn::Add(AB, hn::Mul(a, b)), BB = hn::Add(BB, hn::Mul(b, b));
+      for (int c = 0; c < s.n; ++c) RA[c] = hn::Add(RA[c], hn::Mul(a, s.x[i][s.c0 + c])), RB[c] = hn::Add(RB[c], hn::Mul(b, s.x[i][s.c0 + c]));
+    }
+    const VF fAA = f(AA), fAB = f(AB), fBB = f(BB);
+    const VF det = hn::Sub(hn::Mul(fAA, fBB), hn::Mul(fAB, fAB));
+    const auto ok = hn::Gt(det, hn::Zero(df));
+    const VF inv = hn::Div(hn::Set(df, 64.0f), hn::IfThenElse(ok, det, hn::Set(df, 1.0f)));
+    for (int c = 0; c < s.n; ++c) {
+      e[0][s.c0 + c] = hn::Mul(hn::Sub(hn::Mul(f(RA[c]), fBB), hn::Mul(f(RB[c]), fAB)), inv);
+      e[1][s.c0 + c] = hn::Mul(hn::Sub(hn::Mul(f(RB[c]), fAA), hn::Mul(f(RA[c]), fAB)), inv);
+    }
+    return hn::RebindMask(d, ok);
+  }
+
+  HWY_INLINE void select_fit(M m, const SetFitV& from, SetFitV& to, const SetV& s) const {
+    for (int k = 0; k < 2; ++k) {
+      to.pbit[k] = hn::IfThenElse(m, from.pbit[k], to.pbit[k]);
+      for (int a = s.c0; a < s.c0 + s.n; ++a)
+        to.code[k][a] = hn::IfThenElse(m, from.code[k][a], to.code[k][a]), to.value[k][a] = hn::IfThenElse(m, from.value[k][a], to.value[k][a]);
+    }
+    for (int i = 0; i < 16; ++i) to.index[i] = hn::IfThenElse(m, from.index[i], to.index[i]);
+    to.error = hn::IfThenElse(m, from.error, to.error);
+  }
+
+  // As ref::fit_set.
+  HWY_INLINE void fit_set(const SetV& s, EndpointFormat fmt, int bits, M force_p1, SetFitV& best_fit) const {
+    VF e[2][4];
+    line_ends(s, e);
+    for (auto& j : best_fit.index) j = hn::Zero(d);
+    quantize_ends(s, e, fmt, force_p1, best_fit);
+    assign(s, bits, best_fit);
+    M active = hn::Gt(best_fit.error, hn::Zero(d));
+    for (int pass = 0; pass < level.refine && !hn::AllFalse(d, active); ++pass) {
+      const M ok = lsq_ends(s, bits, best_fit, e);
+      SetFitV next;
+      next = best_fit;
+      quantize_ends(s, e, fmt, force_p1, next);
+      assign(s, bits, next);
+      const M better = hn::And(hn::And(active, ok), hn::Lt(next.error, best_fit.error));
+      select_fit(better, next, best_fit, s);
+      active = hn::And(better, hn::Gt(best_fit.error, hn::Zero(d)));
+    }
+  }
+
+  HWY_INLINE void offer(M allowed, V error, const V* mode_partition_rotation_isel, const V code[3][2][4], const V pbit[3][2],
+                        const V* color_index, const V* alpha_index) {
+    const M take = hn::And(allowed, hn::Lt(error, best.error));
+    if (hn::AllFalse(d, take)) return;
+    best.error = hn::IfThenElse(take, error, best.error);
+    best.mode = hn::IfThenElse(take, mode_partition_rotation_isel[0], best.mode);
+    best.partition = hn::IfThenElse(take, mode_partition_rotation_isel[1], best.partition);
+    best.rotation = hn::IfThenElse(take, mode_partition_rotation_isel[2], best.rotation);
+    best.isel = hn::IfThenElse(take, mode_partition_rotation_isel[3], best.isel);
+    for (int s = 0; s < 3; ++s)
+      for (int k = 0; k < 2; ++k) {
+        best.pbit[s][k] = hn::IfThenElse(take, pbit[s][k], best.pbit[s][k]);
+        for (int c = 0; c < 4; ++c) best.code[s][k][c] = hn::IfThenElse(take, code[s][k][c], best.code[s][k][c]);
+      }
+    for (int i = 0; i < 16; ++i) {
+      best.color_index[i] = hn::IfThenElse(take, color_index[i], best.color_index[i]);
+      best.alpha_index[i] = hn::IfThenElse(take, alpha_index[i], best.alpha_index[i]);
+    }
+  }
+
+  // Mode 6 (as the reference's first candidate).
+  HWY_INLINE void try_mode6() {
+    SetFitV fit;
+    fit_set(SetV{x, all_members, 0, 4}, bc7::color_format(6), 4, opaque, fit);
+    V code[3][2][4], pbit[3][2], zero[16];
+    zero_candidate(code, pbit, zero);
+    for (int k = 0; k < 2; ++k) {
+      pbit[0][k] = fit.pbit[k];
+      for (int a = 0; a < 4; ++a) code[0][k][a] = fit.code[k][a];
+    }
+    const V header[4] = {hn::Set(d, 6), hn::Zero(d), hn::Zero(d), hn::Zero(d)};
+    offer(hn::FirstN(d, kBc7Batch), fit.error, header, code, pbit, fit.index, zero);
+  }
+
+  HWY_INLINE void zero_candidate(V code[3][2][4], V pbit[3][2], V zero[16]) const {
+    for (int s = 0; s < 3; ++s)
+      for (int k = 0; k < 2; ++k) {
+        pbit[s][k] = hn::Zero(d);
+        for (int c = 0; c < 4; ++c) code[s][k][c] = hn::Zero(d);
+      }
+    for (int i = 0; i < 16; ++i) zero[i] = hn::Zero(d);
+  }
+
+  // As ref::subset_residual.
+  HWY_INLINE VF subset_residual(int cnt, const V S[3], const V Q[6]) const {
+    const V n = hn::Set(d, cnt);
+    const VF c00 = f(hn::Sub(hn::Mul(n, Q[0]), hn::Mul(S[0], S[0]))), c01 = f(hn::Sub(hn::Mul(n, Q[1]), hn::Mul(S[0], S[1]))),
+             c02 = f(hn::Sub(hn::Mul(n, Q[2]), hn::Mul(S[0], S[2]))), c11 = f(hn::Sub(hn::Mul(n, Q[3]), hn::Mul(S[1], S[1]))),
+             c12 = f(hn::Sub(hn::Mul(n, Q[4]), hn::Mul(S[1], S[2]))), c22 = f(hn::Sub(hn::Mul(n, Q[5]), hn::Mul(S[2], S[2])));
+    const VF trace = hn::Add(hn::Add(c00, c11), c22);
+    VF v0 = c00, v1 = c01, v2 = c02;
+    const auto col1 = hn::And(hn::Gt(c11, c00), hn::Ge(c11, c22));
+    v0 = hn::IfThenElse(col1, c01, v0), v1 = hn::IfThenElse(col1, c11, v1), v2 = hn::IfThenElse(col1, c12, v2);
+    const auto col2 = hn::And(hn::Gt(c22, c00), hn::Gt(c22, c11));
+    v0 = hn::IfThenElse(col2, c02, v0), v1 = hn::IfThenElse(col2, c12, v1), v2 = hn::IfThenElse(col2, c22, v2);
+    auto times_c = [&](VF a0, VF a1, VF a2, VF& w0, VF& w1, VF& w2) {
+      w0 = hn::Add(hn::Add(hn::Mul(c00, a0), hn::Mul(c01, a1)), hn::Mul(c02, a2));
+      w1 = hn::Add(hn::Add(hn::Mul(c01, a0), hn::Mul(c11, a1)), hn::Mul(c12, a2));
+      w2 = hn::Add(hn::Add(hn::Mul(c02, a0), hn::Mul(c12, a1)), hn::Mul(c22, a2));
+    };
+    for (int it = 0; it < 2; ++it) {
+      VF w0, w1, w2;
+      times_c(v0, v1, v2, w0, w1, w2);
+      const VF m = hn::Max(hn::Max(hn::Abs(w0), hn::Abs(w1)), hn::Abs(w2));
+      const auto moved = hn::Ne(m, hn::Zero(df));
+      const VF inv = hn::Div(hn::Set(df, 1.0f), hn::IfThenElse(moved, m, hn::Set(df, 1.0f)));
+      v0 = hn::IfThenElse(moved, hn::Mul(w0, inv), v0), v1 = hn::IfThenElse(moved, hn::Mul(w1, inv), v1);
+      v2 = hn::IfThenElse(moved, hn::Mul(w2, inv), v2);
+    }
+    VF w0, w1, w2;
+    times_c(v0, v1, v2, w0, w1, w2);
+    const VF vv = hn::Add(hn::Add(hn::Mul(v0, v0), hn::Mul(v1, v1)), hn::Mul(v2, v2));
+    const VF vcv = hn::Add(hn::Add(hn::Mul(v0, w0), hn::Mul(v1, w1)), hn::Mul(v2, w2));
+    const auto pos = hn::Gt(vv, hn::Zero(df));
+    const VF lambda = hn::IfThenElseZero(pos, hn::Div(vcv, hn::IfThenElse(pos, vv, hn::Set(df, 1.0f))));
+    return hn::Div(hn::Sub(trace, lambda), hn::Set(df, float(cnt)));
+  }
+
+  // As ref::Ranked, a list per lane.
+  struct RankedV {
+    VF est[64];
+    V partition[64];
+    int k = 0;
+  };
+  HWY_INLINE void init(RankedV& r, int keep) const {
+    r.k = keep;
+    for (int j = 0; j < keep; ++j) r.est[j] = hn::Set(df, HUGE_VALF), r.partition[j] = hn::Zero(d);
+  }
+  HWY_INLINE void insert(RankedV& r, VF e, V p) const {
+    for (int j = 0; j < r.k; ++j) {
+      const auto lt = hn::Lt(e, r.est[j]);
+      const VF ne = hn::IfThenElse(lt, r.est[j], e);
+      r.est[j] = hn::IfThenElse(lt, e, r.est[j]), e = ne;
+      const auto lti = hn::RebindMask(d, lt);
+      const V np = hn::IfThenElse(lti, r.partition[j], p);
+      r.partition[j] = hn::IfThenElse(lti, p, r.partition[j]), p = np;
+    }
+  }
+
+  // As ref::rank_partitions.
+  HWY_INLINE void rank_partitions(int subsets, RankedV& all, RankedV* first16) const {
+    V tS[3], tQ[6], prod[16][6];
+    for (auto& v : tS) v = hn::Zero(d);
+    for (auto& v : tQ) v = hn::Zero(d);
+    for (int i = 0; i < 16; ++i) {
+      const V* xi = x[i];
+      prod[i][0] = hn::Mul(xi[0], xi[0]), prod[i][1] = hn::Mul(xi[0], xi[1]), prod[i][2] = hn::Mul(xi[0], xi[2]);
+      prod[i][3] = hn::Mul(xi[1], xi[1]), prod[i][4] = hn::Mul(xi[1], xi[2]), prod[i][5] = hn::Mul(xi[2], xi[2]);
+      for (int c = 0; c < 3; ++c) tS[c] = hn::Add(tS[c], xi[c]);
+      for (int q = 0; q < 6; ++q) tQ[q] = hn::Add(tQ[q], prod[i][q]);
+    }
+    for (int part = 0; part < 64; ++part) {
+      const std::uint32_t bits = subsets == 2 ? bptc::kPartitions2[part] : bptc::kPartitions3[part];
+      int cnt[3] = {};
+      V S[3][3], Q[3][6];
+      for (int s = 0; s < 3; ++s) {
+        for (auto& v : S[s]) v = hn::Zero(d);
+        for (auto& v : Q[s]) v = hn::Zero(d);
+      }
+      for (int i = 0; i < 16; ++i) {
+        const int s = bptc::subset(bits, i);
+        if (s == subsets - 1) continue;
+        ++cnt[s];
+        for (int c = 0; c < 3; ++c) S[s][c] = hn::Add(S[s][c], x[i][c]);
+        for (int q = 0; q < 6; ++q) Q[s][q] = hn::Add(Q[s][q], prod[i][q]);
+      }
+      const int last = subsets - 1;
+      cnt[last] = 16;
+      for (int c = 0; c < 3; ++c) S[last][c] = tS[c];
+      for (int q = 0; q < 6; ++q) Q[last][q] = tQ[q];
+      for (int s = 0; s < last; ++s) {
+        cnt[last] -= cnt[s];
+        for (int c = 0; c < 3; ++c) S[last][c] = hn::Sub(S[last][c], S[s][c]);
+        for (int q = 0; q < 6; ++q) Q[last][q] = hn::Sub(Q[last][q], Q[s][q]);
+      }
+      VF est = hn::Zero(df);
+      for (int s = 0; s < subsets; ++s)
+        if (cnt[s] > 0) est = hn::Add(est, subset_residual(cnt[s], S[s], Q[s]));
+        else est = hn::Add(est, hn::Zero(df));
+      insert(all, est, hn::Set(d, part));
+      if (first16 && part < 16) insert(*first16, est, hn::Set(d, part));
+    }
+  }
+
+  // As ref::try_partitioned; the partition per lane.
+  HWY_INLINE void try_partitioned(int mode, V part, M allowed) {
+    const bptc::Bc7Mode& Md = bptc::kBc7Modes[mode];
+    const std::int32_t* table = reinterpret_cast<const std::int32_t*>(Md.subsets == 2 ? bptc::kPartitions2 : bptc::kPartitions3);
+    const V bits = hn::GatherIndex(d, table, part);
+    const int n = Md.alpha_bits ? 4 : 3;
+    V code[3][2][4], pbit[3][2], color_index[16], zero[16];
+    zero_candidate(code, pbit, zero);
+    for (int i = 0; i < 16; ++i) color_index[i] = hn::Zero(d);
+    V error = n == 3 ? alpha_error : hn::Zero(d);
+    const M force = n == 4 ? opaque : hn::FirstN(d, 0);
+    for (int s = 0; s < Md.subsets; ++s) {
+      M member[16];
+      for (int i = 0; i < 16; ++i) member[i] = hn::Eq(hn::And(hn::ShiftRightSame(bits, 2 * i), hn::Set(d, 3)), hn::Set(d, s));
+      SetFitV fit;
+      fit_set(SetV{x, member, 0, n}, bc7::color_format(mode), Md.index_bits, force, fit);
+      error = hn::Add(error, fit.error);
+      for (int k = 0; k < 2; ++k) {
+        pbit[s][k] = fit.pbit[k];
+        for (int a = 0; a < n; ++a) code[s][k][a] = fit.code[k][a];
+      }
+      for (int i = 0; i < 16; ++i) color_index[i] = hn::IfThenElse(member[i], fit.index[i], color_index[i]);
+    }
+    const V header[4] = {hn::Set(d, mode), part, hn::Zero(d), hn::Zero(d)};
+    offer(allowed, error, header, code, pbit, color_index, zero);
+  }
+
+  // As ref::try_rotated.
+  HWY_INLINE void try_rotated(int mode, int rotation, int isel, M allowed) {
+    const bptc::Bc7Mode& Md = bptc::kBc7Modes[mode];
+    V y[16][4];
+    for (int i = 0; i < 16; ++i) {
+      for (int c = 0; c < 4; ++c) y[i][c] = x[i][c];
+      if (rotation) std::swap(y[i][3], y[i][rotation - 1]);
+    }
+    const int color_bits = isel ? Md.index2_bits : Md.index_bits, alpha_bits = isel ? Md.index_bits : Md.index2_bits;
+    const M none = hn::FirstN(d, 0);
+    SetFitV rgb, alpha;
+    fit_set(SetV{y, all_members, 0, 3}, {Md.color_bits, Pbit::none}, color_bits, none, rgb);
+    fit_set(SetV{y, all_members, 3, 1}, {Md.alpha_bits, Pbit::none}, alpha_bits, none, alpha);
+    V code[3][2][4], pbit[3][2], zero[16];
+    zero_candidate(code, pbit, zero);
+    for (int k = 0; k < 2; ++k) {
+      for (int a = 0; a < 3; ++a) code[0][k][a] = rgb.code[k][a];
+      code[0][k][3] = alpha.code[k][3];
+    }
+    const V header[4] = {hn::Set(d, mode), hn::Zero(d), hn::Set(d, rotation), hn::Set(d, isel)};
+    offer(allowed, hn::Add(rgb.error, alpha.error), header, code, pbit, rgb.index, alpha.index);
+  }
+
+  // As ref::encode_block, the lanes together; lanes of one colour are
+  // packed by the caller.
+  HWY_INLINE void search() {
+    best.mode = best.partition = best.rotation = best.isel = hn::Zero(d);
+    zero_candidate(best.code, best.pbit, best.color_index);
+    for (auto& v : best.alpha_index) v = hn::Zero(d);
+    const M all = hn::FirstN(d, kBc7Batch);
+    try_mode6();
+    RankedV two;
+    init(two, std::min(level.partitions2, 64));
+    if (level.partitions2 > 0) {
+      rank_partitions(2, two, nullptr);
+      for (int r = 0; r < two.k; ++r) {
+        try_partitioned(1, two.partition[r], all);
+        if (level.mode3) try_partitioned(3, two.partition[r], all);
+      }
+    }
+    if (level.partitions3 > 0) {
+      RankedV three, three16;
+      init(three, std::min(level.partitions3, 64)), init(three16, std::min(level.partitions3, 16));
+      rank_partitions(3, three, &three16);
+      for (int r = 0; r < three16.k; ++r) try_partitioned(0, three16.partition[r], all);
+      for (int r = 0; r < three.k; ++r) try_partitioned(2, three.partition[r], all);
+    }
+    const M with_alpha = hn::Not(opaque);
+    if (hn::AllFalse(d, hn::AndNot(solid, with_alpha))) return;
+    for (int rot = 0; rot < level.rotations; ++rot) try_rotated(5, rot, 0, with_alpha);
+    for (int rot = 0; rot < level.rotations; ++rot)
+      for (int isel = 0; isel < (level.index_selection ? 2 : 1); ++isel) try_rotated(4, rot, isel, with_alpha);
+    if (level.mode7)
+      for (int r = 0; r < two.k; ++r) try_partitioned(7, two.partition[r], with_alpha);
+  }
+
+  // Lane k's choice, packed.
+  HWY_INLINE void store(int k0, int count, std::uint8_t out[][16]) const {
+    constexpr int N = kBc7Batch;
+    HWY_ALIGN std::int32_t tmp[N];
+    auto lane = [&](V v, int k) {
+      hn::StoreU(v, d, tmp);
+      return tmp[k];
+    };
+    const int lanes = std::min(int(hn::Lanes(d)), count - k0);
+    std::int32_t solid_lane[N];
+    hn::StoreU(hn::VecFromMask(d, solid), d, solid_lane);
+    for (int k = 0; k < lanes; ++k) {
+      if (solid_lane[k]) {
+        int rgba[4];
+        for (int c = 0; c < 4; ++c) rgba[c] = lane(x[0][c], k);
+        bc7::pack_block(bc7::solid_choice(rgba), out[k0 + k]);
+        continue;
+      }
+      bc7::Choice c;
+      c.mode = lane(best.mode, k), c.partition = lane(best.partition, k);
+      c.rotation = lane(best.rotation, k), c.index_selection = lane(best.isel, k);
+      for (int s = 0; s < 3; ++s)
+        for (int e = 0; e < 2; ++e) {
+          c.pbit[s][e] = lane(best.pbit[s][e], k);
+          for (int ch = 0; ch < 4; ++ch) c.code[s][e][ch] = lane(best.code[s][e][ch], k);
+        }
+      for (int i = 0; i < 16; ++i)
+        c.color_index[i] = std::uint8_t(lane(best.color_index[i], k)), c.alpha_index[i] = std::uint8_t(lane(best.alpha_index[i], k));
+      bc7::pack_block(c, out[k0 + k]);
+    }
+  }
+};
+
+void Bc7EncodeLanes(const std::uint32_t texel[16][kBc7Batch], int count, const Bc7Level& level, std::uint8_t out[][16]) {
+  Bc7Batch batch(level);
+  const int step = int(hn::Lanes(batch.d));
+  for (int k0 = 0; k0 < count; k0 += step) {
+    batch.load(texel, k0);
+    if (!hn::AllTrue(batch.d, batch.solid)) batch.search();
+    batch.store(k0, count, out);
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace texproc
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace texproc {
+HWY_EXPORT(Bc7EncodeLanes);
+
+void bc7_encode_lanes(const std::uint32_t texel[16][kBc7Batch], int count, const Bc7Level& level, std::uint8_t out[][16]) {
+  if (force_scalar()) return ref::bc7_encode_lanes(texel, count, level, out);
+  HWY_DYNAMIC_DISPATCH(Bc7EncodeLanes)(texel, count, level, out);
+}
+}  // namespace texproc
+#endif

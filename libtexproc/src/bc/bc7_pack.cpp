@@ -1,0 +1,144 @@
+// BC7 blocks from an encoder's Choice, in the bit layout of
+// ARB_texture_compression_bptc (the order bptc_decode.cpp reads): mode,
+// partition, rotation, index selection, the endpoints channel by channel,
+// the p-bits, the primary then the secondary indices.
+#include <utility>
+
+#include "bc/bc7_shared.h"
+
+namespace texproc::bc7 {
+namespace {
+
+class BitWriter {
+ public:
+  void write(std::uint32_t v, int n) {
+    for (int i = 0; i < n; ++i, ++pos_)
+      if (v >> i & 1) (pos_ < 64 ? lo_ : hi_) |= std::uint64_t(1) << (pos_ & 63);
+  }
+  void store(std::uint8_t out[16]) const {
+    for (int i = 0; i < 8; ++i) out[i] = std::uint8_t(lo_ >> (8 * i)), out[8 + i] = std::uint8_t(hi_ >> (8 * i));
+  }
+  int position() const { return pos_; }
+
+ private:
+  std::uint64_t lo_ = 0, hi_ = 0;
+  int pos_ = 0;
+};
+
+constexpr SolidPair solid_pair(int v) {
+  SolidPair best{};
+  int best_d = 1 << 20;
+  for (int a = 0; a < 128; ++a)
+    for (int b = 0; b < 128; ++b) {
+      const int d = bptc::interpolate(expand(a, 7, -1), expand(b, 7, -1), 21) - v;
+      if (d * d < best_d) best_d = d * d, best = {std::uint8_t(a), std::uint8_t(b)};
+    }
+  return best;
+}
+
+struct SolidTable {
+  SolidPair p[256];
+};
+
+}  // namespace
+
+// Built on first use (4M candidate pairs: a few milliseconds, paid only by
+// BC7 encodes, not at start-up).
+const SolidPair& solid5(int v) {
+  static const SolidTable table = [] {
+    SolidTable t{};
+    for (int i = 0; i < 256; ++i) t.p[i] = solid_pair(i);
+    return t;
+  }();
+  return table.p[v];
+}
+
+constexpr QuantTable kQuant[5][3] = {
+    {make_quant_table(4, -1), make_quant_table(4, 0), make_quant_table(4, 1)}, {make_quant_table(5, -1), make_quant_table(5, 0), make_quant_table(5, 1)},
+    {make_quant_table(6, -1), make_quant_table(6, 0), make_quant_table(6, 1)}, {make_quant_table(7, -1), make_quant_table(7, 0), make_quant_table(7, 1)},
+    {make_quant_table(8, -1), make_quant_table(8, -1), make_quant_table(8, -1)},  // 8 bits: no p-bit
+};
+
+struct QuantPacked {
+  std::int32_t t[5][768];
+};
+constexpr QuantPacked make_packed() {
+  QuantPacked p{};
+  for (int b = 0; b < 5; ++b)
+    for (int q = 0; q < 3; ++q)
+      for (int v = 0; v < 256; ++v) p.t[b][q * 256 + v] = kQuant[b][q].q[v].code | kQuant[b][q].q[v].value << 8;
+  return p;
+}
+constexpr QuantPacked kPacked = make_packed();
+const std::int32_t (&kQuantPacked)[5][768] = kPacked.t;
+
+Choice solid_choice(const int rgba[4]) {
+  Choice c;
+  c.mode = 5;
+  for (int a = 0; a < 3; ++a) {
+    const SolidPair& p = solid5(rgba[a]);
+    c.code[0][0][a] = p.e0, c.code[0][1][a] = p.e1;
+  }
+  c.code[0][0][3] = c.code[0][1][3] = rgba[3];
+  for (int i = 0; i < 16; ++i) c.color_index[i] = 1, c.alpha_index[i] = 0;
+  return c;
+}
+
+void pack_block(const Choice& in, std::uint8_t out[16]) {
+  Choice c = in;
+  const bptc::Bc7Mode& M = bptc::kBc7Modes[c.mode];
+  const int ns = M.subsets;
+  const bool swap_streams = c.mode == 4 && c.index_selection != 0;
+  const int color_bits = swap_streams ? M.index2_bits : M.index_bits;
+  const int alpha_bits = swap_streams ? M.index_bits : M.index2_bits;
+  const std::uint32_t part = ns == 2 ? bptc::kPartitions2[c.partition] : ns == 3 ? bptc::kPartitions3[c.partition] : 0;
+  const int anchor[3] = {0, ns == 2 ? bptc::kAnchor2[c.partition] : ns == 3 ? bptc::kAnchor3a[c.partition] : -1,
+                         ns == 3 ? bptc::kAnchor3b[c.partition] : -1};
+  // Anchors' top index bits to 0: the subset's endpoints swapped (the
+  // channels those indices weigh), its indices mirrored.
+  const int color_channels = M.index2_bits ? 3 : 4;
+  for (int s = 0; s < ns; ++s) {
+    const int L = (1 << color_bits) - 1;
+    if (c.color_index[anchor[s]] <= L / 2) continue;
+    for (int ch = 0; ch < color_channels; ++ch) std::swap(c.code[s][0][ch], c.code[s][1][ch]);
+    std::swap(c.pbit[s][0], c.pbit[s][1]);
+    for (int i = 0; i < 16; ++i)
+      if ((ns == 1 ? 0 : bptc::subset(part, i)) == s) c.color_index[i] = std::uint8_t(L - c.color_index[i]);
+  }
+  if (M.index2_bits) {
+    const int L = (1 << alpha_bits) - 1;
+    if (c.alpha_index[0] > L / 2) {
+      std::swap(c.code[0][0][3], c.code[0][1][3]);
+      for (int i = 0; i < 16; ++i) c.alpha_index[i] = std::uint8_t(L - c.alpha_index[i]);
+    }
+  }
+  BitWriter w;
+  w.write(1u << c.mode, c.mode + 1);
+  w.write(std::uint32_t(c.partition), M.partition_bits);
+  w.write(std::uint32_t(c.rotation), M.rotation_bits);
+  w.write(std::uint32_t(c.index_selection), M.index_selection_bits);
+  for (int ch = 0; ch < 3; ++ch)
+    for (int s = 0; s < ns; ++s)
+      for (int k = 0; k < 2; ++k) w.write(std::uint32_t(c.code[s][k][ch]), M.color_bits);
+  if (M.alpha_bits)
+    for (int s = 0; s < ns; ++s)
+      for (int k = 0; k < 2; ++k) w.write(std::uint32_t(c.code[s][k][3]), M.alpha_bits);
+  if (M.endpoint_pbits)
+    for (int s = 0; s < ns; ++s)
+      for (int k = 0; k < 2; ++k) w.write(std::uint32_t(c.pbit[s][k]), 1);
+  if (M.shared_pbits)
+    for (int s = 0; s < ns; ++s) w.write(std::uint32_t(c.pbit[s][0]), 1);
+  const std::uint8_t* primary = swap_streams ? c.alpha_index : c.color_index;
+  const std::uint8_t* secondary = swap_streams ? c.color_index : c.alpha_index;
+  auto is_anchor = [&](int i, int sets) {
+    for (int s = 0; s < sets; ++s)
+      if (anchor[s] == i) return true;
+    return false;
+  };
+  for (int i = 0; i < 16; ++i) w.write(primary[i], is_anchor(i, ns) ? M.index_bits - 1 : M.index_bits);
+  if (M.index2_bits)
+    for (int i = 0; i < 16; ++i) w.write(secondary[i], i == 0 ? M.index2_bits - 1 : M.index2_bits);
+  w.store(out);
+}
+
+}  // namespace texproc::bc7
