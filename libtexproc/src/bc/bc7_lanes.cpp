@@ -207,7 +207,7 @@ float subset_residual(int cnt, const int S[3], const int Q[6]) {
   float v0 = c00, v1 = c01, v2 = c02;  // the column of the largest diagonal
   if (c11 > c00 && c11 >= c22) v0 = c01, v1 = c11, v2 = c12;
   if (c22 > c00 && c22 > c11) v0 = c02, v1 = c12, v2 = c22;
-  for (int it = 0; it < 2; ++it) {
+  for (int it = 0; it < 1; ++it) {
     const float w0 = c00 * v0 + c01 * v1 + c02 * v2, w1 = c01 * v0 + c11 * v1 + c12 * v2,
                 w2 = c02 * v0 + c12 * v1 + c22 * v2;
     const float m = std::max(std::max(std::fabs(w0), std::fabs(w1)), std::fabs(w2));
@@ -245,7 +245,7 @@ struct Block {
 
 // Rank the partitions of `subsets` subsets by the estimate: subset sums
 // over RGB, the last subset's by subtraction from the block's.
-void rank_partitions(const Block& b, int subsets, Ranked& all, Ranked* first16) {
+void rank_partitions(const Block& b, int subsets, int scanned, Ranked& all, Ranked* first16) {
   int tS[3] = {}, tQ[6] = {};
   int prod[16][6];
   for (int i = 0; i < 16; ++i) {
@@ -254,7 +254,7 @@ void rank_partitions(const Block& b, int subsets, Ranked& all, Ranked* first16) 
     for (int c = 0; c < 3; ++c) tS[c] += x[c];
     for (int q = 0; q < 6; ++q) prod[i][q] = p[q], tQ[q] += p[q];
   }
-  for (int part = 0; part < 64; ++part) {
+  for (int part = 0; part < scanned; ++part) {
     const std::uint32_t bits = subsets == 2 ? bptc::kPartitions2[part] : bptc::kPartitions3[part];
     int cnt[3] = {}, S[3][3] = {}, Q[3][6] = {};
     for (int i = 0; i < 16; ++i) {
@@ -350,9 +350,9 @@ Choice encode_block(const Block& b, const Bc7Level& level) {
     best.offer(c, f.error);
   }
   Ranked two;
-  two.init(std::min(level.partitions2, 64));
+  two.init(std::min(level.partitions2, level.estimated2));
   if (level.partitions2 > 0) {
-    rank_partitions(b, 2, two, nullptr);
+    rank_partitions(b, 2, level.estimated2, two, nullptr);
     for (int r = 0; r < two.k; ++r) {
       try_partitioned(b, 1, two.partition[r], level, best);
       if (level.mode3) try_partitioned(b, 3, two.partition[r], level, best);
@@ -361,7 +361,7 @@ Choice encode_block(const Block& b, const Bc7Level& level) {
   if (level.partitions3 > 0) {
     Ranked three, three16;
     three.init(std::min(level.partitions3, 64)), three16.init(std::min(level.partitions3, 16));
-    rank_partitions(b, 3, three, &three16);
+    rank_partitions(b, 3, 64, three, &three16);
     for (int r = 0; r < three16.k; ++r) try_partitioned(b, 0, three16.partition[r], level, best);
     for (int r = 0; r < three.k; ++r) try_partitioned(b, 2, three.partition[r], level, best);
   }

@@ -331,7 +331,7 @@ struct Bc7Batch {
       w1 = hn::Add(hn::Add(hn::Mul(c01, a0), hn::Mul(c11, a1)), hn::Mul(c12, a2));
       w2 = hn::Add(hn::Add(hn::Mul(c02, a0), hn::Mul(c12, a1)), hn::Mul(c22, a2));
     };
-    for (int it = 0; it < 2; ++it) {
+    for (int it = 0; it < 1; ++it) {
       VF w0, w1, w2;
       times_c(v0, v1, v2, w0, w1, w2);
       const VF m = hn::Max(hn::Max(hn::Abs(w0), hn::Abs(w1)), hn::Abs(w2));
@@ -371,7 +371,7 @@ struct Bc7Batch {
   }
 
   // As ref::rank_partitions.
-  HWY_INLINE void rank_partitions(int subsets, RankedV& all, RankedV* first16) const {
+  HWY_INLINE void rank_partitions(int subsets, int scanned, RankedV& all, RankedV* first16) const {
     V tS[3], tQ[6], prod[16][6];
     for (auto& v : tS) v = hn::Zero(d);
     for (auto& v : tQ) v = hn::Zero(d);
@@ -382,7 +382,7 @@ struct Bc7Batch {
       for (int c = 0; c < 3; ++c) tS[c] = hn::Add(tS[c], xi[c]);
       for (int q = 0; q < 6; ++q) tQ[q] = hn::Add(tQ[q], prod[i][q]);
     }
-    for (int part = 0; part < 64; ++part) {
+    for (int part = 0; part < scanned; ++part) {
       const std::uint32_t bits = subsets == 2 ? bptc::kPartitions2[part] : bptc::kPartitions3[part];
       int cnt[3] = {};
       V S[3][3], Q[3][6];
@@ -474,9 +474,9 @@ struct Bc7Batch {
     const M all = hn::FirstN(d, kBc7Batch);
     try_mode6();
     RankedV two;
-    init(two, std::min(level.partitions2, 64));
+    init(two, std::min(level.partitions2, level.estimated2));
     if (level.partitions2 > 0) {
-      rank_partitions(2, two, nullptr);
+      rank_partitions(2, level.estimated2, two, nullptr);
       for (int r = 0; r < two.k; ++r) {
         try_partitioned(1, two.partition[r], all);
         if (level.mode3) try_partitioned(3, two.partition[r], all);
@@ -485,7 +485,7 @@ struct Bc7Batch {
     if (level.partitions3 > 0) {
       RankedV three, three16;
       init(three, std::min(level.partitions3, 64)), init(three16, std::min(level.partitions3, 16));
-      rank_partitions(3, three, &three16);
+      rank_partitions(3, 64, three, &three16);
       for (int r = 0; r < three16.k; ++r) try_partitioned(0, three16.partition[r], all);
       for (int r = 0; r < three.k; ++r) try_partitioned(2, three.partition[r], all);
     }
@@ -498,34 +498,39 @@ struct Bc7Batch {
       for (int r = 0; r < two.k; ++r) try_partitioned(7, two.partition[r], with_alpha);
   }
 
-  // Lane k's choice, packed.
+  // Lane k's choice, packed: every field stored once, then read per lane.
   HWY_INLINE void store(int k0, int count, std::uint8_t out[][16]) const {
     constexpr int N = kBc7Batch;
-    HWY_ALIGN std::int32_t tmp[N];
-    auto lane = [&](V v, int k) {
-      hn::StoreU(v, d, tmp);
-      return tmp[k];
-    };
+    struct Fields {
+      std::int32_t solid[N], x0[4][N], mode[N], partition[N], rotation[N], isel[N];
+      std::int32_t code[3][2][4][N], pbit[3][2][N], color_index[16][N], alpha_index[16][N];
+    } t;
+    hn::StoreU(hn::VecFromMask(d, solid), d, t.solid);
+    for (int c = 0; c < 4; ++c) hn::StoreU(x[0][c], d, t.x0[c]);
+    hn::StoreU(best.mode, d, t.mode), hn::StoreU(best.partition, d, t.partition);
+    hn::StoreU(best.rotation, d, t.rotation), hn::StoreU(best.isel, d, t.isel);
+    for (int s = 0; s < 3; ++s)
+      for (int e = 0; e < 2; ++e) {
+        hn::StoreU(best.pbit[s][e], d, t.pbit[s][e]);
+        for (int ch = 0; ch < 4; ++ch) hn::StoreU(best.code[s][e][ch], d, t.code[s][e][ch]);
+      }
+    for (int i = 0; i < 16; ++i) hn::StoreU(best.color_index[i], d, t.color_index[i]), hn::StoreU(best.alpha_index[i], d, t.alpha_index[i]);
     const int lanes = std::min(int(hn::Lanes(d)), count - k0);
-    std::int32_t solid_lane[N];
-    hn::StoreU(hn::VecFromMask(d, solid), d, solid_lane);
     for (int k = 0; k < lanes; ++k) {
-      if (solid_lane[k]) {
-        int rgba[4];
-        for (int c = 0; c < 4; ++c) rgba[c] = lane(x[0][c], k);
+      if (t.solid[k]) {
+        const int rgba[4] = {t.x0[0][k], t.x0[1][k], t.x0[2][k], t.x0[3][k]};
         bc7::pack_block(bc7::solid_choice(rgba), out[k0 + k]);
         continue;
       }
       bc7::Choice c;
-      c.mode = lane(best.mode, k), c.partition = lane(best.partition, k);
-      c.rotation = lane(best.rotation, k), c.index_selection = lane(best.isel, k);
+      c.mode = t.mode[k], c.partition = t.partition[k], c.rotation = t.rotation[k], c.index_selection = t.isel[k];
       for (int s = 0; s < 3; ++s)
         for (int e = 0; e < 2; ++e) {
-          c.pbit[s][e] = lane(best.pbit[s][e], k);
-          for (int ch = 0; ch < 4; ++ch) c.code[s][e][ch] = lane(best.code[s][e][ch], k);
+          c.pbit[s][e] = t.pbit[s][e][k];
+          for (int ch = 0; ch < 4; ++ch) c.code[s][e][ch] = t.code[s][e][ch][k];
         }
       for (int i = 0; i < 16; ++i)
-        c.color_index[i] = std::uint8_t(lane(best.color_index[i], k)), c.alpha_index[i] = std::uint8_t(lane(best.alpha_index[i], k));
+        c.color_index[i] = std::uint8_t(t.color_index[i][k]), c.alpha_index[i] = std::uint8_t(t.alpha_index[i][k]);
       bc7::pack_block(c, out[k0 + k]);
     }
   }

@@ -14,6 +14,9 @@ struct Bc7Level {
   // beside mode 1 (6-bit, 3-bit indices).
   int partitions2;
   bool mode3;
+  // How many of the 64 two-subset partitions the estimate looks at (the
+  // first ones: the table's most useful shapes come first).
+  int estimated2;
   // Three-subset partitions kept, fitted in mode 0 (of its 16) and mode 2
   // (of 64); 0: neither mode.
   int partitions3;
@@ -33,11 +36,11 @@ struct Bc7Level {
 };
 
 inline constexpr Bc7Level kBc7Levels[] = {
-    //            p2  mode3 p3  rot  isel  mode7 refine exact
-    /* fast   */ {1, false, 0, 1, false, false, 1, false},
-    /* normal */ {4, true, 1, 1, false, true, 2, true},
-    /* high   */ {12, true, 4, 4, true, true, 3, true},
-    /* max    */ {64, true, 64, 4, true, true, 6, true},
+    //            p2  mode3 est2 p3  rot  isel  mode7 refine exact
+    /* fast   */ {1, false, 32, 0, 1, false, false, 1, false},
+    /* normal */ {2, true, 64, 1, 1, false, true, 2, true},
+    /* high   */ {12, true, 64, 4, 4, true, true, 3, true},
+    /* max    */ {64, true, 64, 64, 4, true, true, 6, true},
 };
 
 inline const Bc7Level& bc7_level(Quality q) { return kBc7Levels[int(q)]; }

@@ -11,9 +11,15 @@ namespace {
 
 class BitWriter {
  public:
-  void write(std::uint32_t v, int n) {
-    for (int i = 0; i < n; ++i, ++pos_)
-      if (v >> i & 1) (pos_ < 64 ? lo_ : hi_) |= std::uint64_t(1) << (pos_ & 63);
+  void write(std::uint32_t v, int n) {  // n <= 32 bits, v < 2^n
+    const std::uint64_t bits = std::uint64_t(v);
+    if (pos_ < 64) {
+      lo_ |= bits << pos_;
+      if (pos_ + n > 64) hi_ |= bits >> (64 - pos_);
+    } else {
+      hi_ |= bits << (pos_ - 64);
+    }
+    pos_ += n;
   }
   void store(std::uint8_t out[16]) const {
     for (int i = 0; i < 8; ++i) out[i] = std::uint8_t(lo_ >> (8 * i)), out[8 + i] = std::uint8_t(hi_ >> (8 * i));

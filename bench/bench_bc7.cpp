@@ -1,0 +1,145 @@
+// BC7 benchmark: texproc's encoder at each quality beside texproc's BC1
+// `high` and, where CMake is given its source (-DTEXPROC_BC7ENC_DIR=, a
+// checkout of richgel999/bc7enc_rdo outside this tree; skipped when absent),
+// bc7enc (bc7enc_rdo's C++ block encoder: uber 0 with 16 partitions, uber 4
+// with 64, linear RGB weights), in one run. The setting: 256x256
+// centred crops of the corpus's 15 albedo and photo images, opaque, single
+// thread (and texproc on two), PSNR over RGB pooled over every crop's
+// squared errors, scored with texproc's exact decoder (which matches
+// Pillow's on random blocks).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "bench_common.h"
+#include "texproc/block_decode.h"
+#include "texproc/block_encode.h"
+#include "texproc/image_io.h"
+#include "texproc/runtime.h"
+
+#ifdef TEXPROC_HAVE_BC7ENC
+#include "bc7enc.h"
+#endif
+
+using namespace texproc;
+
+namespace {
+
+const std::vector<Image>& crops() {
+  static const std::vector<Image> c = [] {
+    std::vector<Image> out;
+    for (const std::string& f : bench::corpus_color_paths()) {
+      const Image src = read_image(std::string(TEXPROC_CORPUS_DIR) + "/" + f);
+      const int w = std::min(256, src.width() / 4 * 4), h = std::min(256, src.height() / 4 * 4);
+      const int x0 = (src.width() - w) / 2, y0 = (src.height() - h) / 2;
+      Image img(w, h, 4, PixelType::u8);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          for (int ch = 0; ch < 4; ++ch)
+            img.set(x, y, ch, ch == 3 ? 1.0f : src.get(x0 + x, y0 + y, src.channels() < 3 ? 0 : ch));
+      out.push_back(std::move(img));
+    }
+    return out;
+  }();
+  return c;
+}
+
+double squared_error_rgb(const Image& src, TexelFormat f, const std::vector<std::uint8_t>& blocks) {
+  const Image d = decompress_image(blocks, src.width(), src.height(), f, PixelType::u8);
+  double se = 0;
+  for (int y = 0; y < src.height(); ++y)
+    for (int x = 0; x < src.width(); ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double e = double(d.row<const std::uint8_t>(y)[d.channels() * x + c]) - src.row<const std::uint8_t>(y)[4 * x + c];
+        se += e * e;
+      }
+  return se;
+}
+
+#ifdef TEXPROC_HAVE_BC7ENC
+std::vector<std::uint8_t> bc7enc_image(const Image& img, int uber, int partitions) {
+  static const bool ready = [] {
+    bc7enc_compress_block_init();
+    return true;
+  }();
+  (void)ready;
+  bc7enc_compress_block_params p;
+  bc7enc_compress_block_params_init(&p);
+  bc7enc_compress_block_params_init_linear_weights(&p);
+  p.m_uber_level = std::uint32_t(uber), p.m_max_partitions = std::uint32_t(partitions);
+  const int bw = img.width() / 4, bh = img.height() / 4;
+  std::vector<std::uint8_t> out(std::size_t(bw) * bh * 16);
+  std::uint8_t px[16][4];
+  for (int by = 0; by < bh; ++by)
+    for (int bx = 0; bx < bw; ++bx) {
+      for (int i = 0; i < 16; ++i)
+        for (int c = 0; c < 4; ++c) px[i][c] = img.row<const std::uint8_t>(4 * by + i / 4)[4 * (4 * bx + i % 4) + c];
+      bc7enc_compress_block(out.data() + (std::size_t(by) * bw + bx) * 16, px, &p);
+    }
+  return out;
+}
+#endif
+
+// who: "texproc" (format, quality, threads) or "bc7enc" (uber, partitions).
+void run(benchmark::State& state, const std::string& who, TexelFormat format, Quality q, int threads, int uber, int partitions) {
+  ThreadLimit limit(threads);
+  double se = 0, samples = 0;
+  for (auto _ : state) {
+    se = samples = 0;
+    for (const Image& img : crops()) {
+      std::vector<std::uint8_t> blocks;
+#ifdef TEXPROC_HAVE_BC7ENC
+      if (who == "bc7enc") blocks = bc7enc_image(img, uber, partitions);
+#else
+      (void)uber, (void)partitions;
+#endif
+      if (who == "texproc") blocks = compress_image(img.view(), format, q);
+      benchmark::DoNotOptimize(blocks.data());
+      state.PauseTiming();
+      se += squared_error_rgb(img, format, blocks);
+      samples += 3.0 * img.width() * img.height();
+      state.ResumeTiming();
+    }
+  }
+  double pixels = 0;
+  for (const Image& img : crops()) pixels += double(img.width()) * img.height();
+  state.counters["MPix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["PSNR"] = 10 * std::log10(255.0 * 255.0 / (se / samples));
+}
+
+void register_all() {
+  using F = TexelFormat;
+  for (Quality q : {Quality::fast, Quality::normal, Quality::high, Quality::max})
+    benchmark::RegisterBenchmark((std::string("bc7/texproc/") + to_string(q)).c_str(), run, "texproc", F::bc7_unorm, q, 1, 0, 0)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->MinTime(q == Quality::max ? 0.1 : 1.0);
+  for (Quality q : {Quality::fast, Quality::normal})
+    benchmark::RegisterBenchmark((std::string("bc7/texproc/") + to_string(q) + "/threads:2").c_str(), run, "texproc", F::bc7_unorm, q,
+                                 2, 0, 0)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+  benchmark::RegisterBenchmark("bc1/texproc/high", run, "texproc", F::bc1_rgb_unorm, Quality::high, 1, 0, 0)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+#ifdef TEXPROC_HAVE_BC7ENC
+  benchmark::RegisterBenchmark("bc7/bc7enc/uber0_16", run, "bc7enc", F::bc7_unorm, Quality::normal, 1, 0, 16)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
+  benchmark::RegisterBenchmark("bc7/bc7enc/uber4_64", run, "bc7enc", F::bc7_unorm, Quality::normal, 1, 4, 64)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime()
+      ->MinTime(0.1);
+#endif
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  register_all();
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  return 0;
+}
