@@ -408,6 +408,52 @@ TEST(Cli, CompressBc4Bc5IntoContainers) {
   fs::remove_all(dir);
 }
 
+// BC7 from the CLI: sRGB for 8-bit colour (UNORM with --linear), DDS (DX10)
+// and KTX2 with mips, decompress back close to the source, alpha kept on a
+// cutout; float input outside [0, 1] warns, as every LDR format does.
+TEST(Cli, CompressBc7IntoContainers) {
+  const std::string dir = temp_dir("cli_bc7");
+  const std::string albedo = std::string(TEXPROC_SAMPLES_DIR) + "/albedo_desert_512.png";
+  RunResult r = run_texproc("compress " + albedo + " -o " + dir + "/a.dds --format bc7 --mips --quality fast -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Texture t = read_texture(dir + "/a.dds");
+  EXPECT_EQ(t.format, TexelFormat::bc7_srgb);
+  EXPECT_EQ(t.levels, 10u);
+  r = run_texproc("compress " + albedo + " -o " + dir + "/a.ktx2 --format BC7 --linear -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_texture(dir + "/a.ktx2").format, TexelFormat::bc7_unorm);
+  r = run_texproc("info " + dir + "/a.dds");
+  EXPECT_NE(r.out.find("bc7_srgb"), std::string::npos) << r.out;
+  r = run_texproc("decompress " + dir + "/a.dds -o " + dir + "/back.png -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image src = read_image(albedo), back = read_image(dir + "/back.png");
+  double se = 0;
+  for (int y = 0; y < src.height(); ++y)
+    for (int x = 0; x < src.width(); ++x)
+      for (int c = 0; c < 3; ++c) se += std::pow(back.get(x, y, c) - src.get(x, y, c), 2);
+  EXPECT_GT(10 * std::log10(1.0 / (se / (3.0 * src.width() * src.height()))), 40.0);
+  const std::string cutout = std::string(TEXPROC_SAMPLES_DIR) + "/cutout_fence_512x256.png";
+  r = run_texproc("compress " + cutout + " -o " + dir + "/c.dds --format bc7 -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_texproc("decompress " + dir + "/c.dds -o " + dir + "/c.png -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Image csrc = read_image(cutout), cback = read_image(dir + "/c.png");
+  ASSERT_EQ(cback.channels(), 4);
+  double ase = 0;
+  for (int y = 0; y < csrc.height(); ++y)
+    for (int x = 0; x < csrc.width(); ++x) ase += std::pow(cback.get(x, y, 3) - csrc.get(x, y, 3), 2);
+  EXPECT_GT(10 * std::log10(1.0 / (ase / (double(csrc.width()) * csrc.height()))), 35.0);
+  const std::string sky = std::string(TEXPROC_SAMPLES_DIR) + "/sky_forest_512x256.exr";
+  r = run_texproc("compress " + sky + " -o " + dir + "/s.dds --format bc7 --quality fast");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("sky_forest_512x256.exr: values from"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("clipped to [0, 1] by bc7_unorm"), std::string::npos) << r.err;
+  r = run_texproc("compress " + sky + " -o " + dir + "/s2.dds --format bc7 --quality fast --clip");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("clipped"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
+
 namespace {
 std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

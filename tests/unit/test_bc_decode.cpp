@@ -163,3 +163,32 @@ TEST(BcDecode, OpenImageIoAgreesOnLegacyDds) {
   }
   fs::remove_all(dir);
 }
+
+// 8-bit output decodes each block straight to bytes (the palettes' integers,
+// the 8-bit decoders' texels): the same bytes as the float decoder's texels
+// stored through Image::set (SNORM biased to [0, 1]), for every 4x4 block
+// format, on random blocks and a size with partial blocks.
+TEST(BlockDecode, EightBitOutputEqualsTheFloatDecoderStored) {
+  using F = TexelFormat;
+  std::mt19937 rng(5);
+  for (F f : {F::bc1_rgb_unorm, F::bc1_rgba_srgb, F::bc2_unorm, F::bc3_srgb, F::bc4_unorm, F::bc4_snorm, F::bc5_unorm, F::bc5_snorm,
+              F::bc6h_ufloat, F::bc6h_sfloat, F::bc7_unorm, F::bc7_srgb, F::etc1_rgb, F::etc2_rgb_srgb, F::etc2_rgba1_unorm,
+              F::etc2_rgba8_srgb, F::eac_r11_unorm, F::eac_r11_snorm, F::eac_rg11_unorm, F::eac_rg11_snorm}) {
+    const FormatInfo& info = format_info(f);
+    const int w = 37, h = 22, bw = (w + 3) / 4, bh = (h + 3) / 4;
+    std::vector<std::uint8_t> blocks(std::size_t(bw) * bh * info.block_bytes);
+    for (auto& b : blocks) b = std::uint8_t(rng());
+    const Image u8 = decompress_image(blocks, w, h, f, PixelType::u8);
+    const Image f32 = decompress_image(blocks, w, h, f, PixelType::f32);
+    ASSERT_EQ(u8.channels(), f32.channels()) << info.name;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < u8.channels(); ++c) {
+          float v = f32.get(x, y, c);
+          if (info.snorm) v = (v + 1.0f) * 0.5f;
+          const float cl = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+          ASSERT_EQ(u8.row<const std::uint8_t>(y)[x * u8.channels() + c], std::uint8_t(cl * 255.0f + 0.5f))
+              << info.name << " at " << x << "," << y << " channel " << c;
+        }
+  }
+}

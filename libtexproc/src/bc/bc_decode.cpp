@@ -3,6 +3,7 @@
 // Formats"). Depends on nothing under the encoders.
 #include "bc/bc_decode.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -22,10 +23,9 @@ void expand565(std::uint16_t c, int rgb[3]) {
 
 }  // namespace
 
-// The colour half of BC1/BC2/BC3. `four_color`: BC2 and BC3 always use the
-// four-colour mode; BC1 only when c0 > c1. `punch_through`: BC1 with alpha
-// (index 3 of the three-colour mode is transparent black).
-void decode_color(const std::uint8_t* b, bool always_four, bool punch_through, float out[16][4]) {
+// The colour half of BC1/BC2/BC3 as RGBA8: the palette's integers (the
+// float decoder below divides them by 255).
+void decode_color_rgba8(const std::uint8_t* b, bool always_four, bool punch_through, std::uint8_t out[16][4]) {
   const std::uint16_t c0 = le16(b), c1 = le16(b + 2);
   int p[4][4];
   expand565(c0, p[0]);
@@ -43,16 +43,23 @@ void decode_color(const std::uint8_t* b, bool always_four, bool punch_through, f
     }
     if (punch_through) p[3][3] = 0;
   }
+  std::uint32_t packed[4];
+  for (int k = 0; k < 4; ++k)
+    packed[k] = std::uint32_t(p[k][0]) | std::uint32_t(p[k][1]) << 8 | std::uint32_t(p[k][2]) << 16 | std::uint32_t(p[k][3]) << 24;
   const std::uint32_t idx = le32(b + 4);
-  for (int i = 0; i < 16; ++i) {
-    const int* q = p[idx >> (2 * i) & 3];
-    for (int c = 0; c < 4; ++c) out[i][c] = float(q[c]) / 255.0f;
-  }
+  for (int i = 0; i < 16; ++i) std::memcpy(out[i], &packed[idx >> (2 * i) & 3], 4);
 }
 
-// A BC4 (RGTC1) block into channel `ch` of out: exact values.
-void decode_rgtc(const std::uint8_t* b, bool snorm, int ch, float out[16][4]) {
-  float v[8];
+void decode_color(const std::uint8_t* b, bool always_four, bool punch_through, float out[16][4]) {
+  std::uint8_t px[16][4];
+  decode_color_rgba8(b, always_four, punch_through, px);
+  for (int i = 0; i < 16; ++i)
+    for (int c = 0; c < 4; ++c) out[i][c] = float(px[i][c]) / 255.0f;
+}
+
+namespace {
+// BC4's eight palette values (UNORM / 255, SNORM / 127).
+void rgtc_palette(const std::uint8_t* b, bool snorm, float v[8]) {
   if (!snorm) {
     const int r0 = b[0], r1 = b[1];
     v[0] = float(r0) / 255.0f;
@@ -77,10 +84,30 @@ void decode_rgtc(const std::uint8_t* b, bool snorm, int ch, float out[16][4]) {
       v[7] = 1.0f;
     }
   }
-  // 48 bits of 3-bit indices, texel 0 in the lowest bits.
+}
+// 48 bits of 3-bit indices, texel 0 in the lowest bits.
+std::uint64_t rgtc_indices(const std::uint8_t* b) {
   std::uint64_t bits = 0;
   for (int i = 0; i < 6; ++i) bits |= std::uint64_t(b[2 + i]) << (8 * i);
+  return bits;
+}
+}  // namespace
+
+// A BC4 (RGTC1) block into channel `ch` of out: exact values.
+void decode_rgtc(const std::uint8_t* b, bool snorm, int ch, float out[16][4]) {
+  float v[8];
+  rgtc_palette(b, snorm, v);
+  const std::uint64_t bits = rgtc_indices(b);
   for (int i = 0; i < 16; ++i) out[i][ch] = v[bits >> (3 * i) & 7];
+}
+
+void decode_rgtc_u8(const std::uint8_t* b, bool snorm, int ch, std::uint8_t out[16][4]) {
+  float v[8];
+  rgtc_palette(b, snorm, v);
+  std::uint8_t u[8];
+  for (int k = 0; k < 8; ++k) u[k] = to_unorm8(snorm ? (v[k] + 1.0f) * 0.5f : v[k]);
+  const std::uint64_t bits = rgtc_indices(b);
+  for (int i = 0; i < 16; ++i) out[i][ch] = u[bits >> (3 * i) & 7];
 }
 
 }  // namespace texproc::bc

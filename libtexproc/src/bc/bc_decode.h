@@ -13,9 +13,22 @@ namespace texproc::bc {
 // alpha 1 (or 0 for punch-through's transparent texels).
 void decode_color(const std::uint8_t* block, bool always_four, bool punch_through, float out[16][4]);
 
+// The same as RGBA8 (the palette's integers).
+void decode_color_rgba8(const std::uint8_t* block, bool always_four, bool punch_through, std::uint8_t out[16][4]);
+
 // A BC4 (RGTC1) block into channel `ch` of out: exact values (UNORM / 255,
 // SNORM / 127).
 void decode_rgtc(const std::uint8_t* block, bool snorm, int ch, float out[16][4]);
+// The same as 8-bit values, each palette value converted as Image::set
+// converts a float (SNORM biased to [0, 1] first, as 8-bit outputs store it).
+void decode_rgtc_u8(const std::uint8_t* block, bool snorm, int ch, std::uint8_t out[16][4]);
+
+// A float in [0, 1] to 8 bits exactly as Image::set stores it (clamped,
+// times 255, plus 0.5, truncated).
+inline std::uint8_t to_unorm8(float v) {
+  const float cl = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+  return static_cast<std::uint8_t>(cl * 255.0f + 0.5f);
+}
 
 // A BC7 block: RGBA8 texels, row by row (ARB_texture_compression_bptc; the
 // reserved mode decodes to 0 in every channel, as Direct3D's does).

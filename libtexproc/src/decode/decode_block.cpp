@@ -3,8 +3,10 @@
 // decoded block by block. Above the formats, as encode/ is for the encoders.
 #include <Imath/half.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
 #include "astc/astc_decode.h"
 #include "bc/bc_decode.h"
@@ -115,6 +117,61 @@ void decode_block(TexelFormat f, const std::uint8_t* b, float out[16][4]) {
   }
 }
 
+namespace {
+
+// One block straight to 8 bits a channel, the bytes the float decoder gives
+// through Image::set (the 8-bit decoders' texels as they are; BC4's palette
+// converted once a block; the rest through the float decoder).
+void decode_block_u8(TexelFormat f, const std::uint8_t* b, bool snorm, std::uint8_t out[16][4]) {
+  using F = TexelFormat;
+  switch (f) {
+    case F::bc1_rgb_unorm:
+    case F::bc1_rgb_srgb: bc::decode_color_rgba8(b, false, false, out); return;
+    case F::bc1_rgba_unorm:
+    case F::bc1_rgba_srgb: bc::decode_color_rgba8(b, false, true, out); return;
+    case F::bc2_unorm:
+    case F::bc2_srgb:
+      bc::decode_color_rgba8(b + 8, true, false, out);
+      for (int i = 0; i < 16; ++i) out[i][3] = std::uint8_t((b[i / 2] >> (4 * (i & 1)) & 15) * 17);
+      return;
+    case F::bc3_unorm:
+    case F::bc3_srgb:
+      bc::decode_color_rgba8(b + 8, true, false, out);
+      bc::decode_rgtc_u8(b, false, 3, out);
+      return;
+    case F::bc4_unorm:
+    case F::bc4_snorm: bc::decode_rgtc_u8(b, f == F::bc4_snorm, 0, out); return;
+    case F::bc5_unorm:
+    case F::bc5_snorm:
+      bc::decode_rgtc_u8(b, f == F::bc5_snorm, 0, out);
+      bc::decode_rgtc_u8(b + 8, f == F::bc5_snorm, 1, out);
+      return;
+    case F::bc7_unorm:
+    case F::bc7_srgb: bc::decode_bc7(b, out); return;
+    case F::etc1_rgb: etc::decode_etc1(b, out); return;
+    case F::etc2_rgb_unorm:
+    case F::etc2_rgb_srgb: etc::decode_etc2(b, false, out); return;
+    case F::etc2_rgba1_unorm:
+    case F::etc2_rgba1_srgb: etc::decode_etc2(b, true, out); return;
+    case F::etc2_rgba8_unorm:
+    case F::etc2_rgba8_srgb: {
+      etc::decode_etc2(b + 8, false, out);
+      std::uint8_t alpha[16];
+      etc::decode_eac8(b, alpha);
+      for (int i = 0; i < 16; ++i) out[i][3] = alpha[i];
+      return;
+    }
+    default: {
+      float texels[16][4];
+      decode_block(f, b, texels);
+      for (int i = 0; i < 16; ++i)
+        for (int c = 0; c < 4; ++c) out[i][c] = bc::to_unorm8(snorm ? (texels[i][c] + 1.0f) * 0.5f : texels[i][c]);
+    }
+  }
+}
+
+}  // namespace
+
 Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t layer, std::uint32_t face,
                            PixelType type) {
   const FormatInfo& info = format_info(t.format);
@@ -147,6 +204,38 @@ Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t 
   Image out = Image::uninitialized(w, h, C, type);
   const PixelBytes& data = t.image(level, layer, face);
   const int bw = (w + 3) / 4, bh = (h + 3) / 4;
+  if (type == PixelType::u8) {  // 8 bits a channel: a block's texels straight into the rows
+    // The copy, with the channel count a constant (1: R, 2: RG, 3: RGB, 4: RGBA).
+    auto rows = [&](auto channels) {
+      constexpr int kC = decltype(channels)::value;
+      for_each_row_block(bh, 16, [&](int by0, int by1) {
+        std::uint8_t px[16][4];
+        const std::uint8_t* block = data.data() + std::size_t(by0) * bw * info.block_bytes;
+        for (int by = by0; by < by1; ++by)
+          for (int bx = 0; bx < bw; ++bx, block += info.block_bytes) {
+            decode_block_u8(t.format, block, info.snorm, px);
+            const int nx = std::min(4, w - 4 * bx), ny = std::min(4, h - 4 * by);
+            for (int r = 0; r < ny; ++r) {
+              std::uint8_t* row = out.row<std::uint8_t>(4 * by + r) + std::size_t(4 * bx) * kC;
+              const std::uint8_t(*src)[4] = px + 4 * r;
+              if (kC == 4 && nx == 4) {
+                std::memcpy(row, src, 16);
+              } else {
+                for (int x = 0; x < nx; ++x)
+                  for (int c = 0; c < kC; ++c) row[x * kC + c] = src[x][c];
+              }
+            }
+          }
+      });
+    };
+    switch (C) {
+      case 1: rows(std::integral_constant<int, 1>{}); break;
+      case 2: rows(std::integral_constant<int, 2>{}); break;
+      case 3: rows(std::integral_constant<int, 3>{}); break;
+      default: rows(std::integral_constant<int, 4>{}); break;
+    }
+    return out;
+  }
   float texels[16][4];
   for (int by = 0; by < bh; ++by)
     for (int bx = 0; bx < bw; ++bx) {
