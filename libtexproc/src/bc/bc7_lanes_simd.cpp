@@ -331,22 +331,14 @@ struct Bc7Batch {
       w1 = hn::Add(hn::Add(hn::Mul(c01, a0), hn::Mul(c11, a1)), hn::Mul(c12, a2));
       w2 = hn::Add(hn::Add(hn::Mul(c02, a0), hn::Mul(c12, a1)), hn::Mul(c22, a2));
     };
-    for (int it = 0; it < 1; ++it) {
-      VF w0, w1, w2;
-      times_c(v0, v1, v2, w0, w1, w2);
-      const VF m = hn::Max(hn::Max(hn::Abs(w0), hn::Abs(w1)), hn::Abs(w2));
-      const auto moved = hn::Ne(m, hn::Zero(df));
-      const VF inv = hn::Div(hn::Set(df, 1.0f), hn::IfThenElse(moved, m, hn::Set(df, 1.0f)));
-      v0 = hn::IfThenElse(moved, hn::Mul(w0, inv), v0), v1 = hn::IfThenElse(moved, hn::Mul(w1, inv), v1);
-      v2 = hn::IfThenElse(moved, hn::Mul(w2, inv), v2);
-    }
-    VF w0, w1, w2;
-    times_c(v0, v1, v2, w0, w1, w2);
-    const VF vv = hn::Add(hn::Add(hn::Mul(v0, v0), hn::Mul(v1, v1)), hn::Mul(v2, v2));
-    const VF vcv = hn::Add(hn::Add(hn::Mul(v0, w0), hn::Mul(v1, w1)), hn::Mul(v2, w2));
-    const auto pos = hn::Gt(vv, hn::Zero(df));
-    const VF lambda = hn::IfThenElseZero(pos, hn::Div(vcv, hn::IfThenElse(pos, vv, hn::Set(df, 1.0f))));
-    return hn::Div(hn::Sub(trace, lambda), hn::Set(df, float(cnt)));
+    VF u0, u1, u2, w0, w1, w2;
+    times_c(v0, v1, v2, u0, u1, u2);
+    times_c(u0, u1, u2, w0, w1, w2);
+    const VF uu = hn::Add(hn::Add(hn::Mul(u0, u0), hn::Mul(u1, u1)), hn::Mul(u2, u2));
+    const VF ucu = hn::Add(hn::Add(hn::Mul(u0, w0), hn::Mul(u1, w1)), hn::Mul(u2, w2));
+    const auto pos = hn::Gt(uu, hn::Zero(df));
+    const VF lambda = hn::IfThenElseZero(pos, hn::Div(ucu, hn::IfThenElse(pos, uu, hn::Set(df, 1.0f))));
+    return hn::Mul(hn::Sub(trace, lambda), hn::Set(df, 1.0f / float(cnt)));
   }
 
   // As ref::Ranked, a list per lane.
