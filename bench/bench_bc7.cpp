@@ -138,6 +138,7 @@ void register_all() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  crops();  // read and cut before any timing (the first benchmark would pay for it)
   register_all();
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
