@@ -37,7 +37,7 @@ struct Set {
 
 // The endpoints from the set's principal axis: the texels' extent along it.
 void line_ends(const Set& s, float e[2][4]) {
-  int cnt = 0, S[4] = {}, Q[4][4] = {};  // Q[a][b], a <= b
+  int cnt = 0, S[4] = {}, Q[16] = {};  // Q[4 * a + b], a <= b: the sums of products
   int mn[4] = {255, 255, 255, 255}, mx[4] = {};
   for (int i = 0; i < 16; ++i) {
     if (!s.has(i)) continue;
@@ -45,7 +45,7 @@ void line_ends(const Set& s, float e[2][4]) {
     for (int a = 0; a < s.n; ++a) {
       const int xa = s.x[i][s.c0 + a];
       S[a] += xa, mn[a] = std::min(mn[a], xa), mx[a] = std::max(mx[a], xa);
-      for (int b = a; b < s.n; ++b) Q[a][b] += xa * s.x[i][s.c0 + b];
+      for (int b = a; b < s.n; ++b) Q[4 * a + b] += xa * s.x[i][s.c0 + b];
     }
   }
   float mean[4];
@@ -56,7 +56,7 @@ void line_ends(const Set& s, float e[2][4]) {
   }
   float C[4][4] = {};
   for (int a = 0; a < s.n; ++a)
-    for (int b = a; b < s.n; ++b) C[a][b] = C[b][a] = float(cnt * Q[a][b] - S[a] * S[b]);
+    for (int b = a; b < s.n; ++b) C[a][b] = C[b][a] = float(cnt * Q[4 * a + b] - S[a] * S[b]);
   int jmax = 0;
   for (int a = 1; a < s.n; ++a)
     if (C[a][a] > C[jmax][jmax]) jmax = a;

@@ -271,15 +271,21 @@ struct Bc7Batch {
     }
   }
 
-  HWY_INLINE void offer(M allowed, V error, const V* mode_partition_rotation_isel, const V code[3][2][4], const V pbit[3][2],
-                        const V* color_index, const V* alpha_index) {
+  // A candidate's mode, partition, rotation and index selection, a lane each.
+  struct Header {
+    V mode, partition, rotation, isel;
+  };
+
+  // As ref::Best::offer: the candidate replaces the best where `allowed` and its error is less.
+  HWY_INLINE void offer(M allowed, V error, const Header& h, const V code[3][2][4], const V pbit[3][2], const V* color_index,
+                        const V* alpha_index) {
     const M take = hn::And(allowed, hn::Lt(error, best.error));
     if (hn::AllFalse(d, take)) return;
     best.error = hn::IfThenElse(take, error, best.error);
-    best.mode = hn::IfThenElse(take, mode_partition_rotation_isel[0], best.mode);
-    best.partition = hn::IfThenElse(take, mode_partition_rotation_isel[1], best.partition);
-    best.rotation = hn::IfThenElse(take, mode_partition_rotation_isel[2], best.rotation);
-    best.isel = hn::IfThenElse(take, mode_partition_rotation_isel[3], best.isel);
+    best.mode = hn::IfThenElse(take, h.mode, best.mode);
+    best.partition = hn::IfThenElse(take, h.partition, best.partition);
+    best.rotation = hn::IfThenElse(take, h.rotation, best.rotation);
+    best.isel = hn::IfThenElse(take, h.isel, best.isel);
     for (int s = 0; s < 3; ++s)
       for (int k = 0; k < 2; ++k) {
         best.pbit[s][k] = hn::IfThenElse(take, pbit[s][k], best.pbit[s][k]);
@@ -301,7 +307,7 @@ struct Bc7Batch {
       pbit[0][k] = fit.pbit[k];
       for (int a = 0; a < 4; ++a) code[0][k][a] = fit.code[k][a];
     }
-    const V header[4] = {hn::Set(d, 6), hn::Zero(d), hn::Zero(d), hn::Zero(d)};
+    const Header header{hn::Set(d, 6), hn::Zero(d), hn::Zero(d), hn::Zero(d)};
     offer(hn::FirstN(d, kBc7Batch), fit.error, header, code, pbit, fit.index, zero);
   }
 
@@ -399,9 +405,8 @@ struct Bc7Batch {
         for (int q = 0; q < 6; ++q) Q[last][q] = hn::Sub(Q[last][q], Q[s][q]);
       }
       VF est = hn::Zero(df);
-      for (int s = 0; s < subsets; ++s)
-        if (cnt[s] > 0) est = hn::Add(est, subset_residual(cnt[s], S[s], Q[s]));
-        else est = hn::Add(est, hn::Zero(df));
+      for (int s = 0; s < subsets; ++s)  // an empty subset adds 0 (the reference's residual of no texels)
+        est = cnt[s] > 0 ? hn::Add(est, subset_residual(cnt[s], S[s], Q[s])) : hn::Add(est, hn::Zero(df));
       insert(all, est, hn::Set(d, part));
       if (first16 && part < 16) insert(*first16, est, hn::Set(d, part));
     }
@@ -430,7 +435,7 @@ struct Bc7Batch {
       }
       for (int i = 0; i < 16; ++i) color_index[i] = hn::IfThenElse(member[i], fit.index[i], color_index[i]);
     }
-    const V header[4] = {hn::Set(d, mode), part, hn::Zero(d), hn::Zero(d)};
+    const Header header{hn::Set(d, mode), part, hn::Zero(d), hn::Zero(d)};
     offer(allowed, error, header, code, pbit, color_index, zero);
   }
 
@@ -453,7 +458,7 @@ struct Bc7Batch {
       for (int a = 0; a < 3; ++a) code[0][k][a] = rgb.code[k][a];
       code[0][k][3] = alpha.code[k][3];
     }
-    const V header[4] = {hn::Set(d, mode), hn::Zero(d), hn::Set(d, rotation), hn::Set(d, isel)};
+    const Header header{hn::Set(d, mode), hn::Zero(d), hn::Set(d, rotation), hn::Set(d, isel)};
     offer(allowed, hn::Add(rgb.error, alpha.error), header, code, pbit, rgb.index, alpha.index);
   }
 
