@@ -46,18 +46,6 @@ const std::vector<Image>& crops() {
   return c;
 }
 
-double squared_error_rgb(const Image& src, TexelFormat f, const std::vector<std::uint8_t>& blocks) {
-  const Image d = decompress_image(blocks, src.width(), src.height(), f, PixelType::u8);
-  double se = 0;
-  for (int y = 0; y < src.height(); ++y)
-    for (int x = 0; x < src.width(); ++x)
-      for (int c = 0; c < 3; ++c) {
-        const double e = double(d.row<const std::uint8_t>(y)[d.channels() * x + c]) - src.row<const std::uint8_t>(y)[4 * x + c];
-        se += e * e;
-      }
-  return se;
-}
-
 #ifdef TEXPROC_HAVE_BC7ENC
 std::vector<std::uint8_t> bc7enc_image(const Image& img, int uber, int partitions) {
   static const bool ready = [] {
@@ -98,7 +86,7 @@ void run(benchmark::State& state, const std::string& who, TexelFormat format, Qu
       if (who == "texproc") blocks = compress_image(img.view(), format, q);
       benchmark::DoNotOptimize(blocks.data());
       state.PauseTiming();
-      se += squared_error_rgb(img, format, blocks);
+      se += bench::squared_error_rgb(img, format, blocks);
       samples += 3.0 * img.width() * img.height();
       state.ResumeTiming();
     }

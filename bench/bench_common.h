@@ -61,8 +61,9 @@ inline std::vector<std::string> corpus_color_paths() {
   return out;
 }
 
-// PSNR over RGB of `blocks` (format f) against the RGBA8 source.
-inline double psnr_rgb(const Image& src, TexelFormat f, const std::vector<std::uint8_t>& blocks) {
+// The squared error over RGB of `blocks` (format f) against the RGBA8
+// source, summed (benchmarks that pool images add these up).
+inline double squared_error_rgb(const Image& src, TexelFormat f, const std::vector<std::uint8_t>& blocks) {
   const Image d = decompress_image(blocks, src.width(), src.height(), f, PixelType::u8);
   double se = 0;
   for (int y = 0; y < src.height(); ++y)
@@ -71,7 +72,12 @@ inline double psnr_rgb(const Image& src, TexelFormat f, const std::vector<std::u
         const double e = double(d.row<std::uint8_t>(y)[d.channels() * x + c]) - src.row<std::uint8_t>(y)[4 * x + c];
         se += e * e;
       }
-  return 10 * std::log10(255.0 * 255.0 / (se / (3.0 * src.width() * src.height())));
+  return se;
+}
+
+// PSNR over RGB of `blocks` (format f) against the RGBA8 source.
+inline double psnr_rgb(const Image& src, TexelFormat f, const std::vector<std::uint8_t>& blocks) {
+  return 10 * std::log10(255.0 * 255.0 / (squared_error_rgb(src, f, blocks) / (3.0 * src.width() * src.height())));
 }
 
 }  // namespace texproc::bench
