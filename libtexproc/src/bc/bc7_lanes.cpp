@@ -149,8 +149,11 @@ void assign(const Set& s, int bits, bool exact, SetFit& fit) {
     int e = texel_error(i, j);
     if (exact) {
       const int j0 = j;
-      if (j0 > 0 && texel_error(i, j0 - 1) < e) e = texel_error(i, j0 - 1), j = j0 - 1;
-      if (j0 < L && texel_error(i, j0 + 1) < e) e = texel_error(i, j0 + 1), j = j0 + 1;
+      for (const int jj : {j0 - 1, j0 + 1}) {
+        if (jj < 0 || jj > L) continue;
+        const int ee = texel_error(i, jj);
+        if (ee < e) e = ee, j = jj;
+      }
     }
     fit.index[i] = std::uint8_t(j);
     fit.error += e;

@@ -261,8 +261,7 @@ struct Bc7Batch {
     M active = hn::Gt(best_fit.error, hn::Zero(d));
     for (int pass = 0; pass < level.refine && !hn::AllFalse(d, active); ++pass) {
       const M ok = lsq_ends(s, bits, best_fit, e);
-      SetFitV next;
-      next = best_fit;
+      SetFitV next = best_fit;
       quantize_ends(s, e, fmt, force_p1, next);
       assign(s, bits, next);
       const M better = hn::And(hn::And(active, ok), hn::Lt(next.error, best_fit.error));
@@ -406,7 +405,7 @@ struct Bc7Batch {
       }
       VF est = hn::Zero(df);
       for (int s = 0; s < subsets; ++s)  // an empty subset adds 0 (the reference's residual of no texels)
-        est = cnt[s] > 0 ? hn::Add(est, subset_residual(cnt[s], S[s], Q[s])) : hn::Add(est, hn::Zero(df));
+        if (cnt[s] > 0) est = hn::Add(est, subset_residual(cnt[s], S[s], Q[s]));
       insert(all, est, hn::Set(d, part));
       if (first16 && part < 16) insert(*first16, est, hn::Set(d, part));
     }

@@ -24,7 +24,6 @@ class BitWriter {
   void store(std::uint8_t out[16]) const {
     for (int i = 0; i < 8; ++i) out[i] = std::uint8_t(lo_ >> (8 * i)), out[8 + i] = std::uint8_t(hi_ >> (8 * i));
   }
-  int position() const { return pos_; }
 
  private:
   std::uint64_t lo_ = 0, hi_ = 0;
