@@ -24,7 +24,7 @@ struct CompareArgs {
   CommonOptions common;
   std::string a, b;
   int level = 0;
-  double min_psnr = -1, max_error = -1, min_ssim = -1;
+  double min_psnr = -1, max_error = -1, min_ssim = -1, max_log_rmse = -1;
   bool ssim = false, json = false;
 };
 
@@ -89,11 +89,14 @@ int run_compare(const CompareArgs& a) {
   for (double s : ssim) ssim_mean += s / double(ssim.size());
 
   std::vector<std::string> failed;
-  const bool limits = a.min_psnr >= 0 || a.max_error >= 0 || a.min_ssim >= 0;
+  const bool limits = a.min_psnr >= 0 || a.max_error >= 0 || a.min_ssim >= 0 || a.max_log_rmse >= 0;
   if (!limits && d.differing_texels > 0) failed.push_back("texels differ");
   if (a.min_psnr >= 0 && d.psnr() < a.min_psnr) failed.push_back("PSNR " + db(d.psnr()) + " dB < " + db(a.min_psnr));
   if (a.max_error >= 0 && d.max_abs > a.max_error) {
     failed.push_back("max error " + std::to_string(d.max_abs) + " > " + std::to_string(a.max_error));
+  }
+  if (a.max_log_rmse >= 0 && d.log_rmse_rgb() > a.max_log_rmse) {
+    failed.push_back("log2 RMSE " + std::to_string(d.log_rmse_rgb()) + " > " + std::to_string(a.max_log_rmse));
   }
   if (a.min_ssim >= 0 && ssim_mean < a.min_ssim) {
     failed.push_back("SSIM " + std::to_string(ssim_mean) + " < " + std::to_string(a.min_ssim));
@@ -112,6 +115,8 @@ int run_compare(const CompareArgs& a) {
     if (n >= 3) j["psnr_rgb"] = finite(d.psnr_rgb());
     j["rmse"] = std::sqrt(d.mse);
     j["max_error"] = d.max_abs;
+    j["log_rmse_rgb"] = d.log_rmse_rgb();
+    j["hdr"] = d.hdr;
     j["differing_texels"] = Json::UInt64(d.differing_texels);
     Json::Value per(Json::arrayValue);
     for (int c = 0; c < n; ++c) {
@@ -137,6 +142,7 @@ int run_compare(const CompareArgs& a) {
     for (int c = 0; c < n; ++c) s << (c ? " " : "") << names[c] << " " << db(d.psnr_channel(c));
     s << "], RMSE " << std::sqrt(d.mse) << ", max error " << d.max_abs << " (" << std::lround(d.max_abs * 255)
       << "/255)";
+    if (d.hdr) s << ", log2 RMSE " << d.log_rmse_rgb() << " (HDR)";
     if (want_ssim) s << ", SSIM " << ssim_mean;
     char pct[32];
     std::snprintf(pct, sizeof pct, "%.2f", 100.0 * double(d.differing_texels) / (double(d.width) * d.height));
@@ -155,12 +161,16 @@ void add_compare_command(CLI::App& app) {
   cmd->footer(
       "Values are compared on a [0, 1] scale (8-bit codes / 255, 16-bit / 65535, floats as stored; textures\n"
       "decoded, SNORM mapped to [0, 1]). With no limit given, exit 7 when any texel differs; with limits,\n"
-      "exit 7 when one is not met. When the channel counts differ, the channels both have are compared.");
+      "exit 7 when one is not met. When the channel counts differ, the channels both have are compared.\n"
+      "HDR (float images with values outside [0, 1]): PSNR on that scale says little, so the line adds the\n"
+      "log2 RMSE over RGB, the RMSE of sign(v) log2(1 + |v|): about stops for bright values, linear near 0.");
   cmd->add_option("a", args->a, "First image or texture")->required();
   cmd->add_option("b", args->b, "Second image or texture")->required();
   cmd->add_option("--level", args->level, "Mip level of textures to compare (default 0)");
   cmd->add_option("--min-psnr", args->min_psnr, "Exit 7 when the PSNR (all channels) is below this, in dB");
   cmd->add_option("--max-error", args->max_error, "Exit 7 when any value differs by more than this (0..1; 1/255 = 0.0039)");
+  cmd->add_option("--max-log-rmse", args->max_log_rmse,
+                  "Exit 7 when the log2 RMSE over RGB (the HDR metric, float images) is above this");
   cmd->add_option("--min-ssim", args->min_ssim, "Exit 7 when the mean SSIM is below this (0..1)");
   cmd->add_flag("--ssim", args->ssim, "Also compute SSIM (11x11 Gaussian window)");
   cmd->add_option("--threads", args->common.threads, "Worker threads (default 0: all cores)")

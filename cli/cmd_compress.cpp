@@ -54,6 +54,7 @@ TexelFormat format_for(const std::string& f, bool srgb) {
       {"bc4", {F::bc4_unorm, F::bc4_unorm}},          {"bc4s", {F::bc4_snorm, F::bc4_snorm}},
       {"bc5", {F::bc5_unorm, F::bc5_unorm}},          {"bc5s", {F::bc5_snorm, F::bc5_snorm}},
       {"bc7", {F::bc7_unorm, F::bc7_srgb}},
+      {"bc6h", {F::bc6h_ufloat, F::bc6h_ufloat}},     {"bc6hs", {F::bc6h_sfloat, F::bc6h_sfloat}},
       {"etc1", {F::etc1_rgb, F::etc1_rgb}},           {"etc2", {F::etc2_rgb_unorm, F::etc2_rgb_srgb}},
       {"etc2a1", {F::etc2_rgba1_unorm, F::etc2_rgba1_srgb}},
       {"etc2a", {F::etc2_rgba8_unorm, F::etc2_rgba8_srgb}},
@@ -63,7 +64,8 @@ TexelFormat format_for(const std::string& f, bool srgb) {
   // The names other tools use (texconv, nvcompress, Compressonator), in any case.
   static const std::map<std::string, std::string> aliases = {
       {"dxt1", "bc1"}, {"dxt1a", "bc1a"}, {"dxt3", "bc2"}, {"dxt5", "bc3"}, {"ati1", "bc4"}, {"bc4u", "bc4"},
-      {"ati2", "bc5"}, {"bc5u", "bc5"}, {"3dc", "bc5"}, {"bc7u", "bc7"}, {"etc2a8", "etc2a"}, {"etc2-rgba", "etc2a"},
+      {"ati2", "bc5"}, {"bc5u", "bc5"}, {"3dc", "bc5"}, {"bc7u", "bc7"}, {"bc6hu", "bc6h"},
+      {"bc6h_uf16", "bc6h"}, {"bc6h-uf16", "bc6h"}, {"bc6h_sf16", "bc6hs"}, {"bc6h-sf16", "bc6hs"}, {"bc6h_sf", "bc6hs"}, {"etc2a8", "etc2a"}, {"etc2-rgba", "etc2a"},
       {"r11", "eac-r11"}, {"rg11", "eac-rg11"}};
   std::string name = f;
   for (auto& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
@@ -92,7 +94,7 @@ TexelFormat format_for(const std::string& f, bool srgb) {
     }
   }
   throw Error(ErrorCode::bad_arguments, "unknown --format '" + f +
-                                            "' (valid: bc1, bc1a, bc2, bc3, bc4, bc4s, bc5, bc5s, etc1, etc2, etc2a1, "
+                                            "' (valid: bc1, bc1a, bc2, bc3, bc4, bc4s, bc5, bc5s, bc7, bc6h, bc6hs, etc1, etc2, etc2a1, "
                                             "etc2a, eac-r11, eac-r11s, eac-rg11, eac-rg11s, astc-WxH and astc-WxH-hdr "
                                             "for the footprints 4x4, 5x4, 5x5, 6x5, 6x6, 8x5, 8x6, 8x8, 10x5, 10x6, "
                                             "10x8, 10x10, 12x10, 12x12)");
@@ -159,7 +161,7 @@ void warn_if_clipped(const std::string& input, const ImageArray& in, TexelFormat
   char range[96];
   std::snprintf(range, sizeof range, "values from %g to %g", double(lo), double(hi));
   warnings.push_back(input + ": " + range + " are clipped to [0, 1] by " + format_info(format).name +
-                     "; an HDR format keeps them (astc-WxH-hdr), --clip says the clipping is meant");
+                     "; an HDR format keeps them (bc6h, bc6hs, astc-WxH-hdr), --clip says the clipping is meant");
 }
 
 // A colour image as linear f32 (alpha unchanged).
@@ -267,12 +269,17 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
     for (int c = 0; c < d.channels; ++c) per.append(number_or_null(d.psnr_channel(c)));
     rep["psnr_channels"] = per;
     rep["max_error"] = d.max_abs;
+    if (format_info(format).is_float) rep["log_rmse_rgb"] = d.log_rmse_rgb();
     r.details["report"] = rep;
     char b[96];
     std::snprintf(b, sizeof b, ", PSNR %.2f dB", d.psnr());
     line << b;
     if (d.channels >= 3) {
       std::snprintf(b, sizeof b, " (RGB %.2f dB)", d.psnr_rgb());
+      line << b;
+    }
+    if (format_info(format).is_float) {
+      std::snprintf(b, sizeof b, ", log2 RMSE %.5f", d.log_rmse_rgb());
       line << b;
     }
   }
@@ -283,11 +290,12 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
 
 void add_compress_command(CLI::App& app) {
   auto args = std::make_shared<CompressArgs>();
-  CLI::App* cmd = app.add_subcommand("compress", "Block-compress images (BC1-BC5, BC7, ETC1, ETC2, EAC, ASTC) into DDS, KTX2, KTX1, PKM or .astc.");
+  CLI::App* cmd = app.add_subcommand("compress", "Block-compress images (BC1-BC7, ETC1, ETC2, EAC, ASTC) into DDS, KTX2, KTX1, PKM or .astc.");
   cmd->footer(
       "BC4 and EAC R11 store one channel, BC5 and EAC RG11 two (the red and green of the input; for a normal\n"
       "map its X and Y, the shader rebuilds Z). SNORM variants map the stored [0, 1] to [-1, 1]. Values are\n"
-      "data: no transfer function. ETC and EAC go to .ktx2 (the default for -o DIR/), .ktx, or .pkm (ETC1 and\n"
+      "data: no transfer function. BC6H holds HDR RGB as half floats (bc6h: UF16, negatives stored as 0;\n"
+      "bc6hs: SF16); alpha is dropped; 8/16-bit colour is decoded from sRGB first. ETC and EAC go to .ktx2 (the default for -o DIR/), .ktx, or .pkm (ETC1 and\n"
       "ETC2 RGB, one level). ASTC (astc-WxH: LDR, sRGB for colour; astc-WxH-hdr: HDR, linear) is searched by\n"
       "ARM's astc-encoder at the preset --quality names (fast: -fast, normal: -medium, high: -thorough,\n"
       "max: -exhaustive) and goes to .ktx2 (the default), .ktx or .astc (one level). See docs/compression.md.");
@@ -295,7 +303,7 @@ void add_compress_command(CLI::App& app) {
                    "Output texture (.dds, .ktx2, .ktx, .pkm, .astc), folder (DIR/: {stem}.dds each; .ktx2 for ETC/EAC/ASTC) or "
                    "template ('out/{stem}.ktx2')");
   cmd->add_option("--format", args->format,
-                 "bc1, bc1a (1-bit alpha), bc2, bc3, bc4, bc4s, bc5, bc5s, bc7; etc1, etc2, etc2a1 (punch-through alpha), "
+                 "bc1, bc1a (1-bit alpha), bc2, bc3, bc4, bc4s, bc5, bc5s, bc7, bc6h (HDR RGB, UF16), bc6hs (HDR, signed: SF16); etc1, etc2, etc2a1 (punch-through alpha), "
                  "etc2a (EAC alpha), eac-r11, eac-r11s, eac-rg11, eac-rg11s; astc-4x4, astc-5x4, astc-5x5, astc-6x5, "
                  "astc-6x6, astc-8x5, astc-8x6, astc-8x8, astc-10x5, astc-10x6, astc-10x8, astc-10x10, astc-12x10, "
                  "astc-12x12, each also -hdr (astc-6x6-hdr)")

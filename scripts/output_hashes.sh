@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SHA-256 of what texproc writes for a fixed set of inputs and options: every
-# compress format at every quality (max on a 64x64 crop; BC7 too), with and without
+# compress format at every quality (max on a 64x64 crop; BC7 too; BC6H on the sample sky), with and without
 # mips, and mip, normalmap, conemap and sat. A restructuring that keeps these
 # hashes changed no byte. Usage:
 #   scripts/output_hashes.sh [--texproc PATH]            print the hashes
@@ -38,7 +38,7 @@ formats="bc1 bc1a bc2 bc3 bc4 bc4s bc5 bc5s etc1 etc2 etc2a1 etc2a eac-r11 eac-r
 astc=false
 help=$("$T" compress --help)
 if [[ $help == *astc-4x4* ]]; then astc=true; formats="$formats astc-4x4 astc-8x8"; fi
-if [[ $help == *" bc7;"* ]]; then formats="$formats bc7"; fi  # builds from before BC7 encoding lack it
+if [[ $help == *" bc7;"* || $help == *" bc7,"* ]]; then formats="$formats bc7"; fi  # builds from before BC7 encoding lack it
 run() { "$T" "$@" -q -f --threads 2; }
 for f in $formats; do
   ext=.ktx2
@@ -52,6 +52,12 @@ for f in $formats; do
   esac
   run compress "$S/albedo_desert_512.png" -o "$O/albedo_${f}_mips$ext" --format "$f" --mips --wrap repeat
 done
+if [[ $help == *" bc6h "* ]]; then  # BC6H (builds from before its encoder lack it): the sky, every level, a float chain
+  for f in bc6h bc6hs; do
+    for q in fast normal high max; do run compress "$S/sky_forest_512x256.exr" -o "$O/sky_${f}_$q.ktx2" --format "$f" --quality "$q"; done
+    run compress "$S/sky_forest_512x256.exr" -o "$O/sky_${f}_mips.dds" --format "$f" --mips
+  done
+fi
 run compress "$S/normal_stein_256.png" -o "$O/normal_bc5_nm.ktx2" --format bc5 --mips --normal-map
 run compress "$S/normal_stein_256.png" -o "$O/normal_bc3_nm.ktx2" --format bc3 --mips --normal-map
 if $astc; then run compress "$S/normal_stein_256.png" -o "$O/normal_astc_nm.ktx2" --format astc-6x6 --mips --normal-map; fi

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 #include <unistd.h>
@@ -43,6 +45,11 @@ inline Image constant_image(int w, int h, int channels, PixelType type, const fl
 }
 
 inline std::string corpus_dir() { return TEXPROC_CORPUS_DIR; }
+// A file's bytes ("" where it cannot be read).
+inline std::string slurp_file(const std::string& p) {
+  std::ifstream f(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(f), {}};
+}
 inline bool have_corpus() { return std::filesystem::exists(corpus_dir() + "/MANIFEST.tsv"); }
 
 // A fresh empty folder under the system temp folder.

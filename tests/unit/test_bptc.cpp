@@ -18,12 +18,14 @@
 #include <string>
 #include <vector>
 
+#include "support/images.h"
 #include "texproc/block_decode.h"
 #include "texproc/container.h"
 #include "texproc/texture.h"
 
 namespace fs = std::filesystem;
 using namespace texproc;
+using texproc::test::slurp_file;
 
 namespace {
 
@@ -221,11 +223,6 @@ TEST(Bc6hDecode, ReservedModesAreZero) {
 }
 
 namespace {
-
-std::string slurp_file(const std::string& p) {
-  std::ifstream f(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(f), {}};
-}
 
 // Random blocks of every mode: BC7 mode m's low byte ends in 1 << m (modes
 // 0-7 in turn; the other bits random, so every partition and rotation

@@ -22,6 +22,15 @@ struct ImageDifference {
   double mse_rgb = 0;  // over the first min(3, channels) channels (color without alpha)
   double max_abs = 0;  // over every channel
   std::uint64_t differing_texels = 0;  // texels where any channel differs (by more than 1e-6)
+  // HDR: whether either image holds a value outside [0, 1] (float images
+  // only), and the mean over RGB (the first min(3, channels) channels) of
+  // the squared difference of L(v) = sign(v) log2(1 + |v|), for float
+  // images (0 otherwise). L is about log2 (stops) for bright values, so an
+  // error counts relative to the light around it, and about v / ln 2 near
+  // 0, so noise in the blacks is not blown up as a plain log would.
+  bool hdr = false;
+  double log_mse_rgb = 0;
+  double log_rmse_rgb() const;
   // 10 log10(1 / mse): values are compared on a [0, 1] scale, so the peak is
   // 1. +infinity for identical images.
   double psnr() const;

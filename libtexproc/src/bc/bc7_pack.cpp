@@ -5,30 +5,12 @@
 #include <utility>
 
 #include "bc/bc7_shared.h"
+#include "bc/bptc_bit_writer.h"
 
 namespace texproc::bc7 {
 namespace {
 
-class BitWriter {
- public:
-  void write(std::uint32_t v, int n) {  // n <= 32 bits, v < 2^n
-    const std::uint64_t bits = std::uint64_t(v);
-    if (pos_ < 64) {
-      lo_ |= bits << pos_;
-      if (pos_ + n > 64) hi_ |= bits >> (64 - pos_);
-    } else {
-      hi_ |= bits << (pos_ - 64);
-    }
-    pos_ += n;
-  }
-  void store(std::uint8_t out[16]) const {
-    for (int i = 0; i < 8; ++i) out[i] = std::uint8_t(lo_ >> (8 * i)), out[8 + i] = std::uint8_t(hi_ >> (8 * i));
-  }
-
- private:
-  std::uint64_t lo_ = 0, hi_ = 0;
-  int pos_ = 0;
-};
+using bptc::BitWriter;
 
 constexpr SolidPair solid_pair(int v) {
   SolidPair best{};

@@ -8,9 +8,13 @@
 #include <cmath>
 #include <cstring>
 
+#include <Imath/half.h>
+
 #include "bc/bc1_encode.h"
 #include "bc/bc1_lanes.h"
 #include "bc/bc4_lanes.h"
+#include "bc/bc6h_lanes.h"
+#include "bc/bc6h_shared.h"
 #include "bc/bc7_lanes.h"
 #include "block/block_gather.h"
 #include "texproc/error.h"
@@ -143,6 +147,47 @@ std::vector<std::uint8_t> compress_bc7(const ImageView& img, Quality q, const En
           }
         }
         bc7_encode_lanes(texel, count, level, reinterpret_cast<std::uint8_t(*)[16]>(out.data() + (std::size_t(by) * bw + bx0) * 16));
+      }
+  }, options.progress);
+  return out;
+}
+
+namespace {
+// Channel c (RGB) of texel (x, y) as a float: 8- and 16-bit as [0, 1], gray
+// in every channel.
+float texel_float(const ImageView& img, int x, int y, int c) {
+  const int src = img.channels <= 2 ? 0 : c;
+  const std::size_t at = std::size_t(x) * img.channels + src;
+  switch (img.type) {
+    case PixelType::u8: return img.row<const std::uint8_t>(y)[at] / 255.0f;
+    case PixelType::u16: return img.row<const std::uint16_t>(y)[at] / 65535.0f;
+    case PixelType::f32: return img.row<const float>(y)[at];
+  }
+  return 0.0f;
+}
+}  // namespace
+
+std::vector<std::uint8_t> compress_bc6h(const ImageView& img, bool is_signed, Quality q, const EncodeOptions& options) {
+  const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
+  std::vector<std::uint8_t> out(std::size_t(bw) * bh * 16);
+  const Bc6hLevel& level = bc6h_level(q);  // bc6h_levels.h
+  for_each_row_block(bh, 4, [&](int by0, int by1) {
+    std::int32_t texel[16][3][kBc6hBatch] = {};
+    for (int by = by0; by < by1; ++by)
+      for (int bx0 = 0; bx0 < bw; bx0 += kBc6hBatch) {
+        const int count = std::min(kBc6hBatch, bw - bx0);
+        for (int k = 0; k < count; ++k)
+          for (int i = 0; i < 16; ++i) {
+            // Texels past the right and bottom edges repeat the edge's.
+            const int x = std::min((bx0 + k) * 4 + i % 4, img.width - 1), y = std::min(by * 4 + i / 4, img.height - 1);
+            for (int c = 0; c < 3; ++c) {
+              const float v = texel_float(img, x, y, c);
+              // Rounded to the nearest half (ties to even); beyond the largest, the largest.
+              const float clamped = std::isnan(v) ? 0.0f : std::clamp(v, -65504.0f, 65504.0f);
+              texel[i][c][k] = bc6h::target(Imath::half(clamped).bits(), is_signed);
+            }
+          }
+        bc6h_encode_lanes(texel, count, is_signed, level, reinterpret_cast<std::uint8_t(*)[16]>(out.data() + (std::size_t(by) * bw + bx0) * 16));
       }
   }, options.progress);
   return out;

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "bc/bc_decode.h"
+#include "bc/bc6h_shared.h"
 #include "bc/bptc_tables.h"
 
 namespace texproc::bc {
@@ -124,103 +125,10 @@ void decode_bc7(const std::uint8_t* block, std::uint8_t out[16][4]) {
   }
 }
 
-namespace {
-
-// BC6H's layout strings, parsed once: each field's variable (m, r0-r3,
-// g0-g3, b0-b3), its bit count and where its first bit goes.
-struct Field {
-  int var;     // 0: m; 1 + 4 * channel + endpoint: r0..r3, g0..g3, b0..b3
-  int count;   // bits
-  int first;   // the variable's bit that takes the first bit read
-  int step;    // +1 or -1: where the next goes
-};
-struct Layout {
-  Field fields[32];
-  int n = 0;
-};
-
-Layout parse_layout(const char* s) {
-  Layout L;
-  while (*s) {
-    Field f{};
-    if (*s == 'm') {
-      f.var = 0, ++s;
-    } else {
-      const int ch = *s == 'r' ? 0 : *s == 'g' ? 1 : 2;
-      f.var = 1 + 4 * ch + (s[1] - '0');
-      s += 2;
-    }
-    ++s;  // '['
-    int a = 0, b = -1;
-    while (*s >= '0' && *s <= '9') a = a * 10 + (*s++ - '0');
-    if (*s == ':') {
-      ++s;
-      b = 0;
-      while (*s >= '0' && *s <= '9') b = b * 10 + (*s++ - '0');
-    } else {
-      b = a;
-    }
-    ++s;  // ']'
-    if (*s == ',') ++s;
-    f.count = (a >= b ? a - b : b - a) + 1;
-    f.first = b;
-    f.step = a >= b ? 1 : -1;
-    L.fields[L.n++] = f;
-  }
-  return L;
-}
-
-struct Layouts {
-  Layout modes[14];
-  int by_number[32];  // mode number -> index in kBc6hModes, -1 reserved
-  Layouts() {
-    for (int& v : by_number) v = -1;
-    for (int k = 0; k < 14; ++k) {
-      modes[k] = parse_layout(bptc::kBc6hModes[k].layout);
-      by_number[bptc::kBc6hModes[k].number] = k;
-    }
-  }
-};
-const Layouts& layouts() {
-  static const Layouts L;
-  return L;
-}
-
-int sign_extend(int v, int bits) { return v & (1 << (bits - 1)) ? v - (1 << bits) : v; }
-
-int unquantize(int x, int bits, bool is_signed) {
-  if (!is_signed) {
-    if (bits >= 15) return x;
-    if (x == 0) return 0;
-    if (x == (1 << bits) - 1) return 0xFFFF;
-    return ((x << 15) + 0x4000) >> (bits - 1);
-  }
-  if (bits >= 16) return x;
-  const bool negative = x < 0;
-  if (negative) x = -x;
-  int unq;
-  if (x == 0) {
-    unq = 0;
-  } else if (x >= (1 << (bits - 1)) - 1) {
-    unq = 0x7FFF;
-  } else {
-    unq = ((x << 15) + 0x4000) >> (bits - 1);
-  }
-  return negative ? -unq : unq;
-}
-
-// The interpolated value to half-float bits.
-std::uint16_t finish(int v, bool is_signed) {
-  if (!is_signed) return std::uint16_t((v * 31) >> 6);
-  return v < 0 ? std::uint16_t(0x8000 | ((-v * 31) >> 5)) : std::uint16_t((v * 31) >> 5);
-}
-
-}  // namespace
-
 void decode_bc6h(const std::uint8_t* block, bool is_signed, std::uint16_t out[16][3]) {
   const int low2 = block[0] & 3;
   const int number = low2 < 2 ? low2 : block[0] & 31;
-  const Layouts& L = layouts();
+  const bc6h::Layouts& L = bc6h::layouts();
   const int k = L.by_number[number];
   if (k < 0) {  // reserved: (0, 0, 0)
     std::memset(out, 0, 96);
@@ -230,7 +138,7 @@ void decode_bc6h(const std::uint8_t* block, bool is_signed, std::uint16_t out[16
   BitReader r(block);
   int v[13] = {};
   for (int f = 0; f < L.modes[k].n; ++f) {
-    const Field& fd = L.modes[k].fields[f];
+    const bc6h::Field& fd = L.modes[k].fields[f];
     for (int b = 0; b < fd.count; ++b) v[fd.var] |= int(r.read(1)) << (fd.first + fd.step * b);
   }
   const int ns = M.partition_bits ? 2 : 1;
@@ -241,17 +149,17 @@ void decode_bc6h(const std::uint8_t* block, bool is_signed, std::uint16_t out[16
     for (int j = 0; j < nend; ++j) e[j][c] = v[1 + 4 * c + j];
   const int eb = M.endpoint_bits;
   for (int c = 0; c < 3; ++c) {
-    if (is_signed) e[0][c] = sign_extend(e[0][c], eb);
+    if (is_signed) e[0][c] = bc6h::sign_extend(e[0][c], eb);
     for (int j = 1; j < nend; ++j) {
       if (M.transformed) {
-        e[j][c] = sign_extend(e[j][c], M.delta_bits[c]);
+        e[j][c] = bc6h::sign_extend(e[j][c], M.delta_bits[c]);
         e[j][c] = (e[0][c] + e[j][c]) & ((1 << eb) - 1);
-        if (is_signed) e[j][c] = sign_extend(e[j][c], eb);
+        if (is_signed) e[j][c] = bc6h::sign_extend(e[j][c], eb);
       } else if (is_signed) {
-        e[j][c] = sign_extend(e[j][c], eb);
+        e[j][c] = bc6h::sign_extend(e[j][c], eb);
       }
     }
-    for (int j = 0; j < nend; ++j) e[j][c] = unquantize(e[j][c], eb, is_signed);
+    for (int j = 0; j < nend; ++j) e[j][c] = bc6h::unquantize(e[j][c], eb, is_signed);
   }
   int anchor[3];
   anchors(ns, partition, anchor);
@@ -262,7 +170,7 @@ void decode_bc6h(const std::uint8_t* block, bool is_signed, std::uint16_t out[16
   const std::uint32_t part = ns == 2 ? bptc::kPartitions2[partition] : 0;
   for (int i = 0; i < 16; ++i) {
     const int s = ns == 1 ? 0 : bptc::subset(part, i);
-    for (int c = 0; c < 3; ++c) out[i][c] = finish(bptc::interpolate(e[2 * s][c], e[2 * s + 1][c], w[idx[i]]), is_signed);
+    for (int c = 0; c < 3; ++c) out[i][c] = bc6h::finish_bits(bptc::interpolate(e[2 * s][c], e[2 * s + 1][c], w[idx[i]]), is_signed);
   }
 }
 

@@ -1,5 +1,5 @@
 // The encode dispatcher: compress_image and encode_block send each format to
-// its codec (BC1-BC3 and BC4/BC5: bc/bc_images.cpp; ETC1, ETC2, EAC:
+// its codec (BC1-BC7: bc/bc_images.cpp; ETC1, ETC2, EAC:
 // etc/etc_encode.cpp; ASTC: astc/, through astc-encoder), and the quality
 // names.
 #include <cstring>
@@ -55,6 +55,7 @@ std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat forma
   if (format >= F::bc1_rgb_unorm && format <= F::bc3_srgb) return compress_bc13(img, format, q, options);
   if (format >= F::bc4_unorm && format <= F::bc5_snorm) return compress_bc45(img, format, q, options);
   if (format == F::bc7_unorm || format == F::bc7_srgb) return compress_bc7(img, q, options);
+  if (format == F::bc6h_ufloat || format == F::bc6h_sfloat) return compress_bc6h(img, format == F::bc6h_sfloat, q, options);
   if (format >= F::etc1_rgb && format <= F::eac_rg11_snorm) return etc::compress_etc(img, format, q, options);
   throw Error(ErrorCode::unsupported, std::string("encoding ") + format_info(format).name + " is not supported");
 }

@@ -17,6 +17,7 @@ double psnr_from_mse(double mse) {
 double ImageDifference::psnr() const { return psnr_from_mse(mse); }
 double ImageDifference::psnr_rgb() const { return psnr_from_mse(mse_rgb); }
 double ImageDifference::psnr_channel(int c) const { return psnr_from_mse(channel.at(std::size_t(c)).mse); }
+double ImageDifference::log_rmse_rgb() const { return std::sqrt(log_mse_rgb); }
 
 namespace {
 
@@ -61,14 +62,20 @@ constexpr double kSameValue = 1e-6;
 
 struct Partial {
   std::vector<double> sq, abs, max;
+  double log_sq = 0;  // over RGB
+  bool outside = false;
   std::uint64_t differing = 0;
 };
+
+double log_value(double v) { return std::copysign(std::log2(1.0 + std::fabs(v)), v); }
 
 }  // namespace
 
 ImageDifference compare_images(const ImageView& a, const ImageView& b) {
   check_same_shape(a, b);
   const int channels = a.channels;
+  const bool floats = a.type == PixelType::f32 || b.type == PixelType::f32;
+  const int rgb = std::min(3, channels);
   constexpr int kBlockRows = 32;
   const int blocks = (a.height + kBlockRows - 1) / kBlockRows;
   std::vector<Partial> partial(std::size_t(std::max(blocks, 0)));
@@ -90,6 +97,13 @@ ImageDifference compare_images(const ImageView& a, const ImageView& b) {
           p.abs[std::size_t(c)] += d;
           if (d > p.max[std::size_t(c)]) p.max[std::size_t(c)] = d;
           differs |= d > kSameValue;
+          if (floats) {
+            p.outside = p.outside || ra[i] < 0.0 || ra[i] > 1.0 || rb[i] < 0.0 || rb[i] > 1.0;
+            if (c < rgb) {
+              const double ld = log_value(ra[i]) - log_value(rb[i]);
+              p.log_sq += ld * ld;
+            }
+          }
         }
         p.differing += differs;
       }
@@ -107,9 +121,11 @@ ImageDifference compare_images(const ImageView& a, const ImageView& b) {
       r.channel[std::size_t(c)].max_abs = std::max(r.channel[std::size_t(c)].max_abs, p.max[std::size_t(c)]);
     }
     r.differing_texels += p.differing;
+    r.log_mse_rgb += p.log_sq;
+    r.hdr = r.hdr || p.outside;
   }
   const double texels = double(a.width) * double(a.height);
-  const int rgb = std::min(3, channels);
+  if (texels > 0 && rgb > 0) r.log_mse_rgb /= texels * rgb;
   for (int c = 0; c < channels; ++c) {
     ChannelDifference& d = r.channel[std::size_t(c)];
     if (texels > 0) {
