@@ -3,6 +3,7 @@
 // decode/decode_block.cpp picks the format's).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 namespace texproc::bc {
@@ -29,6 +30,16 @@ inline std::uint8_t to_unorm8(float v) {
   const float cl = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
   return static_cast<std::uint8_t>(cl * 255.0f + 0.5f);
 }
+
+// Straight into an image's rows: `count` whole blocks side by side
+// (`block_bytes` apart) at `dst`, rows `stride` bytes apart, `channels`
+// bytes a texel. The colour half as RGB (3) or RGBA (4, alpha as
+// decode_color_rgba8 gives it); BC4 into channel `ch` of 1, 2 or 4 (the same
+// bytes as decode_rgtc_u8).
+void decode_color_run(const std::uint8_t* blocks, int count, int block_bytes, bool always_four, bool punch_through, int channels,
+                      std::uint8_t* dst, std::size_t stride);
+void decode_rgtc_run(const std::uint8_t* blocks, int count, int block_bytes, bool snorm, int channels, int ch, std::uint8_t* dst,
+                     std::size_t stride);
 
 // A BC7 block: RGBA8 texels, row by row (ARB_texture_compression_bptc; the
 // reserved mode decodes to 0 in every channel, as Direct3D's does).

@@ -14,33 +14,25 @@
 namespace texproc::bc {
 namespace {
 
-// The block's 128 bits, read from the lowest up.
+__extension__ typedef unsigned __int128 u128;  // GCC's and Clang's 128-bit integer
+
+// The block's 128 bits, read from the lowest up (one 128-bit shift a read).
 class BitReader {
  public:
   explicit BitReader(const std::uint8_t* block) {
-    std::memcpy(&lo_, block, 8);  // little-endian hosts (as the rest of texproc)
-    std::memcpy(&hi_, block + 8, 8);
+    std::uint64_t lo, hi;
+    std::memcpy(&lo, block, 8);  // little-endian hosts (as the rest of texproc)
+    std::memcpy(&hi, block + 8, 8);
+    bits_ = u128(hi) << 64 | lo;
   }
-  std::uint32_t read(int n) {
-    std::uint32_t v = 0;
-    if (n > 0) {
-      const int p = pos_;
-      if (p >= 64) {
-        v = std::uint32_t(hi_ >> (p - 64));
-      } else if (p + n <= 64) {
-        v = std::uint32_t(lo_ >> p);
-      } else {
-        v = std::uint32_t(lo_ >> p | hi_ << (64 - p));
-      }
-      v &= n == 32 ? ~0u : (1u << n) - 1;
-    }
+  std::uint32_t read(int n) {  // n <= 32
+    const std::uint32_t v = std::uint32_t(bits_ >> pos_) & std::uint32_t((std::uint64_t(1) << n) - 1);
     pos_ += n;
     return v;
   }
-  int position() const { return pos_; }
 
  private:
-  std::uint64_t lo_ = 0, hi_ = 0;
+  u128 bits_;
   int pos_ = 0;
 };
 
@@ -139,7 +131,11 @@ void decode_bc6h(const std::uint8_t* block, bool is_signed, std::uint16_t out[16
   int v[13] = {};
   for (int f = 0; f < L.modes[k].n; ++f) {
     const bc6h::Field& fd = L.modes[k].fields[f];
-    for (int b = 0; b < fd.count; ++b) v[fd.var] |= int(r.read(1)) << (fd.first + fd.step * b);
+    if (fd.step == 1) {  // the bits in order: one read
+      v[fd.var] |= int(r.read(fd.count)) << fd.first;
+    } else {  // reversed (modes 12 and 15's top bits): bit by bit
+      for (int b = 0; b < fd.count; ++b) v[fd.var] |= int(r.read(1)) << (fd.first - b);
+    }
   }
   const int ns = M.partition_bits ? 2 : 1;
   const int partition = int(r.read(M.partition_bits));
@@ -167,11 +163,13 @@ void decode_bc6h(const std::uint8_t* block, bool is_signed, std::uint16_t out[16
   int idx[16];
   read_indices(r, index_bits, anchor, ns, idx);
   const std::uint8_t* w = bptc::weights(index_bits);
+  // Each subset's palette once (8 or 16 entries), then a lookup a texel.
+  std::uint16_t pal[2][16][3];
+  for (int s = 0; s < ns; ++s)
+    for (int j = 0; j < 1 << index_bits; ++j)
+      for (int c = 0; c < 3; ++c) pal[s][j][c] = bc6h::finish_bits(bptc::interpolate(e[2 * s][c], e[2 * s + 1][c], w[j]), is_signed);
   const std::uint32_t part = ns == 2 ? bptc::kPartitions2[partition] : 0;
-  for (int i = 0; i < 16; ++i) {
-    const int s = ns == 1 ? 0 : bptc::subset(part, i);
-    for (int c = 0; c < 3; ++c) out[i][c] = bc6h::finish_bits(bptc::interpolate(e[2 * s][c], e[2 * s + 1][c], w[idx[i]]), is_signed);
-  }
+  for (int i = 0; i < 16; ++i) std::memcpy(out[i], pal[bptc::subset(part, i)][idx[i]], 6);
 }
 
 }  // namespace texproc::bc

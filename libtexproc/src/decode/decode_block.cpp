@@ -170,6 +170,44 @@ void decode_block_u8(TexelFormat f, const std::uint8_t* b, bool snorm, std::uint
   }
 }
 
+// The first `count` blocks of a block row (whole blocks) straight into the
+// rows (dst, `stride` bytes apart, kC channels) where the format has such a
+// decoder: the bytes decode_block_u8 gives. False where it has none.
+template <int kC>
+bool decode_run(TexelFormat f, const std::uint8_t* b, int count, std::uint8_t* dst, std::size_t stride) {
+  using F = TexelFormat;
+  switch (f) {
+    case F::bc1_rgb_unorm:
+    case F::bc1_rgb_srgb:
+      if (kC != 3) return false;
+      bc::decode_color_run(b, count, 8, false, false, 3, dst, stride);
+      return true;
+    case F::bc1_rgba_unorm:
+    case F::bc1_rgba_srgb:
+      if (kC != 4) return false;
+      bc::decode_color_run(b, count, 8, false, true, 4, dst, stride);
+      return true;
+    case F::bc3_unorm:
+    case F::bc3_srgb:
+      if (kC != 4) return false;
+      bc::decode_color_run(b + 8, count, 16, true, false, 4, dst, stride);
+      bc::decode_rgtc_run(b, count, 16, false, 4, 3, dst, stride);
+      return true;
+    case F::bc4_unorm:
+    case F::bc4_snorm:
+      if (kC != 1) return false;
+      bc::decode_rgtc_run(b, count, 8, f == F::bc4_snorm, 1, 0, dst, stride);
+      return true;
+    case F::bc5_unorm:
+    case F::bc5_snorm:
+      if (kC != 2) return false;
+      bc::decode_rgtc_run(b, count, 16, f == F::bc5_snorm, 2, 0, dst, stride);
+      bc::decode_rgtc_run(b + 8, count, 16, f == F::bc5_snorm, 2, 1, dst, stride);
+      return true;
+    default: return false;
+  }
+}
+
 }  // namespace
 
 Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t layer, std::uint32_t face,
@@ -211,10 +249,15 @@ Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t 
       for_each_row_block(bh, 16, [&](int by0, int by1) {
         std::uint8_t px[16][4];
         const std::uint8_t* block = data.data() + std::size_t(by0) * bw * info.block_bytes;
-        for (int by = by0; by < by1; ++by)
-          for (int bx = 0; bx < bw; ++bx, block += info.block_bytes) {
-            decode_block_u8(t.format, block, info.snorm, px);
+        for (int by = by0; by < by1; ++by) {
+          // A row's whole blocks in one run where the format has one; the rest block by block.
+          int bx = 0;
+          const int whole = 4 * by + 4 <= h ? w / 4 : 0;
+          if (whole > 0 && decode_run<kC>(t.format, block, whole, out.row<std::uint8_t>(4 * by), out.row_stride()))
+            bx = whole, block += std::size_t(whole) * info.block_bytes;
+          for (; bx < bw; ++bx, block += info.block_bytes) {
             const int nx = std::min(4, w - 4 * bx), ny = std::min(4, h - 4 * by);
+            decode_block_u8(t.format, block, info.snorm, px);
             for (int r = 0; r < ny; ++r) {
               std::uint8_t* row = out.row<std::uint8_t>(4 * by + r) + std::size_t(4 * bx) * kC;
               const std::uint8_t(*src)[4] = px + 4 * r;
@@ -226,6 +269,7 @@ Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t 
               }
             }
           }
+        }
       });
     };
     switch (C) {
@@ -234,6 +278,25 @@ Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t 
       case 3: rows(std::integral_constant<int, 3>{}); break;
       default: rows(std::integral_constant<int, 4>{}); break;
     }
+    return out;
+  }
+  if (type == PixelType::f32) {  // floats: a block's texels straight into the rows, block rows over the threads
+    for_each_row_block(bh, 16, [&](int by0, int by1) {
+      float texels[16][4];
+      for (int by = by0; by < by1; ++by)
+        for (int bx = 0; bx < bw; ++bx) {
+          decode_block(t.format, data.data() + (std::size_t(by) * bw + bx) * info.block_bytes, texels);
+          const int nx = std::min(4, w - 4 * bx), ny = std::min(4, h - 4 * by);
+          for (int r = 0; r < ny; ++r) {
+            float* row = out.row<float>(4 * by + r) + std::size_t(4 * bx) * C;
+            if (C == 4 && nx == 4) {
+              std::memcpy(row, texels[4 * r], sizeof(float) * 16);
+            } else {
+              for (int x = 0; x < nx; ++x) std::memcpy(row + x * C, texels[4 * r + x], sizeof(float) * std::size_t(C));
+            }
+          }
+        }
+    });
     return out;
   }
   float texels[16][4];
