@@ -8,6 +8,7 @@
 #include <cstring>
 #include <random>
 
+#include "bc/bc_decode.h"
 #include "support/images.h"
 #include "texproc/block_decode.h"
 #include "texproc/container.h"
@@ -191,4 +192,26 @@ TEST(BlockDecode, EightBitOutputEqualsTheFloatDecoderStored) {
               << info.name << " at " << x << "," << y << " channel " << c;
         }
   }
+}
+
+// BC4's 8-bit palette comes from tables (bc_decode.cpp): every endpoint pair,
+// UNORM and SNORM, with indices covering all eight entries, gives the float
+// decoder's values through to_unorm8, on the per-block and the row paths.
+TEST(BlockDecode, Bc4EightBitTablesMatchTheFloatDecoderForEveryEndpointPair) {
+  std::uint8_t block[8] = {0, 0, 0x88, 0xC6, 0xFA, 0x88, 0xC6, 0xFA};  // indices 0..7 twice
+  for (bool snorm : {false, true})
+    for (int r0 = 0; r0 < 256; ++r0)
+      for (int r1 = 0; r1 < 256; ++r1) {
+        block[0] = std::uint8_t(r0), block[1] = std::uint8_t(r1);
+        float f[16][4] = {};
+        std::uint8_t u[16][4] = {}, rows[4][4];
+        bc::decode_rgtc(block, snorm, 0, f);
+        bc::decode_rgtc_u8(block, snorm, 0, u);
+        bc::decode_rgtc_run(block, 1, 8, snorm, 1, 0, rows[0], 4);
+        for (int i = 0; i < 16; ++i) {
+          const std::uint8_t want = bc::to_unorm8(snorm ? (f[i][0] + 1.0f) * 0.5f : f[i][0]);
+          ASSERT_EQ(u[i][0], want) << (snorm ? "SNORM " : "UNORM ") << r0 << "," << r1 << " texel " << i;
+          ASSERT_EQ(rows[i / 4][i % 4], want) << (snorm ? "SNORM " : "UNORM ") << r0 << "," << r1 << " texel " << i;
+        }
+      }
 }
