@@ -117,14 +117,20 @@ void pack_block(const Choice& in, std::uint8_t out[16]) {
     for (int s = 0; s < ns; ++s) w.write(std::uint32_t(c.pbit[s][0]), 1);
   const std::uint8_t* primary = swap_streams ? c.alpha_index : c.color_index;
   const std::uint8_t* secondary = swap_streams ? c.color_index : c.alpha_index;
-  auto is_anchor = [&](int i, int sets) {
-    for (int s = 0; s < sets; ++s)
-      if (anchor[s] == i) return true;
-    return false;
+  // Each index stream gathered into one word (at most 16 * 4 - 1 bits), then written whole.
+  unsigned anchors = 0;
+  for (int s = 0; s < ns; ++s) anchors |= 1u << anchor[s];
+  auto stream = [&](const std::uint8_t* index, int bits, unsigned anchor_mask) {
+    std::uint64_t acc = 0;
+    int n = 0;
+    for (int i = 0; i < 16; ++i) {
+      acc |= std::uint64_t(index[i]) << n;
+      n += bits - int(anchor_mask >> i & 1);
+    }
+    w.write64(acc, n);
   };
-  for (int i = 0; i < 16; ++i) w.write(primary[i], is_anchor(i, ns) ? M.index_bits - 1 : M.index_bits);
-  if (M.index2_bits)
-    for (int i = 0; i < 16; ++i) w.write(secondary[i], i == 0 ? M.index2_bits - 1 : M.index2_bits);
+  stream(primary, M.index_bits, anchors);
+  if (M.index2_bits) stream(secondary, M.index2_bits, 1u);
   w.store(out);
 }
 

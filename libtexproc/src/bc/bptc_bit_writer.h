@@ -3,28 +3,31 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 
 namespace texproc::bptc {
 
+__extension__ typedef unsigned __int128 BlockBits;  // GCC's and Clang's 128-bit integer
+
 class BitWriter {
  public:
-  void write(std::uint32_t v, int n) {  // n <= 32 bits, v < 2^n
-    const std::uint64_t bits = std::uint64_t(v);
-    if (pos_ < 64) {
-      lo_ |= bits << pos_;
-      if (pos_ + n > 64) hi_ |= bits >> (64 - pos_);
-    } else {
-      hi_ |= bits << (pos_ - 64);
-    }
+  void write(std::uint32_t v, int n) {  // n <= 32 bits, v < 2^n: one 128-bit shift
+    bits_ |= BlockBits(v) << pos_;
+    pos_ += n;
+  }
+  void write64(std::uint64_t v, int n) {  // n <= 64 bits, v < 2^n
+    bits_ |= BlockBits(v) << pos_;
     pos_ += n;
   }
   int position() const { return pos_; }
   void store(std::uint8_t out[16]) const {
-    for (int i = 0; i < 8; ++i) out[i] = std::uint8_t(lo_ >> (8 * i)), out[8 + i] = std::uint8_t(hi_ >> (8 * i));
+    const std::uint64_t lo = std::uint64_t(bits_), hi = std::uint64_t(bits_ >> 64);
+    std::memcpy(out, &lo, 8);  // little-endian hosts (as the rest of texproc)
+    std::memcpy(out + 8, &hi, 8);
   }
 
  private:
-  std::uint64_t lo_ = 0, hi_ = 0;
+  BlockBits bits_ = 0;
   int pos_ = 0;
 };
 
