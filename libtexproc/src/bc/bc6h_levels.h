@@ -25,7 +25,7 @@ inline constexpr unsigned kBc6hAllModes = 0x3FFF;
 
 inline constexpr Bc6hLevel kBc6hLevels[] = {
     //             modes    partitions refine
-    /* fast   */ {0x3FFF, 1, 0},
+    /* fast   */ {0x3E23, 1, 0},  // one region: all; two: 0, 1, 5, 9 (numbers 0, 1, 14, 30)
     /* normal */ {0x3FFF, 2, 1},
     /* high   */ {0x3FFF, 8, 2},
     /* max    */ {0x3FFF, 32, 4},
