@@ -1,8 +1,9 @@
 // BC6H benchmark: texproc's encoder at each quality and, where CMake is
 // given its source (-DTEXPROC_CMP_DIR=, a checkout of
 // GPUOpen-Tools/compressonator outside this tree; skipped when absent),
-// Compressonator's CMP_Core (CompressBlockBC6 at quality 0.1 and 1.0), in
-// one run. Inputs: two 256x256 crops (the centre, and a quarter in from the
+// Compressonator's CMP_Core (CompressBlockBC6 at quality 0.1 and 1.0) and,
+// with -DTEXPROC_CVTT_DIR=, cvtt (ConvectionKernels' EncodeBC6HU, default
+// and with its fast indexing), in one run. Inputs: two 256x256 crops (the centre, and a quarter in from the
 // top left) of each of the corpus's six HDR EXR images, UF16, one thread
 // (and texproc on two). The error: log2 RMSE over RGB pooled over every
 // crop, the RMSE of sign(v) log2(1 + |v|) between each texel's input half
@@ -13,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,9 @@
 
 #ifdef TEXPROC_HAVE_CMP_CORE
 #include "cmp_core.h"
+#endif
+#ifdef TEXPROC_HAVE_CVTT
+#include "ConvectionKernels.h"
 #endif
 
 using namespace texproc;
@@ -113,7 +118,32 @@ std::vector<std::uint8_t> cmp_image(const Crop& c, float quality) {
 }
 #endif
 
-// who: "texproc" (quality, threads) or "cmp" (its quality).
+#ifdef TEXPROC_HAVE_CVTT
+// cvtt's EncodeBC6HU, eight blocks a call; `fast`: its BC6H_FastIndexing flag.
+std::vector<std::uint8_t> cvtt_image(const Crop& c, bool fast) {
+  cvtt::Options options;
+  options.flags = cvtt::Flags::Default | cvtt::Flags::Uniform | (fast ? cvtt::Flags::BC6H_FastIndexing : 0u);
+  const int w = c.img.width(), bw = w / 4, n = bw * (c.img.height() / 4);
+  std::vector<std::uint8_t> out(std::size_t(n) * 16);
+  cvtt::PixelBlockF16 blocks[cvtt::NumParallelBlocks];
+  std::uint8_t packed[cvtt::NumParallelBlocks * 16];
+  for (int b0 = 0; b0 < n; b0 += int(cvtt::NumParallelBlocks)) {
+    for (int k = 0; k < int(cvtt::NumParallelBlocks); ++k) {
+      const int b = std::min(b0 + k, n - 1), bx = b % bw, by = b / bw;
+      for (int i = 0; i < 16; ++i) {
+        for (int ch = 0; ch < 3; ++ch)
+          blocks[k].m_pixels[i][ch] = std::int16_t(c.half[(std::size_t(4 * by + i / 4) * w + 4 * bx + i % 4) * 3 + std::size_t(ch)]);
+        blocks[k].m_pixels[i][3] = 0x3C00;  // 1.0
+      }
+    }
+    cvtt::Kernels::EncodeBC6HU(packed, blocks, options);
+    for (int k = 0; k < int(cvtt::NumParallelBlocks) && b0 + k < n; ++k) std::memcpy(&out[std::size_t(b0 + k) * 16], packed + 16 * k, 16);
+  }
+  return out;
+}
+#endif
+
+// who: "texproc" (quality, threads), "cmp" (its quality) or "cvtt" (quality > 0: not fast).
 void run(benchmark::State& state, const std::string& who, Quality q, int threads, float cmp_quality) {
   ThreadLimit limit(threads);
   double se = 0, tm = 0, samples = 0;
@@ -123,9 +153,11 @@ void run(benchmark::State& state, const std::string& who, Quality q, int threads
       std::vector<std::uint8_t> blocks;
 #ifdef TEXPROC_HAVE_CMP_CORE
       if (who == "cmp") blocks = cmp_image(c, cmp_quality);
-#else
-      (void)cmp_quality;
 #endif
+#ifdef TEXPROC_HAVE_CVTT
+      if (who == "cvtt") blocks = cvtt_image(c, cmp_quality == 0.0f);
+#endif
+      (void)cmp_quality;
       if (who == "texproc") blocks = compress_image(c.img.view(), TexelFormat::bc6h_ufloat, q);
       benchmark::DoNotOptimize(blocks.data());
       state.PauseTiming();
@@ -158,6 +190,16 @@ void register_all() {
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime()
         ->MinTime(0.1);
+#endif
+#ifdef TEXPROC_HAVE_CVTT
+  benchmark::RegisterBenchmark("bc6h/cvtt/fast_indexing", run, "cvtt", Quality::normal, 1, 0.0f)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime()
+      ->MinTime(0.1);
+  benchmark::RegisterBenchmark("bc6h/cvtt/default", run, "cvtt", Quality::normal, 1, 1.0f)
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime()
+      ->MinTime(0.1);
 #endif
 }
 

@@ -2,14 +2,17 @@
 // `high` and, where CMake is given its source (-DTEXPROC_BC7ENC_DIR=, a
 // checkout of richgel999/bc7enc_rdo outside this tree; skipped when absent),
 // bc7enc (bc7enc_rdo's C++ block encoder: uber 0 with 16 partitions, uber 4
-// with 64, linear RGB weights), in one run. The setting: 256x256
+// with 64, linear RGB weights) and, with -DTEXPROC_CVTT_DIR=, cvtt
+// (ConvectionKernels at qualities 1, 10 and 50, uniform weights), in one run. The setting: 256x256
 // centred crops of the corpus's 15 albedo and photo images, opaque, single
 // thread (and texproc on two), PSNR over RGB pooled over every crop's
 // squared errors, scored with texproc's exact decoder (which matches
 // Pillow's on random blocks).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -21,6 +24,9 @@
 
 #ifdef TEXPROC_HAVE_BC7ENC
 #include "bc7enc.h"
+#endif
+#ifdef TEXPROC_HAVE_CVTT
+#include "ConvectionKernels.h"
 #endif
 
 using namespace texproc;
@@ -70,7 +76,32 @@ std::vector<std::uint8_t> bc7enc_image(const Image& img, int uber, int partition
 }
 #endif
 
-// who: "texproc" (format, quality, threads) or "bc7enc" (uber, partitions).
+#ifdef TEXPROC_HAVE_CVTT
+// cvtt at a quality 1-100 (its plan from ConfigureBC7EncodingPlanFromQuality),
+// uniform channel weights (the PSNR here is plain RGB), eight blocks a call.
+std::vector<std::uint8_t> cvtt_image(const Image& img, int quality) {
+  cvtt::BC7EncodingPlan plan;
+  cvtt::Kernels::ConfigureBC7EncodingPlanFromQuality(plan, quality);
+  cvtt::Options options;
+  options.flags = cvtt::Flags::Default | cvtt::Flags::Uniform;
+  const int bw = img.width() / 4, bh = img.height() / 4, n = bw * bh;
+  std::vector<std::uint8_t> out(std::size_t(n) * 16);
+  cvtt::PixelBlockU8 blocks[cvtt::NumParallelBlocks];
+  std::uint8_t packed[cvtt::NumParallelBlocks * 16];
+  for (int b0 = 0; b0 < n; b0 += int(cvtt::NumParallelBlocks)) {
+    for (int k = 0; k < int(cvtt::NumParallelBlocks); ++k) {
+      const int b = std::min(b0 + k, n - 1), bx = b % bw, by = b / bw;
+      for (int i = 0; i < 16; ++i)
+        for (int c = 0; c < 4; ++c) blocks[k].m_pixels[i][c] = img.row<const std::uint8_t>(4 * by + i / 4)[4 * (4 * bx + i % 4) + c];
+    }
+    cvtt::Kernels::EncodeBC7(packed, blocks, options, plan);
+    for (int k = 0; k < int(cvtt::NumParallelBlocks) && b0 + k < n; ++k) std::memcpy(&out[std::size_t(b0 + k) * 16], packed + 16 * k, 16);
+  }
+  return out;
+}
+#endif
+
+// who: "texproc" (format, quality, threads), "bc7enc" (uber, partitions) or "cvtt" (quality in `uber`).
 void run(benchmark::State& state, const std::string& who, TexelFormat format, Quality q, int threads, int uber, int partitions) {
   ThreadLimit limit(threads);
   double se = 0, samples = 0;
@@ -81,8 +112,12 @@ void run(benchmark::State& state, const std::string& who, TexelFormat format, Qu
 #ifdef TEXPROC_HAVE_BC7ENC
       if (who == "bc7enc") blocks = bc7enc_image(img, uber, partitions);
 #else
-      (void)uber, (void)partitions;
+      (void)partitions;
 #endif
+#ifdef TEXPROC_HAVE_CVTT
+      if (who == "cvtt") blocks = cvtt_image(img, uber);
+#endif
+      (void)uber;
       if (who == "texproc") blocks = compress_image(img.view(), format, q);
       benchmark::DoNotOptimize(blocks.data());
       state.PauseTiming();
@@ -120,6 +155,13 @@ void register_all() {
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime()
       ->MinTime(0.1);
+#endif
+#ifdef TEXPROC_HAVE_CVTT
+  for (int q : {1, 10, 50})
+    benchmark::RegisterBenchmark(("bc7/cvtt/quality" + std::to_string(q)).c_str(), run, "cvtt", F::bc7_unorm, Quality::normal, 1, q, 0)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->MinTime(0.1);
 #endif
 }
 
