@@ -196,6 +196,23 @@ SetFit fit_set(const Set& s, EndpointFormat f, int bits, bool force_p1, const Bc
     if (next.error >= best.error) break;
     best = next;
   }
+  // Each code one step either way, channel by channel, kept where it helps.
+  const int top = (1 << f.bits) - 1;
+  for (int round = 0; round < level.perturb && best.error > 0; ++round) {
+    bool moved = false;
+    for (int k = 0; k < 2; ++k)
+      for (int a = 0; a < s.n; ++a)
+        for (const int step : {-1, 1}) {
+          const int code = best.code[k][s.c0 + a] + step;
+          if (code < 0 || code > top) continue;
+          SetFit next = best;
+          next.code[k][s.c0 + a] = code;
+          next.value[k][s.c0 + a] = bc7::expand(code, f.bits, f.pbit == Pbit::none ? -1 : best.pbit[k]);
+          assign(s, bits, level.exact_indices, next);
+          if (next.error < best.error) best = next, moved = true;
+        }
+    if (!moved) break;
+  }
   return best;
 }
 

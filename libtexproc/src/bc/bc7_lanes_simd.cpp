@@ -268,6 +268,32 @@ struct Bc7Batch {
       select_fit(better, next, best_fit, s);
       active = hn::And(better, hn::Gt(best_fit.error, hn::Zero(d)));
     }
+    // As the reference: each code one step either way, kept where it helps.
+    const int top = (1 << fmt.bits) - 1;
+    const bool has_p = fmt.pbit != Pbit::none;
+    const int n = fmt.bits + (has_p ? 1 : 0);
+    M going = hn::FirstN(d, kBc7Batch);
+    for (int round = 0; round < level.perturb; ++round) {
+      const M now = hn::And(going, hn::Gt(best_fit.error, hn::Zero(d)));
+      if (hn::AllFalse(d, now)) break;
+      M moved = hn::FirstN(d, 0);
+      for (int k = 0; k < 2; ++k)
+        for (int a = 0; a < s.n; ++a)
+          for (const int step : {-1, 1}) {
+            const V code = hn::Add(best_fit.code[k][s.c0 + a], hn::Set(d, step));
+            const M valid = hn::And(now, hn::And(hn::Gt(code, hn::Set(d, -1)), hn::Lt(code, hn::Set(d, top + 1))));
+            if (hn::AllFalse(d, valid)) continue;
+            SetFitV next = best_fit;
+            const V v = has_p ? hn::Or(hn::ShiftLeft<1>(code), best_fit.pbit[k]) : code;
+            next.code[k][s.c0 + a] = code;
+            next.value[k][s.c0 + a] = hn::And(hn::Or(hn::ShiftLeftSame(v, 8 - n), hn::ShiftRightSame(v, 2 * n - 8)), hn::Set(d, 255));
+            assign(s, bits, next);
+            const M better = hn::And(valid, hn::Lt(next.error, best_fit.error));
+            select_fit(better, next, best_fit, s);
+            moved = hn::Or(moved, better);
+          }
+      going = hn::And(now, moved);
+    }
   }
 
   // A candidate's mode, partition, rotation and index selection, a lane each.

@@ -33,14 +33,18 @@ struct Bc7Level {
   // Indices from the projection onto the endpoints' line, then the
   // neighbouring index on each side tried against the exact palette.
   bool exact_indices;
+  // After refinement: each endpoint code moved one step up and down, channel
+  // by channel, kept where the exact error falls; up to this many rounds
+  // while one helps (0: none).
+  int perturb;
 };
 
 inline constexpr Bc7Level kBc7Levels[] = {
-    //            p2  mode3 est2 p3  rot  isel  mode7 refine exact
-    /* fast   */ {1, false, 32, 0, 1, false, false, 1, false},
-    /* normal */ {2, true, 64, 1, 1, false, true, 2, true},
-    /* high   */ {12, true, 64, 4, 4, true, true, 3, true},
-    /* max    */ {64, true, 64, 64, 4, true, true, 6, true},
+    //            p2  mode3 est2 p3  rot  isel  mode7 refine exact perturb
+    /* fast   */ {1, false, 32, 0, 1, false, false, 1, false, 0},
+    /* normal */ {2, true, 64, 1, 1, false, true, 2, true, 0},
+    /* high   */ {12, true, 64, 4, 4, true, true, 3, true, 1},
+    /* max    */ {64, true, 64, 64, 4, true, true, 6, true, 4},
 };
 
 inline const Bc7Level& bc7_level(Quality q) { return kBc7Levels[int(q)]; }
