@@ -8,6 +8,7 @@
 #include <cmath>
 #include <utility>
 
+#include "bc/axis_residual.h"
 #include "bc/bc6h_shared.h"
 
 namespace texproc::ref {
@@ -202,19 +203,8 @@ float region_residual(const Block& b, unsigned members) {
     const float d0 = b.y[i][0] - mean[0], d1 = b.y[i][1] - mean[1], d2 = b.y[i][2] - mean[2];
     c00 += d0 * d0, c01 += d0 * d1, c02 += d0 * d2, c11 += d1 * d1, c12 += d1 * d2, c22 += d2 * d2;
   }
-  const float trace = c00 + c11 + c22;
-  float v0 = c00, v1 = c01, v2 = c02;  // the column of the largest diagonal
-  if (c11 > c00 && c11 >= c22) v0 = c01, v1 = c11, v2 = c12;
-  if (c22 > c00 && c22 > c11) v0 = c02, v1 = c12, v2 = c22;
-  // u = C v, then u'Cu / u'u. The scatter's entries are at most
-  // 16 * 512^2 (y spans 1024), so u'Cu stays below 1.2e35.
-  const float u0 = c00 * v0 + c01 * v1 + c02 * v2, u1 = c01 * v0 + c11 * v1 + c12 * v2,
-              u2 = c02 * v0 + c12 * v1 + c22 * v2;
-  const float w0 = c00 * u0 + c01 * u1 + c02 * u2, w1 = c01 * u0 + c11 * u1 + c12 * u2,
-              w2 = c02 * u0 + c12 * u1 + c22 * u2;
-  const float uu = u0 * u0 + u1 * u1 + u2 * u2, ucu = u0 * w0 + u1 * w1 + u2 * w2;
-  const float lambda = uu > 0.0f ? ucu / uu : 0.0f;
-  return trace - lambda;
+  // The scatter's entries are at most 16 * 512^2 (y spans 1024), so u'Cu stays below 1.2e35.
+  return bc::axis_residual(c00, c01, c02, c11, c12, c22);
 }
 
 unsigned region_members(int partition, int s) {

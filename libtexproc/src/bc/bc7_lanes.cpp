@@ -8,6 +8,7 @@
 #include <cmath>
 #include <utility>
 
+#include "bc/axis_residual.h"
 #include "bc/bc7_shared.h"
 
 namespace texproc::ref {
@@ -223,20 +224,8 @@ float subset_residual(int cnt, const int S[3], const int Q[6]) {
   const float c00 = float(cnt * Q[0] - S[0] * S[0]), c01 = float(cnt * Q[1] - S[0] * S[1]),
               c02 = float(cnt * Q[2] - S[0] * S[2]), c11 = float(cnt * Q[3] - S[1] * S[1]),
               c12 = float(cnt * Q[4] - S[1] * S[2]), c22 = float(cnt * Q[5] - S[2] * S[2]);
-  const float trace = c00 + c11 + c22;
-  float v0 = c00, v1 = c01, v2 = c02;  // the column of the largest diagonal
-  if (c11 > c00 && c11 >= c22) v0 = c01, v1 = c11, v2 = c12;
-  if (c22 > c00 && c22 > c11) v0 = c02, v1 = c12, v2 = c22;
-  // One power step, u = C v, then the Rayleigh quotient u'Cu / u'u: it does
-  // not depend on u's scale, so u is not normalized (C's entries are at
-  // most 16^2 times a variance, 4.2e6, so u'Cu stays below 1.2e35).
-  const float u0 = c00 * v0 + c01 * v1 + c02 * v2, u1 = c01 * v0 + c11 * v1 + c12 * v2,
-              u2 = c02 * v0 + c12 * v1 + c22 * v2;
-  const float w0 = c00 * u0 + c01 * u1 + c02 * u2, w1 = c01 * u0 + c11 * u1 + c12 * u2,
-              w2 = c02 * u0 + c12 * u1 + c22 * u2;
-  const float uu = u0 * u0 + u1 * u1 + u2 * u2, ucu = u0 * w0 + u1 * w1 + u2 * w2;
-  const float lambda = uu > 0.0f ? ucu / uu : 0.0f;
-  return (trace - lambda) * (1.0f / float(cnt));
+  // C's entries are at most 16^2 times a variance, 4.2e6, so u'Cu stays below 1.2e35.
+  return bc::axis_residual(c00, c01, c02, c11, c12, c22) * (1.0f / float(cnt));
 }
 
 // The K partitions of least estimate, in order (ties: the lower partition).
