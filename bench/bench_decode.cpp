@@ -2,7 +2,7 @@
 // floats) for every block format on one thread, and, where CMake is given
 // its header (-DTEXPROC_BCDEC_DIR=, a checkout of iOrange/bcdec outside this
 // tree; skipped when absent), bcdec's BC1-BC7 block decoders writing the
-// same image, in one run. The blocks: bench_common.h's six colour crops
+// same image, and with -DTEXPROC_RG_ETC1_DIR= rg_etc1's ETC1 unpacker, in one run. The blocks: bench_common.h's six colour crops
 // (1.4 MPix), encoded once at `fast`.
 #include <benchmark/benchmark.h>
 
@@ -18,6 +18,11 @@
 #ifdef TEXPROC_HAVE_BCDEC
 #define BCDEC_IMPLEMENTATION
 #include "bcdec.h"
+#endif
+#ifdef TEXPROC_HAVE_RG_ETC1
+#include <cstring>
+
+#include "rg_etc1.h"
 #endif
 
 using namespace texproc;
@@ -85,6 +90,28 @@ void run_bcdec(benchmark::State& state, TexelFormat f) {
 }
 #endif
 
+#ifdef TEXPROC_HAVE_RG_ETC1
+// rg_etc1's block unpacker (RGBA, 16 texels in a row), each block copied into an RGBA image.
+void run_rg_etc1(benchmark::State& state) {
+  const auto& e = encoded(TexelFormat::etc1_rgb);
+  double pixels = 0;
+  for (const Encoded& x : e) pixels += double(x.width) * x.height;
+  for (auto _ : state)
+    for (const Encoded& x : e) {
+      std::vector<std::uint8_t> img(std::size_t(x.width) * x.height * 4);
+      const int pitch = x.width * 4, bw = x.width / 4;
+      unsigned int px[16];
+      for (int by = 0; by < x.height / 4; ++by)
+        for (int bx = 0; bx < bw; ++bx) {
+          rg_etc1::unpack_etc1_block(x.blocks.data() + (std::size_t(by) * bw + bx) * 8, px);
+          for (int r = 0; r < 4; ++r) std::memcpy(img.data() + std::size_t(4 * by + r) * pitch + std::size_t(16 * bx), px + 4 * r, 16);
+        }
+      benchmark::DoNotOptimize(img.data());
+    }
+  state.counters["MPix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsIterationInvariantRate);
+}
+#endif
+
 void register_all() {
   using F = TexelFormat;
   for (F f : {F::bc1_rgb_unorm, F::bc3_unorm, F::bc4_unorm, F::bc5_unorm, F::bc6h_ufloat, F::bc7_unorm, F::etc1_rgb, F::etc2_rgb_unorm,
@@ -92,6 +119,10 @@ void register_all() {
     benchmark::RegisterBenchmark((std::string("decode/texproc/") + format_info(f).name).c_str(), run_texproc, f)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
+#ifdef TEXPROC_HAVE_RG_ETC1
+    if (f == F::etc1_rgb)
+      benchmark::RegisterBenchmark("decode/rg_etc1/etc1_rgb", run_rg_etc1)->Unit(benchmark::kMillisecond)->UseRealTime();
+#endif
 #ifdef TEXPROC_HAVE_BCDEC
     if (f <= F::bc7_unorm && f != F::etc1_rgb)
       benchmark::RegisterBenchmark((std::string("decode/bcdec/") + format_info(f).name).c_str(), run_bcdec, f)

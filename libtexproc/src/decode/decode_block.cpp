@@ -204,6 +204,25 @@ bool decode_run(TexelFormat f, const std::uint8_t* b, int count, std::uint8_t* d
       bc::decode_rgtc_run(b, count, 16, f == F::bc5_snorm, 2, 0, dst, stride);
       bc::decode_rgtc_run(b + 8, count, 16, f == F::bc5_snorm, 2, 1, dst, stride);
       return true;
+    case F::etc1_rgb:
+      if (kC != 3) return false;
+      etc::decode_etc_run(b, count, 8, etc::EtcRun::etc1_rgb, dst, stride);
+      return true;
+    case F::etc2_rgb_unorm:
+    case F::etc2_rgb_srgb:
+      if (kC != 3) return false;
+      etc::decode_etc_run(b, count, 8, etc::EtcRun::etc2_rgb, dst, stride);
+      return true;
+    case F::etc2_rgba1_unorm:
+    case F::etc2_rgba1_srgb:
+      if (kC != 4) return false;
+      etc::decode_etc_run(b, count, 8, etc::EtcRun::etc2_rgba1, dst, stride);
+      return true;
+    case F::etc2_rgba8_unorm:
+    case F::etc2_rgba8_srgb:
+      if (kC != 4) return false;
+      etc::decode_etc_run(b, count, 16, etc::EtcRun::etc2_rgba8, dst, stride);
+      return true;
     default: return false;
   }
 }
@@ -281,12 +300,28 @@ Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t 
     return out;
   }
   if (type == PixelType::f32) {  // floats: a block's texels straight into the rows, block rows over the threads
+    const bool bc6h = t.format == TexelFormat::bc6h_ufloat || t.format == TexelFormat::bc6h_sfloat;
     for_each_row_block(bh, 16, [&](int by0, int by1) {
       float texels[16][4];
       for (int by = by0; by < by1; ++by)
         for (int bx = 0; bx < bw; ++bx) {
-          decode_block(t.format, data.data() + (std::size_t(by) * bw + bx) * info.block_bytes, texels);
+          const std::uint8_t* block = data.data() + (std::size_t(by) * bw + bx) * info.block_bytes;
           const int nx = std::min(4, w - 4 * bx), ny = std::min(4, h - 4 * by);
+          if (bc6h && C == 3) {  // the halves straight into the rows
+            std::uint16_t hv[16][3];
+            bc::decode_bc6h(block, t.format == TexelFormat::bc6h_sfloat, hv);
+            for (int r = 0; r < ny; ++r) {
+              float* row = out.row<float>(4 * by + r) + std::size_t(4 * bx) * 3;
+              for (int x = 0; x < nx; ++x)
+                for (int c = 0; c < 3; ++c) {
+                  Imath::half v;
+                  v.setBits(hv[4 * r + x][c]);
+                  row[3 * x + c] = float(v);
+                }
+            }
+            continue;
+          }
+          decode_block(t.format, block, texels);
           for (int r = 0; r < ny; ++r) {
             float* row = out.row<float>(4 * by + r) + std::size_t(4 * bx) * C;
             if (C == 4 && nx == 4) {

@@ -3,6 +3,7 @@
 // "ETC2 compressed texture image formats"). Bit numbers are those of the
 // specification: the block is a big-endian 64-bit number.
 #include <cstdint>
+#include <cstring>
 
 #include "etc/etc_tables.h"
 
@@ -16,50 +17,36 @@ int pixel_index(std::uint64_t v, int x, int y) {
   return int(v >> (k + 16) & 1) << 1 | int(v >> k & 1);
 }
 
-void set(std::uint8_t* px, int r, int g, int b) {
-  px[0] = std::uint8_t(clamp255(r));
-  px[1] = std::uint8_t(clamp255(g));
-  px[2] = std::uint8_t(clamp255(b));
-  px[3] = 255;
+// A texel as an RGBA8 word (R in the low byte), opaque.
+inline std::uint32_t word(int r, int g, int b) {
+  return std::uint32_t(clamp255(r)) | std::uint32_t(clamp255(g)) << 8 | std::uint32_t(clamp255(b)) << 16 | 0xFF000000u;
 }
 
-// Individual and differential modes: two sub-blocks (2x4 side by side, or
-// 4x2 stacked when flipped), each a base colour plus an intensity modifier.
-// `non_opaque`: punch-through with the opaque bit clear: modifiers +-a are 0
-// and index 2 is transparent black.
-void decode_sub_blocks(std::uint64_t v, const int c1[3], const int c2[3], bool non_opaque, Rgba8Block out) {
+// The texels as RGBA8 words (row by row): each sub-block's four colours once,
+// then a lookup a texel.
+void decode_sub_blocks(std::uint64_t v, const int c1[3], const int c2[3], bool non_opaque, std::uint32_t out[16]) {
   const int table[2] = {bits(v, 39, 3), bits(v, 36, 3)};
   const bool flip = bits(v, 32, 1) != 0;
-  for (int y = 0; y < 4; ++y)
-    for (int x = 0; x < 4; ++x) {
-      const int sub = flip ? (y >= 2) : (x >= 2);
-      const int* c = sub ? c2 : c1;
-      const int idx = pixel_index(v, x, y);
-      std::uint8_t* px = out[y * 4 + x];
-      if (non_opaque && idx == 2) {
-        px[0] = px[1] = px[2] = px[3] = 0;
-        continue;
-      }
+  std::uint32_t pal[2][4];
+  for (int sub = 0; sub < 2; ++sub) {
+    const int* c = sub ? c2 : c1;
+    for (int idx = 0; idx < 4; ++idx) {
       const int m = non_opaque && idx == 0 ? 0 : kModifiers[table[sub]][idx];
-      set(px, c[0] + m, c[1] + m, c[2] + m);
+      pal[sub][idx] = non_opaque && idx == 2 ? 0u : word(c[0] + m, c[1] + m, c[2] + m);
     }
-}
-
-// T and H modes: four paint colours chosen per texel.
-void decode_paint(std::uint64_t v, const int paint[4][3], bool non_opaque, Rgba8Block out) {
+  }
   for (int y = 0; y < 4; ++y)
-    for (int x = 0; x < 4; ++x) {
-      const int idx = pixel_index(v, x, y);
-      std::uint8_t* px = out[y * 4 + x];
-      if (non_opaque && idx == 2) {
-        px[0] = px[1] = px[2] = px[3] = 0;
-      } else {
-        set(px, paint[idx][0], paint[idx][1], paint[idx][2]);
-      }
-    }
+    for (int x = 0; x < 4; ++x) out[y * 4 + x] = pal[flip ? (y >= 2) : (x >= 2)][pixel_index(v, x, y)];
 }
 
-void decode_t(std::uint64_t v, bool non_opaque, Rgba8Block out) {
+void decode_paint(std::uint64_t v, const int paint[4][3], bool non_opaque, std::uint32_t out[16]) {
+  std::uint32_t pal[4];
+  for (int idx = 0; idx < 4; ++idx) pal[idx] = non_opaque && idx == 2 ? 0u : word(paint[idx][0], paint[idx][1], paint[idx][2]);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) out[y * 4 + x] = pal[pixel_index(v, x, y)];
+}
+
+void decode_t(std::uint64_t v, bool non_opaque, std::uint32_t out[16]) {
   const int c1[3] = {extend4(bits(v, 60, 2) << 2 | bits(v, 57, 2)), extend4(bits(v, 55, 4)), extend4(bits(v, 51, 4))};
   const int c2[3] = {extend4(bits(v, 47, 4)), extend4(bits(v, 43, 4)), extend4(bits(v, 39, 4))};
   const int d = kDistances[bits(v, 35, 2) << 1 | bits(v, 32, 1)];
@@ -70,7 +57,7 @@ void decode_t(std::uint64_t v, bool non_opaque, Rgba8Block out) {
   decode_paint(v, paint, non_opaque, out);
 }
 
-void decode_h(std::uint64_t v, bool non_opaque, Rgba8Block out) {
+void decode_h(std::uint64_t v, bool non_opaque, std::uint32_t out[16]) {
   const int r1 = bits(v, 62, 4), g1 = bits(v, 58, 3) << 1 | bits(v, 52, 1);
   const int b1 = bits(v, 51, 1) << 3 | bits(v, 49, 2) << 1 | bits(v, 47, 1);
   const int r2 = bits(v, 46, 4), g2 = bits(v, 42, 3) << 1 | bits(v, 39, 1), b2 = bits(v, 38, 4);
@@ -85,7 +72,7 @@ void decode_h(std::uint64_t v, bool non_opaque, Rgba8Block out) {
   decode_paint(v, paint, non_opaque, out);
 }
 
-void decode_planar(std::uint64_t v, Rgba8Block out) {
+void decode_planar(std::uint64_t v, std::uint32_t out[16]) {
   const int o[3] = {extend6(bits(v, 62, 6)), extend7(bits(v, 56, 1) << 6 | bits(v, 54, 6)),
                     extend6(bits(v, 48, 1) << 5 | bits(v, 44, 2) << 3 | bits(v, 41, 2) << 1 | bits(v, 39, 1))};
   const int h[3] = {extend6(bits(v, 38, 5) << 1 | bits(v, 32, 1)), extend7(bits(v, 31, 7)),
@@ -96,7 +83,7 @@ void decode_planar(std::uint64_t v, Rgba8Block out) {
     for (int x = 0; x < 4; ++x) {
       int c[3];
       for (int k = 0; k < 3; ++k) c[k] = (x * (h[k] - o[k]) + y * (w[k] - o[k]) + 4 * o[k] + 2) >> 2;
-      set(out[y * 4 + x], c[0], c[1], c[2]);
+      out[y * 4 + x] = word(c[0], c[1], c[2]);
     }
 }
 
@@ -104,7 +91,8 @@ int signed3(int v) { return v >= 4 ? v - 8 : v; }
 
 }  // namespace
 
-void decode_etc1(const std::uint8_t* block, Rgba8Block out) {
+namespace {
+void etc1_words(const std::uint8_t* block, std::uint32_t out[16]) {
   const std::uint64_t v = load_be64(block);
   int c1[3], c2[3];
   if (bits(v, 33, 1)) {
@@ -122,7 +110,7 @@ void decode_etc1(const std::uint8_t* block, Rgba8Block out) {
   decode_sub_blocks(v, c1, c2, false, out);
 }
 
-void decode_etc2(const std::uint8_t* block, bool punchthrough, Rgba8Block out) {
+void etc2_words(const std::uint8_t* block, bool punchthrough, std::uint32_t out[16]) {
   const std::uint64_t v = load_be64(block);
   const bool differential = punchthrough || bits(v, 33, 1);
   const bool non_opaque = punchthrough && !bits(v, 33, 1);
@@ -149,6 +137,53 @@ void decode_etc2(const std::uint8_t* block, bool punchthrough, Rgba8Block out) {
     c2[k] = extend5(second[k]);
   }
   decode_sub_blocks(v, c1, c2, non_opaque, out);
+}
+}  // namespace
+
+void decode_etc1(const std::uint8_t* block, Rgba8Block out) {
+  std::uint32_t w[16];
+  etc1_words(block, w);
+  std::memcpy(out, w, 64);
+}
+
+void decode_etc2(const std::uint8_t* block, bool punchthrough, Rgba8Block out) {
+  std::uint32_t w[16];
+  etc2_words(block, punchthrough, w);
+  std::memcpy(out, w, 64);
+}
+
+void decode_etc_run(const std::uint8_t* blocks, int count, int block_bytes, EtcRun kind, std::uint8_t* dst, std::size_t stride) {
+  const int channels = kind == EtcRun::etc1_rgb || kind == EtcRun::etc2_rgb ? 3 : 4;
+  for (int k = 0; k < count; ++k) {
+    const std::uint8_t* b = blocks + std::size_t(k) * block_bytes;
+    std::uint32_t t[16];
+    if (kind == EtcRun::etc1_rgb) {
+      etc1_words(b, t);
+    } else if (kind != EtcRun::etc2_rgba8) {
+      etc2_words(b, kind == EtcRun::etc2_rgba1, t);
+    } else {
+      etc2_words(b + 8, false, t);
+      std::uint8_t alpha[16];
+      decode_eac8(b, alpha);
+      for (int i = 0; i < 16; ++i) t[i] = (t[i] & 0xFFFFFFu) | std::uint32_t(alpha[i]) << 24;
+    }
+    std::uint8_t* out = dst + std::size_t(k) * 4 * channels;
+    for (int r = 0; r < 4; ++r) {
+      const std::uint32_t* q = t + 4 * r;
+      std::uint8_t* row = out + r * stride;
+      // Whole words built in registers, stored once (see bc_decode.cpp's rows).
+      if (channels == 4) {
+        const std::uint64_t lo = q[0] | std::uint64_t(q[1]) << 32, hi = q[2] | std::uint64_t(q[3]) << 32;
+        std::memcpy(row, &lo, 8);
+        std::memcpy(row + 8, &hi, 8);
+      } else {
+        const std::uint64_t lo = std::uint64_t((q[0] & 0xFFFFFF) | q[1] << 24) | std::uint64_t((q[1] >> 8 & 0xFFFF) | q[2] << 16) << 32;
+        const std::uint32_t hi = (q[2] >> 16 & 0xFF) | q[3] << 8;
+        std::memcpy(row, &lo, 8);
+        std::memcpy(row + 8, &hi, 4);
+      }
+    }
+  }
 }
 
 void decode_eac11(const std::uint8_t* block, bool snorm, int out[16]) {

@@ -3,6 +3,7 @@
 // and the encoders.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 namespace texproc::etc {
@@ -53,6 +54,12 @@ void decode_etc1(const std::uint8_t* block, Rgba8Block out);
 // ETC2 RGB, and ETC2 RGB with punch-through alpha (`punchthrough`: bit 33
 // is the opaque flag instead of the differential flag).
 void decode_etc2(const std::uint8_t* block, bool punchthrough, Rgba8Block out);
+// `count` whole blocks side by side (`block_bytes` apart) straight into an
+// image's rows at `dst` (rows `stride` bytes apart): ETC1 / ETC2 RGB as RGB
+// (3 bytes a texel), ETC2 with punch-through alpha and ETC2 + EAC alpha as
+// RGBA; the texels decode_etc1 / decode_etc2 / decode_eac8 give.
+enum class EtcRun { etc1_rgb, etc2_rgb, etc2_rgba1, etc2_rgba8 };
+void decode_etc_run(const std::uint8_t* blocks, int count, int block_bytes, EtcRun kind, std::uint8_t* dst, std::size_t stride);
 // EAC with 11-bit results: unsigned 0..2047, signed -1023..1023.
 void decode_eac11(const std::uint8_t* block, bool snorm, int out[16]);
 // EAC with 8-bit results (ETC2's alpha).
