@@ -30,9 +30,9 @@ float fit_value(int x, bool is_signed) {
   return x < 0 ? -m : m;
 }
 
-// A region's ends: its texels' extent along their principal axis, the end
-// nearer the anchor texel first (the mean twice for one colour).
-void line_ends(const Block& b, unsigned members, int anchor, float e[2][3]) {
+// A region's mean and scatter matrix (C[0..5]: 00, 01, 02, 11, 12, 22),
+// the deviations from the mean summed over its texels in order.
+void region_scatter(const Block& b, unsigned members, float mean[3], float C[6]) {
   int cnt = 0;
   float S[3] = {};
   for (int i = 0; i < 16; ++i) {
@@ -40,17 +40,21 @@ void line_ends(const Block& b, unsigned members, int anchor, float e[2][3]) {
     ++cnt;
     for (int c = 0; c < 3; ++c) S[c] += b.y[i][c];
   }
-  float mean[3], C[3][3] = {};
   for (int c = 0; c < 3; ++c) mean[c] = S[c] / float(cnt);
+  for (int q = 0; q < 6; ++q) C[q] = 0.0f;
   for (int i = 0; i < 16; ++i) {
     if (!(members >> i & 1)) continue;
-    float d[3];
-    for (int c = 0; c < 3; ++c) d[c] = b.y[i][c] - mean[c];
-    for (int p = 0; p < 3; ++p)
-      for (int q = p; q < 3; ++q) C[p][q] += d[p] * d[q];
+    const float d0 = b.y[i][0] - mean[0], d1 = b.y[i][1] - mean[1], d2 = b.y[i][2] - mean[2];
+    C[0] += d0 * d0, C[1] += d0 * d1, C[2] += d0 * d2, C[3] += d1 * d1, C[4] += d1 * d2, C[5] += d2 * d2;
   }
-  for (int p = 0; p < 3; ++p)
-    for (int q = 0; q < p; ++q) C[p][q] = C[q][p];
+}
+
+// A region's ends: its texels' extent along their principal axis, the end
+// nearer the anchor texel first (the mean twice for one colour).
+void line_ends(const Block& b, unsigned members, int anchor, float e[2][3]) {
+  float mean[3], c6[6];
+  region_scatter(b, members, mean, c6);
+  const float C[3][3] = {{c6[0], c6[1], c6[2]}, {c6[1], c6[3], c6[4]}, {c6[2], c6[4], c6[5]}};
   int jmax = 0;
   for (int c = 1; c < 3; ++c)
     if (C[c][c] > C[jmax][jmax]) jmax = c;
@@ -186,25 +190,12 @@ void try_mode(const Block& b, int k, int partition, const unsigned members[2], c
 }
 
 // The partition estimate of one region: the squared residual of its
-// texels off their principal axis (one power step's Rayleigh quotient).
+// texels off their principal axis. The scatter's entries are at most
+// 16 * 512^2 (y spans 1024), so axis_residual's u'Cu stays below 1.2e35.
 float region_residual(const Block& b, unsigned members) {
-  int cnt = 0;
-  float S[3] = {};
-  for (int i = 0; i < 16; ++i) {
-    if (!(members >> i & 1)) continue;
-    ++cnt;
-    for (int c = 0; c < 3; ++c) S[c] += b.y[i][c];
-  }
-  float mean[3];
-  for (int c = 0; c < 3; ++c) mean[c] = S[c] / float(cnt);
-  float c00 = 0.0f, c01 = 0.0f, c02 = 0.0f, c11 = 0.0f, c12 = 0.0f, c22 = 0.0f;
-  for (int i = 0; i < 16; ++i) {
-    if (!(members >> i & 1)) continue;
-    const float d0 = b.y[i][0] - mean[0], d1 = b.y[i][1] - mean[1], d2 = b.y[i][2] - mean[2];
-    c00 += d0 * d0, c01 += d0 * d1, c02 += d0 * d2, c11 += d1 * d1, c12 += d1 * d2, c22 += d2 * d2;
-  }
-  // The scatter's entries are at most 16 * 512^2 (y spans 1024), so u'Cu stays below 1.2e35.
-  return bc::axis_residual(c00, c01, c02, c11, c12, c22);
+  float mean[3], C[6];
+  region_scatter(b, members, mean, C);
+  return bc::axis_residual(C[0], C[1], C[2], C[3], C[4], C[5]);
 }
 
 unsigned region_members(int partition, int s) {
