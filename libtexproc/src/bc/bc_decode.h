@@ -44,6 +44,8 @@ void decode_rgtc_run(const std::uint8_t* blocks, int count, int block_bytes, boo
 // A BC7 block: RGBA8 texels, row by row (ARB_texture_compression_bptc; the
 // reserved mode decodes to 0 in every channel, as Direct3D's does).
 void decode_bc7(const std::uint8_t* block, std::uint8_t out[16][4]);
+// `count` whole BC7 blocks side by side straight into RGBA8 rows (as decode_color_run).
+void decode_bc7_run(const std::uint8_t* blocks, int count, std::uint8_t* dst, std::size_t stride);
 
 // A BC6H block: RGB half-float bits, row by row (`is_signed`: SF16, else
 // UF16; reserved modes decode to 0).

@@ -54,7 +54,10 @@ void read_indices(BitReader& r, int bits, const int anchor[3], int subsets, int 
 
 }  // namespace
 
-void decode_bc7(const std::uint8_t* block, std::uint8_t out[16][4]) {
+namespace {
+
+// A BC7 block's texels as RGBA8 words (R in the low byte), row by row.
+void bc7_words(const std::uint8_t* block, std::uint32_t out[16]) {
   const int mode = block[0] == 0 ? 8 : __builtin_ctz(block[0]);
   if (mode == 8) {  // reserved: every texel 0 (as Direct3D decodes it)
     std::memset(out, 0, 64);
@@ -99,21 +102,59 @@ void decode_bc7(const std::uint8_t* block, std::uint8_t out[16][4]) {
   if (M.index2_bits) read_indices(r, M.index2_bits, anchor, 1, secondary);
   const std::uint32_t part = ns == 2 ? bptc::kPartitions2[partition] : ns == 3 ? bptc::kPartitions3[partition] : 0;
   // Colour from the secondary indices where the index selection bit is set,
-  // alpha from the secondary ones where there are any and it is not.
+  // alpha from the secondary ones where there are any and it is not. The
+  // palettes once (as words; a rotation's channel swap folded into them),
+  // then a lookup a texel.
   const bool swap = index_selection != 0;
   const int color_bits = swap ? M.index2_bits : M.index_bits;
-  const int alpha_bits = M.index2_bits && !swap ? M.index2_bits : M.index_bits;
   const std::uint8_t* wc = bptc::weights(color_bits);
+  if (!M.index2_bits) {
+    std::uint32_t pal[3][16];
+    for (int s = 0; s < ns; ++s)
+      for (int j = 0; j < 1 << color_bits; ++j) {
+        std::uint32_t w = 0;
+        for (int c = 0; c < 4; ++c) w |= std::uint32_t(bptc::interpolate(e[s][0][c], e[s][1][c], wc[j])) << (8 * c);
+        pal[s][j] = w;
+      }
+    for (int i = 0; i < 16; ++i) out[i] = pal[ns == 1 ? 0 : bptc::subset(part, i)][primary[i]];
+    return;
+  }
+  const int alpha_bits = swap ? M.index_bits : M.index2_bits;
   const std::uint8_t* wa = bptc::weights(alpha_bits);
-  for (int i = 0; i < 16; ++i) {
-    const int s = ns == 1 ? 0 : bptc::subset(part, i);
-    const int ci = swap ? secondary[i] : primary[i];
-    const int ai = M.index2_bits ? (swap ? primary[i] : secondary[i]) : primary[i];
+  // The interpolated alpha goes to channel `ra`, channel `ra` of the colour to alpha.
+  const int ra = rotation ? rotation - 1 : 3;
+  std::uint32_t cpal[8], apal[8];
+  for (int j = 0; j < 1 << color_bits; ++j) {
     int px[4];
-    for (int c = 0; c < 3; ++c) px[c] = bptc::interpolate(e[s][0][c], e[s][1][c], wc[ci]);
-    px[3] = bptc::interpolate(e[s][0][3], e[s][1][3], wa[ai]);
-    if (rotation) std::swap(px[3], px[rotation - 1]);
-    for (int c = 0; c < 4; ++c) out[i][c] = std::uint8_t(px[c]);
+    for (int c = 0; c < 3; ++c) px[c] = bptc::interpolate(e[0][0][c], e[0][1][c], wc[j]);
+    px[3] = 0;
+    std::swap(px[3], px[ra]);  // ra == 3: nothing moves
+    cpal[j] = std::uint32_t(px[0]) | std::uint32_t(px[1]) << 8 | std::uint32_t(px[2]) << 16 | std::uint32_t(px[3]) << 24;
+  }
+  for (int j = 0; j < 1 << alpha_bits; ++j) apal[j] = std::uint32_t(bptc::interpolate(e[0][0][3], e[0][1][3], wa[j])) << (8 * ra);
+  for (int i = 0; i < 16; ++i) out[i] = cpal[swap ? secondary[i] : primary[i]] | apal[swap ? primary[i] : secondary[i]];
+}
+
+}  // namespace
+
+void decode_bc7(const std::uint8_t* block, std::uint8_t out[16][4]) {
+  std::uint32_t w[16];
+  bc7_words(block, w);
+  std::memcpy(out, w, 64);
+}
+
+void decode_bc7_run(const std::uint8_t* blocks, int count, std::uint8_t* dst, std::size_t stride) {
+  for (int k = 0; k < count; ++k) {
+    std::uint32_t t[16];
+    bc7_words(blocks + std::size_t(k) * 16, t);
+    for (int r = 0; r < 4; ++r) {
+      const std::uint32_t* q = t + 4 * r;
+      // Whole words built in registers and stored once (see bc_decode.cpp's rows).
+      const std::uint64_t lo = q[0] | std::uint64_t(q[1]) << 32, hi = q[2] | std::uint64_t(q[3]) << 32;
+      std::uint8_t* row = dst + std::size_t(k) * 16 + r * stride;
+      std::memcpy(row, &lo, 8);
+      std::memcpy(row + 8, &hi, 8);
+    }
   }
 }
 

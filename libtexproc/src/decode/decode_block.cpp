@@ -204,6 +204,11 @@ bool decode_run(TexelFormat f, const std::uint8_t* b, int count, std::uint8_t* d
       bc::decode_rgtc_run(b, count, 16, f == F::bc5_snorm, 2, 0, dst, stride);
       bc::decode_rgtc_run(b + 8, count, 16, f == F::bc5_snorm, 2, 1, dst, stride);
       return true;
+    case F::bc7_unorm:
+    case F::bc7_srgb:
+      if (kC != 4) return false;
+      bc::decode_bc7_run(b, count, dst, stride);
+      return true;
     case F::etc1_rgb:
       if (kC != 3) return false;
       etc::decode_etc_run(b, count, 8, etc::EtcRun::etc1_rgb, dst, stride);
