@@ -30,6 +30,8 @@ class BitReader {
     pos_ += n;
     return v;
   }
+  std::uint64_t peek64() const { return std::uint64_t(bits_ >> pos_); }  // the next 64 bits (0 past the end)
+  void skip(int n) { pos_ += n; }
 
  private:
   u128 bits_;
@@ -45,11 +47,17 @@ void anchors(int subsets, int partition, int anchor[3]) {
 
 // 16 indices of `bits` bits, one bit less at each anchor texel.
 void read_indices(BitReader& r, int bits, const int anchor[3], int subsets, int out[16]) {
+  unsigned anchors = 0;
+  for (int s = 0; s < subsets; ++s) anchors |= 1u << anchor[s];
+  // Every index stream fits in 64 bits (at most 16 * 4 - 1): one read, then shifts.
+  std::uint64_t v = r.peek64();
+  int used = 0;
   for (int i = 0; i < 16; ++i) {
-    bool is_anchor = false;
-    for (int s = 0; s < subsets; ++s) is_anchor = is_anchor || anchor[s] == i;
-    out[i] = int(r.read(is_anchor ? bits - 1 : bits));
+    const int n = bits - int(anchors >> i & 1);
+    out[i] = int(v & ((std::uint64_t(1) << n) - 1));
+    v >>= n, used += n;
   }
+  r.skip(used);
 }
 
 }  // namespace
