@@ -78,6 +78,13 @@ int run_compare(const CompareArgs& a) {
                                               std::to_string(ib.width()) + "x" + std::to_string(ib.height()) +
                                               ": images of different sizes cannot be compared");
   }
+  // The log2 RMSE is computed for float images only: a limit on two 8/16-bit
+  // images would pass whatever they hold.
+  if (a.max_log_rmse >= 0 && ia.type() != PixelType::f32 && ib.type() != PixelType::f32) {
+    throw Error(ErrorCode::bad_arguments, "--max-log-rmse: " + a.a + " and " + a.b +
+                                              " hold 8/16-bit values, not floats; the log2 RMSE is for HDR images "
+                                              "(use --min-psnr)");
+  }
   // A texture format may store fewer channels than the image it came from
   // (BC1: RGB of an RGBA image): compare the channels both have.
   const int n = std::min(ia.channels(), ib.channels());

@@ -486,6 +486,11 @@ TEST(Cli, CompressBc6hFromHdrInputs) {
   EXPECT_NE(r.out.find("log2 RMSE"), std::string::npos) << r.out;
   r = run_texproc("compare " + sky + " " + dir + "/out/s.exr --max-log-rmse 0.0001 -q");
   EXPECT_EQ(r.exit_code, 7);
+  const std::string png = std::string(TEXPROC_SAMPLES_DIR) + "/albedo_desert_512.png";
+  r = run_texproc("compare " + png + " " + png + " --max-log-rmse 0.01");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("--max-log-rmse: " + png), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("not floats"), std::string::npos) << r.err;
   // Float TIFF and Radiance HDR of the same sky, SF16 into KTX2 and KTX1.
   WriteOptions w;
   write_image(dir + "/sky.tif", src.view(), w);
