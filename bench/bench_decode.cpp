@@ -2,10 +2,17 @@
 // floats) for every block format on one thread, and, where CMake is given
 // its header (-DTEXPROC_BCDEC_DIR=, a checkout of iOrange/bcdec outside this
 // tree; skipped when absent), bcdec's BC1-BC7 block decoders writing the
-// same image, and with -DTEXPROC_RG_ETC1_DIR= rg_etc1's ETC1 unpacker, in one run. The blocks: bench_common.h's six colour crops
-// (1.4 MPix), encoded once at `fast`.
+// same image, with -DTEXPROC_RG_ETC1_DIR= rg_etc1's ETC1 unpacker, and with
+// -DTEXPROC_ETCPAK_DIR= etcpak's image decoders (BC1-BC5, BC7 through its copy
+// of bcdec, ETC1/ETC2 RGB and RGBA, EAC R11/RG11; every one writes 32-bit RGBA
+// texels), in one run. The blocks: bench_common.h's six colour crops (1.4
+// MPix), encoded once at `fast`.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -20,14 +27,29 @@
 #include "bcdec.h"
 #endif
 #ifdef TEXPROC_HAVE_RG_ETC1
-#include <cstring>
-
 #include "rg_etc1.h"
+#endif
+#ifdef TEXPROC_HAVE_ETCPAK
+#include "Decode.hpp"
 #endif
 
 using namespace texproc;
 
 namespace {
+
+// An IEEE half's bits as a float (BC6H's texels, as bcdec writes them).
+float half_bits_to_float(std::uint16_t h) {
+  const int sign = h >> 15, exponent = h >> 10 & 31, mantissa = h & 1023;
+  float v;
+  if (exponent == 0) {
+    v = std::ldexp(float(mantissa), -24);
+  } else if (exponent == 31) {
+    v = mantissa ? std::numeric_limits<float>::quiet_NaN() : std::numeric_limits<float>::infinity();
+  } else {
+    v = std::ldexp(float(mantissa | 1024), exponent - 25);
+  }
+  return sign ? -v : v;
+}
 
 struct Encoded {
   int width, height;
@@ -59,56 +81,112 @@ void run_texproc(benchmark::State& state, TexelFormat f) {
   state.counters["MPix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsIterationInvariantRate);
 }
 
-#ifdef TEXPROC_HAVE_BCDEC
-void run_bcdec(benchmark::State& state, TexelFormat f) {
+// A peer's decoder: one image's blocks into `img`, `bytes` a texel.
+using PeerDecode = void (*)(TexelFormat f, const Encoded& x, std::vector<std::uint8_t>& img);
+
+// The share of channel values where a peer's image equals texproc's
+// decompress_image (the channels both write; BC6H's halves as floats): 1
+// where the peer decodes the same texels, less where it rounds otherwise or
+// leaves texels out.
+double agreement(TexelFormat f, PeerDecode decode, int bytes) {
+  const bool hdr = format_info(f).is_float;
+  std::size_t equal = 0, total = 0;
+  for (const Encoded& x : encoded(f)) {
+    const Image ours = decompress_image(x.blocks, x.width, x.height, f, hdr ? PixelType::f32 : PixelType::u8);
+    std::vector<std::uint8_t> img(std::size_t(x.width) * x.height * bytes);
+    decode(f, x, img);
+    const int c = hdr ? 3 : std::min(ours.channels(), bytes);
+    for (int y = 0; y < x.height; ++y)
+      for (int i = 0; i < x.width; ++i)
+        for (int k = 0; k < c; ++k) {
+          const std::size_t at = std::size_t(y) * x.width + i;
+          bool same;
+          if (hdr) {
+            std::uint16_t h;
+            std::memcpy(&h, img.data() + at * bytes + 2 * k, 2);
+            same = ours.row<float>(y)[std::size_t(i) * ours.channels() + k] == half_bits_to_float(h);
+          } else {
+            same = ours.row<std::uint8_t>(y)[std::size_t(i) * ours.channels() + k] == img[at * bytes + k];
+          }
+          equal += same;
+          ++total;
+        }
+  }
+  return total ? double(equal) / double(total) : 0.0;
+}
+
+void run_peer(benchmark::State& state, TexelFormat f, PeerDecode decode, int bytes) {
   const auto& e = encoded(f);
-  using F = TexelFormat;
-  const int bytes = f == F::bc4_unorm ? 1 : f == F::bc5_unorm ? 2 : f == F::bc6h_ufloat ? 6 : 4;
-  const int block = format_info(f).block_bytes;
   double pixels = 0;
   for (const Encoded& x : e) pixels += double(x.width) * x.height;
   for (auto _ : state)
     for (const Encoded& x : e) {
       std::vector<std::uint8_t> img(std::size_t(x.width) * x.height * bytes);
-      const int pitch = x.width * bytes, bw = x.width / 4;
-      for (int by = 0; by < x.height / 4; ++by)
-        for (int bx = 0; bx < bw; ++bx) {
-          const std::uint8_t* src = x.blocks.data() + (std::size_t(by) * bw + bx) * block;
-          std::uint8_t* dst = img.data() + std::size_t(4 * by) * pitch + std::size_t(4 * bx) * bytes;
-          switch (f) {
-            case F::bc1_rgb_unorm: bcdec_bc1(src, dst, pitch); break;
-            case F::bc3_unorm: bcdec_bc3(src, dst, pitch); break;
-            case F::bc4_unorm: bcdec_bc4(src, dst, pitch); break;
-            case F::bc5_unorm: bcdec_bc5(src, dst, pitch); break;
-            case F::bc6h_ufloat: bcdec_bc6h_half(src, dst, pitch / 2, 0); break;
-            default: bcdec_bc7(src, dst, pitch); break;
-          }
-        }
+      decode(f, x, img);
       benchmark::DoNotOptimize(img.data());
     }
   state.counters["MPix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["equal"] = agreement(f, decode, bytes);
+}
+
+#ifdef TEXPROC_HAVE_BCDEC
+int bcdec_bytes(TexelFormat f) {
+  using F = TexelFormat;
+  return f == F::bc4_unorm ? 1 : f == F::bc5_unorm ? 2 : f == F::bc6h_ufloat ? 6 : 4;
+}
+
+void bcdec_image(TexelFormat f, const Encoded& x, std::vector<std::uint8_t>& img) {
+  using F = TexelFormat;
+  const int bytes = bcdec_bytes(f), block = format_info(f).block_bytes;
+  const int pitch = x.width * bytes, bw = x.width / 4;
+  for (int by = 0; by < x.height / 4; ++by)
+    for (int bx = 0; bx < bw; ++bx) {
+      const std::uint8_t* src = x.blocks.data() + (std::size_t(by) * bw + bx) * block;
+      std::uint8_t* dst = img.data() + std::size_t(4 * by) * pitch + std::size_t(4 * bx) * bytes;
+      switch (f) {
+        case F::bc1_rgb_unorm: bcdec_bc1(src, dst, pitch); break;
+        case F::bc3_unorm: bcdec_bc3(src, dst, pitch); break;
+        case F::bc4_unorm: bcdec_bc4(src, dst, pitch); break;
+        case F::bc5_unorm: bcdec_bc5(src, dst, pitch); break;
+        case F::bc6h_ufloat: bcdec_bc6h_half(src, dst, pitch / 2, 0); break;
+        default: bcdec_bc7(src, dst, pitch); break;
+      }
+    }
 }
 #endif
 
 #ifdef TEXPROC_HAVE_RG_ETC1
 // rg_etc1's block unpacker (RGBA, 16 texels in a row), each block copied into an RGBA image.
-void run_rg_etc1(benchmark::State& state) {
-  const auto& e = encoded(TexelFormat::etc1_rgb);
-  double pixels = 0;
-  for (const Encoded& x : e) pixels += double(x.width) * x.height;
-  for (auto _ : state)
-    for (const Encoded& x : e) {
-      std::vector<std::uint8_t> img(std::size_t(x.width) * x.height * 4);
-      const int pitch = x.width * 4, bw = x.width / 4;
-      unsigned int px[16];
-      for (int by = 0; by < x.height / 4; ++by)
-        for (int bx = 0; bx < bw; ++bx) {
-          rg_etc1::unpack_etc1_block(x.blocks.data() + (std::size_t(by) * bw + bx) * 8, px);
-          for (int r = 0; r < 4; ++r) std::memcpy(img.data() + std::size_t(4 * by + r) * pitch + std::size_t(16 * bx), px + 4 * r, 16);
-        }
-      benchmark::DoNotOptimize(img.data());
+void rg_etc1_image(TexelFormat, const Encoded& x, std::vector<std::uint8_t>& img) {
+  const int pitch = x.width * 4, bw = x.width / 4;
+  unsigned int px[16];
+  for (int by = 0; by < x.height / 4; ++by)
+    for (int bx = 0; bx < bw; ++bx) {
+      rg_etc1::unpack_etc1_block(x.blocks.data() + (std::size_t(by) * bw + bx) * 8, px);
+      for (int r = 0; r < 4; ++r) std::memcpy(img.data() + std::size_t(4 * by + r) * pitch + std::size_t(16 * bx), px + 4 * r, 16);
     }
-  state.counters["MPix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsIterationInvariantRate);
+}
+#endif
+
+#ifdef TEXPROC_HAVE_ETCPAK
+// etcpak's whole-image decoders (blocks read as 64-bit words, RGBA out).
+bool etcpak_decodes(TexelFormat f) { return f != TexelFormat::bc6h_ufloat; }
+
+void etcpak_image(TexelFormat f, const Encoded& x, std::vector<std::uint8_t>& bytes) {
+  using F = TexelFormat;
+  const auto* src = reinterpret_cast<const std::uint64_t*>(x.blocks.data());
+  auto* img = reinterpret_cast<std::uint32_t*>(bytes.data());
+  switch (f) {
+    case F::bc1_rgb_unorm: DecodeBc1(src, img, x.width, x.height); break;
+    case F::bc3_unorm: DecodeBc3(src, img, x.width, x.height); break;
+    case F::bc4_unorm: DecodeBc4(src, img, x.width, x.height); break;
+    case F::bc5_unorm: DecodeBc5(src, img, x.width, x.height); break;
+    case F::bc7_unorm: DecodeBc7(src, img, x.width, x.height); break;
+    case F::etc2_rgba8_unorm: DecodeRGBA(src, img, x.width, x.height); break;
+    case F::eac_r11_unorm: DecodeR(src, img, x.width, x.height); break;
+    case F::eac_rg11_unorm: DecodeRG(src, img, x.width, x.height); break;
+    default: DecodeRGB(src, img, x.width, x.height); break;  // ETC1 and ETC2 RGB
+  }
 }
 #endif
 
@@ -121,11 +199,20 @@ void register_all() {
         ->UseRealTime();
 #ifdef TEXPROC_HAVE_RG_ETC1
     if (f == F::etc1_rgb)
-      benchmark::RegisterBenchmark("decode/rg_etc1/etc1_rgb", run_rg_etc1)->Unit(benchmark::kMillisecond)->UseRealTime();
+      benchmark::RegisterBenchmark("decode/rg_etc1/etc1_rgb", run_peer, f, rg_etc1_image, 4)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+#endif
+#ifdef TEXPROC_HAVE_ETCPAK
+    if (etcpak_decodes(f))
+      benchmark::RegisterBenchmark((std::string("decode/etcpak/") + format_info(f).name).c_str(), run_peer, f, etcpak_image, 4)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
 #endif
 #ifdef TEXPROC_HAVE_BCDEC
     if (f <= F::bc7_unorm && f != F::etc1_rgb)
-      benchmark::RegisterBenchmark((std::string("decode/bcdec/") + format_info(f).name).c_str(), run_bcdec, f)
+      benchmark::RegisterBenchmark((std::string("decode/bcdec/") + format_info(f).name).c_str(), run_peer, f, bcdec_image,
+                                   bcdec_bytes(f))
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime();
 #endif

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "bc/bc_decode.h"
+#include "etc/etc_tables.h"
 #include "support/images.h"
 #include "texproc/block_decode.h"
 #include "texproc/container.h"
@@ -214,4 +215,30 @@ TEST(BlockDecode, Bc4EightBitTablesMatchTheFloatDecoderForEveryEndpointPair) {
           ASSERT_EQ(rows[i / 4][i % 4], want) << (snorm ? "SNORM " : "UNORM ") << r0 << "," << r1 << " texel " << i;
         }
       }
+}
+
+// EAC R11's 8-bit rows come from a table of the 11-bit values
+// (etc_decode.cpp): every base, multiplier and modifier table, UNORM and
+// SNORM, with indices covering all eight entries, gives decode_eac11's value
+// stored as Image::set stores value / 2047 (SNORM value / 1023, biased), in
+// one and two channels.
+TEST(BlockDecode, EacEightBitRowsMatchTheElevenBitDecoderForEveryBlockHeader) {
+  // Indices 0..7 twice (texel k's index in bits 47 - 3k down).
+  std::uint64_t indices = 0;
+  for (int k = 0; k < 16; ++k) indices |= std::uint64_t(k & 7) << (45 - 3 * k);
+  for (bool snorm : {false, true})
+    for (int header = 0; header < 1 << 16; ++header) {
+      std::uint8_t block[8];
+      etc::store_be64(std::uint64_t(header) << 48 | indices, block);
+      int v[16];
+      etc::decode_eac11(block, snorm, v);
+      std::uint8_t one[4][4], two[4][8];
+      etc::decode_eac11_u8_run(block, 1, 8, snorm, 1, 0, one[0], 4);
+      etc::decode_eac11_u8_run(block, 1, 8, snorm, 2, 1, two[0], 8);
+      for (int i = 0; i < 16; ++i) {
+        const std::uint8_t want = bc::to_unorm8(snorm ? (float(v[i]) / 1023.0f + 1.0f) * 0.5f : float(v[i]) / 2047.0f);
+        ASSERT_EQ(one[i / 4][i % 4], want) << (snorm ? "SNORM " : "UNORM ") << "header " << header << " texel " << i;
+        ASSERT_EQ(two[i / 4][2 * (i % 4) + 1], want) << (snorm ? "SNORM " : "UNORM ") << "header " << header << " texel " << i;
+      }
+    }
 }

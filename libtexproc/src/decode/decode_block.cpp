@@ -228,6 +228,17 @@ bool decode_run(TexelFormat f, const std::uint8_t* b, int count, std::uint8_t* d
       if (kC != 4) return false;
       etc::decode_etc_run(b, count, 16, etc::EtcRun::etc2_rgba8, dst, stride);
       return true;
+    case F::eac_r11_unorm:
+    case F::eac_r11_snorm:
+      if (kC != 1) return false;
+      etc::decode_eac11_u8_run(b, count, 8, f == F::eac_r11_snorm, 1, 0, dst, stride);
+      return true;
+    case F::eac_rg11_unorm:
+    case F::eac_rg11_snorm:
+      if (kC != 2) return false;
+      etc::decode_eac11_u8_run(b, count, 16, f == F::eac_rg11_snorm, 2, 0, dst, stride);
+      etc::decode_eac11_u8_run(b + 8, count, 16, f == F::eac_rg11_snorm, 2, 1, dst, stride);
+      return true;
     default: return false;
   }
 }

@@ -216,4 +216,64 @@ void decode_eac8(const std::uint8_t* block, std::uint8_t out[16]) {
     }
 }
 
+namespace {
+// Each 11-bit EAC value as the 8 bits Image::set stores for the float
+// decoder's value (the same float expressions, evaluated once).
+struct Eac8Tables {
+  std::uint8_t unorm[2048], snorm[2047];  // SNORM indexed by v + 1023
+  Eac8Tables() {
+    auto to8 = [](float v) {
+      const float cl = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+      return std::uint8_t(cl * 255.0f + 0.5f);
+    };
+    for (int v = 0; v < 2048; ++v) unorm[v] = to8(float(v) / 2047.0f);
+    for (int v = -1023; v <= 1023; ++v) snorm[v + 1023] = to8((float(v) / 1023.0f + 1.0f) * 0.5f);
+  }
+};
+const Eac8Tables& eac8_tables() {
+  static const Eac8Tables t;
+  return t;
+}
+
+template <int kChannels>
+inline __attribute__((always_inline)) void eac11_u8_rows(const std::uint8_t* block, bool snorm, int ch, const Eac8Tables& T,
+                                                         std::uint8_t* dst, std::size_t stride) {
+  const std::uint64_t v = load_be64(block);
+  const int mult = bits(v, 55, 4);
+  const int* mods = kEacModifiers[bits(v, 51, 4)];
+  int base = bits(v, 63, 8);
+  // decode_eac11's value for each of the eight indices, then its 8 bits.
+  std::uint8_t pal[8];
+  if (snorm) {
+    base = base >= 128 ? base - 256 : base;
+    if (base == -128) base = -127;
+    for (int i = 0; i < 8; ++i) {
+      const int value = base * 8 + (mult ? mods[i] * mult * 8 : mods[i]);
+      pal[i] = T.snorm[(value < -1023 ? -1023 : value > 1023 ? 1023 : value) + 1023];
+    }
+  } else {
+    for (int i = 0; i < 8; ++i) {
+      const int value = base * 8 + 4 + (mult ? mods[i] * mult * 8 : mods[i]);
+      pal[i] = T.unorm[value < 0 ? 0 : value > 2047 ? 2047 : value];
+    }
+  }
+  // Texel (x, y)'s index: bits 47 - 3 (4 x + y) down (column by column).
+  for (int y = 0; y < 4; ++y) {
+    std::uint8_t* row = dst + y * stride + ch;
+    for (int x = 0; x < 4; ++x) row[x * kChannels] = pal[v >> (45 - 3 * (4 * x + y)) & 7];
+  }
+}
+}  // namespace
+
+void decode_eac11_u8_run(const std::uint8_t* blocks, int count, int block_bytes, bool snorm, int channels, int ch, std::uint8_t* dst,
+                         std::size_t stride) {
+  const Eac8Tables& T = eac8_tables();
+  if (channels == 1) {
+    for (int k = 0; k < count; ++k) eac11_u8_rows<1>(blocks + std::size_t(k) * block_bytes, snorm, ch, T, dst + 4 * k, stride);
+  } else {
+    for (int k = 0; k < count; ++k)
+      eac11_u8_rows<2>(blocks + std::size_t(k) * block_bytes, snorm, ch, T, dst + 8 * k, stride);
+  }
+}
+
 }  // namespace texproc::etc

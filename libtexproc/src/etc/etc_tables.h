@@ -64,5 +64,10 @@ void decode_etc_run(const std::uint8_t* blocks, int count, int block_bytes, EtcR
 void decode_eac11(const std::uint8_t* block, bool snorm, int out[16]);
 // EAC with 8-bit results (ETC2's alpha).
 void decode_eac8(const std::uint8_t* block, std::uint8_t out[16]);
+// `count` whole EAC R11 blocks (`block_bytes` apart) straight into channel
+// `ch` of an 8-bit image's rows (`channels` bytes a texel): each 11-bit value
+// v as Image::set stores v / 2047 (SNORM: v / 1023, biased to [0, 1]).
+void decode_eac11_u8_run(const std::uint8_t* blocks, int count, int block_bytes, bool snorm, int channels, int ch, std::uint8_t* dst,
+                         std::size_t stride);
 
 }  // namespace texproc::etc
