@@ -13,6 +13,7 @@
 #include <random>
 #include <vector>
 
+#include "etc/etc_tables.h"
 #include "support/blocks.h"
 #include "support/images.h"
 #include "support/targets.h"
@@ -407,6 +408,21 @@ TEST(EtcDecode, RandomBlocksMatchThePlainDecoder) {
     const auto s = plain_eac(b, 2);
     for (int i = 0; i < 16; ++i) ASSERT_EQ(t[i][1], float(s[i]) / 1023.0f) << n;
   }
+}
+
+// The decoder's sub-block palette (SSE2's saturating pack as the clamp,
+// where the target has it) gives the plain reference's words for every
+// table and every value of each channel, the clamps at both ends included.
+TEST(EtcDecode, SubBlockPaletteMatchesThePlainReference) {
+  for (int table = 0; table < 8; ++table)
+    for (int v = 0; v < 256; ++v) {
+      const int c[3] = {v, 255 - v, (v * 7 + 3) & 255};
+      std::uint32_t want[4], got[4];
+      etc::sub_block_palette_scalar(c, table, want);
+      etc::sub_block_palette(c, table, got);
+      for (int i = 0; i < 4; ++i) ASSERT_EQ(got[i], want[i]) << "table " << table << " value " << v << " index " << i;
+      EXPECT_EQ(want[0] >> 24, 255u);
+    }
 }
 
 // ETC1 against android-libetc1's decoder (the library behind etc1tool), on

@@ -5,6 +5,10 @@
 #include <cstdint>
 #include <cstring>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "etc/etc_tables.h"
 
 namespace texproc::etc {
@@ -22,21 +26,90 @@ inline std::uint32_t word(int r, int g, int b) {
   return std::uint32_t(clamp255(r)) | std::uint32_t(clamp255(g)) << 8 | std::uint32_t(clamp255(b)) << 16 | 0xFF000000u;
 }
 
-// The texels as RGBA8 words (row by row): each sub-block's four colours once,
-// then a lookup a texel.
+// A 4x4 bit matrix's transpose: bit 4 a + b to bit 4 b + a.
+constexpr unsigned transpose4x4(unsigned m) {
+  unsigned t = (m ^ (m >> 3)) & 0x0A0Au;
+  m ^= t ^ (t << 3);
+  t = (m ^ (m >> 6)) & 0x00CCu;
+  return m ^ t ^ (t << 6);
+}
+
+// A row's four 2-bit indices, one a byte (texel x in byte x), from its four
+// least significant bits (bit x) and four most significant bits (bit x + 4).
+struct RowIndexTable {
+  std::uint32_t v[256];
+  constexpr RowIndexTable() : v() {
+    for (unsigned n = 0; n < 256; ++n)
+      for (unsigned x = 0; x < 4; ++x) v[n] |= ((n >> (x + 4) & 1) << 1 | (n >> x & 1)) << (8 * x);
+  }
+};
+constexpr RowIndexTable kRowIndices;
+
+// Each table's modifiers as 16-bit lanes laid out as two texels' RGBA
+// (alpha's lane 0): indices 0 and 1, then 2 and 3.
+struct ModifierLanes {
+  alignas(16) std::int16_t v[8][2][8];
+  constexpr ModifierLanes() : v() {
+    for (int t = 0; t < 8; ++t)
+      for (int i = 0; i < 4; ++i)
+        for (int c = 0; c < 3; ++c) v[t][i / 2][4 * (i % 2) + c] = std::int16_t(kModifiers[t][i]);
+  }
+};
+constexpr ModifierLanes kModifierLanes;
+
+}  // namespace
+
+// A sub-block's four colours as opaque RGBA8 words (base colour plus each
+// modifier, clamped): the plain reference, and below the same words from
+// 16-bit lanes whose saturating pack to bytes is the clamp.
+void sub_block_palette_scalar(const int c[3], int table, std::uint32_t out[4]) {
+  for (int idx = 0; idx < 4; ++idx) {
+    const int m = kModifiers[table][idx];
+    out[idx] = word(c[0] + m, c[1] + m, c[2] + m);
+  }
+}
+
+void sub_block_palette(const int c[3], int table, std::uint32_t out[4]) {
+#if defined(__SSE2__)
+  const __m128i base = _mm_setr_epi16(std::int16_t(c[0]), std::int16_t(c[1]), std::int16_t(c[2]), 255, std::int16_t(c[0]),
+                                      std::int16_t(c[1]), std::int16_t(c[2]), 255);
+  const __m128i* m = reinterpret_cast<const __m128i*>(kModifierLanes.v[table]);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(out),
+                   _mm_packus_epi16(_mm_add_epi16(base, _mm_load_si128(m)), _mm_add_epi16(base, _mm_load_si128(m + 1))));
+#else
+  sub_block_palette_scalar(c, table, out);
+#endif
+}
+
+namespace {
+
+// The texels as RGBA8 words (row by row): each sub-block's four colours once
+// (sub-block 1's at 4..7), then, a row at a time, the texels' indices into
+// them (the index bits transposed from column order to row order).
 void decode_sub_blocks(std::uint64_t v, const int c1[3], const int c2[3], bool non_opaque, std::uint32_t out[16]) {
   const int table[2] = {bits(v, 39, 3), bits(v, 36, 3)};
   const bool flip = bits(v, 32, 1) != 0;
-  std::uint32_t pal[2][4];
-  for (int sub = 0; sub < 2; ++sub) {
-    const int* c = sub ? c2 : c1;
-    for (int idx = 0; idx < 4; ++idx) {
-      const int m = non_opaque && idx == 0 ? 0 : kModifiers[table[sub]][idx];
-      pal[sub][idx] = non_opaque && idx == 2 ? 0u : word(c[0] + m, c[1] + m, c[2] + m);
+  std::uint32_t pal[8];
+  if (!non_opaque) {
+    sub_block_palette(c1, table[0], pal);
+    sub_block_palette(c2, table[1], pal + 4);
+  } else {  // ETC2 punch-through: index 0 has no modifier, index 2 is transparent black
+    for (int sub = 0; sub < 2; ++sub) {
+      const int* c = sub ? c2 : c1;
+      for (int idx = 0; idx < 4; ++idx) {
+        const int m = idx == 0 ? 0 : kModifiers[table[sub]][idx];
+        pal[4 * sub + idx] = idx == 2 ? 0u : word(c[0] + m, c[1] + m, c[2] + m);
+      }
     }
   }
-  for (int y = 0; y < 4; ++y)
-    for (int x = 0; x < 4; ++x) out[y * 4 + x] = pal[flip ? (y >= 2) : (x >= 2)][pixel_index(v, x, y)];
+  const unsigned lsb = transpose4x4(unsigned(v & 0xFFFF)), msb = transpose4x4(unsigned(v >> 16 & 0xFFFF));
+  for (int y = 0; y < 4; ++y) {
+    // Sub-block 1: the right half (x >= 2), or with the flip bit the bottom half.
+    const std::uint32_t second = flip ? (y >= 2 ? 0x04040404u : 0u) : 0x04040000u;
+    const std::uint32_t idx = kRowIndices.v[(msb >> (4 * y) & 15) << 4 | (lsb >> (4 * y) & 15)] + second;
+    std::uint32_t* row = out + 4 * y;
+    row[0] = pal[idx & 7], row[1] = pal[idx >> 8 & 7], row[2] = pal[idx >> 16 & 7], row[3] = pal[idx >> 24];
+  }
 }
 
 void decode_paint(std::uint64_t v, const int paint[4][3], bool non_opaque, std::uint32_t out[16]) {
@@ -94,18 +167,16 @@ int signed3(int v) { return v >= 4 ? v - 8 : v; }
 namespace {
 void etc1_words(const std::uint8_t* block, std::uint32_t out[16]) {
   const std::uint64_t v = load_be64(block);
+  // Both modes' colours, one kept by a mask: the mode bit varies from block
+  // to block, and a branch on it is mispredicted often.
+  const int differential = -int(bits(v, 33, 1));
   int c1[3], c2[3];
-  if (bits(v, 33, 1)) {
-    for (int k = 0; k < 3; ++k) {
-      const int base = bits(v, 63 - 8 * k, 5);
-      c1[k] = extend5(base);
-      c2[k] = extend5((base + signed3(bits(v, 58 - 8 * k, 3))) & 31);
-    }
-  } else {
-    for (int k = 0; k < 3; ++k) {
-      c1[k] = extend4(bits(v, 63 - 8 * k, 4));
-      c2[k] = extend4(bits(v, 59 - 8 * k, 4));
-    }
+  for (int k = 0; k < 3; ++k) {
+    const int base = bits(v, 63 - 8 * k, 5);
+    const int d1 = extend5(base), d2 = extend5((base + signed3(bits(v, 58 - 8 * k, 3))) & 31);
+    const int i1 = extend4(bits(v, 63 - 8 * k, 4)), i2 = extend4(bits(v, 59 - 8 * k, 4));
+    c1[k] = (d1 & differential) | (i1 & ~differential);
+    c2[k] = (d2 & differential) | (i2 & ~differential);
   }
   decode_sub_blocks(v, c1, c2, false, out);
 }

@@ -4,7 +4,9 @@
 #pragma once
 
 #include <cstddef>
+#include <bit>
 #include <cstdint>
+#include <cstring>
 
 namespace texproc::etc {
 
@@ -36,8 +38,9 @@ inline int clamp255(int v) { return v < 0 ? 0 : v > 255 ? 255 : v; }
 // A block as the big-endian 64-bit number the specification's bit numbers
 // refer to (bit 63 is the top bit of byte 0).
 inline std::uint64_t load_be64(const std::uint8_t* b) {
-  std::uint64_t v = 0;
-  for (int i = 0; i < 8; ++i) v = v << 8 | b[i];
+  std::uint64_t v;
+  std::memcpy(&v, b, 8);
+  if constexpr (std::endian::native == std::endian::little) v = __builtin_bswap64(v);
   return v;
 }
 inline void store_be64(std::uint64_t v, std::uint8_t* b) {
@@ -54,6 +57,12 @@ void decode_etc1(const std::uint8_t* block, Rgba8Block out);
 // ETC2 RGB, and ETC2 RGB with punch-through alpha (`punchthrough`: bit 33
 // is the opaque flag instead of the differential flag).
 void decode_etc2(const std::uint8_t* block, bool punchthrough, Rgba8Block out);
+// An ETC1 / ETC2 sub-block's four colours as opaque RGBA8 words (R in the
+// low byte): base colour `c` plus each of table `table`'s modifiers,
+// clamped. The plain reference, and the decoder's (SSE2 where the target has
+// it; the same words).
+void sub_block_palette_scalar(const int c[3], int table, std::uint32_t out[4]);
+void sub_block_palette(const int c[3], int table, std::uint32_t out[4]);
 // `count` whole blocks side by side (`block_bytes` apart) straight into an
 // image's rows at `dst` (rows `stride` bytes apart): ETC1 / ETC2 RGB as RGB
 // (3 bytes a texel), ETC2 with punch-through alpha and ETC2 + EAC alpha as
