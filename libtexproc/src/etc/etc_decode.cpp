@@ -86,7 +86,9 @@ namespace {
 // The texels as RGBA8 words (row by row): each sub-block's four colours once
 // (sub-block 1's at 4..7), then, a row at a time, the texels' indices into
 // them (the index bits transposed from column order to row order).
-void decode_sub_blocks(std::uint64_t v, const int c1[3], const int c2[3], bool non_opaque, std::uint32_t out[16]) {
+// `put(y, q0, q1, q2, q3)` takes row y's four texels.
+template <class Put>
+inline __attribute__((always_inline)) void sub_block_rows(std::uint64_t v, const int c1[3], const int c2[3], bool non_opaque, Put put) {
   const int table[2] = {bits(v, 39, 3), bits(v, 36, 3)};
   const bool flip = bits(v, 32, 1) != 0;
   std::uint32_t pal[8];
@@ -107,9 +109,15 @@ void decode_sub_blocks(std::uint64_t v, const int c1[3], const int c2[3], bool n
     // Sub-block 1: the right half (x >= 2), or with the flip bit the bottom half.
     const std::uint32_t second = flip ? (y >= 2 ? 0x04040404u : 0u) : 0x04040000u;
     const std::uint32_t idx = kRowIndices.v[(msb >> (4 * y) & 15) << 4 | (lsb >> (4 * y) & 15)] + second;
-    std::uint32_t* row = out + 4 * y;
-    row[0] = pal[idx & 7], row[1] = pal[idx >> 8 & 7], row[2] = pal[idx >> 16 & 7], row[3] = pal[idx >> 24];
+    put(y, pal[idx & 7], pal[idx >> 8 & 7], pal[idx >> 16 & 7], pal[idx >> 24]);
   }
+}
+
+void decode_sub_blocks(std::uint64_t v, const int c1[3], const int c2[3], bool non_opaque, std::uint32_t out[16]) {
+  sub_block_rows(v, c1, c2, non_opaque, [out](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
+    std::uint32_t* row = out + 4 * y;
+    row[0] = q0, row[1] = q1, row[2] = q2, row[3] = q3;
+  });
 }
 
 void decode_paint(std::uint64_t v, const int paint[4][3], bool non_opaque, std::uint32_t out[16]) {
@@ -165,24 +173,52 @@ int signed3(int v) { return v >= 4 ? v - 8 : v; }
 }  // namespace
 
 namespace {
+// ETC1's two base colours (individual or differential).
+inline __attribute__((always_inline)) void etc1_colors(std::uint64_t v, int c1[3], int c2[3]) {
+  if (bits(v, 33, 1)) {
+    for (int k = 0; k < 3; ++k) {
+      const int base = bits(v, 63 - 8 * k, 5);
+      c1[k] = extend5(base);
+      c2[k] = extend5((base + signed3(bits(v, 58 - 8 * k, 3))) & 31);
+    }
+  } else {
+    for (int k = 0; k < 3; ++k) {
+      c1[k] = extend4(bits(v, 63 - 8 * k, 4));
+      c2[k] = extend4(bits(v, 59 - 8 * k, 4));
+    }
+  }
+}
+
 void etc1_words(const std::uint8_t* block, std::uint32_t out[16]) {
   const std::uint64_t v = load_be64(block);
-  // Both modes' colours, one kept by a mask: the mode bit varies from block
-  // to block, and a branch on it is mispredicted often.
-  const int differential = -int(bits(v, 33, 1));
   int c1[3], c2[3];
-  for (int k = 0; k < 3; ++k) {
-    const int base = bits(v, 63 - 8 * k, 5);
-    const int d1 = extend5(base), d2 = extend5((base + signed3(bits(v, 58 - 8 * k, 3))) & 31);
-    const int i1 = extend4(bits(v, 63 - 8 * k, 4)), i2 = extend4(bits(v, 59 - 8 * k, 4));
-    c1[k] = (d1 & differential) | (i1 & ~differential);
-    c2[k] = (d2 & differential) | (i2 & ~differential);
-  }
+  etc1_colors(v, c1, c2);
   decode_sub_blocks(v, c1, c2, false, out);
 }
 
-void etc2_words(const std::uint8_t* block, bool punchthrough, std::uint32_t out[16]) {
-  const std::uint64_t v = load_be64(block);
+// A row's four RGBA words stored as 16 bytes, or as 12 bytes of RGB: whole
+// words built in registers and stored once (no small stores read back as a
+// larger word: that stalls store forwarding).
+template <int kChannels>
+inline __attribute__((always_inline)) void store_row(std::uint8_t* row, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2,
+                                                     std::uint32_t q3) {
+  if constexpr (kChannels == 4) {
+    const std::uint64_t lo = q0 | std::uint64_t(q1) << 32, hi = q2 | std::uint64_t(q3) << 32;
+    std::memcpy(row, &lo, 8);
+    std::memcpy(row + 8, &hi, 8);
+  } else {
+    const std::uint64_t lo = std::uint64_t((q0 & 0xFFFFFF) | q1 << 24) | std::uint64_t((q1 >> 8 & 0xFFFF) | q2 << 16) << 32;
+    const std::uint32_t hi = (q2 >> 16 & 0xFF) | q3 << 8;
+    std::memcpy(row, &lo, 8);
+    std::memcpy(row + 8, &hi, 4);
+  }
+}
+
+// An ETC2 RGB block's rows through `put` (as sub_block_rows): the
+// individual and differential modes straight from their palette, T, H and
+// planar through a block of words.
+template <class Put>
+inline __attribute__((always_inline)) void etc2_rows(std::uint64_t v, bool punchthrough, Put put) {
   const bool differential = punchthrough || bits(v, 33, 1);
   const bool non_opaque = punchthrough && !bits(v, 33, 1);
   int c1[3], c2[3];
@@ -191,8 +227,7 @@ void etc2_words(const std::uint8_t* block, bool punchthrough, std::uint32_t out[
       c1[k] = extend4(bits(v, 63 - 8 * k, 4));
       c2[k] = extend4(bits(v, 59 - 8 * k, 4));
     }
-    decode_sub_blocks(v, c1, c2, false, out);
-    return;
+    return sub_block_rows(v, c1, c2, false, put);
   }
   int base[3], second[3];
   for (int k = 0; k < 3; ++k) {
@@ -200,14 +235,30 @@ void etc2_words(const std::uint8_t* block, bool punchthrough, std::uint32_t out[
     second[k] = base[k] + signed3(bits(v, 58 - 8 * k, 3));
   }
   // A second colour outside 0..31 selects the modes ETC2 added.
-  if (second[0] < 0 || second[0] > 31) return decode_t(v, non_opaque, out);
-  if (second[1] < 0 || second[1] > 31) return decode_h(v, non_opaque, out);
-  if (second[2] < 0 || second[2] > 31) return decode_planar(v, out);
+  if ((second[0] | second[1] | second[2]) & ~31) {
+    std::uint32_t t[16];
+    if (second[0] < 0 || second[0] > 31) {
+      decode_t(v, non_opaque, t);
+    } else if (second[1] < 0 || second[1] > 31) {
+      decode_h(v, non_opaque, t);
+    } else {
+      decode_planar(v, t);
+    }
+    for (int y = 0; y < 4; ++y) put(y, t[4 * y], t[4 * y + 1], t[4 * y + 2], t[4 * y + 3]);
+    return;
+  }
   for (int k = 0; k < 3; ++k) {
     c1[k] = extend5(base[k]);
     c2[k] = extend5(second[k]);
   }
-  decode_sub_blocks(v, c1, c2, non_opaque, out);
+  sub_block_rows(v, c1, c2, non_opaque, put);
+}
+
+void etc2_words(const std::uint8_t* block, bool punchthrough, std::uint32_t out[16]) {
+  etc2_rows(load_be64(block), punchthrough, [out](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
+    std::uint32_t* row = out + 4 * y;
+    row[0] = q0, row[1] = q1, row[2] = q2, row[3] = q3;
+  });
 }
 }  // namespace
 
@@ -224,35 +275,40 @@ void decode_etc2(const std::uint8_t* block, bool punchthrough, Rgba8Block out) {
 }
 
 void decode_etc_run(const std::uint8_t* blocks, int count, int block_bytes, EtcRun kind, std::uint8_t* dst, std::size_t stride) {
-  const int channels = kind == EtcRun::etc1_rgb || kind == EtcRun::etc2_rgb ? 3 : 4;
+  if (kind == EtcRun::etc1_rgb) {  // ETC1: the texels straight from the palette into the rows
+    for (int k = 0; k < count; ++k) {
+      const std::uint64_t v = load_be64(blocks + std::size_t(k) * block_bytes);
+      int c1[3], c2[3];
+      etc1_colors(v, c1, c2);
+      std::uint8_t* out = dst + std::size_t(k) * 12;
+      sub_block_rows(v, c1, c2, false, [out, stride](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
+        store_row<3>(out + y * stride, q0, q1, q2, q3);
+      });
+    }
+    return;
+  }
   for (int k = 0; k < count; ++k) {
     const std::uint8_t* b = blocks + std::size_t(k) * block_bytes;
-    std::uint32_t t[16];
-    if (kind == EtcRun::etc1_rgb) {
-      etc1_words(b, t);
-    } else if (kind != EtcRun::etc2_rgba8) {
-      etc2_words(b, kind == EtcRun::etc2_rgba1, t);
-    } else {
-      etc2_words(b + 8, false, t);
+    if (kind == EtcRun::etc2_rgb) {
+      std::uint8_t* out = dst + std::size_t(k) * 12;
+      etc2_rows(load_be64(b), false, [out, stride](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
+        store_row<3>(out + y * stride, q0, q1, q2, q3);
+      });
+    } else if (kind == EtcRun::etc2_rgba1) {
+      std::uint8_t* out = dst + std::size_t(k) * 16;
+      etc2_rows(load_be64(b), true, [out, stride](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
+        store_row<4>(out + y * stride, q0, q1, q2, q3);
+      });
+    } else {  // ETC2 + EAC: the alpha block first
       std::uint8_t alpha[16];
       decode_eac8(b, alpha);
-      for (int i = 0; i < 16; ++i) t[i] = (t[i] & 0xFFFFFFu) | std::uint32_t(alpha[i]) << 24;
-    }
-    std::uint8_t* out = dst + std::size_t(k) * 4 * channels;
-    for (int r = 0; r < 4; ++r) {
-      const std::uint32_t* q = t + 4 * r;
-      std::uint8_t* row = out + r * stride;
-      // Whole words built in registers, stored once (see bc_decode.cpp's rows).
-      if (channels == 4) {
-        const std::uint64_t lo = q[0] | std::uint64_t(q[1]) << 32, hi = q[2] | std::uint64_t(q[3]) << 32;
-        std::memcpy(row, &lo, 8);
-        std::memcpy(row + 8, &hi, 8);
-      } else {
-        const std::uint64_t lo = std::uint64_t((q[0] & 0xFFFFFF) | q[1] << 24) | std::uint64_t((q[1] >> 8 & 0xFFFF) | q[2] << 16) << 32;
-        const std::uint32_t hi = (q[2] >> 16 & 0xFF) | q[3] << 8;
-        std::memcpy(row, &lo, 8);
-        std::memcpy(row + 8, &hi, 4);
-      }
+      std::uint8_t* out = dst + std::size_t(k) * 16;
+      etc2_rows(load_be64(b + 8), false,
+                [out, stride, &alpha](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
+                  const std::uint8_t* a = alpha + 4 * y;
+                  auto with = [](std::uint32_t q, std::uint8_t av) { return (q & 0xFFFFFFu) | std::uint32_t(av) << 24; };
+                  store_row<4>(out + y * stride, with(q0, a[0]), with(q1, a[1]), with(q2, a[2]), with(q3, a[3]));
+                });
     }
   }
 }
