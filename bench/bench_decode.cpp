@@ -2,7 +2,8 @@
 // floats) for every block format on one thread, and, where CMake is given
 // its header (-DTEXPROC_BCDEC_DIR=, a checkout of iOrange/bcdec outside this
 // tree; skipped when absent), bcdec's BC1-BC7 block decoders writing the
-// same image, with -DTEXPROC_RG_ETC1_DIR= rg_etc1's ETC1 unpacker, and with
+// same image (BC6H as floats, as decompress_image writes it, and as bcdec's
+// own halves), with -DTEXPROC_RG_ETC1_DIR= rg_etc1's ETC1 unpacker, and with
 // -DTEXPROC_ETCPAK_DIR= etcpak's image decoders (BC1-BC5, BC7 through its copy
 // of bcdec, ETC1/ETC2 RGB and RGBA, EAC R11/RG11; every one writes 32-bit RGBA
 // texels), in one run. The blocks: bench_common.h's six colour crops (1.4
@@ -101,10 +102,16 @@ double agreement(TexelFormat f, PeerDecode decode, int bytes) {
         for (int k = 0; k < c; ++k) {
           const std::size_t at = std::size_t(y) * x.width + i;
           bool same;
-          if (hdr) {
-            std::uint16_t h;
-            std::memcpy(&h, img.data() + at * bytes + 2 * k, 2);
-            same = ours.row<float>(y)[std::size_t(i) * ours.channels() + k] == half_bits_to_float(h);
+          if (hdr) {  // 6 bytes a texel: halves; 12: floats
+            float theirs;
+            if (bytes == 6) {
+              std::uint16_t h;
+              std::memcpy(&h, img.data() + at * bytes + 2 * k, 2);
+              theirs = half_bits_to_float(h);
+            } else {
+              std::memcpy(&theirs, img.data() + at * bytes + 4 * k, 4);
+            }
+            same = ours.row<float>(y)[std::size_t(i) * ours.channels() + k] == theirs;
           } else {
             same = ours.row<std::uint8_t>(y)[std::size_t(i) * ours.channels() + k] == img[at * bytes + k];
           }
@@ -132,7 +139,17 @@ void run_peer(benchmark::State& state, TexelFormat f, PeerDecode decode, int byt
 #ifdef TEXPROC_HAVE_BCDEC
 int bcdec_bytes(TexelFormat f) {
   using F = TexelFormat;
-  return f == F::bc4_unorm ? 1 : f == F::bc5_unorm ? 2 : f == F::bc6h_ufloat ? 6 : 4;
+  return f == F::bc4_unorm ? 1 : f == F::bc5_unorm ? 2 : f == F::bc6h_ufloat ? 12 : 4;
+}
+
+// BC6H as halves (6 bytes a texel), bcdec's own output; the floats above
+// (bcdec_bc6h_float, its halves converted) are what decompress_image gives.
+void bcdec_bc6h_halves(TexelFormat, const Encoded& x, std::vector<std::uint8_t>& img) {
+  const int pitch = x.width * 6, bw = x.width / 4;
+  for (int by = 0; by < x.height / 4; ++by)
+    for (int bx = 0; bx < bw; ++bx)
+      bcdec_bc6h_half(x.blocks.data() + (std::size_t(by) * bw + bx) * 16, img.data() + std::size_t(4 * by) * pitch + std::size_t(24 * bx),
+                      pitch / 2, 0);
 }
 
 void bcdec_image(TexelFormat f, const Encoded& x, std::vector<std::uint8_t>& img) {
@@ -148,7 +165,7 @@ void bcdec_image(TexelFormat f, const Encoded& x, std::vector<std::uint8_t>& img
         case F::bc3_unorm: bcdec_bc3(src, dst, pitch); break;
         case F::bc4_unorm: bcdec_bc4(src, dst, pitch); break;
         case F::bc5_unorm: bcdec_bc5(src, dst, pitch); break;
-        case F::bc6h_ufloat: bcdec_bc6h_half(src, dst, pitch / 2, 0); break;
+        case F::bc6h_ufloat: bcdec_bc6h_float(src, dst, pitch / 4, 0); break;
         default: bcdec_bc7(src, dst, pitch); break;
       }
     }
@@ -213,6 +230,10 @@ void register_all() {
     if (f <= F::bc7_unorm && f != F::etc1_rgb)
       benchmark::RegisterBenchmark((std::string("decode/bcdec/") + format_info(f).name).c_str(), run_peer, f, bcdec_image,
                                    bcdec_bytes(f))
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+    if (f == F::bc6h_ufloat)
+      benchmark::RegisterBenchmark("decode/bcdec_halves/bc6h_ufloat", run_peer, f, bcdec_bc6h_halves, 6)
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime();
 #endif

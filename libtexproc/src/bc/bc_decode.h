@@ -50,5 +50,8 @@ void decode_bc7_run(const std::uint8_t* blocks, int count, std::uint8_t* dst, st
 // A BC6H block: RGB half-float bits, row by row (`is_signed`: SF16, else
 // UF16; reserved modes decode to 0).
 void decode_bc6h(const std::uint8_t* block, bool is_signed, std::uint16_t out[16][3]);
+// The same halves as floats straight into four rows of RGB floats (`dst`,
+// rows `stride` floats apart): each palette entry converted once.
+void decode_bc6h_f32_rows(const std::uint8_t* block, bool is_signed, float* dst, std::size_t stride);
 
 }  // namespace texproc::bc

@@ -4,6 +4,12 @@
 // rotations and index selection of BC7; the fourteen modes, transformed
 // endpoints, unquantization and final scaling of BC6H. Depends on nothing
 // under the encoders.
+#include <Imath/half.h>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <cstring>
 #include <utility>
 
@@ -166,15 +172,22 @@ void decode_bc7_run(const std::uint8_t* blocks, int count, std::uint8_t* dst, st
   }
 }
 
-void decode_bc6h(const std::uint8_t* block, bool is_signed, std::uint16_t out[16][3]) {
+namespace {
+// A BC6H block as each subset's unquantized endpoints, the partition's
+// subset mask and each texel's index; false for a reserved mode.
+struct Bc6hTexels {
+  int e[4][3];  // endpoint (subset 0: 0, 1; subset 1: 2, 3), channel
+  int index_bits;
+  std::uint32_t part;  // the two-subset partition's mask (0: one subset)
+  int idx[16];
+};
+
+inline __attribute__((always_inline)) bool bc6h_texels(const std::uint8_t* block, bool is_signed, Bc6hTexels& t) {
   const int low2 = block[0] & 3;
   const int number = low2 < 2 ? low2 : block[0] & 31;
   const bc6h::Layouts& L = bc6h::layouts();
   const int k = L.by_number[number];
-  if (k < 0) {  // reserved: (0, 0, 0)
-    std::memset(out, 0, 96);
-    return;
-  }
+  if (k < 0) return false;
   const bptc::Bc6hMode& M = bptc::kBc6hModes[k];
   BitReader r(block);
   int v[13] = {};
@@ -189,7 +202,7 @@ void decode_bc6h(const std::uint8_t* block, bool is_signed, std::uint16_t out[16
   const int ns = M.partition_bits ? 2 : 1;
   const int partition = int(r.read(M.partition_bits));
   const int nend = 2 * ns;
-  int e[4][3];  // endpoint (subset 0: 0, 1; subset 1: 2, 3), channel
+  int(&e)[4][3] = t.e;
   for (int c = 0; c < 3; ++c)
     for (int j = 0; j < nend; ++j) e[j][c] = v[1 + 4 * c + j];
   const int eb = M.endpoint_bits;
@@ -208,17 +221,129 @@ void decode_bc6h(const std::uint8_t* block, bool is_signed, std::uint16_t out[16
   }
   int anchor[3];
   anchors(ns, partition, anchor);
-  const int index_bits = ns == 2 ? 3 : 4;
-  int idx[16];
-  read_indices(r, index_bits, anchor, ns, idx);
-  const std::uint8_t* w = bptc::weights(index_bits);
+  t.index_bits = ns == 2 ? 3 : 4;
+  read_indices(r, t.index_bits, anchor, ns, t.idx);
+  t.part = ns == 2 ? bptc::kPartitions2[partition] : 0;
+  return true;
+}
+
+
+// Subset s's palette as half bits (the specification's arithmetic).
+void bc6h_palette(const Bc6hTexels& t, int s, bool is_signed, std::uint16_t pal[16][3]) {
+  const std::uint8_t* w = bptc::weights(t.index_bits);
+  for (int j = 0; j < 1 << t.index_bits; ++j)
+    for (int c = 0; c < 3; ++c) pal[j][c] = bc6h::finish_bits(bptc::interpolate(t.e[2 * s][c], t.e[2 * s + 1][c], w[j]), is_signed);
+}
+
+#if defined(__SSE2__)
+// The index weights as 16-bit pairs (64 - w, w), one a 32-bit lane.
+struct WeightPairs {
+  alignas(16) std::int32_t v3[8][4], v4[16][4];
+  WeightPairs() {
+    for (int j = 0; j < 16; ++j) {
+      const int w4 = bptc::weights(4)[j];
+      for (int c = 0; c < 4; ++c) v4[j][c] = (64 - w4) | w4 << 16;
+      if (j < 8) {
+        const int w3 = bptc::weights(3)[j];
+        for (int c = 0; c < 4; ++c) v3[j][c] = (64 - w3) | w3 << 16;
+      }
+    }
+  }
+};
+const WeightPairs& weight_pairs() {
+  static const WeightPairs w;
+  return w;
+}
+
+// Subset s's palette as floats (RGB, 0), an entry a vector: the same
+// interpolation, final scaling and half-to-float conversion as
+// bc6h_palette's halves through Imath::half, in 32-bit lanes. The pairs
+// (e0, e1) times (64 - w, w) is one multiply-add of 16-bit lanes (UF16's
+// endpoints offset by -32768 into 16 bits; the weights sum to 64, so
+// 64 * 32768 comes back). A half's float: its magnitude bits 13 up times
+// 2^112 (exact for every finite half, subnormals included), its sign bit 16
+// up.
+void bc6h_palette_f32(const Bc6hTexels& t, int s, bool is_signed, float pal[16][4]) {
+  const int* e0 = t.e[2 * s];
+  const int* e1 = t.e[2 * s + 1];
+  const int off = is_signed ? 0 : 32768;
+  auto pair = [&](int c) { return std::int32_t(std::uint16_t(e0[c] - off) | std::uint32_t(std::uint16_t(e1[c] - off)) << 16); };
+  const __m128i ends = _mm_setr_epi32(pair(0), pair(1), pair(2), 0);
+  const __m128i round = _mm_set1_epi32(is_signed ? 32 : 64 * 32768 + 32);
+  const __m128 scale = _mm_castsi128_ps(_mm_set1_epi32((127 + 112) << 23));
+  const WeightPairs& W = weight_pairs();
+  const std::int32_t(*wp)[4] = t.index_bits == 3 ? W.v3 : W.v4;
+  const __m128i lane3 = _mm_setr_epi32(-1, -1, -1, 0);
+  for (int j = 0; j < 1 << t.index_bits; ++j) {
+    const __m128i wj = _mm_load_si128(reinterpret_cast<const __m128i*>(wp[j]));
+    const __m128i v = _mm_srai_epi32(_mm_add_epi32(_mm_madd_epi16(ends, wj), round), 6);
+    __m128i mag, extra;
+    if (!is_signed) {  // (v * 31) >> 6, at most 0x7BFF
+      mag = _mm_srli_epi32(_mm_sub_epi32(_mm_slli_epi32(v, 5), v), 6);
+      extra = _mm_setzero_si128();
+    } else {  // |v| * 31 >> 5, the sign apart
+      const __m128i m = _mm_srai_epi32(v, 31);
+      const __m128i a = _mm_sub_epi32(_mm_xor_si128(v, m), m);
+      mag = _mm_srli_epi32(_mm_sub_epi32(_mm_slli_epi32(a, 5), a), 5);
+      // The sign; and the one magnitude past the finite halves, 0x7C00 (mode
+      // 14's endpoint -32768), an infinity: its product 65536 ORed with the
+      // exponent's bits.
+      extra = _mm_or_si128(_mm_slli_epi32(m, 31), _mm_and_si128(_mm_cmpeq_epi32(mag, _mm_set1_epi32(0x7C00)), _mm_set1_epi32(0x7F800000)));
+    }
+    const __m128 f = _mm_mul_ps(_mm_castsi128_ps(_mm_slli_epi32(mag, 13)), scale);
+    const __m128i sign = extra;
+    _mm_storeu_ps(pal[j], _mm_and_ps(_mm_or_ps(f, _mm_castsi128_ps(sign)), _mm_castsi128_ps(lane3)));
+  }
+}
+#endif
+}  // namespace
+
+void decode_bc6h(const std::uint8_t* block, bool is_signed, std::uint16_t out[16][3]) {
+  Bc6hTexels t;
+  if (!bc6h_texels(block, is_signed, t)) {  // reserved: (0, 0, 0)
+    std::memset(out, 0, 96);
+    return;
+  }
   // Each subset's palette once (8 or 16 entries), then a lookup a texel.
   std::uint16_t pal[2][16][3];
-  for (int s = 0; s < ns; ++s)
-    for (int j = 0; j < 1 << index_bits; ++j)
-      for (int c = 0; c < 3; ++c) pal[s][j][c] = bc6h::finish_bits(bptc::interpolate(e[2 * s][c], e[2 * s + 1][c], w[j]), is_signed);
-  const std::uint32_t part = ns == 2 ? bptc::kPartitions2[partition] : 0;
-  for (int i = 0; i < 16; ++i) std::memcpy(out[i], pal[bptc::subset(part, i)][idx[i]], 6);
+  bc6h_palette(t, 0, is_signed, pal[0]);
+  if (t.part) bc6h_palette(t, 1, is_signed, pal[1]);
+  for (int i = 0; i < 16; ++i) std::memcpy(out[i], pal[bptc::subset(t.part, i)][t.idx[i]], 6);
+}
+
+void decode_bc6h_f32_rows(const std::uint8_t* block, bool is_signed, float* dst, std::size_t stride) {
+  Bc6hTexels t;
+  if (!bc6h_texels(block, is_signed, t)) {
+    for (int r = 0; r < 4; ++r) std::memset(dst + r * stride, 0, 48);
+    return;
+  }
+  // Each palette entry as floats once, a fourth lane so that a texel is one
+  // 16-byte row of the table.
+  float pf[2][16][4];
+  const int ns = t.part ? 2 : 1;
+  for (int s = 0; s < ns; ++s) {
+#if defined(__SSE2__)
+    bc6h_palette_f32(t, s, is_signed, pf[s]);
+#else
+    std::uint16_t pal[16][3];
+    bc6h_palette(t, s, is_signed, pal);
+    for (int j = 0; j < 1 << t.index_bits; ++j) {
+      for (int c = 0; c < 3; ++c) {
+        Imath::half h;
+        h.setBits(pal[j][c]);
+        pf[s][j][c] = float(h);
+      }
+      pf[s][j][3] = 0.0f;
+    }
+#endif
+  }
+  for (int r = 0; r < 4; ++r) {
+    float* row = dst + r * stride;
+    for (int x = 0; x < 4; ++x) {
+      const int i = 4 * r + x;
+      std::memcpy(row + 3 * x, pf[bptc::subset(t.part, i)][t.idx[i]], 12);
+    }
+  }
 }
 
 }  // namespace texproc::bc

@@ -323,6 +323,11 @@ Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t 
         for (int bx = 0; bx < bw; ++bx) {
           const std::uint8_t* block = data.data() + (std::size_t(by) * bw + bx) * info.block_bytes;
           const int nx = std::min(4, w - 4 * bx), ny = std::min(4, h - 4 * by);
+          if (bc6h && C == 3 && nx == 4 && ny == 4) {  // a whole block's floats straight into the rows
+            bc::decode_bc6h_f32_rows(block, t.format == TexelFormat::bc6h_sfloat, out.row<float>(4 * by) + std::size_t(4 * bx) * 3,
+                                     out.row_stride() / sizeof(float));
+            continue;
+          }
           if (bc6h && C == 3) {  // the halves straight into the rows
             std::uint16_t hv[16][3];
             bc::decode_bc6h(block, t.format == TexelFormat::bc6h_sfloat, hv);
