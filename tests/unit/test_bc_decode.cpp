@@ -171,7 +171,7 @@ TEST(BcDecode, OpenImageIoAgreesOnLegacyDds) {
 // 8-bit output decodes each block straight to bytes (the palettes' integers,
 // the 8-bit decoders' texels): the same bytes as the float decoder's texels
 // stored through Image::set (SNORM biased to [0, 1]), for every 4x4 block
-// format, on random blocks and a size with partial blocks.
+// format, on random blocks, at sizes with and without partial blocks.
 TEST(BlockDecode, EightBitOutputEqualsTheFloatDecoderStored) {
   using F = TexelFormat;
   std::mt19937 rng(5);
@@ -179,7 +179,10 @@ TEST(BlockDecode, EightBitOutputEqualsTheFloatDecoderStored) {
               F::bc6h_ufloat, F::bc6h_sfloat, F::bc7_unorm, F::bc7_srgb, F::etc1_rgb, F::etc2_rgb_srgb, F::etc2_rgba1_unorm,
               F::etc2_rgba8_srgb, F::eac_r11_unorm, F::eac_r11_snorm, F::eac_rg11_unorm, F::eac_rg11_snorm}) {
     const FormatInfo& info = format_info(f);
-    const int w = 37, h = 22, bw = (w + 3) / 4, bh = (h + 3) / 4;
+    // Partial blocks; whole blocks only (each row's last block a run's
+    // last); one block.
+    for (auto [w, h] : {std::pair{37, 22}, std::pair{16, 12}, std::pair{4, 4}}) {
+    const int bw = (w + 3) / 4, bh = (h + 3) / 4;
     std::vector<std::uint8_t> blocks(std::size_t(bw) * bh * info.block_bytes);
     for (auto& b : blocks) b = std::uint8_t(rng());
     const Image u8 = decompress_image(blocks, w, h, f, PixelType::u8);
@@ -192,8 +195,9 @@ TEST(BlockDecode, EightBitOutputEqualsTheFloatDecoderStored) {
           if (info.snorm) v = (v + 1.0f) * 0.5f;
           const float cl = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
           ASSERT_EQ(u8.row<const std::uint8_t>(y)[x * u8.channels() + c], std::uint8_t(cl * 255.0f + 0.5f))
-              << info.name << " at " << x << "," << y << " channel " << c;
+              << info.name << " " << w << "x" << h << " at " << x << "," << y << " channel " << c;
         }
+    }
   }
 }
 

@@ -152,6 +152,10 @@ void decode_rgtc_u8(const std::uint8_t* b, bool snorm, int ch, std::uint8_t out[
 }
 
 namespace {
+// `spill`: RGB rows may write one byte past the block's 12 (each texel one
+// 4-byte store, left to right, the next texel's store overwriting the
+// previous one's fourth byte): where a block follows in the same run.
+template <bool spill = false>
 inline __attribute__((always_inline)) void color_rows(const std::uint8_t* b, bool always_four, bool punch_through, int channels,
                                                       std::uint8_t* dst, std::size_t stride) {
   std::uint32_t pal[4];
@@ -167,6 +171,11 @@ inline __attribute__((always_inline)) void color_rows(const std::uint8_t* b, boo
       const std::uint64_t lo = q0 | std::uint64_t(q1) << 32, hi = q2 | std::uint64_t(q3) << 32;
       std::memcpy(row, &lo, 8);
       std::memcpy(row + 8, &hi, 8);
+    } else if (spill) {
+      std::memcpy(row, &q0, 4);
+      std::memcpy(row + 3, &q1, 4);
+      std::memcpy(row + 6, &q2, 4);
+      std::memcpy(row + 9, &q3, 4);
     } else {  // RGB: the four texels' 12 bytes
       const std::uint64_t lo = std::uint64_t((q0 & 0xFFFFFF) | q1 << 24) | std::uint64_t((q1 >> 8 & 0xFFFF) | q2 << 16) << 32;
       const std::uint32_t hi = (q2 >> 16 & 0xFF) | q3 << 8;
@@ -195,8 +204,10 @@ void decode_color_run(const std::uint8_t* blocks, int count, int block_bytes, bo
   // The channel count a constant in each loop.
   if (channels == 4) {
     for (int k = 0; k < count; ++k) color_rows(blocks + std::size_t(k) * block_bytes, always_four, punch_through, 4, dst + 16 * k, stride);
-  } else {
-    for (int k = 0; k < count; ++k) color_rows(blocks + std::size_t(k) * block_bytes, always_four, punch_through, 3, dst + 12 * k, stride);
+  } else if (count > 0) {
+    for (int k = 0; k + 1 < count; ++k)
+      color_rows<true>(blocks + std::size_t(k) * block_bytes, always_four, punch_through, 3, dst + 12 * k, stride);
+    color_rows(blocks + std::size_t(count - 1) * block_bytes, always_four, punch_through, 3, dst + 12 * (count - 1), stride);
   }
 }
 

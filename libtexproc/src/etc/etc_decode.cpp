@@ -199,10 +199,17 @@ void etc1_words(const std::uint8_t* block, std::uint32_t out[16]) {
 // A row's four RGBA words stored as 16 bytes, or as 12 bytes of RGB: whole
 // words built in registers and stored once (no small stores read back as a
 // larger word: that stalls store forwarding).
+// kChannels 0: RGB as four 4-byte stores left to right, one byte past the
+// 12 written (as bc_decode.cpp's color_rows: where another block follows).
 template <int kChannels>
 inline __attribute__((always_inline)) void store_row(std::uint8_t* row, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2,
                                                      std::uint32_t q3) {
-  if constexpr (kChannels == 4) {
+  if constexpr (kChannels == 0) {
+    std::memcpy(row, &q0, 4);
+    std::memcpy(row + 3, &q1, 4);
+    std::memcpy(row + 6, &q2, 4);
+    std::memcpy(row + 9, &q3, 4);
+  } else if constexpr (kChannels == 4) {
     const std::uint64_t lo = q0 | std::uint64_t(q1) << 32, hi = q2 | std::uint64_t(q3) << 32;
     std::memcpy(row, &lo, 8);
     std::memcpy(row + 8, &hi, 8);
@@ -281,8 +288,13 @@ void decode_etc_run(const std::uint8_t* blocks, int count, int block_bytes, EtcR
       int c1[3], c2[3];
       etc1_colors(v, c1, c2);
       std::uint8_t* out = dst + std::size_t(k) * 12;
-      sub_block_rows(v, c1, c2, false, [out, stride](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
-        store_row<3>(out + y * stride, q0, q1, q2, q3);
+      const bool last = k + 1 == count;
+      sub_block_rows(v, c1, c2, false, [out, stride, last](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
+        if (last) {
+          store_row<3>(out + y * stride, q0, q1, q2, q3);
+        } else {
+          store_row<0>(out + y * stride, q0, q1, q2, q3);
+        }
       });
     }
     return;
@@ -291,8 +303,13 @@ void decode_etc_run(const std::uint8_t* blocks, int count, int block_bytes, EtcR
     const std::uint8_t* b = blocks + std::size_t(k) * block_bytes;
     if (kind == EtcRun::etc2_rgb) {
       std::uint8_t* out = dst + std::size_t(k) * 12;
-      etc2_rows(load_be64(b), false, [out, stride](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
-        store_row<3>(out + y * stride, q0, q1, q2, q3);
+      const bool last = k + 1 == count;
+      etc2_rows(load_be64(b), false, [out, stride, last](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
+        if (last) {
+          store_row<3>(out + y * stride, q0, q1, q2, q3);
+        } else {
+          store_row<0>(out + y * stride, q0, q1, q2, q3);
+        }
       });
     } else if (kind == EtcRun::etc2_rgba1) {
       std::uint8_t* out = dst + std::size_t(k) * 16;
