@@ -219,7 +219,7 @@ TEST(Faults, LongOutputNamesWork) {
 // KTX-Software's `ktx validate` (built outside the tree; its path in
 // $TEXPROC_KTX_TOOL, or `ktx` on PATH) accepts every KTX2 texproc writes:
 // each block format in sRGB and linear, with and without mips, the
-// uncompressed types, a cubemap.
+// uncompressed types, cube maps (uncompressed, BC6H, BC7).
 TEST(Faults, KtxValidateAcceptsEveryKtx2) {
   const char* env = std::getenv("TEXPROC_KTX_TOOL");
   std::string ktx = env && *env ? env : "";
@@ -229,7 +229,7 @@ TEST(Faults, KtxValidateAcceptsEveryKtx2) {
   write_image(dir + "/src.png", random_image(37, 21, 4, PixelType::u8, 2).view());
   std::vector<std::string> files;
   for (const char* fmt : {"bc1", "bc1a", "bc2", "bc3", "bc4", "bc4s", "bc5", "bc5s", "etc1", "etc2", "etc2a1", "etc2a",
-                          "eac-r11", "eac-r11s", "eac-rg11", "eac-rg11s", "astc-4x4", "astc-6x5", "astc-12x12",
+                          "eac-r11", "eac-r11s", "eac-rg11", "eac-rg11s", "bc7", "astc-4x4", "astc-6x5", "astc-12x12",
                           "astc-8x8-hdr"}) {
     for (const char* cs : {"", " --linear"}) {
       for (const char* mips : {"", " --mips"}) {
@@ -264,7 +264,18 @@ TEST(Faults, KtxValidateAcceptsEveryKtx2) {
     ASSERT_EQ(run_texproc("cubemap '" + dir + "/" + a + " -q").exit_code, 0) << a;
     files.push_back(dir + "/" + a.substr(a.find("cube_"), a.find(".ktx2") - a.find("cube_") + 5));
   }
-  // BC6H and BC7 (no encoder yet): random blocks, three levels, written by the container layer.
+  // BC6H (UF16, SF16) from floats with float mips, and both encoders' cube
+  // maps.
+  for (const char* args : {"pano.exr' -o '{}/hdr_bc6h.ktx2' --format bc6h --mips", "pano.exr' -o '{}/hdr_bc6hs.ktx2' --format bc6hs",
+                           "cube_half.ktx2' -o '{}/cube_bc6h.ktx2' --format bc6h", "cube_srgb.ktx2' -o '{}/cube_bc7.ktx2' --format bc7"}) {
+    std::string a = args;
+    a.replace(a.find("{}"), 2, dir);
+    ASSERT_EQ(run_texproc("compress '" + dir + "/" + a + " -q").exit_code, 0) << a;
+    const std::size_t at = a.find("-o '") + 4;
+    files.push_back(a.substr(at, a.find('\'', at) - at));
+  }
+  // BC6H and BC7 random blocks (every mode, reserved ones included), three
+  // levels, written by the container layer.
   for (TexelFormat bf : {TexelFormat::bc6h_ufloat, TexelFormat::bc6h_sfloat, TexelFormat::bc7_unorm, TexelFormat::bc7_srgb}) {
     Texture t;
     t.format = bf;
@@ -279,7 +290,7 @@ TEST(Faults, KtxValidateAcceptsEveryKtx2) {
     write_texture(out, t);
     files.push_back(out);
   }
-  EXPECT_GE(files.size(), 82u);
+  EXPECT_GE(files.size(), 90u);
   for (const std::string& f : files) {
     const std::string cmd = ktx + " validate --warnings-as-errors '" + f + "' >'" + dir + "/v.txt' 2>&1";
     EXPECT_EQ(std::system(cmd.c_str()), 0) << f << ":\n" << slurp(dir + "/v.txt");
