@@ -190,8 +190,7 @@ bool decode_run(TexelFormat f, const std::uint8_t* b, int count, std::uint8_t* d
     case F::bc3_unorm:
     case F::bc3_srgb:
       if (kC != 4) return false;
-      bc::decode_color_run(b + 8, count, 16, true, false, 4, dst, stride);
-      bc::decode_rgtc_run(b, count, 16, false, 4, 3, dst, stride);
+      bc::decode_bc3_run(b, count, dst, stride);
       return true;
     case F::bc4_unorm:
     case F::bc4_snorm:
