@@ -162,6 +162,7 @@ void bcdec_image(TexelFormat f, const Encoded& x, std::vector<std::uint8_t>& img
       std::uint8_t* dst = img.data() + std::size_t(4 * by) * pitch + std::size_t(4 * bx) * bytes;
       switch (f) {
         case F::bc1_rgb_unorm: bcdec_bc1(src, dst, pitch); break;
+        case F::bc2_unorm: bcdec_bc2(src, dst, pitch); break;
         case F::bc3_unorm: bcdec_bc3(src, dst, pitch); break;
         case F::bc4_unorm: bcdec_bc4(src, dst, pitch); break;
         case F::bc5_unorm: bcdec_bc5(src, dst, pitch); break;
@@ -187,7 +188,7 @@ void rg_etc1_image(TexelFormat, const Encoded& x, std::vector<std::uint8_t>& img
 
 #ifdef TEXPROC_HAVE_ETCPAK
 // etcpak's whole-image decoders (blocks read as 64-bit words, RGBA out).
-bool etcpak_decodes(TexelFormat f) { return f != TexelFormat::bc6h_ufloat; }
+bool etcpak_decodes(TexelFormat f) { return f != TexelFormat::bc6h_ufloat && f != TexelFormat::bc2_unorm; }
 
 void etcpak_image(TexelFormat f, const Encoded& x, std::vector<std::uint8_t>& bytes) {
   using F = TexelFormat;
@@ -209,7 +210,7 @@ void etcpak_image(TexelFormat f, const Encoded& x, std::vector<std::uint8_t>& by
 
 void register_all() {
   using F = TexelFormat;
-  for (F f : {F::bc1_rgb_unorm, F::bc3_unorm, F::bc4_unorm, F::bc5_unorm, F::bc6h_ufloat, F::bc7_unorm, F::etc1_rgb, F::etc2_rgb_unorm,
+  for (F f : {F::bc1_rgb_unorm, F::bc2_unorm, F::bc3_unorm, F::bc4_unorm, F::bc5_unorm, F::bc6h_ufloat, F::bc7_unorm, F::etc1_rgb, F::etc2_rgb_unorm,
               F::etc2_rgba8_unorm, F::eac_r11_unorm, F::eac_rg11_unorm}) {
     benchmark::RegisterBenchmark((std::string("decode/texproc/") + format_info(f).name).c_str(), run_texproc, f)
         ->Unit(benchmark::kMillisecond)

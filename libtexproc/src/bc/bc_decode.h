@@ -38,6 +38,10 @@ inline std::uint8_t to_unorm8(float v) {
 // bytes as decode_rgtc_u8).
 void decode_color_run(const std::uint8_t* blocks, int count, int block_bytes, bool always_four, bool punch_through, int channels,
                       std::uint8_t* dst, std::size_t stride);
+// `count` whole BC2 blocks side by side straight into RGBA8 rows: the colour
+// half as decode_color_run gives it (always four colours), alpha the 4-bit
+// value times 17.
+void decode_bc2_run(const std::uint8_t* blocks, int count, std::uint8_t* dst, std::size_t stride);
 // `count` whole BC3 blocks side by side straight into RGBA8 rows: the bytes
 // of decode_color_run (always four colours) and decode_rgtc_run (UNORM,
 // channel 3) together, in one pass.

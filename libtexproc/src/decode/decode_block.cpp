@@ -187,6 +187,11 @@ bool decode_run(TexelFormat f, const std::uint8_t* b, int count, std::uint8_t* d
       if (kC != 4) return false;
       bc::decode_color_run(b, count, 8, false, true, 4, dst, stride);
       return true;
+    case F::bc2_unorm:
+    case F::bc2_srgb:
+      if (kC != 4) return false;
+      bc::decode_bc2_run(b, count, dst, stride);
+      return true;
     case F::bc3_unorm:
     case F::bc3_srgb:
       if (kC != 4) return false;
