@@ -46,18 +46,21 @@ constexpr QuantTable kQuant[5][3] = {
     {make_quant_table(8, -1), make_quant_table(8, -1), make_quant_table(8, -1)},  // 8 bits: no p-bit
 };
 
-struct QuantPacked {
-  std::int32_t t[5][768];
+struct QuantPairs {
+  std::int32_t t[5][2][256];
 };
-constexpr QuantPacked make_packed() {
-  QuantPacked p{};
+constexpr QuantPairs make_pairs() {
+  QuantPairs p{};
+  auto packed = [](const Quantized& q) { return std::int32_t(q.code | q.value << 8); };
   for (int b = 0; b < 5; ++b)
-    for (int q = 0; q < 3; ++q)
-      for (int v = 0; v < 256; ++v) p.t[b][q * 256 + v] = kQuant[b][q].q[v].code | kQuant[b][q].q[v].value << 8;
+    for (int v = 0; v < 256; ++v) {
+      p.t[b][0][v] = packed(kQuant[b][0].q[v]) | packed(kQuant[b][0].q[v]) << 16;
+      p.t[b][1][v] = packed(kQuant[b][1].q[v]) | packed(kQuant[b][2].q[v]) << 16;
+    }
   return p;
 }
-constexpr QuantPacked kPacked = make_packed();
-const std::int32_t (&kQuantPacked)[5][768] = kPacked.t;
+constexpr QuantPairs kPairs = make_pairs();
+const std::int32_t (&kQuantPairs)[5][2][256] = kPairs.t;
 
 Choice solid_choice(const int rgba[4]) {
   Choice c;

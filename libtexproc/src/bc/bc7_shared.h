@@ -64,9 +64,11 @@ constexpr QuantTable make_quant_table(int bits, int p) {
 extern const QuantTable kQuant[5][3];
 inline const Quantized& quantize(int bits, int p, int v) { return kQuant[bits - 4][p + 1].q[v]; }
 
-// The same, one int32 a value (code | value << 8) for the SIMD twin's
-// gathers: kQuantPacked[bits - 4][(p + 1) * 256 + v].
-extern const std::int32_t (&kQuantPacked)[5][768];
+// The same for the SIMD twin's gathers, both p-bits in one int32 (one
+// gather a value): kQuantPairs[bits - 4][with_p][v] holds p = 0's
+// (code | value << 8) in its low 16 bits and p = 1's in its high 16
+// (with_p 1), or p = -1's in both halves (with_p 0).
+extern const std::int32_t (&kQuantPairs)[5][2][256];
 
 // One colour exactly: mode 5's 7-bit endpoints (e0, e1) whose index-1
 // texel (weight 21) decodes to the value, for every 8-bit value (checked
