@@ -113,9 +113,15 @@ struct Bc7Batch {
   V alpha_error;
   BestV best;
   M all_members[16];
+  V weight_table[3];  // 2-, 3- and 4-bit indices' weights, as many as the lanes hold
 
   HWY_ATTR explicit Bc7Batch(const Bc7Level& l) : level(l) {
     for (auto& m : all_members) m = hn::FirstN(d, kBc7Batch);
+    for (int b = 2; b <= 4; ++b) {
+      std::int32_t w[kBc7Batch] = {};
+      for (int j = 0; j < std::min(1 << b, kBc7Batch); ++j) w[j] = bptc::weights(b)[j];
+      weight_table[b - 2] = hn::LoadU(d, w);
+    }
   }
 
   HWY_INLINE VF f(V v) const { return hn::ConvertTo(df, v); }
@@ -225,44 +231,52 @@ struct Bc7Batch {
     }
   }
 
-  // The weight (out of 64) of index j of 2^bits: round(64 j / L), as
+  // The weight (out of 64) of index j of 2^bits: the table's, one lane
+  // permute where a vector holds the table, else round(64 j / L) as
   // floor((128 j + L) / 2L), which is never a whole number, so the float
-  // product floors exactly (the tables' values: tests compare).
+  // product floors exactly (tests compare both with the tables).
   HWY_INLINE V weight(V j, int L) const {
+    if (L < int(hn::Lanes(d))) return hn::TableLookupLanes(weight_table[L == 3 ? 0 : L == 7 ? 1 : 2], hn::IndicesFromVec(d, j));
     const VF num = f(hn::Add(hn::Mul(j, hn::Set(d, 128)), hn::Set(d, L)));
     return hn::ConvertTo(d, hn::Floor(hn::Mul(num, hn::Set(df, 1.0f / float(2 * L)))));
   }
-  HWY_INLINE V texel_error(const SetV& s, const SetFitV& fit, int i, V j, int L) const {
-    const V w = weight(j, L), u = hn::Sub(hn::Set(d, 64), w);
+  // Texel i's squared error at index j: each channel's palette entry
+  // (64 - w) e0 + w e1 + 32 >> 6 as e0 + (w (e1 - e0) + 32 >> 6), the same
+  // integer (64 e0 is a whole multiple of 64).
+  HWY_INLINE V texel_error(const SetV& s, const SetFitV& fit, const V dv[4], int i, V j, int L) const {
+    const V w = weight(j, L);
     V t = hn::Zero(d);
     for (int a = 0; a < s.n; ++a) {
-      const V p = hn::ShiftRight<6>(hn::Add(hn::Add(hn::Mul(u, fit.value[0][s.c0 + a]), hn::Mul(w, fit.value[1][s.c0 + a])), hn::Set(d, 32)));
+      const V p = hn::Add(fit.value[0][s.c0 + a], hn::ShiftRight<6>(hn::Add(hn::Mul(w, dv[a]), hn::Set(d, 32))));
       const V e = hn::Sub(p, s.x[i][s.c0 + a]);
       t = hn::Add(t, hn::Mul(e, e));
     }
     return t;
   }
 
-  // As ref::assign.
+  // As ref::assign; the projection's sum of (x - e0) d as x d - e0 d.
   HWY_INLINE void assign(const SetV& s, int bits, SetFitV& fit) const {
     const int L = (1 << bits) - 1;
-    V dv[4], dd = hn::Zero(d);
-    for (int a = 0; a < s.n; ++a) dv[a] = hn::Sub(fit.value[1][s.c0 + a], fit.value[0][s.c0 + a]), dd = hn::Add(dd, hn::Mul(dv[a], dv[a]));
+    V dv[4], dd = hn::Zero(d), origin = hn::Zero(d);
+    for (int a = 0; a < s.n; ++a) {
+      dv[a] = hn::Sub(fit.value[1][s.c0 + a], fit.value[0][s.c0 + a]), dd = hn::Add(dd, hn::Mul(dv[a], dv[a]));
+      origin = hn::Add(origin, hn::Mul(fit.value[0][s.c0 + a], dv[a]));
+    }
     const auto spread = hn::RebindMask(df, hn::Gt(dd, hn::Zero(d)));
     const VF scale = hn::IfThenElseZero(spread, hn::Div(hn::Set(df, float(L)), f(hn::Max(dd, hn::Set(d, 1)))));
     fit.error = hn::Zero(d);
     for (int i = 0; i < 16; ++i) {
-      V t = hn::Zero(d);
-      for (int a = 0; a < s.n; ++a) t = hn::Add(t, hn::Mul(hn::Sub(s.x[i][s.c0 + a], fit.value[0][s.c0 + a]), dv[a]));
+      V t = hn::Neg(origin);
+      for (int a = 0; a < s.n; ++a) t = hn::Add(t, hn::Mul(s.x[i][s.c0 + a], dv[a]));
       V j = hn::ConvertTo(d, hn::Round(hn::Mul(f(t), scale)));
       j = hn::Min(hn::Max(j, hn::Zero(d)), hn::Set(d, L));
-      V e = texel_error(s, fit, i, j, L);
+      V e = texel_error(s, fit, dv, i, j, L);
       if (level.exact_indices) {
         const V j0 = j, lo = hn::Sub(j0, hn::Set(d, 1)), hi = hn::Add(j0, hn::Set(d, 1));
-        const V elo = texel_error(s, fit, i, hn::Max(lo, hn::Zero(d)), L);
+        const V elo = texel_error(s, fit, dv, i, hn::Max(lo, hn::Zero(d)), L);
         const M take_lo = hn::And(hn::Gt(j0, hn::Zero(d)), hn::Lt(elo, e));
         e = hn::IfThenElse(take_lo, elo, e), j = hn::IfThenElse(take_lo, lo, j);
-        const V ehi = texel_error(s, fit, i, hn::Min(hi, hn::Set(d, L)), L);
+        const V ehi = texel_error(s, fit, dv, i, hn::Min(hi, hn::Set(d, L)), L);
         const M take_hi = hn::And(hn::Lt(j0, hn::Set(d, L)), hn::Lt(ehi, e));
         e = hn::IfThenElse(take_hi, ehi, e), j = hn::IfThenElse(take_hi, hi, j);
       }

@@ -74,11 +74,16 @@ Choice solid_choice(const int rgba[4]) {
   return c;
 }
 
-void pack_block(const Choice& in, std::uint8_t out[16]) {
+namespace {
+
+// One mode's packing, the mode a constant (every field's place known when
+// compiled).
+template <int Mode>
+void pack_mode(const Choice& in, std::uint8_t out[16]) {
   Choice c = in;
-  const bptc::Bc7Mode& M = bptc::kBc7Modes[c.mode];
-  const int ns = M.subsets;
-  const bool swap_streams = c.mode == 4 && c.index_selection != 0;
+  constexpr bptc::Bc7Mode M = bptc::kBc7Modes[Mode];
+  constexpr int ns = M.subsets;
+  const bool swap_streams = Mode == 4 && c.index_selection != 0;
   const int color_bits = swap_streams ? M.index2_bits : M.index_bits;
   const int alpha_bits = swap_streams ? M.index_bits : M.index2_bits;
   const std::uint32_t part = ns == 2 ? bptc::kPartitions2[c.partition] : ns == 3 ? bptc::kPartitions3[c.partition] : 0;
@@ -103,7 +108,7 @@ void pack_block(const Choice& in, std::uint8_t out[16]) {
     }
   }
   BitWriter w;
-  w.write(1u << c.mode, c.mode + 1);
+  w.write(1u << Mode, Mode + 1);
   w.write(std::uint32_t(c.partition), M.partition_bits);
   w.write(std::uint32_t(c.rotation), M.rotation_bits);
   w.write(std::uint32_t(c.index_selection), M.index_selection_bits);
@@ -135,6 +140,21 @@ void pack_block(const Choice& in, std::uint8_t out[16]) {
   stream(primary, M.index_bits, anchors);
   if (M.index2_bits) stream(secondary, M.index2_bits, 1u);
   w.store(out);
+}
+
+}  // namespace
+
+void pack_block(const Choice& c, std::uint8_t out[16]) {
+  switch (c.mode) {
+    case 0: return pack_mode<0>(c, out);
+    case 1: return pack_mode<1>(c, out);
+    case 2: return pack_mode<2>(c, out);
+    case 3: return pack_mode<3>(c, out);
+    case 4: return pack_mode<4>(c, out);
+    case 5: return pack_mode<5>(c, out);
+    case 6: return pack_mode<6>(c, out);
+    default: return pack_mode<7>(c, out);
+  }
 }
 
 }  // namespace texproc::bc7
