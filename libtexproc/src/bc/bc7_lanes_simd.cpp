@@ -13,56 +13,9 @@
 
 #include "bc/bc7_lanes.h"
 #include "bc/bc7_shared.h"
+#include "bc/bc7_sum_plan.h"
 #include "texproc/runtime.h"
 
-#ifndef TEXPROC_BC7_SUM_PLAN_ONCE
-#define TEXPROC_BC7_SUM_PLAN_ONCE
-namespace texproc::bc7 {
-// How the SIMD partition estimate builds each subset's sums (every subset
-// but a partition's last): from the sums of an earlier subset, of an
-// earlier partition or this one's first (`parent`, slot 2 p + s; -1: from
-// zero), plus the texels this subset has and that one lacks (`add`), minus
-// those it lacks and that one has (`sub`). The parent is the one that
-// differs in the fewest texels: on the first 32 two-subset partitions, 80
-// texels added or taken instead of 286.
-struct SumStep {
-  int parent;
-  unsigned add, sub;
-  int count;
-};
-struct SumPlan {
-  SumStep step[64][2];
-};
-constexpr unsigned subset_mask(std::uint32_t bits, int s) {
-  unsigned m = 0;
-  for (int i = 0; i < 16; ++i) m |= unsigned(int(bits >> (2 * i) & 3) == s) << i;
-  return m;
-}
-constexpr int ones(unsigned m) {
-  int n = 0;
-  for (; m; m &= m - 1) ++n;
-  return n;
-}
-constexpr SumPlan make_sum_plan(const std::uint32_t (&table)[64], int subsets) {
-  SumPlan plan{};
-  for (int p = 0; p < 64; ++p)
-    for (int s = 0; s < subsets - 1; ++s) {
-      const unsigned m = subset_mask(table[p], s);
-      SumStep best{-1, m, 0, ones(m)};
-      int cost = ones(m);
-      for (int slot = 0; slot < 2 * p + s; ++slot) {
-        if (slot % 2 >= subsets - 1) continue;
-        const unsigned o = subset_mask(table[slot / 2], slot % 2);
-        if (ones(m ^ o) < cost) cost = ones(m ^ o), best = {slot, m & ~o, o & ~m, ones(m)};
-      }
-      plan.step[p][s] = best;
-    }
-  return plan;
-}
-inline constexpr SumPlan kSumPlan2 = make_sum_plan(bptc::kPartitions2, 2);
-inline constexpr SumPlan kSumPlan3 = make_sum_plan(bptc::kPartitions3, 3);
-}  // namespace texproc::bc7
-#endif
 
 HWY_BEFORE_NAMESPACE();
 namespace texproc {
@@ -599,13 +552,9 @@ struct Bc7Batch {
       for (int r = 0; r < two.k; ++r) try_partitioned(7, two.partition[r], with_alpha);
   }
 
-  // Lane k's choice, packed: every field stored once, then read per lane.
+  // The lanes' choices, packed: every field stored once, then read per lane.
   HWY_INLINE void store(int k0, int count, std::uint8_t out[][16]) const {
-    constexpr int N = kBc7Batch;
-    struct Fields {
-      std::int32_t solid[N], x0[4][N], mode[N], partition[N], rotation[N], isel[N];
-      std::int32_t code[3][2][4][N], pbit[3][2][N], color_index[16][N], alpha_index[16][N];
-    } t;
+    bc7::LaneChoices t;
     hn::StoreU(hn::VecFromMask(d, solid), d, t.solid);
     for (int c = 0; c < 4; ++c) hn::StoreU(x[0][c], d, t.x0[c]);
     hn::StoreU(best.mode, d, t.mode), hn::StoreU(best.partition, d, t.partition);
@@ -616,24 +565,7 @@ struct Bc7Batch {
         for (int ch = 0; ch < 4; ++ch) hn::StoreU(best.code[s][e][ch], d, t.code[s][e][ch]);
       }
     for (int i = 0; i < 16; ++i) hn::StoreU(best.color_index[i], d, t.color_index[i]), hn::StoreU(best.alpha_index[i], d, t.alpha_index[i]);
-    const int lanes = std::min(int(hn::Lanes(d)), count - k0);
-    for (int k = 0; k < lanes; ++k) {
-      if (t.solid[k]) {
-        const int rgba[4] = {t.x0[0][k], t.x0[1][k], t.x0[2][k], t.x0[3][k]};
-        bc7::pack_block(bc7::solid_choice(rgba), out[k0 + k]);
-        continue;
-      }
-      bc7::Choice c;
-      c.mode = t.mode[k], c.partition = t.partition[k], c.rotation = t.rotation[k], c.index_selection = t.isel[k];
-      for (int s = 0; s < 3; ++s)
-        for (int e = 0; e < 2; ++e) {
-          c.pbit[s][e] = t.pbit[s][e][k];
-          for (int ch = 0; ch < 4; ++ch) c.code[s][e][ch] = t.code[s][e][ch][k];
-        }
-      for (int i = 0; i < 16; ++i)
-        c.color_index[i] = std::uint8_t(t.color_index[i][k]), c.alpha_index[i] = std::uint8_t(t.alpha_index[i][k]);
-      bc7::pack_block(c, out[k0 + k]);
-    }
+    bc7::pack_lanes(t, std::min(int(hn::Lanes(d)), count - k0), out + k0);
   }
 };
 

@@ -157,4 +157,24 @@ void pack_block(const Choice& c, std::uint8_t out[16]) {
   }
 }
 
+void pack_lanes(const LaneChoices& t, int count, std::uint8_t out[][16]) {
+  for (int k = 0; k < count; ++k) {
+    if (t.solid[k]) {
+      const int rgba[4] = {t.x0[0][k], t.x0[1][k], t.x0[2][k], t.x0[3][k]};
+      pack_block(solid_choice(rgba), out[k]);
+      continue;
+    }
+    Choice c;
+    c.mode = t.mode[k], c.partition = t.partition[k], c.rotation = t.rotation[k], c.index_selection = t.isel[k];
+    for (int s = 0; s < 3; ++s)
+      for (int e = 0; e < 2; ++e) {
+        c.pbit[s][e] = t.pbit[s][e][k];
+        for (int ch = 0; ch < 4; ++ch) c.code[s][e][ch] = t.code[s][e][ch][k];
+      }
+    for (int i = 0; i < 16; ++i)
+      c.color_index[i] = std::uint8_t(t.color_index[i][k]), c.alpha_index[i] = std::uint8_t(t.alpha_index[i][k]);
+    pack_block(c, out[k]);
+  }
+}
+
 }  // namespace texproc::bc7

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "bc/bptc_tables.h"
+#include "core/block_batch.h"
 
 namespace texproc::bc7 {
 
@@ -25,6 +26,16 @@ struct Choice {
 };
 
 void pack_block(const Choice& c, std::uint8_t out[16]);
+
+// The SIMD twin's choices for a batch of blocks, a field at a time (lane k
+// of each), as its vectors store them; `solid` lanes are one colour, x0.
+struct LaneChoices {
+  static constexpr int N = kBlockBatch;
+  std::int32_t solid[N], x0[4][N], mode[N], partition[N], rotation[N], isel[N];
+  std::int32_t code[3][2][4][N], pbit[3][2][N], color_index[16][N], alpha_index[16][N];
+};
+// Lanes 0 to count - 1 packed, lane k into out[k].
+void pack_lanes(const LaneChoices& t, int count, std::uint8_t out[][16]);
 
 // How a set of endpoints is stored: bits a channel, and the p-bit (none,
 // one an endpoint, or one shared by a subset's two endpoints).
