@@ -341,10 +341,15 @@ struct Bc7Batch {
     }
   }
 
-  // Mode 6 (as the reference's first candidate).
+  // Mode 6 (as the reference's first candidate). With every lane opaque,
+  // alpha is left out of the fit: its covariance row is zero (R, G and B
+  // get the same floats), its ends 255 (code 127, p-bit 1, as forced).
   HWY_INLINE void try_mode6() {
     SetFitV fit;
-    fit_set(SetV{x, all_members, 0, 4}, bc7::color_format(6), 4, opaque, fit);
+    const bool rgb = hn::AllTrue(d, opaque);
+    fit_set(SetV{x, all_members, 0, rgb ? 3 : 4}, bc7::color_format(6), 4, opaque, fit);
+    if (rgb)
+      for (int k = 0; k < 2; ++k) fit.code[k][3] = hn::Set(d, 127), fit.value[k][3] = hn::Set(d, 255);
     V code[3][2][4], pbit[3][2], zero[16];
     zero_candidate(code, pbit, zero);
     for (int k = 0; k < 2; ++k) {
@@ -565,7 +570,7 @@ struct Bc7Batch {
         for (int ch = 0; ch < 4; ++ch) hn::StoreU(best.code[s][e][ch], d, t.code[s][e][ch]);
       }
     for (int i = 0; i < 16; ++i) hn::StoreU(best.color_index[i], d, t.color_index[i]), hn::StoreU(best.alpha_index[i], d, t.alpha_index[i]);
-    bc7::pack_lanes(t, std::min(int(hn::Lanes(d)), count - k0), out + k0);
+    bc7::pack_lanes_simd(t, std::min(int(hn::Lanes(d)), count - k0), out + k0);
   }
 };
 

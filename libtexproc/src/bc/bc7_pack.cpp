@@ -40,6 +40,17 @@ const SolidPair& solid5(int v) {
   return table.p[v];
 }
 
+const std::int32_t* solid5_packed() {
+  static const auto table = [] {
+    struct Packed {
+      std::int32_t v[256];
+    } t{};
+    for (int i = 0; i < 256; ++i) t.v[i] = solid5(i).e0 | solid5(i).e1 << 8;
+    return t;
+  }();
+  return table.v;
+}
+
 constexpr QuantTable kQuant[5][3] = {
     {make_quant_table(4, -1), make_quant_table(4, 0), make_quant_table(4, 1)}, {make_quant_table(5, -1), make_quant_table(5, 0), make_quant_table(5, 1)},
     {make_quant_table(6, -1), make_quant_table(6, 0), make_quant_table(6, 1)}, {make_quant_table(7, -1), make_quant_table(7, 0), make_quant_table(7, 1)},

@@ -34,8 +34,11 @@ struct LaneChoices {
   std::int32_t solid[N], x0[4][N], mode[N], partition[N], rotation[N], isel[N];
   std::int32_t code[3][2][4][N], pbit[3][2][N], color_index[16][N], alpha_index[16][N];
 };
-// Lanes 0 to count - 1 packed, lane k into out[k].
+// Lanes 0 to count - 1 packed, lane k into out[k]: block by block
+// (pack_lanes, the reference), or a SIMD lane a block (pack_lanes_simd,
+// bc7_pack_simd.cpp, the same bytes; the reference under force_scalar).
 void pack_lanes(const LaneChoices& t, int count, std::uint8_t out[][16]);
+void pack_lanes_simd(const LaneChoices& t, int count, std::uint8_t out[][16]);
 
 // How a set of endpoints is stored: bits a channel, and the p-bit (none,
 // one an endpoint, or one shared by a subset's two endpoints).
@@ -88,6 +91,8 @@ struct SolidPair {
   std::uint8_t e0, e1;
 };
 const SolidPair& solid5(int v);
+// The same pairs as e0 | e1 << 8, 256 of them, for gathers.
+const std::int32_t* solid5_packed();
 // A block of one RGBA colour: mode 5, the pairs above at index 1, alpha's
 // endpoints the alpha itself.
 Choice solid_choice(const int rgba[4]);
