@@ -93,7 +93,8 @@ void line_ends(const Set& s, float e[2][4]) {
 // Float endpoints to the format's codes: each channel rounded to 8 bits,
 // then the nearest code; the p-bit that quantizes the endpoint (unique) or
 // both endpoints (shared) with less error, ties to 0; 1 where forced.
-void quantize_ends(const Set& s, const float e[2][4], EndpointFormat f, bool force_p1, SetFit& fit) {
+// `combo` >= 0: endpoint k's p-bit is bit k of it (shared: bit 0) instead.
+void quantize_ends(const Set& s, const float e[2][4], EndpointFormat f, bool force_p1, SetFit& fit, int combo = -1) {
   int v[2][4];
   for (int k = 0; k < 2; ++k)
     for (int a = 0; a < s.n; ++a) v[k][a] = int(std::nearbyint(std::min(std::max(e[k][s.c0 + a], 0.0f), 255.0f)));
@@ -108,6 +109,8 @@ void quantize_ends(const Set& s, const float e[2][4], EndpointFormat f, bool for
   int p[2] = {-1, -1};
   if (f.pbit != Pbit::none && force_p1) {
     p[0] = p[1] = 1;
+  } else if (f.pbit != Pbit::none && combo >= 0) {
+    p[0] = combo & 1, p[1] = f.pbit == Pbit::unique ? combo >> 1 & 1 : p[0];
   } else if (f.pbit == Pbit::unique) {
     for (int k = 0; k < 2; ++k) p[k] = error(k, 1) < error(k, 0) ? 1 : 0;
   } else if (f.pbit == Pbit::shared) {
@@ -181,19 +184,32 @@ bool lsq_ends(const Set& s, int bits, const SetFit& fit, float e[2][4]) {
   return true;
 }
 
+// The ends quantized and the indices assigned: the nearest p-bits, or with
+// level.pbit_search every p-bit choice after them, the first of least
+// error kept.
+void quantize_assign(const Set& s, const float e[2][4], EndpointFormat f, int bits, bool force_p1, const Bc7Level& level, SetFit& fit) {
+  quantize_ends(s, e, f, force_p1, fit);
+  assign(s, bits, level.exact_indices, fit);
+  if (!level.pbit_search || f.pbit == Pbit::none || force_p1) return;
+  for (int combo = 0; combo < (f.pbit == Pbit::unique ? 4 : 2); ++combo) {
+    SetFit next = fit;
+    quantize_ends(s, e, f, false, next, combo);
+    assign(s, bits, level.exact_indices, next);
+    if (next.error < fit.error) fit = next;
+  }
+}
+
 // One index set fitted: the line's endpoints, then up to level.refine
 // least-squares rounds while the error falls.
 SetFit fit_set(const Set& s, EndpointFormat f, int bits, bool force_p1, const Bc7Level& level) {
   float e[2][4] = {};
   line_ends(s, e);
   SetFit best;
-  quantize_ends(s, e, f, force_p1, best);
-  assign(s, bits, level.exact_indices, best);
+  quantize_assign(s, e, f, bits, force_p1, level, best);
   for (int pass = 0; pass < level.refine && best.error > 0; ++pass) {
     if (!lsq_ends(s, bits, best, e)) break;
     SetFit next;
-    quantize_ends(s, e, f, force_p1, next);
-    assign(s, bits, level.exact_indices, next);
+    quantize_assign(s, e, f, bits, force_p1, level, next);
     if (next.error >= best.error) break;
     best = next;
   }
@@ -371,10 +387,13 @@ Choice encode_block(const Block& b, const Bc7Level& level) {
     for (int r = 0; r < three16.k; ++r) try_partitioned(b, 0, three16.partition[r], level, best);
     for (int r = 0; r < three.k; ++r) try_partitioned(b, 2, three.partition[r], level, best);
   }
-  if (!b.opaque) {
-    for (int rot = 0; rot < level.rotations; ++rot) try_rotated(b, 5, rot, 0, level, best);
-    for (int rot = 0; rot < level.rotations; ++rot)
+  if (!b.opaque || level.opaque_rotated) {
+    const int first = b.opaque ? 1 : 0;  // an opaque block's rotation 0 would index a constant alpha
+    for (int rot = first; rot < level.rotations; ++rot) try_rotated(b, 5, rot, 0, level, best);
+    for (int rot = first; rot < level.rotations; ++rot)
       for (int isel = 0; isel < (level.index_selection ? 2 : 1); ++isel) try_rotated(b, 4, rot, isel, level, best);
+  }
+  if (!b.opaque) {
     if (level.mode7)
       for (int r = 0; r < two.k; ++r) try_partitioned(b, 7, two.partition[r], level, best);
   }

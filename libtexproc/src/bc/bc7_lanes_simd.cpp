@@ -13,26 +13,15 @@
 
 #include "bc/bc7_lanes.h"
 #include "bc/bc7_shared.h"
-#include "bc/bc7_sum_plan.h"
+#include "bc/bc7_estimate_simd-inl.h"
 #include "texproc/runtime.h"
-
 
 HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-using DI = hn::CappedTag<std::int32_t, kBc7Batch>;
-using DF = hn::Rebind<float, DI>;
-using V = hn::Vec<DI>;
-using VF = hn::Vec<DF>;
-using M = hn::Mask<DI>;
-
 using bc7::EndpointFormat;
-using bc7::kSumPlan2;
-using bc7::kSumPlan3;
-using bc7::SumPlan;
-using bc7::SumStep;
 using bc7::Pbit;
 
 // As the reference's SetFit, a lane each.
@@ -156,7 +145,7 @@ struct Bc7Batch {
   }
 
   // As ref::quantize_ends; `force_p1` per lane.
-  HWY_INLINE void quantize_ends(const SetV& s, const VF e[2][4], EndpointFormat fmt, M force_p1, SetFitV& fit) const {
+  HWY_INLINE void quantize_ends(const SetV& s, const VF e[2][4], EndpointFormat fmt, M force_p1, SetFitV& fit, int combo = -1) const {
     const std::int32_t* table = bc7::kQuantPairs[fmt.bits - 4][fmt.pbit == Pbit::none ? 0 : 1];
     V v[2][4], q0[2][4], q1[2][4];
     V err0[2] = {hn::Zero(d), hn::Zero(d)}, err1[2] = {hn::Zero(d), hn::Zero(d)};
@@ -170,7 +159,10 @@ struct Bc7Batch {
         err0[k] = hn::Add(err0[k], hn::Mul(d0, d0)), err1[k] = hn::Add(err1[k], hn::Mul(d1, d1));
       }
     M p1[2] = {hn::FirstN(d, 0), hn::FirstN(d, 0)};
-    if (fmt.pbit == Pbit::unique) {
+    if (fmt.pbit != Pbit::none && combo >= 0) {
+      const int second = fmt.pbit == Pbit::unique ? combo >> 1 & 1 : combo & 1;
+      p1[0] = hn::Or(force_p1, hn::FirstN(d, (combo & 1) ? kBc7Batch : 0)), p1[1] = hn::Or(force_p1, hn::FirstN(d, second ? kBc7Batch : 0));
+    } else if (fmt.pbit == Pbit::unique) {
       for (int k = 0; k < 2; ++k) p1[k] = hn::Or(force_p1, hn::Lt(err1[k], err0[k]));
     } else if (fmt.pbit == Pbit::shared) {
       p1[0] = p1[1] = hn::Or(force_p1, hn::Lt(hn::Add(err1[0], err1[1]), hn::Add(err0[0], err0[1])));
@@ -270,19 +262,30 @@ struct Bc7Batch {
     to.error = hn::IfThenElse(m, from.error, to.error);
   }
 
+  // As ref::quantize_assign (forced lanes' p-bits stay 1 in every choice).
+  HWY_INLINE void quantize_assign(const SetV& s, const VF e[2][4], EndpointFormat fmt, int bits, M force_p1, SetFitV& fit) const {
+    quantize_ends(s, e, fmt, force_p1, fit);
+    assign(s, bits, fit);
+    if (!level.pbit_search || fmt.pbit == Pbit::none || hn::AllTrue(d, force_p1)) return;
+    for (int combo = 0; combo < (fmt.pbit == Pbit::unique ? 4 : 2); ++combo) {
+      SetFitV next = fit;
+      quantize_ends(s, e, fmt, force_p1, next, combo);
+      assign(s, bits, next);
+      select_fit(hn::Lt(next.error, fit.error), next, fit, s);
+    }
+  }
+
   // As ref::fit_set.
   HWY_INLINE void fit_set(const SetV& s, EndpointFormat fmt, int bits, M force_p1, SetFitV& best_fit) const {
     VF e[2][4];
     line_ends(s, e);
     for (auto& j : best_fit.index) j = hn::Zero(d);
-    quantize_ends(s, e, fmt, force_p1, best_fit);
-    assign(s, bits, best_fit);
+    quantize_assign(s, e, fmt, bits, force_p1, best_fit);
     M active = hn::Gt(best_fit.error, hn::Zero(d));
     for (int pass = 0; pass < level.refine && !hn::AllFalse(d, active); ++pass) {
       const M ok = lsq_ends(s, bits, best_fit, e);
       SetFitV next = best_fit;
-      quantize_ends(s, e, fmt, force_p1, next);
-      assign(s, bits, next);
+      quantize_assign(s, e, fmt, bits, force_p1, next);
       const M better = hn::And(hn::And(active, ok), hn::Lt(next.error, best_fit.error));
       select_fit(better, next, best_fit, s);
       active = hn::And(better, hn::Gt(best_fit.error, hn::Zero(d)));
@@ -369,111 +372,6 @@ struct Bc7Batch {
     for (int i = 0; i < 16; ++i) zero[i] = hn::Zero(d);
   }
 
-  // As ref::subset_residual.
-  HWY_INLINE VF subset_residual(int cnt, const V S[3], const V Q[6]) const {
-    const V n = hn::Set(d, cnt);
-    const VF c00 = f(hn::Sub(hn::Mul(n, Q[0]), hn::Mul(S[0], S[0]))), c01 = f(hn::Sub(hn::Mul(n, Q[1]), hn::Mul(S[0], S[1]))),
-             c02 = f(hn::Sub(hn::Mul(n, Q[2]), hn::Mul(S[0], S[2]))), c11 = f(hn::Sub(hn::Mul(n, Q[3]), hn::Mul(S[1], S[1]))),
-             c12 = f(hn::Sub(hn::Mul(n, Q[4]), hn::Mul(S[1], S[2]))), c22 = f(hn::Sub(hn::Mul(n, Q[5]), hn::Mul(S[2], S[2])));
-    const VF trace = hn::Add(hn::Add(c00, c11), c22);
-    VF v0 = c00, v1 = c01, v2 = c02;
-    const auto col1 = hn::And(hn::Gt(c11, c00), hn::Ge(c11, c22));
-    v0 = hn::IfThenElse(col1, c01, v0), v1 = hn::IfThenElse(col1, c11, v1), v2 = hn::IfThenElse(col1, c12, v2);
-    const auto col2 = hn::And(hn::Gt(c22, c00), hn::Gt(c22, c11));
-    v0 = hn::IfThenElse(col2, c02, v0), v1 = hn::IfThenElse(col2, c12, v1), v2 = hn::IfThenElse(col2, c22, v2);
-    auto times_c = [&](VF a0, VF a1, VF a2, VF& w0, VF& w1, VF& w2) {
-      w0 = hn::Add(hn::Add(hn::Mul(c00, a0), hn::Mul(c01, a1)), hn::Mul(c02, a2));
-      w1 = hn::Add(hn::Add(hn::Mul(c01, a0), hn::Mul(c11, a1)), hn::Mul(c12, a2));
-      w2 = hn::Add(hn::Add(hn::Mul(c02, a0), hn::Mul(c12, a1)), hn::Mul(c22, a2));
-    };
-    VF u0, u1, u2, w0, w1, w2;
-    times_c(v0, v1, v2, u0, u1, u2);
-    times_c(u0, u1, u2, w0, w1, w2);
-    const VF uu = hn::Add(hn::Add(hn::Mul(u0, u0), hn::Mul(u1, u1)), hn::Mul(u2, u2));
-    const VF ucu = hn::Add(hn::Add(hn::Mul(u0, w0), hn::Mul(u1, w1)), hn::Mul(u2, w2));
-    const auto pos = hn::Gt(uu, hn::Zero(df));
-    const VF lambda = hn::IfThenElseZero(pos, hn::Div(ucu, hn::IfThenElse(pos, uu, hn::Set(df, 1.0f))));
-    return hn::Mul(hn::Sub(trace, lambda), hn::Set(df, 1.0f / float(cnt)));
-  }
-
-  // As ref::Ranked, a list per lane.
-  struct RankedV {
-    VF est[64];
-    V partition[64];
-    int k = 0;
-  };
-  HWY_INLINE void init(RankedV& r, int keep) const {
-    r.k = keep;
-    for (int j = 0; j < keep; ++j) r.est[j] = hn::Set(df, HUGE_VALF), r.partition[j] = hn::Zero(d);
-  }
-  HWY_INLINE void insert(RankedV& r, VF e, V p) const {
-    for (int j = 0; j < r.k; ++j) {
-      const auto lt = hn::Lt(e, r.est[j]);
-      const VF ne = hn::IfThenElse(lt, r.est[j], e);
-      r.est[j] = hn::IfThenElse(lt, e, r.est[j]), e = ne;
-      const auto lti = hn::RebindMask(d, lt);
-      const V np = hn::IfThenElse(lti, r.partition[j], p);
-      r.partition[j] = hn::IfThenElse(lti, p, r.partition[j]), p = np;
-    }
-  }
-
-  // As ref::rank_partitions. The sums of each subset but the last come
-  // from an earlier subset's (SumPlan): integer sums, so the same as the
-  // reference's texel by texel.
-  HWY_INLINE void rank_partitions(int subsets, int scanned, RankedV& all, RankedV* first16) const {
-    const SumPlan& plan = subsets == 2 ? kSumPlan2 : kSumPlan3;
-    V tS[3], tQ[6], prod[16][6];
-    for (auto& v : tS) v = hn::Zero(d);
-    for (auto& v : tQ) v = hn::Zero(d);
-    for (int i = 0; i < 16; ++i) {
-      const V* xi = x[i];
-      prod[i][0] = hn::Mul(xi[0], xi[0]), prod[i][1] = hn::Mul(xi[0], xi[1]), prod[i][2] = hn::Mul(xi[0], xi[2]);
-      prod[i][3] = hn::Mul(xi[1], xi[1]), prod[i][4] = hn::Mul(xi[1], xi[2]), prod[i][5] = hn::Mul(xi[2], xi[2]);
-      for (int c = 0; c < 3; ++c) tS[c] = hn::Add(tS[c], xi[c]);
-      for (int q = 0; q < 6; ++q) tQ[q] = hn::Add(tQ[q], prod[i][q]);
-    }
-    const int last = subsets - 1;
-    V sums[2 * 64][9];  // slot 2 p + s: subset s of partition p, S then Q
-    for (int part = 0; part < scanned; ++part) {
-      int cnt[3];
-      V S[3][3], Q[3][6];
-      for (int s = 0; s < last; ++s) {
-        const SumStep& st = plan.step[part][s];
-        V* out = sums[2 * part + s];
-        if (st.parent < 0)
-          for (int c = 0; c < 9; ++c) out[c] = hn::Zero(d);
-        else
-          for (int c = 0; c < 9; ++c) out[c] = sums[st.parent][c];
-        for (unsigned m = st.add; m; m &= m - 1) {
-          const int i = __builtin_ctz(m);
-          for (int c = 0; c < 3; ++c) out[c] = hn::Add(out[c], x[i][c]);
-          for (int q = 0; q < 6; ++q) out[3 + q] = hn::Add(out[3 + q], prod[i][q]);
-        }
-        for (unsigned m = st.sub; m; m &= m - 1) {
-          const int i = __builtin_ctz(m);
-          for (int c = 0; c < 3; ++c) out[c] = hn::Sub(out[c], x[i][c]);
-          for (int q = 0; q < 6; ++q) out[3 + q] = hn::Sub(out[3 + q], prod[i][q]);
-        }
-        cnt[s] = st.count;
-        for (int c = 0; c < 3; ++c) S[s][c] = out[c];
-        for (int q = 0; q < 6; ++q) Q[s][q] = out[3 + q];
-      }
-      cnt[last] = 16;
-      for (int c = 0; c < 3; ++c) S[last][c] = tS[c];
-      for (int q = 0; q < 6; ++q) Q[last][q] = tQ[q];
-      for (int s = 0; s < last; ++s) {
-        cnt[last] -= cnt[s];
-        for (int c = 0; c < 3; ++c) S[last][c] = hn::Sub(S[last][c], S[s][c]);
-        for (int q = 0; q < 6; ++q) Q[last][q] = hn::Sub(Q[last][q], Q[s][q]);
-      }
-      VF est = hn::Zero(df);
-      for (int s = 0; s < subsets; ++s)  // an empty subset adds 0 (the reference's residual of no texels)
-        if (cnt[s] > 0) est = hn::Add(est, subset_residual(cnt[s], S[s], Q[s]));
-      insert(all, est, hn::Set(d, part));
-      if (first16 && part < 16) insert(*first16, est, hn::Set(d, part));
-    }
-  }
-
   // As ref::try_partitioned; the partition per lane.
   HWY_INLINE void try_partitioned(int mode, V part, M allowed) {
     const bptc::Bc7Mode& Md = bptc::kBc7Modes[mode];
@@ -503,6 +401,7 @@ struct Bc7Batch {
 
   // As ref::try_rotated.
   HWY_INLINE void try_rotated(int mode, int rotation, int isel, M allowed) {
+    if (hn::AllFalse(d, hn::AndNot(solid, allowed))) return;
     const bptc::Bc7Mode& Md = bptc::kBc7Modes[mode];
     V y[16][4];
     for (int i = 0; i < 16; ++i) {
@@ -535,7 +434,7 @@ struct Bc7Batch {
     RankedV two;
     init(two, std::min(level.partitions2, level.estimated2));
     if (level.partitions2 > 0) {
-      rank_partitions(2, level.estimated2, two, nullptr);
+      rank_partitions(x, 2, level.estimated2, two, nullptr);
       for (int r = 0; r < two.k; ++r) {
         try_partitioned(1, two.partition[r], all);
         if (level.mode3) try_partitioned(3, two.partition[r], all);
@@ -544,16 +443,16 @@ struct Bc7Batch {
     if (level.partitions3 > 0) {
       RankedV three, three16;
       init(three, std::min(level.partitions3, 64)), init(three16, std::min(level.partitions3, 16));
-      rank_partitions(3, 64, three, &three16);
+      rank_partitions(x, 3, 64, three, &three16);
       for (int r = 0; r < three16.k; ++r) try_partitioned(0, three16.partition[r], all);
       for (int r = 0; r < three.k; ++r) try_partitioned(2, three.partition[r], all);
     }
-    const M with_alpha = hn::Not(opaque);
-    if (hn::AllFalse(d, hn::AndNot(solid, with_alpha))) return;
-    for (int rot = 0; rot < level.rotations; ++rot) try_rotated(5, rot, 0, with_alpha);
+    const M with_alpha = hn::Not(opaque), rotated = level.opaque_rotated ? hn::FirstN(d, kBc7Batch) : with_alpha;
+    if (hn::AllFalse(d, hn::AndNot(solid, rotated))) return;
+    for (int rot = 0; rot < level.rotations; ++rot) try_rotated(5, rot, 0, rot ? rotated : with_alpha);
     for (int rot = 0; rot < level.rotations; ++rot)
-      for (int isel = 0; isel < (level.index_selection ? 2 : 1); ++isel) try_rotated(4, rot, isel, with_alpha);
-    if (level.mode7)
+      for (int isel = 0; isel < (level.index_selection ? 2 : 1); ++isel) try_rotated(4, rot, isel, rot ? rotated : with_alpha);
+    if (level.mode7 && !hn::AllFalse(d, hn::AndNot(solid, with_alpha)))
       for (int r = 0; r < two.k; ++r) try_partitioned(7, two.partition[r], with_alpha);
   }
 

@@ -27,6 +27,10 @@ struct Bc7Level {
   int rotations;
   bool index_selection;
   bool mode7;
+  // Opaque blocks too: modes 4 and 5 with a colour channel rotated into
+  // the scalar slot (rotations 1 to rotations - 1; alpha stays 255), for
+  // blocks with one channel apart from the other two.
+  bool opaque_rotated;
   // Least-squares endpoints for the indices, then indices for the quantized
   // endpoints, up to this many times while the error falls.
   int refine;
@@ -37,14 +41,18 @@ struct Bc7Level {
   // by channel, kept where the exact error falls; up to this many rounds
   // while one helps (0: none).
   int perturb;
+  // Each quantization of the ends tries every p-bit choice (four for a
+  // p-bit an endpoint, two for a shared one) against the exact error,
+  // instead of the p-bit that quantizes each endpoint nearest.
+  bool pbit_search;
 };
 
 inline constexpr Bc7Level kBc7Levels[] = {
-    //            p2  mode3 est2 p3  rot  isel  mode7 refine exact perturb
-    /* fast   */ {1, false, 32, 0, 1, false, false, 1, false, 0},
-    /* normal */ {2, true, 64, 1, 1, false, true, 2, true, 0},
-    /* high   */ {12, true, 64, 4, 4, true, true, 3, true, 1},
-    /* max    */ {64, true, 64, 64, 4, true, true, 6, true, 4},
+    //            p2  mode3 est2 p3  rot  isel  mode7 opaque-rot refine exact perturb pbits
+    /* fast   */ {1, false, 32, 0, 1, false, false, false, 1, false, 0, false},
+    /* normal */ {2, true, 64, 1, 1, false, true, false, 2, true, 0, false},
+    /* high   */ {12, true, 64, 4, 4, true, true, true, 3, true, 1, false},
+    /* max    */ {64, true, 64, 64, 4, true, true, true, 6, true, 4, true},
 };
 
 inline const Bc7Level& bc7_level(Quality q) { return kBc7Levels[int(q)]; }

@@ -1,0 +1,149 @@
+// BC7's partition estimate, a block per lane, for bc7_lanes_simd.cpp
+// (included once per Highway target, as Highway's -inl headers are): each
+// subset's squared residual off its principal axis, from sums built as
+// bc7_sum_plan.h says, and the partitions of least estimate kept in order.
+// As ref::subset_residual and ref::rank_partitions in bc7_lanes.cpp.
+#if defined(TEXPROC_BC7_ESTIMATE_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef TEXPROC_BC7_ESTIMATE_SIMD_INL_H_
+#undef TEXPROC_BC7_ESTIMATE_SIMD_INL_H_
+#else
+#define TEXPROC_BC7_ESTIMATE_SIMD_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+#include <cmath>
+
+#include "bc/bc7_lanes.h"
+#include "bc/bc7_sum_plan.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace texproc {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// The BC7 lanes' vectors: a block a lane.
+using DI = hn::CappedTag<std::int32_t, kBc7Batch>;
+using DF = hn::Rebind<float, DI>;
+using V = hn::Vec<DI>;
+using VF = hn::Vec<DF>;
+using M = hn::Mask<DI>;
+
+HWY_INLINE VF as_float(V v) { return hn::ConvertTo(DF(), v); }
+
+// As ref::subset_residual.
+HWY_INLINE VF subset_residual(int cnt, const V S[3], const V Q[6]) {
+  const DI d;
+  const DF df;
+  const V n = hn::Set(d, cnt);
+  const VF c00 = as_float(hn::Sub(hn::Mul(n, Q[0]), hn::Mul(S[0], S[0]))), c01 = as_float(hn::Sub(hn::Mul(n, Q[1]), hn::Mul(S[0], S[1]))),
+           c02 = as_float(hn::Sub(hn::Mul(n, Q[2]), hn::Mul(S[0], S[2]))), c11 = as_float(hn::Sub(hn::Mul(n, Q[3]), hn::Mul(S[1], S[1]))),
+           c12 = as_float(hn::Sub(hn::Mul(n, Q[4]), hn::Mul(S[1], S[2]))), c22 = as_float(hn::Sub(hn::Mul(n, Q[5]), hn::Mul(S[2], S[2])));
+  const VF trace = hn::Add(hn::Add(c00, c11), c22);
+  VF v0 = c00, v1 = c01, v2 = c02;
+  const auto col1 = hn::And(hn::Gt(c11, c00), hn::Ge(c11, c22));
+  v0 = hn::IfThenElse(col1, c01, v0), v1 = hn::IfThenElse(col1, c11, v1), v2 = hn::IfThenElse(col1, c12, v2);
+  const auto col2 = hn::And(hn::Gt(c22, c00), hn::Gt(c22, c11));
+  v0 = hn::IfThenElse(col2, c02, v0), v1 = hn::IfThenElse(col2, c12, v1), v2 = hn::IfThenElse(col2, c22, v2);
+  auto times_c = [&](VF a0, VF a1, VF a2, VF& w0, VF& w1, VF& w2) {
+    w0 = hn::Add(hn::Add(hn::Mul(c00, a0), hn::Mul(c01, a1)), hn::Mul(c02, a2));
+    w1 = hn::Add(hn::Add(hn::Mul(c01, a0), hn::Mul(c11, a1)), hn::Mul(c12, a2));
+    w2 = hn::Add(hn::Add(hn::Mul(c02, a0), hn::Mul(c12, a1)), hn::Mul(c22, a2));
+  };
+  VF u0, u1, u2, w0, w1, w2;
+  times_c(v0, v1, v2, u0, u1, u2);
+  times_c(u0, u1, u2, w0, w1, w2);
+  const VF uu = hn::Add(hn::Add(hn::Mul(u0, u0), hn::Mul(u1, u1)), hn::Mul(u2, u2));
+  const VF ucu = hn::Add(hn::Add(hn::Mul(u0, w0), hn::Mul(u1, w1)), hn::Mul(u2, w2));
+  const auto pos = hn::Gt(uu, hn::Zero(df));
+  const VF lambda = hn::IfThenElseZero(pos, hn::Div(ucu, hn::IfThenElse(pos, uu, hn::Set(df, 1.0f))));
+  return hn::Mul(hn::Sub(trace, lambda), hn::Set(df, 1.0f / float(cnt)));
+}
+
+// As ref::Ranked, a list per lane.
+struct RankedV {
+  VF est[64];
+  V partition[64];
+  int k = 0;
+};
+HWY_INLINE void init(RankedV& r, int keep) {
+  const DI d;
+  const DF df;
+  r.k = keep;
+  for (int j = 0; j < keep; ++j) r.est[j] = hn::Set(df, HUGE_VALF), r.partition[j] = hn::Zero(d);
+}
+HWY_INLINE void insert(RankedV& r, VF e, V p) {
+  for (int j = 0; j < r.k; ++j) {
+    const auto lt = hn::Lt(e, r.est[j]);
+    const VF ne = hn::IfThenElse(lt, r.est[j], e);
+    r.est[j] = hn::IfThenElse(lt, e, r.est[j]), e = ne;
+    const auto lti = hn::RebindMask(DI(), lt);
+    const V np = hn::IfThenElse(lti, r.partition[j], p);
+    r.partition[j] = hn::IfThenElse(lti, p, r.partition[j]), p = np;
+  }
+}
+
+// As ref::rank_partitions. The sums of each subset but the last come
+// from an earlier subset's (SumPlan): integer sums, so the same as the
+// reference's texel by texel.
+HWY_INLINE void rank_partitions(const V (&x)[16][4], int subsets, int scanned, RankedV& all, RankedV* first16) {
+  const DI d;
+  const DF df;
+  const bc7::SumPlan& plan = subsets == 2 ? bc7::kSumPlan2 : bc7::kSumPlan3;
+  V tS[3], tQ[6], prod[16][6];
+  for (auto& v : tS) v = hn::Zero(d);
+  for (auto& v : tQ) v = hn::Zero(d);
+  for (int i = 0; i < 16; ++i) {
+    const V* xi = x[i];
+    prod[i][0] = hn::Mul(xi[0], xi[0]), prod[i][1] = hn::Mul(xi[0], xi[1]), prod[i][2] = hn::Mul(xi[0], xi[2]);
+    prod[i][3] = hn::Mul(xi[1], xi[1]), prod[i][4] = hn::Mul(xi[1], xi[2]), prod[i][5] = hn::Mul(xi[2], xi[2]);
+    for (int c = 0; c < 3; ++c) tS[c] = hn::Add(tS[c], xi[c]);
+    for (int q = 0; q < 6; ++q) tQ[q] = hn::Add(tQ[q], prod[i][q]);
+  }
+  const int last = subsets - 1;
+  V sums[2 * 64][9];  // slot 2 p + s: subset s of partition p, S then Q
+  for (int part = 0; part < scanned; ++part) {
+    int cnt[3];
+    V S[3][3], Q[3][6];
+    for (int s = 0; s < last; ++s) {
+      const bc7::SumStep& st = plan.step[part][s];
+      V* out = sums[2 * part + s];
+      if (st.parent < 0)
+        for (int c = 0; c < 9; ++c) out[c] = hn::Zero(d);
+      else
+        for (int c = 0; c < 9; ++c) out[c] = sums[st.parent][c];
+      for (unsigned m = st.add; m; m &= m - 1) {
+        const int i = __builtin_ctz(m);
+        for (int c = 0; c < 3; ++c) out[c] = hn::Add(out[c], x[i][c]);
+        for (int q = 0; q < 6; ++q) out[3 + q] = hn::Add(out[3 + q], prod[i][q]);
+      }
+      for (unsigned m = st.sub; m; m &= m - 1) {
+        const int i = __builtin_ctz(m);
+        for (int c = 0; c < 3; ++c) out[c] = hn::Sub(out[c], x[i][c]);
+        for (int q = 0; q < 6; ++q) out[3 + q] = hn::Sub(out[3 + q], prod[i][q]);
+      }
+      cnt[s] = st.count;
+      for (int c = 0; c < 3; ++c) S[s][c] = out[c];
+      for (int q = 0; q < 6; ++q) Q[s][q] = out[3 + q];
+    }
+    cnt[last] = 16;
+    for (int c = 0; c < 3; ++c) S[last][c] = tS[c];
+    for (int q = 0; q < 6; ++q) Q[last][q] = tQ[q];
+    for (int s = 0; s < last; ++s) {
+      cnt[last] -= cnt[s];
+      for (int c = 0; c < 3; ++c) S[last][c] = hn::Sub(S[last][c], S[s][c]);
+      for (int q = 0; q < 6; ++q) Q[last][q] = hn::Sub(Q[last][q], Q[s][q]);
+    }
+    VF est = hn::Zero(df);
+    for (int s = 0; s < subsets; ++s)  // an empty subset adds 0 (the reference's residual of no texels)
+      if (cnt[s] > 0) est = hn::Add(est, subset_residual(cnt[s], S[s], Q[s]));
+    insert(all, est, hn::Set(d, part));
+    if (first16 && part < 16) insert(*first16, est, hn::Set(d, part));
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace texproc
+HWY_AFTER_NAMESPACE();
+
+#endif
