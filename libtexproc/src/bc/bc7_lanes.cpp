@@ -199,6 +199,8 @@ void quantize_assign(const Set& s, const float e[2][4], EndpointFormat f, int bi
   }
 }
 
+void step_ends(const Set& s, EndpointFormat f, int bits, const Bc7Level& level, int rounds, SetFit& best);
+
 // One index set fitted: the line's endpoints, then up to level.refine
 // least-squares rounds while the error falls.
 SetFit fit_set(const Set& s, EndpointFormat f, int bits, bool force_p1, const Bc7Level& level) {
@@ -213,9 +215,15 @@ SetFit fit_set(const Set& s, EndpointFormat f, int bits, bool force_p1, const Bc
     if (next.error >= best.error) break;
     best = next;
   }
-  // Each code one step either way, channel by channel, kept where it helps.
+  step_ends(s, f, bits, level, level.perturb, best);
+  return best;
+}
+
+// Each code one step either way, channel by channel, kept where it helps;
+// up to `rounds` rounds while one does.
+void step_ends(const Set& s, EndpointFormat f, int bits, const Bc7Level& level, int rounds, SetFit& best) {
   const int top = (1 << f.bits) - 1;
-  for (int round = 0; round < level.perturb && best.error > 0; ++round) {
+  for (int round = 0; round < rounds && best.error > 0; ++round) {
     bool moved = false;
     for (int k = 0; k < 2; ++k)
       for (int a = 0; a < s.n; ++a)
@@ -230,7 +238,6 @@ SetFit fit_set(const Set& s, EndpointFormat f, int bits, bool force_p1, const Bc
         }
     if (!moved) break;
   }
-  return best;
 }
 
 // The partition estimate of one subset from its sums: the squared residual
@@ -357,6 +364,33 @@ void try_rotated(const Block& b, int mode, int rotation, int isel, const Bc7Leve
   best.offer(c, rgb.error + alpha.error);
 }
 
+// The winner's endpoints stepped (level.winner_steps rounds), subset by
+// subset, from its codes and the indices they assign.
+void step_winner(const Block& b, const Bc7Level& level, Choice& c) {
+  if (level.winner_steps == 0 || c.mode == 4 || c.mode == 5) return;
+  const bptc::Bc7Mode& M = bptc::kBc7Modes[c.mode];
+  const std::uint32_t bits = M.subsets == 2 ? bptc::kPartitions2[c.partition] : M.subsets == 3 ? bptc::kPartitions3[c.partition] : 0;
+  const int n = M.alpha_bits ? 4 : 3;
+  const EndpointFormat f = bc7::color_format(c.mode);
+  for (int s = 0; s < M.subsets; ++s) {
+    unsigned members = 0;
+    for (int i = 0; i < 16; ++i) members |= unsigned(bptc::subset(bits, i) == s) << i;
+    const Set set{b.x, members, 0, n};
+    SetFit fit;
+    for (int k = 0; k < 2; ++k) {
+      fit.pbit[k] = c.pbit[s][k];
+      for (int a = 0; a < n; ++a)
+        fit.code[k][a] = c.code[s][k][a], fit.value[k][a] = bc7::expand(fit.code[k][a], f.bits, f.pbit == Pbit::none ? -1 : fit.pbit[k]);
+    }
+    assign(set, M.index_bits, level.exact_indices, fit);
+    step_ends(set, f, M.index_bits, level, level.winner_steps, fit);
+    for (int k = 0; k < 2; ++k)
+      for (int a = 0; a < n; ++a) c.code[s][k][a] = fit.code[k][a];
+    for (int i = 0; i < 16; ++i)
+      if (set.has(i)) c.color_index[i] = fit.index[i];
+  }
+}
+
 Choice encode_block(const Block& b, const Bc7Level& level) {
   if (b.solid) return bc7::solid_choice(b.x[0]);
   Best best;
@@ -397,6 +431,7 @@ Choice encode_block(const Block& b, const Bc7Level& level) {
     if (level.mode7)
       for (int r = 0; r < two.k; ++r) try_partitioned(b, 7, two.partition[r], level, best);
   }
+  step_winner(b, level, best.choice);
   return best.choice;
 }
 

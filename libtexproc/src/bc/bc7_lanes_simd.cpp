@@ -290,12 +290,15 @@ struct Bc7Batch {
       select_fit(better, next, best_fit, s);
       active = hn::And(better, hn::Gt(best_fit.error, hn::Zero(d)));
     }
-    // As the reference: each code one step either way, kept where it helps.
+    step_ends(s, fmt, bits, level.perturb, hn::FirstN(d, kBc7Batch), best_fit);
+  }
+
+  // As ref::step_ends, in the lanes `going`.
+  HWY_INLINE void step_ends(const SetV& s, EndpointFormat fmt, int bits, int rounds, M going, SetFitV& best_fit) const {
     const int top = (1 << fmt.bits) - 1;
     const bool has_p = fmt.pbit != Pbit::none;
     const int n = fmt.bits + (has_p ? 1 : 0);
-    M going = hn::FirstN(d, kBc7Batch);
-    for (int round = 0; round < level.perturb; ++round) {
+    for (int round = 0; round < rounds; ++round) {
       const M now = hn::And(going, hn::Gt(best_fit.error, hn::Zero(d)));
       if (hn::AllFalse(d, now)) break;
       M moved = hn::FirstN(d, 0);
@@ -423,6 +426,44 @@ struct Bc7Batch {
     offer(allowed, hn::Add(rgb.error, alpha.error), header, code, pbit, rgb.index, alpha.index);
   }
 
+  // As ref::step_winner: each mode's winning lanes together.
+  HWY_INLINE void step_winner() {
+    if (level.winner_steps == 0) return;
+    for (const int mode : {0, 1, 2, 3, 6, 7}) {
+      const M here = hn::AndNot(solid, hn::Eq(best.mode, hn::Set(d, mode)));
+      if (hn::AllFalse(d, here)) continue;
+      const bptc::Bc7Mode& Md = bptc::kBc7Modes[mode];
+      const EndpointFormat fmt = bc7::color_format(mode);
+      const int n = Md.alpha_bits ? 4 : 3, width = fmt.bits + (fmt.pbit == Pbit::none ? 0 : 1);
+      V bits = hn::Zero(d);
+      if (Md.subsets > 1) {
+        const std::int32_t* table = reinterpret_cast<const std::int32_t*>(Md.subsets == 2 ? bptc::kPartitions2 : bptc::kPartitions3);
+        bits = hn::GatherIndex(d, table, hn::And(best.partition, hn::Set(d, 63)));
+      }
+      for (int s = 0; s < Md.subsets; ++s) {
+        M member[16];
+        for (int i = 0; i < 16; ++i) member[i] = hn::Eq(hn::And(hn::ShiftRightSame(bits, 2 * i), hn::Set(d, 3)), hn::Set(d, s));
+        const SetV set{x, member, 0, n};
+        SetFitV fit;
+        for (int k = 0; k < 2; ++k) {
+          fit.pbit[k] = best.pbit[s][k];
+          for (int a = 0; a < n; ++a) {
+            const V code = best.code[s][k][a];
+            const V v = fmt.pbit == Pbit::none ? code : hn::Or(hn::ShiftLeft<1>(code), fit.pbit[k]);
+            fit.code[k][a] = code;
+            fit.value[k][a] = hn::And(hn::Or(hn::ShiftLeftSame(v, 8 - width), hn::ShiftRightSame(v, 2 * width - 8)), hn::Set(d, 255));
+          }
+        }
+        for (int i = 0; i < 16; ++i) fit.index[i] = best.color_index[i];
+        assign(set, Md.index_bits, fit);
+        step_ends(set, fmt, Md.index_bits, level.winner_steps, here, fit);
+        for (int k = 0; k < 2; ++k)
+          for (int a = 0; a < n; ++a) best.code[s][k][a] = hn::IfThenElse(here, fit.code[k][a], best.code[s][k][a]);
+        for (int i = 0; i < 16; ++i) best.color_index[i] = hn::IfThenElse(hn::And(here, member[i]), fit.index[i], best.color_index[i]);
+      }
+    }
+  }
+
   // As ref::encode_block, the lanes together; lanes of one colour are
   // packed by the caller.
   HWY_INLINE void search() {
@@ -478,7 +519,7 @@ void Bc7EncodeLanes(const std::uint32_t texel[16][kBc7Batch], int count, const B
   const int step = int(hn::Lanes(batch.d));
   for (int k0 = 0; k0 < count; k0 += step) {
     batch.load(texel, k0);
-    if (!hn::AllTrue(batch.d, batch.solid)) batch.search();
+    if (!hn::AllTrue(batch.d, batch.solid)) batch.search(), batch.step_winner();
     batch.store(k0, count, out);
   }
 }
