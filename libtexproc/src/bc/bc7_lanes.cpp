@@ -219,7 +219,8 @@ SetFit fit_set(const Set& s, EndpointFormat f, int bits, bool force_p1, const Bc
   return best;
 }
 
-// Each code one step either way, channel by channel, kept where it helps;
+// Each code one step either way, channel by channel, kept where it helps
+// (with level.pair_steps, then a channel's two codes moved together);
 // up to `rounds` rounds while one does.
 void step_ends(const Set& s, EndpointFormat f, int bits, const Bc7Level& level, int rounds, SetFit& best) {
   const int top = (1 << f.bits) - 1;
@@ -233,6 +234,22 @@ void step_ends(const Set& s, EndpointFormat f, int bits, const Bc7Level& level, 
           SetFit next = best;
           next.code[k][s.c0 + a] = code;
           next.value[k][s.c0 + a] = bc7::expand(code, f.bits, f.pbit == Pbit::none ? -1 : best.pbit[k]);
+          assign(s, bits, level.exact_indices, next);
+          if (next.error < best.error) best = next, moved = true;
+        }
+    if (level.pair_steps)
+      for (int a = 0; a < s.n; ++a)
+        for (const int step : {0, 1, 2, 3}) {  // both up, both down, apart, together
+          SetFit next = best;
+          bool valid = true;
+          for (int k = 0; k < 2; ++k) {
+            const int dk = step == 0 ? 1 : step == 1 ? -1 : (step == 2) == (k == 1) ? 1 : -1;
+            const int code = best.code[k][s.c0 + a] + dk;
+            valid = valid && code >= 0 && code <= top;
+            next.code[k][s.c0 + a] = code;
+            if (valid) next.value[k][s.c0 + a] = bc7::expand(code, f.bits, f.pbit == Pbit::none ? -1 : best.pbit[k]);
+          }
+          if (!valid) continue;
           assign(s, bits, level.exact_indices, next);
           if (next.error < best.error) best = next, moved = true;
         }

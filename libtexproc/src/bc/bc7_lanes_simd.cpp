@@ -317,6 +317,28 @@ struct Bc7Batch {
             select_fit(better, next, best_fit, s);
             moved = hn::Or(moved, better);
           }
+      if (level.pair_steps)
+        for (int a = 0; a < s.n; ++a)
+          for (const int step : {0, 1, 2, 3}) {  // both up, both down, apart, together
+            V code[2];
+            M valid = now;
+            for (int k = 0; k < 2; ++k) {
+              const int dk = step == 0 ? 1 : step == 1 ? -1 : (step == 2) == (k == 1) ? 1 : -1;
+              code[k] = hn::Add(best_fit.code[k][s.c0 + a], hn::Set(d, dk));
+              valid = hn::And(valid, hn::And(hn::Gt(code[k], hn::Set(d, -1)), hn::Lt(code[k], hn::Set(d, top + 1))));
+            }
+            if (hn::AllFalse(d, valid)) continue;
+            SetFitV next = best_fit;
+            for (int k = 0; k < 2; ++k) {
+              const V v = has_p ? hn::Or(hn::ShiftLeft<1>(code[k]), best_fit.pbit[k]) : code[k];
+              next.code[k][s.c0 + a] = code[k];
+              next.value[k][s.c0 + a] = hn::And(hn::Or(hn::ShiftLeftSame(v, 8 - n), hn::ShiftRightSame(v, 2 * n - 8)), hn::Set(d, 255));
+            }
+            assign(s, bits, next);
+            const M better = hn::And(valid, hn::Lt(next.error, best_fit.error));
+            select_fit(better, next, best_fit, s);
+            moved = hn::Or(moved, better);
+          }
       going = hn::And(now, moved);
     }
   }

@@ -45,6 +45,9 @@ struct Bc7Level {
   // subset: 0-3, 6, 7), up to this many rounds: most of what the steps
   // buy, for one candidate's cost instead of every candidate's.
   int winner_steps;
+  // Each round also moves a channel's two endpoint codes together: both
+  // up, both down, apart, together (a shift or a stretch of the line).
+  bool pair_steps;
   // Each quantization of the ends tries every p-bit choice (four for a
   // p-bit an endpoint, two for a shared one) against the exact error,
   // instead of the p-bit that quantizes each endpoint nearest.
@@ -52,11 +55,11 @@ struct Bc7Level {
 };
 
 inline constexpr Bc7Level kBc7Levels[] = {
-    //            p2  mode3 est2 p3  rot  isel  mode7 opaque-rot refine exact perturb winner pbits
-    /* fast   */ {1, false, 32, 0, 1, false, false, false, 1, false, 0, 0, false},
-    /* normal */ {2, true, 64, 1, 1, false, true, false, 2, true, 0, 0, false},
-    /* high   */ {12, true, 64, 4, 4, true, true, true, 3, true, 0, 4, false},
-    /* max    */ {64, true, 64, 64, 4, true, true, true, 6, true, 4, 0, true},
+    //            p2  mode3 est2 p3  rot  isel  mode7 opaque-rot refine exact perturb winner pairs pbits
+    /* fast   */ {1, false, 32, 0, 1, false, false, false, 1, false, 0, 0, false, false},
+    /* normal */ {2, true, 64, 1, 1, false, true, false, 2, true, 0, 0, false, false},
+    /* high   */ {12, true, 64, 4, 4, true, true, true, 3, true, 0, 4, false, false},
+    /* max    */ {64, true, 64, 64, 4, true, true, true, 6, true, 4, 0, true, true},
 };
 
 inline const Bc7Level& bc7_level(Quality q) { return kBc7Levels[int(q)]; }
