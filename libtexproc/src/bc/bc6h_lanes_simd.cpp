@@ -12,6 +12,7 @@
 #include <climits>
 #include <cmath>
 
+#include "bc/axis_residual_simd-inl.h"
 #include "bc/bc6h_lanes.h"
 #include "bc/bc6h_shared.h"
 #include "texproc/runtime.h"
@@ -340,25 +341,7 @@ struct Bc6hBatch {
       c00 = hn::Add(c00, hn::Mul(d0, d0)), c01 = hn::Add(c01, hn::Mul(d0, d1)), c02 = hn::Add(c02, hn::Mul(d0, d2));
       c11 = hn::Add(c11, hn::Mul(d1, d1)), c12 = hn::Add(c12, hn::Mul(d1, d2)), c22 = hn::Add(c22, hn::Mul(d2, d2));
     }
-    const VF trace = hn::Add(hn::Add(c00, c11), c22);
-    VF v0 = c00, v1 = c01, v2 = c02;
-    const MF col1 = hn::And(hn::Gt(c11, c00), hn::Ge(c11, c22));
-    v0 = hn::IfThenElse(col1, c01, v0), v1 = hn::IfThenElse(col1, c11, v1), v2 = hn::IfThenElse(col1, c12, v2);
-    const MF col2 = hn::And(hn::Gt(c22, c00), hn::Gt(c22, c11));
-    v0 = hn::IfThenElse(col2, c02, v0), v1 = hn::IfThenElse(col2, c12, v1), v2 = hn::IfThenElse(col2, c22, v2);
-    auto times_c = [&](VF a0, VF a1, VF a2, VF& w0, VF& w1, VF& w2) {
-      w0 = hn::Add(hn::Add(hn::Mul(c00, a0), hn::Mul(c01, a1)), hn::Mul(c02, a2));
-      w1 = hn::Add(hn::Add(hn::Mul(c01, a0), hn::Mul(c11, a1)), hn::Mul(c12, a2));
-      w2 = hn::Add(hn::Add(hn::Mul(c02, a0), hn::Mul(c12, a1)), hn::Mul(c22, a2));
-    };
-    VF u0, u1, u2, w0, w1, w2;
-    times_c(v0, v1, v2, u0, u1, u2);
-    times_c(u0, u1, u2, w0, w1, w2);
-    const VF uu = hn::Add(hn::Add(hn::Mul(u0, u0), hn::Mul(u1, u1)), hn::Mul(u2, u2));
-    const VF ucu = hn::Add(hn::Add(hn::Mul(u0, w0), hn::Mul(u1, w1)), hn::Mul(u2, w2));
-    const MF pos = hn::Gt(uu, hn::Zero(df));
-    const VF lambda = hn::IfThenElseZero(pos, hn::Div(ucu, hn::IfThenElse(pos, uu, hn::Set(df, 1.0f))));
-    return hn::Sub(trace, lambda);
+    return axis_residual(df, c00, c01, c02, c11, c12, c22);
   }
 
   static unsigned region_members(int partition, int s) {

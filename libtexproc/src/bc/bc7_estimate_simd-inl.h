@@ -14,6 +14,7 @@
 
 #include <cmath>
 
+#include "bc/axis_residual_simd-inl.h"
 #include "bc/bc7_lanes.h"
 #include "bc/bc7_sum_plan.h"
 
@@ -39,25 +40,7 @@ HWY_INLINE VF subset_residual(int cnt, const V S[3], const V Q[6]) {
   const VF c00 = as_float(hn::Sub(hn::Mul(n, Q[0]), hn::Mul(S[0], S[0]))), c01 = as_float(hn::Sub(hn::Mul(n, Q[1]), hn::Mul(S[0], S[1]))),
            c02 = as_float(hn::Sub(hn::Mul(n, Q[2]), hn::Mul(S[0], S[2]))), c11 = as_float(hn::Sub(hn::Mul(n, Q[3]), hn::Mul(S[1], S[1]))),
            c12 = as_float(hn::Sub(hn::Mul(n, Q[4]), hn::Mul(S[1], S[2]))), c22 = as_float(hn::Sub(hn::Mul(n, Q[5]), hn::Mul(S[2], S[2])));
-  const VF trace = hn::Add(hn::Add(c00, c11), c22);
-  VF v0 = c00, v1 = c01, v2 = c02;
-  const auto col1 = hn::And(hn::Gt(c11, c00), hn::Ge(c11, c22));
-  v0 = hn::IfThenElse(col1, c01, v0), v1 = hn::IfThenElse(col1, c11, v1), v2 = hn::IfThenElse(col1, c12, v2);
-  const auto col2 = hn::And(hn::Gt(c22, c00), hn::Gt(c22, c11));
-  v0 = hn::IfThenElse(col2, c02, v0), v1 = hn::IfThenElse(col2, c12, v1), v2 = hn::IfThenElse(col2, c22, v2);
-  auto times_c = [&](VF a0, VF a1, VF a2, VF& w0, VF& w1, VF& w2) {
-    w0 = hn::Add(hn::Add(hn::Mul(c00, a0), hn::Mul(c01, a1)), hn::Mul(c02, a2));
-    w1 = hn::Add(hn::Add(hn::Mul(c01, a0), hn::Mul(c11, a1)), hn::Mul(c12, a2));
-    w2 = hn::Add(hn::Add(hn::Mul(c02, a0), hn::Mul(c12, a1)), hn::Mul(c22, a2));
-  };
-  VF u0, u1, u2, w0, w1, w2;
-  times_c(v0, v1, v2, u0, u1, u2);
-  times_c(u0, u1, u2, w0, w1, w2);
-  const VF uu = hn::Add(hn::Add(hn::Mul(u0, u0), hn::Mul(u1, u1)), hn::Mul(u2, u2));
-  const VF ucu = hn::Add(hn::Add(hn::Mul(u0, w0), hn::Mul(u1, w1)), hn::Mul(u2, w2));
-  const auto pos = hn::Gt(uu, hn::Zero(df));
-  const VF lambda = hn::IfThenElseZero(pos, hn::Div(ucu, hn::IfThenElse(pos, uu, hn::Set(df, 1.0f))));
-  return hn::Mul(hn::Sub(trace, lambda), hn::Set(df, 1.0f / float(cnt)));
+  return hn::Mul(axis_residual(df, c00, c01, c02, c11, c12, c22), hn::Set(df, 1.0f / float(cnt)));
 }
 
 // As ref::Ranked, a list per lane.
