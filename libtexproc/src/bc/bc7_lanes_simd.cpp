@@ -293,11 +293,18 @@ struct Bc7Batch {
     step_ends(s, fmt, bits, level.perturb, hn::FirstN(d, kBc7Batch), best_fit);
   }
 
+  // As bc7::expand: a code (and its p-bit where the format has one) as
+  // the decoder widens it to 8 bits.
+  HWY_INLINE V expand(V code, V pbit, EndpointFormat fmt) const {
+    const bool has_p = fmt.pbit != Pbit::none;
+    const int n = fmt.bits + (has_p ? 1 : 0);
+    const V v = has_p ? hn::Or(hn::ShiftLeft<1>(code), pbit) : code;
+    return hn::And(hn::Or(hn::ShiftLeftSame(v, 8 - n), hn::ShiftRightSame(v, 2 * n - 8)), hn::Set(d, 255));
+  }
+
   // As ref::step_ends, in the lanes `going`.
   HWY_INLINE void step_ends(const SetV& s, EndpointFormat fmt, int bits, int rounds, M going, SetFitV& best_fit) const {
     const int top = (1 << fmt.bits) - 1;
-    const bool has_p = fmt.pbit != Pbit::none;
-    const int n = fmt.bits + (has_p ? 1 : 0);
     for (int round = 0; round < rounds; ++round) {
       const M now = hn::And(going, hn::Gt(best_fit.error, hn::Zero(d)));
       if (hn::AllFalse(d, now)) break;
@@ -309,9 +316,8 @@ struct Bc7Batch {
             const M valid = hn::And(now, hn::And(hn::Gt(code, hn::Set(d, -1)), hn::Lt(code, hn::Set(d, top + 1))));
             if (hn::AllFalse(d, valid)) continue;
             SetFitV next = best_fit;
-            const V v = has_p ? hn::Or(hn::ShiftLeft<1>(code), best_fit.pbit[k]) : code;
             next.code[k][s.c0 + a] = code;
-            next.value[k][s.c0 + a] = hn::And(hn::Or(hn::ShiftLeftSame(v, 8 - n), hn::ShiftRightSame(v, 2 * n - 8)), hn::Set(d, 255));
+            next.value[k][s.c0 + a] = expand(code, best_fit.pbit[k], fmt);
             assign(s, bits, next);
             const M better = hn::And(valid, hn::Lt(next.error, best_fit.error));
             select_fit(better, next, best_fit, s);
@@ -330,9 +336,8 @@ struct Bc7Batch {
             if (hn::AllFalse(d, valid)) continue;
             SetFitV next = best_fit;
             for (int k = 0; k < 2; ++k) {
-              const V v = has_p ? hn::Or(hn::ShiftLeft<1>(code[k]), best_fit.pbit[k]) : code[k];
               next.code[k][s.c0 + a] = code[k];
-              next.value[k][s.c0 + a] = hn::And(hn::Or(hn::ShiftLeftSame(v, 8 - n), hn::ShiftRightSame(v, 2 * n - 8)), hn::Set(d, 255));
+              next.value[k][s.c0 + a] = expand(code[k], best_fit.pbit[k], fmt);
             }
             assign(s, bits, next);
             const M better = hn::And(valid, hn::Lt(next.error, best_fit.error));
@@ -456,7 +461,7 @@ struct Bc7Batch {
       if (hn::AllFalse(d, here)) continue;
       const bptc::Bc7Mode& Md = bptc::kBc7Modes[mode];
       const EndpointFormat fmt = bc7::color_format(mode);
-      const int n = Md.alpha_bits ? 4 : 3, width = fmt.bits + (fmt.pbit == Pbit::none ? 0 : 1);
+      const int n = Md.alpha_bits ? 4 : 3;
       V bits = hn::Zero(d);
       if (Md.subsets > 1) {
         const std::int32_t* table = reinterpret_cast<const std::int32_t*>(Md.subsets == 2 ? bptc::kPartitions2 : bptc::kPartitions3);
@@ -470,10 +475,8 @@ struct Bc7Batch {
         for (int k = 0; k < 2; ++k) {
           fit.pbit[k] = best.pbit[s][k];
           for (int a = 0; a < n; ++a) {
-            const V code = best.code[s][k][a];
-            const V v = fmt.pbit == Pbit::none ? code : hn::Or(hn::ShiftLeft<1>(code), fit.pbit[k]);
-            fit.code[k][a] = code;
-            fit.value[k][a] = hn::And(hn::Or(hn::ShiftLeftSame(v, 8 - width), hn::ShiftRightSame(v, 2 * width - 8)), hn::Set(d, 255));
+            fit.code[k][a] = best.code[s][k][a];
+            fit.value[k][a] = expand(fit.code[k][a], fit.pbit[k], fmt);
           }
         }
         for (int i = 0; i < 16; ++i) fit.index[i] = best.color_index[i];
