@@ -226,6 +226,10 @@ void step_ends(const Set& s, EndpointFormat f, int bits, const Bc7Level& level, 
   const int top = (1 << f.bits) - 1;
   for (int round = 0; round < rounds && best.error > 0; ++round) {
     bool moved = false;
+    auto keep_if_better = [&](SetFit& next) {
+      assign(s, bits, level.exact_indices, next);
+      if (next.error < best.error) best = next, moved = true;
+    };
     for (int k = 0; k < 2; ++k)
       for (int a = 0; a < s.n; ++a)
         for (const int step : {-1, 1}) {
@@ -234,8 +238,7 @@ void step_ends(const Set& s, EndpointFormat f, int bits, const Bc7Level& level, 
           SetFit next = best;
           next.code[k][s.c0 + a] = code;
           next.value[k][s.c0 + a] = bc7::expand(code, f.bits, f.pbit == Pbit::none ? -1 : best.pbit[k]);
-          assign(s, bits, level.exact_indices, next);
-          if (next.error < best.error) best = next, moved = true;
+          keep_if_better(next);
         }
     if (level.pair_steps)
       for (int a = 0; a < s.n; ++a)
@@ -249,9 +252,7 @@ void step_ends(const Set& s, EndpointFormat f, int bits, const Bc7Level& level, 
             next.code[k][s.c0 + a] = code;
             if (valid) next.value[k][s.c0 + a] = bc7::expand(code, f.bits, f.pbit == Pbit::none ? -1 : best.pbit[k]);
           }
-          if (!valid) continue;
-          assign(s, bits, level.exact_indices, next);
-          if (next.error < best.error) best = next, moved = true;
+          if (valid) keep_if_better(next);
         }
     if (!moved) break;
   }

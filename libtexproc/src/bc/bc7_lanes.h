@@ -10,15 +10,19 @@
 //     indices); an opaque block's p-bits are 1, so its alpha stays 255;
 //   - modes 1 and 3 on the two-subset partitions the estimate ranks first,
 //     then modes 0 and 2 on the three-subset ones (Bc7Level);
-//   - blocks with alpha only: mode 5, then mode 4 (each rotation, each
-//     index selection the level tries), then mode 7 on the two-subset
-//     partitions kept.
+//   - blocks with alpha: mode 5, then mode 4 (each rotation, each index
+//     selection the level tries), then mode 7 on the two-subset partitions
+//     kept; opaque blocks, where the level says, modes 5 and 4 with
+//     rotations 1-3 only;
+//   - then, where the level says, the winner's endpoint codes stepped
+//     (modes 0-3, 6, 7).
 // A set's fit: the texels' principal axis (three power iterations on the
 // covariance, from its largest diagonal's column), the texels' extent along
-// it as endpoints, quantized (the p-bit that quantizes the endpoint better;
-// ties to 0), indices by projection onto the quantized endpoints' line
-// (and, where the level says, the neighbouring index that decodes closer),
-// then least-squares endpoints for those indices while the error falls.
+// it as endpoints, quantized (the p-bit that quantizes the endpoint better,
+// ties to 0, or every p-bit choice where the level says), indices by
+// projection onto the quantized endpoints' line (and, where the level says,
+// the neighbouring index that decodes closer), then least-squares endpoints
+// for those indices while the error falls, then the level's endpoint steps.
 // The partition estimate: each subset's squared residual off its principal
 // axis (two power iterations), summed; the K least kept, ties to the lower
 // partition. Floats in the same order on both twins, no FMA.
