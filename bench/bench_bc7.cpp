@@ -34,25 +34,6 @@ using namespace texproc;
 
 namespace {
 
-const std::vector<Image>& crops() {
-  static const std::vector<Image> c = [] {
-    std::vector<Image> out;
-    for (const std::string& f : bench::corpus_color_paths()) {
-      const Image src = read_image(std::string(TEXPROC_CORPUS_DIR) + "/" + f);
-      const int w = std::min(256, src.width() / 4 * 4), h = std::min(256, src.height() / 4 * 4);
-      const int x0 = (src.width() - w) / 2, y0 = (src.height() - h) / 2;
-      Image img(w, h, 4, PixelType::u8);
-      for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-          for (int ch = 0; ch < 4; ++ch)
-            img.set(x, y, ch, ch == 3 ? 1.0f : src.get(x0 + x, y0 + y, src.channels() < 3 ? 0 : ch));
-      out.push_back(std::move(img));
-    }
-    return out;
-  }();
-  return c;
-}
-
 #ifdef TEXPROC_HAVE_BC7ENC
 std::vector<std::uint8_t> bc7enc_image(const Image& img, int uber, int partitions) {
   static const bool ready = [] {
@@ -114,7 +95,7 @@ void run(benchmark::State& state, const std::string& who, TexelFormat format, Qu
   double se = 0, samples = 0;
   for (auto _ : state) {
     se = samples = 0;
-    for (const Image& img : crops()) {
+    for (const Image& img : bench::centred_crops()) {
       std::vector<std::uint8_t> blocks;
 #ifdef TEXPROC_HAVE_BC7ENC
       if (who == "bc7enc") blocks = bc7enc_image(img, uber, partitions);
@@ -134,7 +115,7 @@ void run(benchmark::State& state, const std::string& who, TexelFormat format, Qu
     }
   }
   double pixels = 0;
-  for (const Image& img : crops()) pixels += double(img.width()) * img.height();
+  for (const Image& img : bench::centred_crops()) pixels += double(img.width()) * img.height();
   state.counters["MPix/s"] = benchmark::Counter(pixels / 1e6, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["PSNR"] = 10 * std::log10(255.0 * 255.0 / (se / samples));
 }
@@ -175,9 +156,9 @@ void register_all() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  crops();  // read and cut before any timing (the first benchmark would pay for it)
+  bench::centred_crops();  // read and cut before any timing (the first benchmark would pay for it)
 #ifdef TEXPROC_HAVE_CVTT
-  for (int q : {1, 10, 50}) cvtt_image(crops()[0], q);  // cvtt's plans, before any timing
+  for (int q : {1, 10, 50}) cvtt_image(bench::centred_crops()[0], q);  // cvtt's plans, before any timing
 #endif
   register_all();
   benchmark::Initialize(&argc, argv);

@@ -61,6 +61,27 @@ inline std::vector<std::string> corpus_color_paths() {
   return out;
 }
 
+// 256x256 centred RGBA8 crops (alpha opaque) of corpus_color_paths()'s 15
+// images: the BC7 issue's setting (bench_bc7, bc7_sweep).
+inline const std::vector<Image>& centred_crops() {
+  static const std::vector<Image> c = [] {
+    std::vector<Image> out;
+    for (const std::string& f : corpus_color_paths()) {
+      const Image src = read_image(std::string(TEXPROC_CORPUS_DIR) + "/" + f);
+      const int w = std::min(256, src.width() / 4 * 4), h = std::min(256, src.height() / 4 * 4);
+      const int x0 = (src.width() - w) / 2, y0 = (src.height() - h) / 2;
+      Image img(w, h, 4, PixelType::u8);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          for (int ch = 0; ch < 4; ++ch)
+            img.set(x, y, ch, ch == 3 ? 1.0f : src.get(x0 + x, y0 + y, src.channels() < 3 ? 0 : ch));
+      out.push_back(std::move(img));
+    }
+    return out;
+  }();
+  return c;
+}
+
 // The squared error over RGB of `blocks` (format f) against the RGBA8
 // source, summed (benchmarks that pool images add these up).
 inline double squared_error_rgb(const Image& src, TexelFormat f, const std::vector<std::uint8_t>& blocks) {

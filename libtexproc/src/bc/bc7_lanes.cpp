@@ -455,8 +455,10 @@ Choice encode_block(const Block& b, const Bc7Level& level) {
 
 }  // namespace
 
-void bc7_encode_lanes(const std::uint32_t texel[16][kBc7Batch], int count, const Bc7Level& level, std::uint8_t out[][16]) {
-  for (int k = 0; k < count; ++k) {
+void bc7_encode_lanes(const Bc7Texels* batches, int count, const Bc7Level& level, std::uint8_t out[][16]) {
+  for (int n = 0; n < count; ++n) {
+    const Bc7Texels& texel = batches[n / kBc7Batch];
+    const int k = n % kBc7Batch;
     Block b{};
     b.opaque = b.solid = true;
     for (int i = 0; i < 16; ++i) {
@@ -465,7 +467,7 @@ void bc7_encode_lanes(const std::uint32_t texel[16][kBc7Batch], int count, const
       b.solid = b.solid && texel[i][k] == texel[0][k];
       b.alpha_error += (255 - b.x[i][3]) * (255 - b.x[i][3]);
     }
-    bc7::pack_block(encode_block(b, level), out[k]);
+    bc7::pack_block(encode_block(b, level), out[n]);
   }
 }
 

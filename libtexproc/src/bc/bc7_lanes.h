@@ -36,13 +36,20 @@
 namespace texproc {
 
 constexpr int kBc7Batch = kBlockBatch;  // core/block_batch.h
+// A batch's texels: [i][k] is texel i (row by row) of block k, RGBA8 packed
+// as block_gather.h's pack_texel.
+using Bc7Texels = std::uint32_t[16][kBc7Batch];
+// How many blocks the SIMD twin searches before it steps their winners
+// (each mode's winners gathered into full vectors, bc7_lanes_simd.cpp).
+constexpr int kBc7Span = 16 * kBc7Batch;
 
-// texel[i][k]: texel i (row by row) of block k, RGBA8 packed as block_gather.h's
-// pack_texel. out[k]: block k's 16 bytes.
-void bc7_encode_lanes(const std::uint32_t texel[16][kBc7Batch], int count, const Bc7Level& level, std::uint8_t out[][16]);
+// Blocks 0 to count - 1, block b in texel[b / kBc7Batch][.][b % kBc7Batch];
+// out[b]: block b's 16 bytes. Any count; the bytes of a block do not depend
+// on the others.
+void bc7_encode_lanes(const Bc7Texels* texel, int count, const Bc7Level& level, std::uint8_t out[][16]);
 
 namespace ref {
-void bc7_encode_lanes(const std::uint32_t texel[16][kBc7Batch], int count, const Bc7Level& level, std::uint8_t out[][16]);
+void bc7_encode_lanes(const Bc7Texels* texel, int count, const Bc7Level& level, std::uint8_t out[][16]);
 }  // namespace ref
 
 }  // namespace texproc

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <vector>
 
 #include "bc/bc7_lanes.h"
 #include "bc/bc7_shared.h"
@@ -309,19 +310,23 @@ struct Bc7Batch {
       const M now = hn::And(going, hn::Gt(best_fit.error, hn::Zero(d)));
       if (hn::AllFalse(d, now)) break;
       M moved = hn::FirstN(d, 0);
+      // Channel a's codes made code[0], code[1] where `valid`, kept where the error falls.
+      const auto attempt = [&](int a, const V code[2], M valid) {
+        if (hn::AllFalse(d, valid)) return;
+        SetFitV next = best_fit;
+        for (int k = 0; k < 2; ++k) next.code[k][s.c0 + a] = code[k], next.value[k][s.c0 + a] = expand(code[k], best_fit.pbit[k], fmt);
+        assign(s, bits, next);
+        const M better = hn::And(valid, hn::Lt(next.error, best_fit.error));
+        select_fit(better, next, best_fit, s);
+        moved = hn::Or(moved, better);
+      };
+      const auto in_range = [&](V code) { return hn::And(hn::Gt(code, hn::Set(d, -1)), hn::Lt(code, hn::Set(d, top + 1))); };
       for (int k = 0; k < 2; ++k)
         for (int a = 0; a < s.n; ++a)
           for (const int step : {-1, 1}) {
-            const V code = hn::Add(best_fit.code[k][s.c0 + a], hn::Set(d, step));
-            const M valid = hn::And(now, hn::And(hn::Gt(code, hn::Set(d, -1)), hn::Lt(code, hn::Set(d, top + 1))));
-            if (hn::AllFalse(d, valid)) continue;
-            SetFitV next = best_fit;
-            next.code[k][s.c0 + a] = code;
-            next.value[k][s.c0 + a] = expand(code, best_fit.pbit[k], fmt);
-            assign(s, bits, next);
-            const M better = hn::And(valid, hn::Lt(next.error, best_fit.error));
-            select_fit(better, next, best_fit, s);
-            moved = hn::Or(moved, better);
+            V code[2] = {best_fit.code[0][s.c0 + a], best_fit.code[1][s.c0 + a]};
+            code[k] = hn::Add(code[k], hn::Set(d, step));
+            attempt(a, code, hn::And(now, in_range(code[k])));
           }
       if (level.pair_steps)
         for (int a = 0; a < s.n; ++a)
@@ -331,18 +336,9 @@ struct Bc7Batch {
             for (int k = 0; k < 2; ++k) {
               const int dk = step == 0 ? 1 : step == 1 ? -1 : (step == 2) == (k == 1) ? 1 : -1;
               code[k] = hn::Add(best_fit.code[k][s.c0 + a], hn::Set(d, dk));
-              valid = hn::And(valid, hn::And(hn::Gt(code[k], hn::Set(d, -1)), hn::Lt(code[k], hn::Set(d, top + 1))));
+              valid = hn::And(valid, in_range(code[k]));
             }
-            if (hn::AllFalse(d, valid)) continue;
-            SetFitV next = best_fit;
-            for (int k = 0; k < 2; ++k) {
-              next.code[k][s.c0 + a] = code[k];
-              next.value[k][s.c0 + a] = expand(code[k], best_fit.pbit[k], fmt);
-            }
-            assign(s, bits, next);
-            const M better = hn::And(valid, hn::Lt(next.error, best_fit.error));
-            select_fit(better, next, best_fit, s);
-            moved = hn::Or(moved, better);
+            attempt(a, code, valid);
           }
       going = hn::And(now, moved);
     }
@@ -453,39 +449,34 @@ struct Bc7Batch {
     offer(allowed, hn::Add(rgb.error, alpha.error), header, code, pbit, rgb.index, alpha.index);
   }
 
-  // As ref::step_winner: each mode's winning lanes together.
-  HWY_INLINE void step_winner() {
-    if (level.winner_steps == 0) return;
-    for (const int mode : {0, 1, 2, 3, 6, 7}) {
-      const M here = hn::AndNot(solid, hn::Eq(best.mode, hn::Set(d, mode)));
-      if (hn::AllFalse(d, here)) continue;
-      const bptc::Bc7Mode& Md = bptc::kBc7Modes[mode];
-      const EndpointFormat fmt = bc7::color_format(mode);
-      const int n = Md.alpha_bits ? 4 : 3;
-      V bits = hn::Zero(d);
-      if (Md.subsets > 1) {
-        const std::int32_t* table = reinterpret_cast<const std::int32_t*>(Md.subsets == 2 ? bptc::kPartitions2 : bptc::kPartitions3);
-        bits = hn::GatherIndex(d, table, hn::And(best.partition, hn::Set(d, 63)));
-      }
-      for (int s = 0; s < Md.subsets; ++s) {
-        M member[16];
-        for (int i = 0; i < 16; ++i) member[i] = hn::Eq(hn::And(hn::ShiftRightSame(bits, 2 * i), hn::Set(d, 3)), hn::Set(d, s));
-        const SetV set{x, member, 0, n};
-        SetFitV fit;
-        for (int k = 0; k < 2; ++k) {
-          fit.pbit[k] = best.pbit[s][k];
-          for (int a = 0; a < n; ++a) {
-            fit.code[k][a] = best.code[s][k][a];
-            fit.value[k][a] = expand(fit.code[k][a], fit.pbit[k], fmt);
-          }
+  // As ref::step_winner, on the lanes `here`, whose winner is `mode`.
+  HWY_INLINE void step_mode(int mode, M here) {
+    const bptc::Bc7Mode& Md = bptc::kBc7Modes[mode];
+    const EndpointFormat fmt = bc7::color_format(mode);
+    const int n = Md.alpha_bits ? 4 : 3;
+    V bits = hn::Zero(d);
+    if (Md.subsets > 1) {
+      const std::int32_t* table = reinterpret_cast<const std::int32_t*>(Md.subsets == 2 ? bptc::kPartitions2 : bptc::kPartitions3);
+      bits = hn::GatherIndex(d, table, hn::And(best.partition, hn::Set(d, 63)));
+    }
+    for (int s = 0; s < Md.subsets; ++s) {
+      M member[16];
+      for (int i = 0; i < 16; ++i) member[i] = hn::Eq(hn::And(hn::ShiftRightSame(bits, 2 * i), hn::Set(d, 3)), hn::Set(d, s));
+      const SetV set{x, member, 0, n};
+      SetFitV fit;
+      for (int k = 0; k < 2; ++k) {
+        fit.pbit[k] = best.pbit[s][k];
+        for (int a = 0; a < n; ++a) {
+          fit.code[k][a] = best.code[s][k][a];
+          fit.value[k][a] = expand(fit.code[k][a], fit.pbit[k], fmt);
         }
-        for (int i = 0; i < 16; ++i) fit.index[i] = best.color_index[i];
-        assign(set, Md.index_bits, fit);
-        step_ends(set, fmt, Md.index_bits, level.winner_steps, here, fit);
-        for (int k = 0; k < 2; ++k)
-          for (int a = 0; a < n; ++a) best.code[s][k][a] = hn::IfThenElse(here, fit.code[k][a], best.code[s][k][a]);
-        for (int i = 0; i < 16; ++i) best.color_index[i] = hn::IfThenElse(hn::And(here, member[i]), fit.index[i], best.color_index[i]);
       }
+      for (int i = 0; i < 16; ++i) fit.index[i] = best.color_index[i];
+      assign(set, Md.index_bits, fit);
+      step_ends(set, fmt, Md.index_bits, level.winner_steps, here, fit);
+      for (int k = 0; k < 2; ++k)
+        for (int a = 0; a < n; ++a) best.code[s][k][a] = hn::IfThenElse(here, fit.code[k][a], best.code[s][k][a]);
+      for (int i = 0; i < 16; ++i) best.color_index[i] = hn::IfThenElse(hn::And(here, member[i]), fit.index[i], best.color_index[i]);
     }
   }
 
@@ -522,30 +513,74 @@ struct Bc7Batch {
       for (int r = 0; r < two.k; ++r) try_partitioned(7, two.partition[r], with_alpha);
   }
 
-  // The lanes' choices, packed: every field stored once, then read per lane.
-  HWY_INLINE void store(int k0, int count, std::uint8_t out[][16]) const {
-    bc7::LaneChoices t;
-    hn::StoreU(hn::VecFromMask(d, solid), d, t.solid);
-    for (int c = 0; c < 4; ++c) hn::StoreU(x[0][c], d, t.x0[c]);
-    hn::StoreU(best.mode, d, t.mode), hn::StoreU(best.partition, d, t.partition);
-    hn::StoreU(best.rotation, d, t.rotation), hn::StoreU(best.isel, d, t.isel);
+  // The lanes' choices into t's lanes k0 on (every field stored once; the
+  // packer reads them a lane a block), and back.
+  HWY_INLINE void store(bc7::LaneChoices& t, int k0) const {
+    hn::StoreU(hn::VecFromMask(d, solid), d, t.solid + k0);
+    for (int c = 0; c < 4; ++c) hn::StoreU(x[0][c], d, t.x0[c] + k0);
+    hn::StoreU(best.mode, d, t.mode + k0), hn::StoreU(best.partition, d, t.partition + k0);
+    hn::StoreU(best.rotation, d, t.rotation + k0), hn::StoreU(best.isel, d, t.isel + k0);
     for (int s = 0; s < 3; ++s)
       for (int e = 0; e < 2; ++e) {
-        hn::StoreU(best.pbit[s][e], d, t.pbit[s][e]);
-        for (int ch = 0; ch < 4; ++ch) hn::StoreU(best.code[s][e][ch], d, t.code[s][e][ch]);
+        hn::StoreU(best.pbit[s][e], d, t.pbit[s][e] + k0);
+        for (int ch = 0; ch < 4; ++ch) hn::StoreU(best.code[s][e][ch], d, t.code[s][e][ch] + k0);
       }
-    for (int i = 0; i < 16; ++i) hn::StoreU(best.color_index[i], d, t.color_index[i]), hn::StoreU(best.alpha_index[i], d, t.alpha_index[i]);
-    bc7::pack_lanes_simd(t, std::min(int(hn::Lanes(d)), count - k0), out + k0);
+    for (int i = 0; i < 16; ++i) hn::StoreU(best.color_index[i], d, t.color_index[i] + k0), hn::StoreU(best.alpha_index[i], d, t.alpha_index[i] + k0);
+  }
+  HWY_INLINE void load_choices(const bc7::LaneChoices& t) {
+    best.mode = hn::LoadU(d, t.mode), best.partition = hn::LoadU(d, t.partition);
+    best.rotation = hn::LoadU(d, t.rotation), best.isel = hn::LoadU(d, t.isel);
+    for (int s = 0; s < 3; ++s)
+      for (int e = 0; e < 2; ++e) {
+        best.pbit[s][e] = hn::LoadU(d, t.pbit[s][e]);
+        for (int ch = 0; ch < 4; ++ch) best.code[s][e][ch] = hn::LoadU(d, t.code[s][e][ch]);
+      }
+    for (int i = 0; i < 16; ++i) best.color_index[i] = hn::LoadU(d, t.color_index[i]), best.alpha_index[i] = hn::LoadU(d, t.alpha_index[i]);
   }
 };
 
-void Bc7EncodeLanes(const std::uint32_t texel[16][kBc7Batch], int count, const Bc7Level& level, std::uint8_t out[][16]) {
+// The winners' endpoint steps (as ref::step_winner), mode by mode over the
+// span's blocks: each mode's winners gathered into full vectors, so that a
+// pass runs once for every Lanes() winners of a mode, not once for every
+// batch that has one (a lane's result does not depend on its neighbours).
+HWY_INLINE void step_winners(Bc7Batch& batch, const Bc7Texels* texel, bc7::LaneChoices* t, int count) {
+  const int lanes = int(hn::Lanes(batch.d));
+  for (const int mode : {0, 1, 2, 3, 6, 7}) {
+    int ids[kBc7Span], n = 0;
+    for (int b = 0; b < count; ++b)
+      if (!t[b / kBc7Batch].solid[b % kBc7Batch] && t[b / kBc7Batch].mode[b % kBc7Batch] == mode) ids[n++] = b;
+    for (int j0 = 0; j0 < n; j0 += lanes) {
+      const int m = std::min(lanes, n - j0);
+      bc7::LaneChoices c;
+      std::uint32_t tex[16][kBc7Batch] = {};
+      for (int j = 0; j < m; ++j) {
+        const int b = ids[j0 + j];
+        bc7::copy_lane(t[b / kBc7Batch], b % kBc7Batch, c, j);
+        for (int i = 0; i < 16; ++i) tex[i][j] = texel[b / kBc7Batch][i][b % kBc7Batch];
+      }
+      batch.load(tex, 0);
+      batch.load_choices(c);
+      batch.step_mode(mode, hn::FirstN(batch.d, std::size_t(m)));
+      batch.store(c, 0);
+      for (int j = 0; j < m; ++j) bc7::copy_lane(c, j, t[ids[j0 + j] / kBc7Batch], ids[j0 + j] % kBc7Batch);
+    }
+  }
+}
+
+void Bc7EncodeLanes(const Bc7Texels* texel, int count, const Bc7Level& level, std::uint8_t out[][16]) {
   Bc7Batch batch(level);
   const int step = int(hn::Lanes(batch.d));
-  for (int k0 = 0; k0 < count; k0 += step) {
-    batch.load(texel, k0);
-    if (!hn::AllTrue(batch.d, batch.solid)) batch.search(), batch.step_winner();
-    batch.store(k0, count, out);
+  std::vector<bc7::LaneChoices> t(kBc7Span / kBc7Batch);
+  for (int s0 = 0; s0 < count; s0 += kBc7Span) {
+    const int span = std::min(kBc7Span, count - s0);
+    for (int b = 0; b * kBc7Batch < span; ++b)
+      for (int k0 = 0; k0 < kBc7Batch && b * kBc7Batch + k0 < span; k0 += step) {
+        batch.load(texel[s0 / kBc7Batch + b], k0);
+        if (!hn::AllTrue(batch.d, batch.solid)) batch.search();
+        batch.store(t[b], k0);
+      }
+    if (level.winner_steps > 0) step_winners(batch, texel + s0 / kBc7Batch, t.data(), span);
+    for (int b = 0; b * kBc7Batch < span; ++b) bc7::pack_lanes_simd(t[b], std::min(kBc7Batch, span - b * kBc7Batch), out + s0 + b * kBc7Batch);
   }
 }
 
@@ -557,7 +592,7 @@ HWY_AFTER_NAMESPACE();
 namespace texproc {
 HWY_EXPORT(Bc7EncodeLanes);
 
-void bc7_encode_lanes(const std::uint32_t texel[16][kBc7Batch], int count, const Bc7Level& level, std::uint8_t out[][16]) {
+void bc7_encode_lanes(const Bc7Texels* texel, int count, const Bc7Level& level, std::uint8_t out[][16]) {
   if (force_scalar()) return ref::bc7_encode_lanes(texel, count, level, out);
   HWY_DYNAMIC_DISPATCH(Bc7EncodeLanes)(texel, count, level, out);
 }

@@ -34,6 +34,18 @@ struct LaneChoices {
   std::int32_t solid[N], x0[4][N], mode[N], partition[N], rotation[N], isel[N];
   std::int32_t code[3][2][4][N], pbit[3][2][N], color_index[16][N], alpha_index[16][N];
 };
+// Lane j of `to` made lane k of `from`, every field.
+inline void copy_lane(const LaneChoices& from, int k, LaneChoices& to, int j) {
+  to.solid[j] = from.solid[k], to.mode[j] = from.mode[k], to.partition[j] = from.partition[k];
+  to.rotation[j] = from.rotation[k], to.isel[j] = from.isel[k];
+  for (int c = 0; c < 4; ++c) to.x0[c][j] = from.x0[c][k];
+  for (int s = 0; s < 3; ++s)
+    for (int e = 0; e < 2; ++e) {
+      to.pbit[s][e][j] = from.pbit[s][e][k];
+      for (int c = 0; c < 4; ++c) to.code[s][e][c][j] = from.code[s][e][c][k];
+    }
+  for (int i = 0; i < 16; ++i) to.color_index[i][j] = from.color_index[i][k], to.alpha_index[i][j] = from.alpha_index[i][k];
+}
 // Lanes 0 to count - 1 packed, lane k into out[k]: block by block
 // (pack_lanes, the reference), or a SIMD lane a block (pack_lanes_simd,
 // bc7_pack_simd.cpp, the same bytes; the reference under force_scalar).

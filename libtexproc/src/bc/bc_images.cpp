@@ -136,18 +136,23 @@ std::vector<std::uint8_t> compress_bc7(const ImageView& img, Quality q, const En
   const Bc7Level& level = bc7_level(q);  // bc7_levels.h
   for_each_row_block(bh, 4, [&](int by0, int by1) {
     std::uint8_t rgba[16][4];
-    std::uint32_t texel[16][kBc7Batch] = {};
-    for (int by = by0; by < by1; ++by)
-      for (int bx0 = 0; bx0 < bw; bx0 += kBc7Batch) {
-        const int count = std::min(kBc7Batch, bw - bx0);
-        if (!gather_rows_rgba8(img, bx0, by, count, texel)) {
-          for (int k = 0; k < count; ++k) {
-            gather_rgba8(img, bx0 + k, by, rgba);
-            for (int i = 0; i < 16; ++i) texel[i][k] = pack_texel(rgba[i]);
-          }
+    // Up to a span of blocks a call, row after row (the rows' blocks are
+    // consecutive in `out`): the encoder steps its winners together.
+    std::vector<Bc7Texels> texel(kBc7Span / kBc7Batch);
+    const int first = by0 * bw, total = (by1 - by0) * bw;
+    for (int s0 = 0; s0 < total; s0 += kBc7Span) {
+      const int span = std::min(kBc7Span, total - s0);
+      for (int b = 0; b * kBc7Batch < span; ++b) {
+        const int n0 = first + s0 + b * kBc7Batch, count = std::min(kBc7Batch, span - b * kBc7Batch);
+        const int by = n0 / bw, bx0 = n0 % bw;
+        if (bx0 + count <= bw && gather_rows_rgba8(img, bx0, by, count, texel[b])) continue;
+        for (int k = 0; k < count; ++k) {
+          gather_rgba8(img, (n0 + k) % bw, (n0 + k) / bw, rgba);
+          for (int i = 0; i < 16; ++i) texel[b][i][k] = pack_texel(rgba[i]);
         }
-        bc7_encode_lanes(texel, count, level, reinterpret_cast<std::uint8_t(*)[16]>(out.data() + (std::size_t(by) * bw + bx0) * 16));
       }
+      bc7_encode_lanes(texel.data(), span, level, reinterpret_cast<std::uint8_t(*)[16]>(out.data() + std::size_t(first + s0) * 16));
+    }
   }, options.progress);
   return out;
 }
