@@ -2,10 +2,10 @@
 // encodes bench_bc7's images (256x256 centred crops of the corpus's 15 colour
 // images, opaque) on one thread and prints its speed (the median of
 // --reps timings, MPix/s) and PSNR over RGB pooled over every crop. The
-// rows come from the command line, one argument a row of fourteen numbers
-// in Bc7Level's order (`2,1,64,1,1,0,1,0,2,1,0,0,0,0`), or, with none, the
-// grid below: the knobs one at a time from each level, and their pairs,
-// which is how the levels' rows were chosen (docs/compression.md).
+// rows come from the command line, one argument a row of fifteen numbers
+// in Bc7Level's order (`2,1,64,1,1,0,1,0,2,1,0,0,0,0,0`), or a grid
+// (--grid=normal, --grid=high: every combination of the knobs near a level,
+// below), or, with none, the levels fast, normal and high.
 // Rows are timed interleaved, rep by rep, so that a slow spell of a busy
 // machine falls on every row alike.
 #include <algorithm>
@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -55,44 +56,51 @@ bool parse(const std::string& s, Bc7Level& l) {
   std::vector<int> v;
   std::stringstream in(s);
   for (std::string f; std::getline(in, f, ',');) v.push_back(std::atoi(f.c_str()));
-  if (v.size() != 14) return false;
-  l = Bc7Level{v[0], v[1] != 0, v[2], v[3], v[4], v[5] != 0, v[6] != 0, v[7] != 0, v[8], v[9] != 0, v[10], v[11], v[12] != 0, v[13] != 0};
+  if (v.size() != 15) return false;
+  l = Bc7Level{v[0], v[1] != 0, v[2], v[3], v[4], v[5] != 0, v[6] != 0, v[7] != 0, v[8], v[9] != 0, v[10], v[11], v[12] != 0, v[13] != 0, v[14] != 0};
   return true;
 }
 
 std::string row(const Bc7Level& l) {
   char b[96];
-  std::snprintf(b, sizeof b, "%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d", l.partitions2, l.mode3, l.estimated2, l.partitions3, l.rotations,
+  std::snprintf(b, sizeof b, "%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d", l.partitions2, l.mode3, l.estimated2, l.partitions3, l.rotations,
                 l.index_selection, l.mode7, l.opaque_rotated, l.refine, l.exact_indices, l.perturb, l.winner_steps, l.pair_steps,
-                l.pbit_search);
+                l.pbit_search, l.exact_winner);
   return b;
 }
 
-// Each level, and each level with one knob moved a step either way.
-std::vector<Bc7Level> grid() {
+// The knob space around a level, every combination (a factorial grid): the
+// rows whose Pareto front docs/compression.md shows and the levels were
+// chosen from. `normal`: one rotation set or all four (opaque), 1-4
+// two-subset partitions with and without mode 3, 0-2 three-subset ones, 1-2
+// refinements, 0-2 rounds of winner steps with and without exact indices
+// there (the candidates' fits without). `high`: 6-24 / 2-8 partitions,
+// mode 3, 2-3 refinements, exact indices in the fits or in the winner's
+// pass only, pair steps, p-bit search (every rotation and index selection,
+// two rounds of winner steps).
+std::vector<Bc7Level> grid(const std::string& name) {
   std::vector<Bc7Level> g;
-  for (const Bc7Level& base : kBc7Levels) {
-    if (&base == &kBc7Levels[3]) break;  // max: too slow to sweep
-    g.push_back(base);
-    auto add = [&](auto edit) {
-      Bc7Level l = base;
-      edit(l);
-      if (row(l) != row(base)) g.push_back(l);
-    };
-    add([](Bc7Level& l) { l.partitions2 = std::max(1, l.partitions2 / 2); });
-    add([](Bc7Level& l) { l.partitions2 = std::min(64, l.partitions2 * 2); });
-    add([](Bc7Level& l) { l.estimated2 = l.estimated2 == 64 ? 32 : 64; });
-    add([](Bc7Level& l) { l.partitions3 = std::max(0, l.partitions3 / 2); });
-    add([](Bc7Level& l) { l.partitions3 = std::min(64, std::max(1, l.partitions3 * 2)); });
-    add([](Bc7Level& l) { l.mode3 = !l.mode3; });
-    add([](Bc7Level& l) { l.refine = std::max(0, l.refine - 1); });
-    add([](Bc7Level& l) { l.refine = l.refine + 1; });
-    add([](Bc7Level& l) { l.exact_indices = !l.exact_indices; });
-    add([](Bc7Level& l) { l.winner_steps = l.winner_steps ? 0 : 1; });
-    add([](Bc7Level& l) { l.winner_steps = l.winner_steps ? l.winner_steps / 2 : 2; });
-    add([](Bc7Level& l) { l.opaque_rotated = !l.opaque_rotated, l.rotations = l.opaque_rotated ? 4 : l.rotations; });
-    add([](Bc7Level& l) { l.pbit_search = !l.pbit_search; });
-    add([](Bc7Level& l) { l.pair_steps = !l.pair_steps; });
+  auto level = [](int p2, bool m3, int p3, int rot, bool orot, int refine, bool exact, int winner, bool pairs, bool pbits, bool ew) {
+    return Bc7Level{p2, m3, 64, p3, rot, rot > 1, true, orot, refine, exact, 0, winner, pairs, pbits, ew};
+  };
+  if (name == "normal") {
+    for (int p2 : {1, 2, 4})
+      for (bool m3 : {false, true})
+        for (int p3 : {0, 1, 2})
+          for (int refine : {1, 2})
+            for (int winner : {0, 1, 2})
+              for (bool ew : {false, true})
+                for (bool orot : {false, true})
+                  if (winner > 0 || !ew) g.push_back(level(p2, m3, p3, orot ? 4 : 1, orot, refine, false, winner, false, false, ew));
+    for (Bc7Level& l : g) l.index_selection = false;
+  } else if (name == "high") {
+    for (int p2 : {6, 12, 24})
+      for (int p3 : {2, 4, 8})
+        for (int refine : {2, 3})
+          for (bool pairs : {false, true})
+            for (bool pbits : {false, true})
+              for (bool exact : {false, true})
+                for (bool m3 : {false, true}) g.push_back(level(p2, m3, p3, 4, true, refine, exact, 2, pairs, pbits, true));
   }
   return g;
 }
@@ -107,14 +115,22 @@ int main(int argc, char** argv) {
     Bc7Level l{};
     if (s.rfind("--reps=", 0) == 0) {
       reps = std::max(1, std::atoi(s.c_str() + 7));
+    } else if (s.rfind("--grid=", 0) == 0) {
+      const std::vector<Bc7Level> g = grid(s.substr(7));
+      if (g.empty()) {
+        std::fprintf(stderr, "bc7_sweep: no grid '%s' (normal, high)\n", s.c_str() + 7);
+        return 2;
+      }
+      rows.insert(rows.end(), g.begin(), g.end());
     } else if (parse(s, l)) {
       rows.push_back(l);
     } else {
-      std::fprintf(stderr, "bc7_sweep: '%s' is not a row of 14 comma-separated knobs (bc7_levels.h's order) or --reps=N\n", s.c_str());
+      std::fprintf(stderr, "bc7_sweep: '%s' is not a row of 15 comma-separated knobs (bc7_levels.h's order), --grid=NAME or --reps=N\n",
+                   s.c_str());
       return 2;
     }
   }
-  if (rows.empty()) rows = grid();
+  if (rows.empty()) rows.assign(std::begin(kBc7Levels), std::end(kBc7Levels) - 1);  // max: too slow to repeat
   std::vector<Crop> crops;
   double pixels = 0;
   for (const Image& img : bench::centred_crops()) crops.push_back(gather(img)), pixels += double(img.width()) * img.height();
@@ -131,11 +147,18 @@ int main(int argc, char** argv) {
       }
       seconds[k].push_back(t);
     }
-  std::printf("%-40s %9s %8s\n", "knobs (bc7_levels.h order)", "MPix/s", "PSNR");
+  // Each row's speed and PSNR; `*`: on the Pareto front (no row both faster and better).
+  std::vector<double> speed(rows.size()), psnr(rows.size());
   for (std::size_t k = 0; k < rows.size(); ++k) {
     std::sort(seconds[k].begin(), seconds[k].end());
-    const double psnr = 10 * std::log10(255.0 * 255.0 / (se[k] / (3.0 * pixels)));
-    std::printf("%-40s %9.3f %8.3f\n", row(rows[k]).c_str(), pixels / seconds[k][seconds[k].size() / 2] / 1e6, psnr);
+    speed[k] = pixels / seconds[k][seconds[k].size() / 2] / 1e6;
+    psnr[k] = 10 * std::log10(255.0 * 255.0 / (se[k] / (3.0 * pixels)));
+  }
+  std::printf("%-44s %9s %8s\n", "knobs (bc7_levels.h order)", "MPix/s", "PSNR");
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    bool front = true;
+    for (std::size_t j = 0; j < rows.size(); ++j) front = front && !(speed[j] > speed[k] && psnr[j] > psnr[k]);
+    std::printf("%-44s %9.3f %8.3f%s\n", row(rows[k]).c_str(), speed[k], psnr[k], front ? " *" : "");
   }
   return 0;
 }

@@ -199,7 +199,7 @@ void quantize_assign(const Set& s, const float e[2][4], EndpointFormat f, int bi
   }
 }
 
-void step_ends(const Set& s, EndpointFormat f, int bits, const Bc7Level& level, int rounds, SetFit& best);
+void step_ends(const Set& s, EndpointFormat f, int bits, const Bc7Level& level, bool exact, int rounds, SetFit& best);
 
 // One index set fitted: the line's endpoints, then up to level.refine
 // least-squares rounds while the error falls.
@@ -215,19 +215,19 @@ SetFit fit_set(const Set& s, EndpointFormat f, int bits, bool force_p1, const Bc
     if (next.error >= best.error) break;
     best = next;
   }
-  step_ends(s, f, bits, level, level.perturb, best);
+  step_ends(s, f, bits, level, level.exact_indices, level.perturb, best);
   return best;
 }
 
 // Each code one step either way, channel by channel, kept where it helps
 // (with level.pair_steps, then a channel's two codes moved together);
-// up to `rounds` rounds while one does.
-void step_ends(const Set& s, EndpointFormat f, int bits, const Bc7Level& level, int rounds, SetFit& best) {
+// up to `rounds` rounds while one does; indices assigned `exact` or not.
+void step_ends(const Set& s, EndpointFormat f, int bits, const Bc7Level& level, bool exact, int rounds, SetFit& best) {
   const int top = (1 << f.bits) - 1;
   for (int round = 0; round < rounds && best.error > 0; ++round) {
     bool moved = false;
     auto keep_if_better = [&](SetFit& next) {
-      assign(s, bits, level.exact_indices, next);
+      assign(s, bits, exact, next);
       if (next.error < best.error) best = next, moved = true;
     };
     for (int k = 0; k < 2; ++k)
@@ -400,8 +400,9 @@ void step_winner(const Block& b, const Bc7Level& level, Choice& c) {
       for (int a = 0; a < n; ++a)
         fit.code[k][a] = c.code[s][k][a], fit.value[k][a] = bc7::expand(fit.code[k][a], f.bits, f.pbit == Pbit::none ? -1 : fit.pbit[k]);
     }
-    assign(set, M.index_bits, level.exact_indices, fit);
-    step_ends(set, f, M.index_bits, level, level.winner_steps, fit);
+    const bool exact = level.exact_indices || level.exact_winner;
+    assign(set, M.index_bits, exact, fit);
+    step_ends(set, f, M.index_bits, level, exact, level.winner_steps, fit);
     for (int k = 0; k < 2; ++k)
       for (int a = 0; a < n; ++a) c.code[s][k][a] = fit.code[k][a];
     for (int i = 0; i < 16; ++i)

@@ -15,7 +15,9 @@
 //     kept; opaque blocks, where the level says, modes 5 and 4 with
 //     rotations 1-3 only;
 //   - then, where the level says, the winner's endpoint codes stepped
-//     (modes 0-3, 6, 7).
+//     (modes 0-3, 6, 7; the SIMD twin gathers a span's winners mode by
+//     mode into full vectors first), its indices assigned with the
+//     neighbouring-index check where the level says (exact_winner).
 // A set's fit: the texels' principal axis (three power iterations on the
 // covariance, from its largest diagonal's column), the texels' extent along
 // it as endpoints, quantized (the p-bit that quantizes the endpoint better,

@@ -10,11 +10,12 @@
 
 #include <algorithm>
 #include <climits>
-#include <vector>
+#include <memory>
 
 #include "bc/bc7_lanes.h"
 #include "bc/bc7_shared.h"
 #include "bc/bc7_estimate_simd-inl.h"
+#include "bc/bc7_span_simd-inl.h"
 #include "texproc/runtime.h"
 
 HWY_BEFORE_NAMESPACE();
@@ -201,7 +202,8 @@ struct Bc7Batch {
   }
 
   // As ref::assign; the projection's sum of (x - e0) d as x d - e0 d.
-  HWY_INLINE void assign(const SetV& s, int bits, SetFitV& fit) const {
+  HWY_INLINE void assign(const SetV& s, int bits, SetFitV& fit) const { assign(s, bits, level.exact_indices, fit); }
+  HWY_INLINE void assign(const SetV& s, int bits, bool exact, SetFitV& fit) const {
     const int L = (1 << bits) - 1;
     V dv[4], dd = hn::Zero(d), origin = hn::Zero(d);
     for (int a = 0; a < s.n; ++a) {
@@ -217,7 +219,7 @@ struct Bc7Batch {
       V j = hn::ConvertTo(d, hn::Round(hn::Mul(f(t), scale)));
       j = hn::Min(hn::Max(j, hn::Zero(d)), hn::Set(d, L));
       V e = texel_error(s, fit, dv, i, j, L);
-      if (level.exact_indices) {
+      if (exact) {
         const V j0 = j, lo = hn::Sub(j0, hn::Set(d, 1)), hi = hn::Add(j0, hn::Set(d, 1));
         const V elo = texel_error(s, fit, dv, i, hn::Max(lo, hn::Zero(d)), L);
         const M take_lo = hn::And(hn::Gt(j0, hn::Zero(d)), hn::Lt(elo, e));
@@ -291,7 +293,7 @@ struct Bc7Batch {
       select_fit(better, next, best_fit, s);
       active = hn::And(better, hn::Gt(best_fit.error, hn::Zero(d)));
     }
-    step_ends(s, fmt, bits, level.perturb, hn::FirstN(d, kBc7Batch), best_fit);
+    step_ends(s, fmt, bits, level.exact_indices, level.perturb, hn::FirstN(d, kBc7Batch), best_fit);
   }
 
   // As bc7::expand: a code (and its p-bit where the format has one) as
@@ -304,29 +306,25 @@ struct Bc7Batch {
   }
 
   // As ref::step_ends, in the lanes `going`.
-  HWY_INLINE void step_ends(const SetV& s, EndpointFormat fmt, int bits, int rounds, M going, SetFitV& best_fit) const {
+  HWY_INLINE void step_ends(const SetV& s, EndpointFormat fmt, int bits, bool exact, int rounds, M going, SetFitV& best_fit) const {
     const int top = (1 << fmt.bits) - 1;
     for (int round = 0; round < rounds; ++round) {
       const M now = hn::And(going, hn::Gt(best_fit.error, hn::Zero(d)));
       if (hn::AllFalse(d, now)) break;
       M moved = hn::FirstN(d, 0);
-      // Channel a's codes made code[0], code[1] where `valid`, kept where the error falls.
-      const auto attempt = [&](int a, const V code[2], M valid) {
-        if (hn::AllFalse(d, valid)) return;
-        SetFitV next = best_fit;
-        for (int k = 0; k < 2; ++k) next.code[k][s.c0 + a] = code[k], next.value[k][s.c0 + a] = expand(code[k], best_fit.pbit[k], fmt);
-        assign(s, bits, next);
-        const M better = hn::And(valid, hn::Lt(next.error, best_fit.error));
-        select_fit(better, next, best_fit, s);
-        moved = hn::Or(moved, better);
-      };
-      const auto in_range = [&](V code) { return hn::And(hn::Gt(code, hn::Set(d, -1)), hn::Lt(code, hn::Set(d, top + 1))); };
       for (int k = 0; k < 2; ++k)
         for (int a = 0; a < s.n; ++a)
           for (const int step : {-1, 1}) {
-            V code[2] = {best_fit.code[0][s.c0 + a], best_fit.code[1][s.c0 + a]};
-            code[k] = hn::Add(code[k], hn::Set(d, step));
-            attempt(a, code, hn::And(now, in_range(code[k])));
+            const V code = hn::Add(best_fit.code[k][s.c0 + a], hn::Set(d, step));
+            const M valid = hn::And(now, hn::And(hn::Gt(code, hn::Set(d, -1)), hn::Lt(code, hn::Set(d, top + 1))));
+            if (hn::AllFalse(d, valid)) continue;
+            SetFitV next = best_fit;
+            next.code[k][s.c0 + a] = code;
+            next.value[k][s.c0 + a] = expand(code, best_fit.pbit[k], fmt);
+            assign(s, bits, exact, next);
+            const M better = hn::And(valid, hn::Lt(next.error, best_fit.error));
+            select_fit(better, next, best_fit, s);
+            moved = hn::Or(moved, better);
           }
       if (level.pair_steps)
         for (int a = 0; a < s.n; ++a)
@@ -336,9 +334,18 @@ struct Bc7Batch {
             for (int k = 0; k < 2; ++k) {
               const int dk = step == 0 ? 1 : step == 1 ? -1 : (step == 2) == (k == 1) ? 1 : -1;
               code[k] = hn::Add(best_fit.code[k][s.c0 + a], hn::Set(d, dk));
-              valid = hn::And(valid, in_range(code[k]));
+              valid = hn::And(valid, hn::And(hn::Gt(code[k], hn::Set(d, -1)), hn::Lt(code[k], hn::Set(d, top + 1))));
             }
-            attempt(a, code, valid);
+            if (hn::AllFalse(d, valid)) continue;
+            SetFitV next = best_fit;
+            for (int k = 0; k < 2; ++k) {
+              next.code[k][s.c0 + a] = code[k];
+              next.value[k][s.c0 + a] = expand(code[k], best_fit.pbit[k], fmt);
+            }
+            assign(s, bits, exact, next);
+            const M better = hn::And(valid, hn::Lt(next.error, best_fit.error));
+            select_fit(better, next, best_fit, s);
+            moved = hn::Or(moved, better);
           }
       going = hn::And(now, moved);
     }
@@ -472,8 +479,9 @@ struct Bc7Batch {
         }
       }
       for (int i = 0; i < 16; ++i) fit.index[i] = best.color_index[i];
-      assign(set, Md.index_bits, fit);
-      step_ends(set, fmt, Md.index_bits, level.winner_steps, here, fit);
+      const bool exact = level.exact_indices || level.exact_winner;
+      assign(set, Md.index_bits, exact, fit);
+      step_ends(set, fmt, Md.index_bits, exact, level.winner_steps, here, fit);
       for (int k = 0; k < 2; ++k)
         for (int a = 0; a < n; ++a) best.code[s][k][a] = hn::IfThenElse(here, fit.code[k][a], best.code[s][k][a]);
       for (int i = 0; i < 16; ++i) best.color_index[i] = hn::IfThenElse(hn::And(here, member[i]), fit.index[i], best.color_index[i]);
@@ -539,47 +547,27 @@ struct Bc7Batch {
   }
 };
 
-// The winners' endpoint steps (as ref::step_winner), mode by mode over the
-// span's blocks: each mode's winners gathered into full vectors, so that a
-// pass runs once for every Lanes() winners of a mode, not once for every
-// batch that has one (a lane's result does not depend on its neighbours).
-HWY_INLINE void step_winners(Bc7Batch& batch, const Bc7Texels* texel, bc7::LaneChoices* t, int count) {
-  const int lanes = int(hn::Lanes(batch.d));
-  for (const int mode : {0, 1, 2, 3, 6, 7}) {
-    int ids[kBc7Span], n = 0;
-    for (int b = 0; b < count; ++b)
-      if (!t[b / kBc7Batch].solid[b % kBc7Batch] && t[b / kBc7Batch].mode[b % kBc7Batch] == mode) ids[n++] = b;
-    for (int j0 = 0; j0 < n; j0 += lanes) {
-      const int m = std::min(lanes, n - j0);
-      bc7::LaneChoices c;
-      std::uint32_t tex[16][kBc7Batch] = {};
-      for (int j = 0; j < m; ++j) {
-        const int b = ids[j0 + j];
-        bc7::copy_lane(t[b / kBc7Batch], b % kBc7Batch, c, j);
-        for (int i = 0; i < 16; ++i) tex[i][j] = texel[b / kBc7Batch][i][b % kBc7Batch];
-      }
-      batch.load(tex, 0);
-      batch.load_choices(c);
-      batch.step_mode(mode, hn::FirstN(batch.d, std::size_t(m)));
-      batch.store(c, 0);
-      for (int j = 0; j < m; ++j) bc7::copy_lane(c, j, t[ids[j0 + j] / kBc7Batch], ids[j0 + j] % kBc7Batch);
-    }
-  }
-}
-
 void Bc7EncodeLanes(const Bc7Texels* texel, int count, const Bc7Level& level, std::uint8_t out[][16]) {
   Bc7Batch batch(level);
   const int step = int(hn::Lanes(batch.d));
-  std::vector<bc7::LaneChoices> t(kBc7Span / kBc7Batch);
+  // Without winner steps a batch is packed as soon as it is searched (its
+  // choices still in cache); with them, a span's choices wait for the steps.
+  // Not zeroed: only the lanes searched are read.
+  const bool stepped = level.winner_steps > 0;
+  const std::unique_ptr<bc7::LaneChoices[]> t(new bc7::LaneChoices[stepped ? kBc7Span / kBc7Batch : 1]);
   for (int s0 = 0; s0 < count; s0 += kBc7Span) {
     const int span = std::min(kBc7Span, count - s0);
-    for (int b = 0; b * kBc7Batch < span; ++b)
+    for (int b = 0; b * kBc7Batch < span; ++b) {
+      bc7::LaneChoices& tb = t[stepped ? b : 0];
       for (int k0 = 0; k0 < kBc7Batch && b * kBc7Batch + k0 < span; k0 += step) {
         batch.load(texel[s0 / kBc7Batch + b], k0);
         if (!hn::AllTrue(batch.d, batch.solid)) batch.search();
-        batch.store(t[b], k0);
+        batch.store(tb, k0);
       }
-    if (level.winner_steps > 0) step_winners(batch, texel + s0 / kBc7Batch, t.data(), span);
+      if (!stepped) bc7::pack_lanes_simd(tb, std::min(kBc7Batch, span - b * kBc7Batch), out + s0 + b * kBc7Batch);
+    }
+    if (!stepped) continue;
+    step_winners(batch, texel + s0 / kBc7Batch, t.get(), span);
     for (int b = 0; b * kBc7Batch < span; ++b) bc7::pack_lanes_simd(t[b], std::min(kBc7Batch, span - b * kBc7Batch), out + s0 + b * kBc7Batch);
   }
 }

@@ -52,14 +52,17 @@ struct Bc7Level {
   // p-bit an endpoint, two for a shared one) against the exact error,
   // instead of the p-bit that quantizes each endpoint nearest.
   bool pbit_search;
+  // The winner's pass (its assignment and steps) with the neighbouring
+  // indices tried, where the candidates' fits go without (exact_indices off).
+  bool exact_winner;
 };
 
 inline constexpr Bc7Level kBc7Levels[] = {
-    //            p2  mode3 est2 p3  rot  isel  mode7 opaque-rot refine exact perturb winner pairs pbits
-    /* fast   */ {1, false, 32, 0, 1, false, false, false, 1, false, 0, 0, false, false},
-    /* normal */ {2, true, 64, 1, 1, false, true, false, 2, true, 0, 0, false, false},
-    /* high   */ {12, true, 64, 4, 4, true, true, true, 3, true, 0, 4, false, false},
-    /* max    */ {64, true, 64, 64, 4, true, true, true, 6, true, 4, 0, true, true},
+    //            p2  mode3 est2 p3  rot  isel  mode7 opaque-rot refine exact perturb winner pairs pbits exact-winner
+    /* fast   */ {1, false, 32, 0, 1, false, false, false, 1, false, 0, 0, false, false, false},
+    /* normal */ {4, false, 64, 1, 1, false, true, false, 1, false, 0, 1, false, false, false},
+    /* high   */ {12, true, 64, 4, 4, true, true, true, 2, false, 0, 2, true, false, true},
+    /* max    */ {64, true, 64, 64, 4, true, true, true, 6, true, 4, 0, true, true, false},
 };
 
 inline const Bc7Level& bc7_level(Quality q) { return kBc7Levels[int(q)]; }
