@@ -35,7 +35,7 @@ HWY_INLINE void step_winners(Batch& batch, const Bc7Texels* texel, bc7::LaneChoi
       if (!t[b / kBc7Batch].solid[b % kBc7Batch] && t[b / kBc7Batch].mode[b % kBc7Batch] == mode) ids[n++] = b;
     for (int j0 = 0; j0 < n; j0 += lanes) {
       const int m = std::min(lanes, n - j0);
-      bc7::LaneChoices c;
+      bc7::LaneChoices c{};  // lanes m on are read, not used
       std::uint32_t tex[16][kBc7Batch] = {};
       for (int j = 0; j < m; ++j) {
         const int b = ids[j0 + j];
