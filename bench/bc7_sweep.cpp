@@ -80,8 +80,8 @@ std::string row(const Bc7Level& l) {
 // two rounds of winner steps).
 std::vector<Bc7Level> grid(const std::string& name) {
   std::vector<Bc7Level> g;
-  auto level = [](int p2, bool m3, int p3, int rot, bool orot, int refine, bool exact, int winner, bool pairs, bool pbits, bool ew) {
-    return Bc7Level{p2, m3, 64, p3, rot, rot > 1, true, orot, refine, exact, 0, winner, pairs, pbits, ew};
+  auto level = [](int p2, bool m3, int p3, int rot, bool isel, bool orot, int refine, bool exact, int winner, bool pairs, bool pbits, bool ew) {
+    return Bc7Level{p2, m3, 64, p3, rot, isel, true, orot, refine, exact, 0, winner, pairs, pbits, ew};
   };
   if (name == "normal") {
     for (int p2 : {1, 2, 4})
@@ -91,8 +91,7 @@ std::vector<Bc7Level> grid(const std::string& name) {
             for (int winner : {0, 1, 2})
               for (bool ew : {false, true})
                 for (bool orot : {false, true})
-                  if (winner > 0 || !ew) g.push_back(level(p2, m3, p3, orot ? 4 : 1, orot, refine, false, winner, false, false, ew));
-    for (Bc7Level& l : g) l.index_selection = false;
+                  if (winner > 0 || !ew) g.push_back(level(p2, m3, p3, orot ? 4 : 1, false, orot, refine, false, winner, false, false, ew));
   } else if (name == "high") {
     for (int p2 : {6, 12, 24})
       for (int p3 : {2, 4, 8})
@@ -100,7 +99,7 @@ std::vector<Bc7Level> grid(const std::string& name) {
           for (bool pairs : {false, true})
             for (bool pbits : {false, true})
               for (bool exact : {false, true})
-                for (bool m3 : {false, true}) g.push_back(level(p2, m3, p3, 4, true, refine, exact, 2, pairs, pbits, true));
+                for (bool m3 : {false, true}) g.push_back(level(p2, m3, p3, 4, true, true, refine, exact, 2, pairs, pbits, true));
   }
   return g;
 }

@@ -217,7 +217,7 @@ TEST(Bc7Encode, LevelsOrderAndSimdMatchesScalarOnCorpusCrops) {
                           Source{"normal_ts/ufoai_rock017_nm_alphaheight.png", true}, Source{"alpha/ufoai_fence_512x256.png", false},
                           Source{"alpha/trigger_palm_tree2_1000.png", false}}) {
     const Image src = read_image(corpus_dir() + "/" + s.file);
-    const Image crop = crop_rgba8(src, 100, 100, 72, 40, s.opaque);  // 18 blocks a row: a batch of 16 and one of 2
+    const Image crop = crop_rgba8(src, 100, 100, 72, 40, s.opaque);  // 18 blocks a row: batches of 16 that cross rows, and a short one
     double last = INFINITY;
     for (Quality q : {Quality::fast, Quality::normal, Quality::high}) {
       const auto blocks = compress_image(crop.view(), TexelFormat::bc7_unorm, q);
