@@ -56,16 +56,16 @@ bool parse(const std::string& s, Bc7Level& l) {
   std::vector<int> v;
   std::stringstream in(s);
   for (std::string f; std::getline(in, f, ',');) v.push_back(std::atoi(f.c_str()));
-  if (v.size() != 15) return false;
-  l = Bc7Level{v[0], v[1] != 0, v[2], v[3], v[4], v[5] != 0, v[6] != 0, v[7] != 0, v[8], v[9] != 0, v[10], v[11], v[12] != 0, v[13] != 0, v[14] != 0};
+  if (v.size() != 18) return false;
+  l = Bc7Level{v[0], v[1] != 0, v[2], v[3], v[4], v[5] != 0, v[6] != 0, v[7] != 0, v[8], v[9] != 0, v[10], v[11], v[12] != 0, v[13] != 0, v[14] != 0, v[15] != 0, v[16], v[17]};
   return true;
 }
 
 std::string row(const Bc7Level& l) {
   char b[96];
-  std::snprintf(b, sizeof b, "%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d", l.partitions2, l.mode3, l.estimated2, l.partitions3, l.rotations,
+  std::snprintf(b, sizeof b, "%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d", l.partitions2, l.mode3, l.estimated2, l.partitions3, l.rotations,
                 l.index_selection, l.mode7, l.opaque_rotated, l.refine, l.exact_indices, l.perturb, l.winner_steps, l.pair_steps,
-                l.pbit_search, l.exact_winner);
+                l.pbit_search, l.exact_winner, l.joint, l.seeds, l.winner_seeds);
   return b;
 }
 
@@ -81,7 +81,7 @@ std::string row(const Bc7Level& l) {
 std::vector<Bc7Level> grid(const std::string& name) {
   std::vector<Bc7Level> g;
   auto level = [](int p2, bool m3, int p3, int rot, bool isel, bool orot, int refine, bool exact, int winner, bool pairs, bool pbits, bool ew) {
-    return Bc7Level{p2, m3, 64, p3, rot, isel, true, orot, refine, exact, 0, winner, pairs, pbits, ew};
+    return Bc7Level{p2, m3, 64, p3, rot, isel, true, orot, refine, exact, 0, winner, pairs, pbits, ew, false, 1, 1};
   };
   if (name == "normal") {
     for (int p2 : {1, 2, 4})
@@ -92,6 +92,29 @@ std::vector<Bc7Level> grid(const std::string& name) {
               for (bool ew : {false, true})
                 for (bool orot : {false, true})
                   if (winner > 0 || !ew) g.push_back(level(p2, m3, p3, orot ? 4 : 1, false, orot, refine, false, winner, false, false, ew));
+  } else if (name == "seeds-normal") {  // session 16's knobs around `normal`
+    for (int p2 : {1, 2, 4})
+      for (int winner : {0, 1})
+        for (bool ew : {false, true})
+          for (bool joint : {false, true})
+            for (int seeds : {1, 2})
+              for (int ws : {0, 3, 4})
+                if (winner > 0 || !ew) {
+                  Bc7Level l = level(p2, false, 1, 1, false, false, 1, false, winner, false, false, ew);
+                  l.joint = joint, l.seeds = seeds, l.winner_seeds = ws ? ws : seeds;
+                  g.push_back(l);
+                }
+  } else if (name == "seeds-high") {  // and around `high`
+    for (int p2 : {6, 12})
+      for (bool m3 : {false, true})
+        for (int p3 : {2, 4})
+          for (int refine : {1, 2})
+            for (bool joint : {false, true})
+              for (int seeds : {2, 3, 4}) {
+                Bc7Level l = level(p2, m3, p3, 4, true, true, refine, false, 2, true, false, true);
+                l.joint = joint, l.seeds = seeds, l.winner_seeds = 4;
+                g.push_back(l);
+              }
   } else if (name == "high") {
     for (int p2 : {6, 12, 24})
       for (int p3 : {2, 4, 8})
@@ -117,14 +140,14 @@ int main(int argc, char** argv) {
     } else if (s.rfind("--grid=", 0) == 0) {
       const std::vector<Bc7Level> g = grid(s.substr(7));
       if (g.empty()) {
-        std::fprintf(stderr, "bc7_sweep: no grid '%s' (normal, high)\n", s.c_str() + 7);
+        std::fprintf(stderr, "bc7_sweep: no grid '%s' (normal, high, seeds-normal, seeds-high)\n", s.c_str() + 7);
         return 2;
       }
       rows.insert(rows.end(), g.begin(), g.end());
     } else if (parse(s, l)) {
       rows.push_back(l);
     } else {
-      std::fprintf(stderr, "bc7_sweep: '%s' is not a row of 15 comma-separated knobs (bc7_levels.h's order), --grid=NAME or --reps=N\n",
+      std::fprintf(stderr, "bc7_sweep: '%s' is not a row of 18 comma-separated knobs (bc7_levels.h's order), --grid=NAME or --reps=N\n",
                    s.c_str());
       return 2;
     }

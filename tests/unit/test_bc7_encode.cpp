@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "bc/bc7_lanes.h"
 #include "bc/bc7_shared.h"
 #include "bc/bc_decode.h"
 #include "support/images.h"
@@ -234,6 +235,39 @@ TEST(Bc7Encode, LevelsOrderAndSimdMatchesScalarOnCorpusCrops) {
     const Image strip = crop_rgba8(src, 100, 100, 40, 4, s.opaque);
     expect_same_on_every_target([&] { return compress_image(strip.view(), TexelFormat::bc7_unorm, Quality::max); },
                                 std::string(s.file) + " max");
+  }
+}
+
+// The fit's knobs in rows the levels do not use (joint quantization, two
+// to four seeds, the winner's seeds with and without its steps, beside the
+// p-bit search, the neighbouring-index check and the candidates' steps),
+// through bc7_encode_lanes on corpus blocks with and without alpha: SIMD
+// gives the scalar reference's bytes on every target.
+TEST(Bc7Encode, FitKnobsOffTheLevelsSimdMatchesScalar) {
+  if (!have_corpus()) GTEST_SKIP() << "no corpus at " << corpus_dir();
+  const Bc7Level rows[] = {
+      {4, false, 64, 1, 1, false, true, false, 1, false, 0, 1, false, false, false, true, 1, 1},
+      {4, false, 64, 1, 1, false, true, false, 1, false, 0, 0, false, false, false, false, 1, 3},
+      {2, true, 64, 2, 4, true, true, true, 2, true, 1, 1, true, true, true, true, 4, 4},
+      {6, false, 64, 2, 4, true, true, true, 1, false, 0, 2, true, false, true, true, 3, 4},
+  };
+  for (const char* file : {"photo/skimage_astronaut_512.png", "alpha/ufoai_fence_512x256.png"}) {
+    const Image crop = crop_rgba8(read_image(corpus_dir() + "/" + file), 96, 96, 80, 12, false);  // 60 blocks
+    const int bw = crop.width() / 4, count = bw * crop.height() / 4;
+    std::vector<Bc7Texels> texel((count + kBc7Batch - 1) / kBc7Batch);
+    for (int b = 0; b < count; ++b)
+      for (int i = 0; i < 16; ++i) {
+        const std::uint8_t* p = crop.row<const std::uint8_t>(b / bw * 4 + i / 4) + 4 * (b % bw * 4 + i % 4);
+        texel[b / kBc7Batch][i][b % kBc7Batch] = std::uint32_t(p[0]) | p[1] << 8 | p[2] << 16 | std::uint32_t(p[3]) << 24;
+      }
+    for (const Bc7Level& level : rows)
+      expect_same_on_every_target(
+          [&] {
+            std::vector<std::uint8_t> out(16 * std::size_t(count));
+            bc7_encode_lanes(texel.data(), count, level, reinterpret_cast<std::uint8_t(*)[16]>(out.data()));
+            return out;
+          },
+          std::string(file) + " seeds " + std::to_string(level.seeds) + "/" + std::to_string(level.winner_seeds));
   }
 }
 

@@ -164,24 +164,74 @@ void assign(const Set& s, int bits, bool exact, SetFit& fit) {
   }
 }
 
+// The weights' sums least squares solves with (out of 64): also the
+// quadratic form of the error of other ends for the same indices.
+struct LsqSums {
+  int AA = 0, AB = 0, BB = 0;
+};
+
 // Least-squares endpoints for the fit's indices (weights out of 64); false
 // where they are not determined (every index the same).
-bool lsq_ends(const Set& s, int bits, const SetFit& fit, float e[2][4]) {
-  int AA = 0, AB = 0, BB = 0, RA[4] = {}, RB[4] = {};
+bool lsq_ends(const Set& s, int bits, const SetFit& fit, float e[2][4], LsqSums& q) {
+  int RA[4] = {}, RB[4] = {};
   for (int i = 0; i < 16; ++i) {
     if (!s.has(i)) continue;
     const int b = bptc::weights(bits)[fit.index[i]], a = 64 - b;
-    AA += a * a, AB += a * b, BB += b * b;
+    q.AA += a * a, q.AB += a * b, q.BB += b * b;
     for (int c = 0; c < s.n; ++c) RA[c] += a * s.x[i][s.c0 + c], RB[c] += b * s.x[i][s.c0 + c];
   }
-  const float det = float(AA) * float(BB) - float(AB) * float(AB);
+  const float det = float(q.AA) * float(q.BB) - float(q.AB) * float(q.AB);
   if (!(det > 0.0f)) return false;
   const float inv = 64.0f / det;
   for (int c = 0; c < s.n; ++c) {
-    e[0][s.c0 + c] = (float(RA[c]) * float(BB) - float(RB[c]) * float(AB)) * inv;
-    e[1][s.c0 + c] = (float(RB[c]) * float(AA) - float(RA[c]) * float(AB)) * inv;
+    e[0][s.c0 + c] = (float(RA[c]) * float(q.BB) - float(RB[c]) * float(q.AB)) * inv;
+    e[1][s.c0 + c] = (float(RB[c]) * float(q.AA) - float(RA[c]) * float(q.AB)) * inv;
   }
   return true;
+}
+
+// Least-squares ends quantized jointly (level.joint): for the indices that
+// gave them (sums q), each p-bit choice, and in it, channel by channel, the
+// pair of codes (each end's nearest code and the next one on the end's
+// other side) of least error for those indices. That error, 64^2 times,
+// is the quadratic's value at the least-squares ends plus (y - e)' H (y - e)
+// for decoded ends y (H = [AA AB; AB BB]), so only the second term is
+// compared (the decoder's rounding left out). The first of least error kept.
+void quantize_joint(const Set& s, const float e[2][4], const LsqSums& q, EndpointFormat f, bool force_p1, SetFit& fit) {
+  const int top = (1 << f.bits) - 1;
+  const int combos = f.pbit == Pbit::none || force_p1 ? 1 : f.pbit == Pbit::unique ? 4 : 2;
+  const float AA = float(q.AA), AB2 = 2.0f * float(q.AB), BB = float(q.BB);
+  float best = INFINITY;
+  for (int combo = 0; combo < combos; ++combo) {
+    int p[2] = {-1, -1};
+    if (f.pbit != Pbit::none) p[0] = force_p1 ? 1 : combo & 1, p[1] = force_p1 ? 1 : f.pbit == Pbit::unique ? combo >> 1 & 1 : p[0];
+    int code[2][4] = {}, value[2][4] = {};
+    float total = 0.0f;
+    for (int a = 0; a < s.n; ++a) {
+      int cand[2][2], val[2][2];
+      for (int k = 0; k < 2; ++k) {
+        const int v = int(std::nearbyint(std::min(std::max(e[k][s.c0 + a], 0.0f), 255.0f)));
+        const bc7::Quantized n = bc7::quantize(f.bits, p[k], v);
+        const int alt = std::clamp(n.value < v ? n.code + 1 : n.code - 1, 0, top);
+        cand[k][0] = n.code, val[k][0] = n.value;
+        cand[k][1] = alt, val[k][1] = bc7::expand(alt, f.bits, p[k]);
+      }
+      float least = INFINITY;
+      for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 2; ++j) {
+          const float d0 = float(val[0][i]) - e[0][s.c0 + a], d1 = float(val[1][j]) - e[1][s.c0 + a];
+          const float t = AA * d0 * d0 + AB2 * d0 * d1 + BB * d1 * d1;
+          if (t < least) least = t, code[0][a] = cand[0][i], code[1][a] = cand[1][j], value[0][a] = val[0][i], value[1][a] = val[1][j];
+        }
+      total += least;
+    }
+    if (!(total < best)) continue;
+    best = total;
+    for (int k = 0; k < 2; ++k) {
+      fit.pbit[k] = std::max(p[k], 0);
+      for (int a = 0; a < s.n; ++a) fit.code[k][s.c0 + a] = code[k][a], fit.value[k][s.c0 + a] = value[k][a];
+    }
+  }
 }
 
 // The ends quantized and the indices assigned: the nearest p-bits, or with
@@ -201,19 +251,52 @@ void quantize_assign(const Set& s, const float e[2][4], EndpointFormat f, int bi
 
 void step_ends(const Set& s, EndpointFormat f, int bits, const Bc7Level& level, bool exact, int rounds, SetFit& best);
 
-// One index set fitted: the line's endpoints, then up to level.refine
-// least-squares rounds while the error falls.
-SetFit fit_set(const Set& s, EndpointFormat f, int bits, bool force_p1, const Bc7Level& level) {
+// Seed `seed` of a fit (level.seeds): 0, the line's ends; 1, its high end
+// moved out by one index step of L (the extent spans L - 1 steps, so the
+// highest texels fall on index L - 1); 2, its low end; 3, both (L - 2
+// steps). (Seed 0 is the line itself, not line[0] + 1 * (line[1] - line[0]).)
+void seed_ends(const Set& s, const float line[2][4], int seed, int L, float e[2][4]) {
+  const int lo = seed >> 1 & 1, hi = seed & 1, inside = L - lo - hi;
+  const float f0 = -float(lo) / float(inside), f1 = float(hi) / float(inside) + 1.0f;
+  for (int a = s.c0; a < s.c0 + s.n; ++a) {
+    const float d = line[1][a] - line[0][a];
+    e[0][a] = seed == 0 ? line[0][a] : line[0][a] + f0 * d;
+    e[1][a] = seed == 0 ? line[1][a] : line[0][a] + f1 * d;
+  }
+}
+
+// One index set fitted from each seed: its ends quantized, then up to
+// level.refine least-squares rounds while the error falls; the seed of
+// least error kept (the first of equal ones), then its steps (level.perturb).
+SetFit fit_seed(const Set& s, const float line[2][4], int seed, EndpointFormat f, int bits, bool force_p1, const Bc7Level& level) {
   float e[2][4] = {};
-  line_ends(s, e);
-  SetFit best;
-  quantize_assign(s, e, f, bits, force_p1, level, best);
-  for (int pass = 0; pass < level.refine && best.error > 0; ++pass) {
-    if (!lsq_ends(s, bits, best, e)) break;
+  seed_ends(s, line, seed, (1 << bits) - 1, e);
+  SetFit fit;
+  quantize_assign(s, e, f, bits, force_p1, level, fit);
+  for (int pass = 0; pass < level.refine && fit.error > 0; ++pass) {
+    LsqSums q;
+    if (!lsq_ends(s, bits, fit, e, q)) break;
     SetFit next;
-    quantize_assign(s, e, f, bits, force_p1, level, next);
-    if (next.error >= best.error) break;
-    best = next;
+    if (level.joint) {
+      quantize_joint(s, e, q, f, force_p1, next);
+      assign(s, bits, level.exact_indices, next);
+    } else {
+      quantize_assign(s, e, f, bits, force_p1, level, next);
+    }
+    if (next.error >= fit.error) break;
+    fit = next;
+  }
+  return fit;
+}
+
+SetFit fit_set(const Set& s, EndpointFormat f, int bits, bool force_p1, const Bc7Level& level) {
+  float line[2][4] = {};
+  line_ends(s, line);
+  SetFit best;
+  for (int seed = 0; seed < std::max(level.seeds, 1); ++seed) {
+    const SetFit fit = fit_seed(s, line, seed, f, bits, force_p1, level);
+    if (seed == 0 || fit.error < best.error) best = fit;
+    if (best.error == 0) break;
   }
   step_ends(s, f, bits, level, level.exact_indices, level.perturb, best);
   return best;
@@ -385,7 +468,7 @@ void try_rotated(const Block& b, int mode, int rotation, int isel, const Bc7Leve
 // The winner's endpoints stepped (level.winner_steps rounds), subset by
 // subset, from its codes and the indices they assign.
 void step_winner(const Block& b, const Bc7Level& level, Choice& c) {
-  if (level.winner_steps == 0 || c.mode == 4 || c.mode == 5) return;
+  if (!has_winner_pass(level) || c.mode == 4 || c.mode == 5) return;
   const bptc::Bc7Mode& M = bptc::kBc7Modes[c.mode];
   const std::uint32_t bits = M.subsets == 2 ? bptc::kPartitions2[c.partition] : M.subsets == 3 ? bptc::kPartitions3[c.partition] : 0;
   const int n = M.alpha_bits ? 4 : 3;
@@ -402,9 +485,20 @@ void step_winner(const Block& b, const Bc7Level& level, Choice& c) {
     }
     const bool exact = level.exact_indices || level.exact_winner;
     assign(set, M.index_bits, exact, fit);
+    if (level.winner_seeds > level.seeds) {
+      float line[2][4] = {};
+      line_ends(set, line);
+      for (int seed = std::max(level.seeds, 1); seed < level.winner_seeds; ++seed) {
+        SetFit next = fit_seed(set, line, seed, f, M.index_bits, b.opaque && n == 4, level);
+        assign(set, M.index_bits, exact, next);
+        if (next.error < fit.error) fit = next;
+      }
+    }
     step_ends(set, f, M.index_bits, level, exact, level.winner_steps, fit);
-    for (int k = 0; k < 2; ++k)
+    for (int k = 0; k < 2; ++k) {
+      c.pbit[s][k] = fit.pbit[k];
       for (int a = 0; a < n; ++a) c.code[s][k][a] = fit.code[k][a];
+    }
     for (int i = 0; i < 16; ++i)
       if (set.has(i)) c.color_index[i] = fit.index[i];
   }

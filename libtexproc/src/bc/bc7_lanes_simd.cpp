@@ -15,6 +15,7 @@
 #include "bc/bc7_lanes.h"
 #include "bc/bc7_shared.h"
 #include "bc/bc7_estimate_simd-inl.h"
+#include "bc/bc7_fit_simd-inl.h"
 #include "bc/bc7_span_simd-inl.h"
 #include "texproc/runtime.h"
 
@@ -23,24 +24,6 @@ namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-using bc7::EndpointFormat;
-using bc7::Pbit;
-
-// As the reference's SetFit, a lane each.
-struct SetFitV {
-  V code[2][4], pbit[2], value[2][4];
-  V index[16];
-  V error;
-};
-
-// As the reference's Set: the texels (possibly rotated), the members (a
-// mask per texel), the channels.
-struct SetV {
-  const V (*x)[4];
-  const M* member;
-  int c0, n;
-};
-
 // The lanes' best candidate so far (the reference's Best and Choice).
 struct BestV {
   V error, mode, partition, rotation, isel;
@@ -48,27 +31,16 @@ struct BestV {
   V color_index[16], alpha_index[16];
 };
 
-struct Bc7Batch {
-  const DI d;
-  const DF df;
-  const Bc7Level& level;
+struct Bc7Batch : Bc7FitLanes {
   V x[16][4];
   M opaque, solid;
   V alpha_error;
   BestV best;
   M all_members[16];
-  V weight_table[3];  // 2-, 3- and 4-bit indices' weights, as many as the lanes hold
 
-  HWY_ATTR explicit Bc7Batch(const Bc7Level& l) : level(l) {
+  HWY_ATTR explicit Bc7Batch(const Bc7Level& l) : Bc7FitLanes(l) {
     for (auto& m : all_members) m = hn::FirstN(d, kBc7Batch);
-    for (int b = 2; b <= 4; ++b) {
-      std::int32_t w[kBc7Batch] = {};
-      for (int j = 0; j < std::min(1 << b, kBc7Batch); ++j) w[j] = bptc::weights(b)[j];
-      weight_table[b - 2] = hn::LoadU(d, w);
-    }
   }
-
-  HWY_INLINE VF f(V v) const { return hn::ConvertTo(df, v); }
 
   HWY_INLINE void load(const std::uint32_t texel[16][kBc7Batch], int k0) {
     opaque = hn::FirstN(d, kBc7Batch), solid = opaque;
@@ -83,272 +55,6 @@ struct Bc7Batch {
       alpha_error = hn::Add(alpha_error, hn::Mul(da, da));
     }
     best.error = hn::IfThenElse(solid, hn::Zero(d), hn::Set(d, INT_MAX));
-  }
-
-  // As ref::line_ends.
-  HWY_INLINE void line_ends(const SetV& s, VF e[2][4]) const {
-    V cnt = hn::Zero(d), S[4], Q[4][4], mn[4], mx[4];
-    for (int a = 0; a < s.n; ++a) {
-      S[a] = hn::Zero(d), mn[a] = hn::Set(d, 255), mx[a] = hn::Zero(d);
-      for (int b = a; b < s.n; ++b) Q[a][b] = hn::Zero(d);
-    }
-    for (int i = 0; i < 16; ++i) {
-      const M m = s.member[i];
-      cnt = hn::Add(cnt, hn::IfThenElseZero(m, hn::Set(d, 1)));
-      for (int a = 0; a < s.n; ++a) {
-        const V xa = s.x[i][s.c0 + a];
-        S[a] = hn::Add(S[a], hn::IfThenElseZero(m, xa));
-        mn[a] = hn::IfThenElse(m, hn::Min(mn[a], xa), mn[a]), mx[a] = hn::IfThenElse(m, hn::Max(mx[a], xa), mx[a]);
-        for (int b = a; b < s.n; ++b) Q[a][b] = hn::Add(Q[a][b], hn::IfThenElseZero(m, hn::Mul(xa, s.x[i][s.c0 + b])));
-      }
-    }
-    VF mean[4];
-    for (int a = 0; a < s.n; ++a) mean[a] = hn::Div(f(S[a]), f(cnt));
-    if (s.n == 1) {
-      e[0][s.c0] = f(mn[0]), e[1][s.c0] = f(mx[0]);
-      return;
-    }
-    VF C[4][4];
-    for (int a = 0; a < s.n; ++a)
-      for (int b = a; b < s.n; ++b) C[a][b] = C[b][a] = f(hn::Sub(hn::Mul(cnt, Q[a][b]), hn::Mul(S[a], S[b])));
-    VF diag = C[0][0], v[4];
-    for (int a = 0; a < s.n; ++a) v[a] = C[a][0];
-    for (int j = 1; j < s.n; ++j) {
-      const auto gt = hn::Gt(C[j][j], diag);
-      diag = hn::IfThenElse(gt, C[j][j], diag);
-      for (int a = 0; a < s.n; ++a) v[a] = hn::IfThenElse(gt, C[a][j], v[a]);
-    }
-    const auto flat = hn::Eq(diag, hn::Zero(df));
-    for (int it = 0; it < 3; ++it) {
-      VF w[4], m = hn::Zero(df);
-      for (int a = 0; a < s.n; ++a) {
-        w[a] = hn::Zero(df);
-        for (int b = 0; b < s.n; ++b) w[a] = hn::Add(w[a], hn::Mul(C[a][b], v[b]));
-        m = hn::Max(m, hn::Abs(w[a]));
-      }
-      const auto moved = hn::Ne(m, hn::Zero(df));
-      const VF inv = hn::Div(hn::Set(df, 1.0f), hn::IfThenElse(moved, m, hn::Set(df, 1.0f)));
-      for (int a = 0; a < s.n; ++a) v[a] = hn::IfThenElse(moved, hn::Mul(w[a], inv), v[a]);
-    }
-    VF tmin = hn::Set(df, HUGE_VALF), tmax = hn::Set(df, -HUGE_VALF), tmean = hn::Zero(df), vv = hn::Zero(df);
-    for (int i = 0; i < 16; ++i) {
-      VF t = hn::Zero(df);
-      for (int a = 0; a < s.n; ++a) t = hn::Add(t, hn::Mul(v[a], f(s.x[i][s.c0 + a])));
-      const auto m = hn::RebindMask(df, s.member[i]);
-      tmin = hn::IfThenElse(m, hn::Min(tmin, t), tmin), tmax = hn::IfThenElse(m, hn::Max(tmax, t), tmax);
-    }
-    for (int a = 0; a < s.n; ++a) tmean = hn::Add(tmean, hn::Mul(v[a], mean[a])), vv = hn::Add(vv, hn::Mul(v[a], v[a]));
-    const VF safe_vv = hn::IfThenElse(flat, hn::Set(df, 1.0f), vv);
-    const VF s0 = hn::Div(hn::Sub(tmin, tmean), safe_vv), s1 = hn::Div(hn::Sub(tmax, tmean), safe_vv);
-    for (int a = 0; a < s.n; ++a) {
-      e[0][s.c0 + a] = hn::IfThenElse(flat, mean[a], hn::Add(mean[a], hn::Mul(s0, v[a])));
-      e[1][s.c0 + a] = hn::IfThenElse(flat, mean[a], hn::Add(mean[a], hn::Mul(s1, v[a])));
-    }
-  }
-
-  // As ref::quantize_ends; `force_p1` per lane.
-  HWY_INLINE void quantize_ends(const SetV& s, const VF e[2][4], EndpointFormat fmt, M force_p1, SetFitV& fit, int combo = -1) const {
-    const std::int32_t* table = bc7::kQuantPairs[fmt.bits - 4][fmt.pbit == Pbit::none ? 0 : 1];
-    V v[2][4], q0[2][4], q1[2][4];
-    V err0[2] = {hn::Zero(d), hn::Zero(d)}, err1[2] = {hn::Zero(d), hn::Zero(d)};
-    for (int k = 0; k < 2; ++k)
-      for (int a = 0; a < s.n; ++a) {
-        const VF c = hn::Min(hn::Max(e[k][s.c0 + a], hn::Zero(df)), hn::Set(df, 255.0f));
-        v[k][a] = hn::ConvertTo(d, hn::Round(c));
-        const V pair = hn::GatherIndex(d, table, v[k][a]);
-        q0[k][a] = hn::And(pair, hn::Set(d, 0xFFFF)), q1[k][a] = hn::And(hn::ShiftRight<16>(pair), hn::Set(d, 0xFFFF));  // the shift is arithmetic
-        const V d0 = hn::Sub(hn::ShiftRight<8>(q0[k][a]), v[k][a]), d1 = hn::Sub(hn::ShiftRight<8>(q1[k][a]), v[k][a]);
-        err0[k] = hn::Add(err0[k], hn::Mul(d0, d0)), err1[k] = hn::Add(err1[k], hn::Mul(d1, d1));
-      }
-    M p1[2] = {hn::FirstN(d, 0), hn::FirstN(d, 0)};
-    if (fmt.pbit != Pbit::none && combo >= 0) {
-      const int second = fmt.pbit == Pbit::unique ? combo >> 1 & 1 : combo & 1;
-      p1[0] = hn::Or(force_p1, hn::FirstN(d, (combo & 1) ? kBc7Batch : 0)), p1[1] = hn::Or(force_p1, hn::FirstN(d, second ? kBc7Batch : 0));
-    } else if (fmt.pbit == Pbit::unique) {
-      for (int k = 0; k < 2; ++k) p1[k] = hn::Or(force_p1, hn::Lt(err1[k], err0[k]));
-    } else if (fmt.pbit == Pbit::shared) {
-      p1[0] = p1[1] = hn::Or(force_p1, hn::Lt(hn::Add(err1[0], err1[1]), hn::Add(err0[0], err0[1])));
-    }
-    for (int k = 0; k < 2; ++k) {
-      fit.pbit[k] = hn::IfThenElseZero(p1[k], hn::Set(d, 1));
-      for (int a = 0; a < s.n; ++a) {
-        const V q = hn::IfThenElse(p1[k], q1[k][a], q0[k][a]);
-        fit.code[k][s.c0 + a] = hn::And(q, hn::Set(d, 255)), fit.value[k][s.c0 + a] = hn::ShiftRight<8>(q);
-      }
-    }
-  }
-
-  // The weight (out of 64) of index j of 2^bits: the table's, one lane
-  // permute where a vector holds the table, else round(64 j / L) as
-  // floor((128 j + L) / 2L), which is never a whole number, so the float
-  // product floors exactly (tests compare both with the tables).
-  HWY_INLINE V weight(V j, int L) const {
-    if (L < int(hn::Lanes(d))) return hn::TableLookupLanes(weight_table[L == 3 ? 0 : L == 7 ? 1 : 2], hn::IndicesFromVec(d, j));
-    const VF num = f(hn::Add(hn::Mul(j, hn::Set(d, 128)), hn::Set(d, L)));
-    return hn::ConvertTo(d, hn::Floor(hn::Mul(num, hn::Set(df, 1.0f / float(2 * L)))));
-  }
-  // Texel i's squared error at index j: each channel's palette entry
-  // (64 - w) e0 + w e1 + 32 >> 6 as e0 + (w (e1 - e0) + 32 >> 6), the same
-  // integer (64 e0 is a whole multiple of 64).
-  HWY_INLINE V texel_error(const SetV& s, const SetFitV& fit, const V dv[4], int i, V j, int L) const {
-    const V w = weight(j, L);
-    V t = hn::Zero(d);
-    for (int a = 0; a < s.n; ++a) {
-      const V p = hn::Add(fit.value[0][s.c0 + a], hn::ShiftRight<6>(hn::Add(hn::Mul(w, dv[a]), hn::Set(d, 32))));
-      const V e = hn::Sub(p, s.x[i][s.c0 + a]);
-      t = hn::Add(t, hn::Mul(e, e));
-    }
-    return t;
-  }
-
-  // As ref::assign; the projection's sum of (x - e0) d as x d - e0 d.
-  HWY_INLINE void assign(const SetV& s, int bits, SetFitV& fit) const { assign(s, bits, level.exact_indices, fit); }
-  HWY_INLINE void assign(const SetV& s, int bits, bool exact, SetFitV& fit) const {
-    const int L = (1 << bits) - 1;
-    V dv[4], dd = hn::Zero(d), origin = hn::Zero(d);
-    for (int a = 0; a < s.n; ++a) {
-      dv[a] = hn::Sub(fit.value[1][s.c0 + a], fit.value[0][s.c0 + a]), dd = hn::Add(dd, hn::Mul(dv[a], dv[a]));
-      origin = hn::Add(origin, hn::Mul(fit.value[0][s.c0 + a], dv[a]));
-    }
-    const auto spread = hn::RebindMask(df, hn::Gt(dd, hn::Zero(d)));
-    const VF scale = hn::IfThenElseZero(spread, hn::Div(hn::Set(df, float(L)), f(hn::Max(dd, hn::Set(d, 1)))));
-    fit.error = hn::Zero(d);
-    for (int i = 0; i < 16; ++i) {
-      V t = hn::Neg(origin);
-      for (int a = 0; a < s.n; ++a) t = hn::Add(t, hn::Mul(s.x[i][s.c0 + a], dv[a]));
-      V j = hn::ConvertTo(d, hn::Round(hn::Mul(f(t), scale)));
-      j = hn::Min(hn::Max(j, hn::Zero(d)), hn::Set(d, L));
-      V e = texel_error(s, fit, dv, i, j, L);
-      if (exact) {
-        const V j0 = j, lo = hn::Sub(j0, hn::Set(d, 1)), hi = hn::Add(j0, hn::Set(d, 1));
-        const V elo = texel_error(s, fit, dv, i, hn::Max(lo, hn::Zero(d)), L);
-        const M take_lo = hn::And(hn::Gt(j0, hn::Zero(d)), hn::Lt(elo, e));
-        e = hn::IfThenElse(take_lo, elo, e), j = hn::IfThenElse(take_lo, lo, j);
-        const V ehi = texel_error(s, fit, dv, i, hn::Min(hi, hn::Set(d, L)), L);
-        const M take_hi = hn::And(hn::Lt(j0, hn::Set(d, L)), hn::Lt(ehi, e));
-        e = hn::IfThenElse(take_hi, ehi, e), j = hn::IfThenElse(take_hi, hi, j);
-      }
-      fit.index[i] = hn::IfThenElse(s.member[i], j, fit.index[i]);
-      fit.error = hn::Add(fit.error, hn::IfThenElseZero(s.member[i], e));
-    }
-  }
-
-  // As ref::lsq_ends: the mask of lanes with a determined solution.
-  HWY_INLINE M lsq_ends(const SetV& s, int bits, const SetFitV& fit, VF e[2][4]) const {
-    const int L = (1 << bits) - 1;
-    V AA = hn::Zero(d), AB = AA, BB = AA, RA[4], RB[4];
-    for (int c = 0; c < s.n; ++c) RA[c] = RB[c] = hn::Zero(d);
-    for (int i = 0; i < 16; ++i) {
-      const M m = s.member[i];
-      const V b = hn::IfThenElseZero(m, weight(fit.index[i], L)), a = hn::IfThenElseZero(m, hn::Sub(hn::Set(d, 64), b));
-      AA = hn::Add(AA, hn::Mul(a, a)), AB = hn::Add(AB, hn::Mul(a, b)), BB = hn::Add(BB, hn::Mul(b, b));
-      for (int c = 0; c < s.n; ++c) RA[c] = hn::Add(RA[c], hn::Mul(a, s.x[i][s.c0 + c])), RB[c] = hn::Add(RB[c], hn::Mul(b, s.x[i][s.c0 + c]));
-    }
-    const VF fAA = f(AA), fAB = f(AB), fBB = f(BB);
-    const VF det = hn::Sub(hn::Mul(fAA, fBB), hn::Mul(fAB, fAB));
-    const auto ok = hn::Gt(det, hn::Zero(df));
-    const VF inv = hn::Div(hn::Set(df, 64.0f), hn::IfThenElse(ok, det, hn::Set(df, 1.0f)));
-    for (int c = 0; c < s.n; ++c) {
-      e[0][s.c0 + c] = hn::Mul(hn::Sub(hn::Mul(f(RA[c]), fBB), hn::Mul(f(RB[c]), fAB)), inv);
-      e[1][s.c0 + c] = hn::Mul(hn::Sub(hn::Mul(f(RB[c]), fAA), hn::Mul(f(RA[c]), fAB)), inv);
-    }
-    return hn::RebindMask(d, ok);
-  }
-
-  HWY_INLINE void select_fit(M m, const SetFitV& from, SetFitV& to, const SetV& s) const {
-    for (int k = 0; k < 2; ++k) {
-      to.pbit[k] = hn::IfThenElse(m, from.pbit[k], to.pbit[k]);
-      for (int a = s.c0; a < s.c0 + s.n; ++a)
-        to.code[k][a] = hn::IfThenElse(m, from.code[k][a], to.code[k][a]), to.value[k][a] = hn::IfThenElse(m, from.value[k][a], to.value[k][a]);
-    }
-    for (int i = 0; i < 16; ++i) to.index[i] = hn::IfThenElse(m, from.index[i], to.index[i]);
-    to.error = hn::IfThenElse(m, from.error, to.error);
-  }
-
-  // As ref::quantize_assign (forced lanes' p-bits stay 1 in every choice).
-  HWY_INLINE void quantize_assign(const SetV& s, const VF e[2][4], EndpointFormat fmt, int bits, M force_p1, SetFitV& fit) const {
-    quantize_ends(s, e, fmt, force_p1, fit);
-    assign(s, bits, fit);
-    if (!level.pbit_search || fmt.pbit == Pbit::none || hn::AllTrue(d, force_p1)) return;
-    for (int combo = 0; combo < (fmt.pbit == Pbit::unique ? 4 : 2); ++combo) {
-      SetFitV next = fit;
-      quantize_ends(s, e, fmt, force_p1, next, combo);
-      assign(s, bits, next);
-      select_fit(hn::Lt(next.error, fit.error), next, fit, s);
-    }
-  }
-
-  // As ref::fit_set.
-  HWY_INLINE void fit_set(const SetV& s, EndpointFormat fmt, int bits, M force_p1, SetFitV& best_fit) const {
-    VF e[2][4];
-    line_ends(s, e);
-    for (auto& j : best_fit.index) j = hn::Zero(d);
-    quantize_assign(s, e, fmt, bits, force_p1, best_fit);
-    M active = hn::Gt(best_fit.error, hn::Zero(d));
-    for (int pass = 0; pass < level.refine && !hn::AllFalse(d, active); ++pass) {
-      const M ok = lsq_ends(s, bits, best_fit, e);
-      SetFitV next = best_fit;
-      quantize_assign(s, e, fmt, bits, force_p1, next);
-      const M better = hn::And(hn::And(active, ok), hn::Lt(next.error, best_fit.error));
-      select_fit(better, next, best_fit, s);
-      active = hn::And(better, hn::Gt(best_fit.error, hn::Zero(d)));
-    }
-    step_ends(s, fmt, bits, level.exact_indices, level.perturb, hn::FirstN(d, kBc7Batch), best_fit);
-  }
-
-  // As bc7::expand: a code (and its p-bit where the format has one) as
-  // the decoder widens it to 8 bits.
-  HWY_INLINE V expand(V code, V pbit, EndpointFormat fmt) const {
-    const bool has_p = fmt.pbit != Pbit::none;
-    const int n = fmt.bits + (has_p ? 1 : 0);
-    const V v = has_p ? hn::Or(hn::ShiftLeft<1>(code), pbit) : code;
-    return hn::And(hn::Or(hn::ShiftLeftSame(v, 8 - n), hn::ShiftRightSame(v, 2 * n - 8)), hn::Set(d, 255));
-  }
-
-  // As ref::step_ends, in the lanes `going`.
-  HWY_INLINE void step_ends(const SetV& s, EndpointFormat fmt, int bits, bool exact, int rounds, M going, SetFitV& best_fit) const {
-    const int top = (1 << fmt.bits) - 1;
-    for (int round = 0; round < rounds; ++round) {
-      const M now = hn::And(going, hn::Gt(best_fit.error, hn::Zero(d)));
-      if (hn::AllFalse(d, now)) break;
-      M moved = hn::FirstN(d, 0);
-      for (int k = 0; k < 2; ++k)
-        for (int a = 0; a < s.n; ++a)
-          for (const int step : {-1, 1}) {
-            const V code = hn::Add(best_fit.code[k][s.c0 + a], hn::Set(d, step));
-            const M valid = hn::And(now, hn::And(hn::Gt(code, hn::Set(d, -1)), hn::Lt(code, hn::Set(d, top + 1))));
-            if (hn::AllFalse(d, valid)) continue;
-            SetFitV next = best_fit;
-            next.code[k][s.c0 + a] = code;
-            next.value[k][s.c0 + a] = expand(code, best_fit.pbit[k], fmt);
-            assign(s, bits, exact, next);
-            const M better = hn::And(valid, hn::Lt(next.error, best_fit.error));
-            select_fit(better, next, best_fit, s);
-            moved = hn::Or(moved, better);
-          }
-      if (level.pair_steps)
-        for (int a = 0; a < s.n; ++a)
-          for (const int step : {0, 1, 2, 3}) {  // both up, both down, apart, together
-            V code[2];
-            M valid = now;
-            for (int k = 0; k < 2; ++k) {
-              const int dk = step == 0 ? 1 : step == 1 ? -1 : (step == 2) == (k == 1) ? 1 : -1;
-              code[k] = hn::Add(best_fit.code[k][s.c0 + a], hn::Set(d, dk));
-              valid = hn::And(valid, hn::And(hn::Gt(code[k], hn::Set(d, -1)), hn::Lt(code[k], hn::Set(d, top + 1))));
-            }
-            if (hn::AllFalse(d, valid)) continue;
-            SetFitV next = best_fit;
-            for (int k = 0; k < 2; ++k) {
-              next.code[k][s.c0 + a] = code[k];
-              next.value[k][s.c0 + a] = expand(code[k], best_fit.pbit[k], fmt);
-            }
-            assign(s, bits, exact, next);
-            const M better = hn::And(valid, hn::Lt(next.error, best_fit.error));
-            select_fit(better, next, best_fit, s);
-            moved = hn::Or(moved, better);
-          }
-      going = hn::And(now, moved);
-    }
   }
 
   // A candidate's mode, partition, rotation and index selection, a lane each.
@@ -481,9 +187,22 @@ struct Bc7Batch {
       for (int i = 0; i < 16; ++i) fit.index[i] = best.color_index[i];
       const bool exact = level.exact_indices || level.exact_winner;
       assign(set, Md.index_bits, exact, fit);
+      if (level.winner_seeds > level.seeds) {
+        VF line[2][4];
+        line_ends(set, line);
+        const M force = n == 4 ? opaque : hn::FirstN(d, 0);
+        for (int seed = std::max(level.seeds, 1); seed < level.winner_seeds; ++seed) {
+          SetFitV next;
+          fit_seed(set, line, seed, fmt, Md.index_bits, force, next);
+          assign(set, Md.index_bits, exact, next);
+          select_fit(hn::Lt(next.error, fit.error), next, fit, set);
+        }
+      }
       step_ends(set, fmt, Md.index_bits, exact, level.winner_steps, here, fit);
-      for (int k = 0; k < 2; ++k)
+      for (int k = 0; k < 2; ++k) {
+        best.pbit[s][k] = hn::IfThenElse(here, fit.pbit[k], best.pbit[s][k]);
         for (int a = 0; a < n; ++a) best.code[s][k][a] = hn::IfThenElse(here, fit.code[k][a], best.code[s][k][a]);
+      }
       for (int i = 0; i < 16; ++i) best.color_index[i] = hn::IfThenElse(hn::And(here, member[i]), fit.index[i], best.color_index[i]);
     }
   }
@@ -553,7 +272,7 @@ void Bc7EncodeLanes(const Bc7Texels* texel, int count, const Bc7Level& level, st
   // Without winner steps a batch is packed as soon as it is searched (its
   // choices still in cache); with them, a span's choices wait for the steps.
   // Not zeroed: only the lanes searched are read.
-  const bool stepped = level.winner_steps > 0;
+  const bool stepped = has_winner_pass(level);
   const std::unique_ptr<bc7::LaneChoices[]> t(new bc7::LaneChoices[stepped ? kBc7Span / kBc7Batch : 1]);
   for (int s0 = 0; s0 < count; s0 += kBc7Span) {
     const int span = std::min(kBc7Span, count - s0);

@@ -55,14 +55,31 @@ struct Bc7Level {
   // The winner's pass (its assignment and steps) with the neighbouring
   // indices tried, where the candidates' fits go without (exact_indices off).
   bool exact_winner;
+  // Each refinement's least-squares ends quantized jointly: for the indices
+  // that gave them, every p-bit choice and, channel by channel, the two
+  // codes either side of each end, scored by the error those indices would
+  // give (a quadratic in the ends, so no texel is visited), the least kept;
+  // instead of each end rounded to its nearest code.
+  bool joint;
+  // Seeds a fit starts from, each refined on its own, the first of least
+  // error kept: the line's extent, then its ends moved out along the line
+  // by one index step (the high end, the low end, both), so that the
+  // extreme texels fall on an inner index.
+  int seeds;
+  // The winner's sets fitted again from the seeds after those (seeds to
+  // winner_seeds - 1), each kept where its error is less, before its steps.
+  int winner_seeds;
 };
 
+// Whether a level has a pass over the search's winners (steps or seeds).
+inline constexpr bool has_winner_pass(const Bc7Level& l) { return l.winner_steps > 0 || l.winner_seeds > l.seeds; }
+
 inline constexpr Bc7Level kBc7Levels[] = {
-    //            p2  mode3 est2 p3  rot  isel  mode7 opaque-rot refine exact perturb winner pairs pbits exact-winner
-    /* fast   */ {1, false, 32, 0, 1, false, false, false, 1, false, 0, 0, false, false, false},
-    /* normal */ {4, false, 64, 1, 1, false, true, false, 1, false, 0, 1, false, false, false},
-    /* high   */ {12, true, 64, 4, 4, true, true, true, 2, false, 0, 2, true, false, true},
-    /* max    */ {64, true, 64, 64, 4, true, true, true, 6, true, 4, 0, true, true, false},
+    //            p2  mode3 est2 p3  rot  isel  mode7 opaque-rot refine exact perturb winner pairs pbits exact-winner joint seeds winner-seeds
+    /* fast   */ {1, false, 32, 0, 1, false, false, false, 1, false, 0, 0, false, false, false, false, 1, 1},
+    /* normal */ {4, false, 64, 1, 1, false, true, false, 1, false, 0, 0, false, false, false, true, 1, 4},
+    /* high   */ {12, false, 64, 2, 4, true, true, true, 1, false, 0, 2, true, false, true, true, 2, 4},
+    /* max    */ {64, true, 64, 64, 4, true, true, true, 3, true, 0, 4, true, true, true, true, 4, 4},
 };
 
 inline const Bc7Level& bc7_level(Quality q) { return kBc7Levels[int(q)]; }
