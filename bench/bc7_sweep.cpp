@@ -2,10 +2,12 @@
 // encodes bench_bc7's images (256x256 centred crops of the corpus's 15 colour
 // images, opaque) on one thread and prints its speed (the median of
 // --reps timings, MPix/s) and PSNR over RGB pooled over every crop. The
-// rows come from the command line, one argument a row of fifteen numbers
-// in Bc7Level's order (`2,1,64,1,1,0,1,0,2,1,0,0,0,0,0`), or a grid
-// (--grid=normal, --grid=high: every combination of the knobs near a level,
-// below), or, with none, the levels fast, normal and high.
+// rows come from the command line, one argument a row of eighteen numbers
+// in Bc7Level's order (`4,0,64,1,1,0,1,0,1,0,0,0,0,0,0,1,1,4`), or a grid
+// (--grid=normal, --grid=high: every combination of session 15's knobs near
+// a level; --grid=seeds-normal, --grid=seeds-high: session 16's seeds, joint
+// quantization and winner seeds beside them; below), or, with none, the
+// levels fast, normal and high.
 // Rows are timed interleaved, rep by rep, so that a slow spell of a busy
 // machine falls on every row alike.
 #include <algorithm>
