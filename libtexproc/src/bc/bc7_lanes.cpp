@@ -265,9 +265,8 @@ void seed_ends(const Set& s, const float line[2][4], int seed, int L, float e[2]
   }
 }
 
-// One index set fitted from each seed: its ends quantized, then up to
-// level.refine least-squares rounds while the error falls; the seed of
-// least error kept (the first of equal ones), then its steps (level.perturb).
+// One index set fitted from one seed: its ends quantized, then up to
+// level.refine least-squares rounds while the error falls.
 SetFit fit_seed(const Set& s, const float line[2][4], int seed, EndpointFormat f, int bits, bool force_p1, const Bc7Level& level) {
   float e[2][4] = {};
   seed_ends(s, line, seed, (1 << bits) - 1, e);
@@ -289,6 +288,8 @@ SetFit fit_seed(const Set& s, const float line[2][4], int seed, EndpointFormat f
   return fit;
 }
 
+// One index set fitted from each of level.seeds seeds, the seed of least
+// error kept (the first of equal ones), then its steps (level.perturb).
 SetFit fit_set(const Set& s, EndpointFormat f, int bits, bool force_p1, const Bc7Level& level) {
   float line[2][4] = {};
   line_ends(s, line);
