@@ -75,7 +75,7 @@ struct Bc7FitLanes {
         const V xa = s.x[i][s.c0 + a];
         S[a] = hn::Add(S[a], hn::IfThenElseZero(m, xa));
         mn[a] = hn::IfThenElse(m, hn::Min(mn[a], xa), mn[a]), mx[a] = hn::IfThenElse(m, hn::Max(mx[a], xa), mx[a]);
-        for (int b = a; b < s.n; ++b) Q[a][b] = hn::Add(Q[a][b], hn::IfThenElseZero(m, hn::Mul(xa, s.x[i][s.c0 + b])));
+        for (int b = a; b < s.n; ++b) Q[a][b] = hn::Add(Q[a][b], hn::IfThenElseZero(m, mul16(xa, s.x[i][s.c0 + b])));
       }
     }
     VF mean[4];
@@ -86,7 +86,7 @@ struct Bc7FitLanes {
     }
     VF C[4][4];
     for (int a = 0; a < s.n; ++a)
-      for (int b = a; b < s.n; ++b) C[a][b] = C[b][a] = f(hn::Sub(hn::Mul(cnt, Q[a][b]), hn::Mul(S[a], S[b])));
+      for (int b = a; b < s.n; ++b) C[a][b] = C[b][a] = f(hn::Sub(hn::Mul(cnt, Q[a][b]), mul16(S[a], S[b])));
     VF diag = C[0][0], v[4];
     for (int a = 0; a < s.n; ++a) v[a] = C[a][0];
     for (int j = 1; j < s.n; ++j) {
@@ -129,8 +129,7 @@ struct Bc7FitLanes {
     V err0[2] = {hn::Zero(d), hn::Zero(d)}, err1[2] = {hn::Zero(d), hn::Zero(d)};
     for (int k = 0; k < 2; ++k)
       for (int a = 0; a < s.n; ++a) {
-        const VF c = hn::Min(hn::Max(e[k][s.c0 + a], hn::Zero(df)), hn::Set(df, 255.0f));
-        v[k][a] = hn::ConvertTo(d, hn::Round(c));
+        v[k][a] = round_clamped(e[k][s.c0 + a], 255.0f);
         const V pair = hn::GatherIndex(d, table, v[k][a]);
         q0[k][a] = hn::And(pair, hn::Set(d, 0xFFFF)), q1[k][a] = hn::And(hn::ShiftRight<16>(pair), hn::Set(d, 0xFFFF));  // the shift is arithmetic
         const V d0 = hn::Sub(hn::ShiftRight<8>(q0[k][a]), v[k][a]), d1 = hn::Sub(hn::ShiftRight<8>(q1[k][a]), v[k][a]);
@@ -163,8 +162,7 @@ struct Bc7FitLanes {
     V v[2][4], pair[2][4];
     for (int k = 0; k < 2; ++k)
       for (int a = 0; a < s.n; ++a) {
-        const VF c = hn::Min(hn::Max(e[k][s.c0 + a], hn::Zero(df)), hn::Set(df, 255.0f));
-        v[k][a] = hn::ConvertTo(d, hn::Round(c));
+        v[k][a] = round_clamped(e[k][s.c0 + a], 255.0f);
         pair[k][a] = hn::GatherIndex(d, table, v[k][a]);
       }
     VF best_total = hn::Set(df, HUGE_VALF);
@@ -229,7 +227,7 @@ struct Bc7FitLanes {
     const V w = weight(j, L);
     V t = hn::Zero(d);
     for (int a = 0; a < s.n; ++a) {
-      const V p = hn::Add(fit.value[0][s.c0 + a], hn::ShiftRight<6>(hn::Add(hn::Mul(w, dv[a]), hn::Set(d, 32))));
+      const V p = hn::Add(fit.value[0][s.c0 + a], hn::ShiftRight<6>(hn::Add(mul16(w, dv[a]), hn::Set(d, 32))));
       const V e = hn::Sub(p, s.x[i][s.c0 + a]);
       t = hn::Add(t, hn::Mul(e, e));
     }
@@ -243,16 +241,15 @@ struct Bc7FitLanes {
     V dv[4], dd = hn::Zero(d), origin = hn::Zero(d);
     for (int a = 0; a < s.n; ++a) {
       dv[a] = hn::Sub(fit.value[1][s.c0 + a], fit.value[0][s.c0 + a]), dd = hn::Add(dd, hn::Mul(dv[a], dv[a]));
-      origin = hn::Add(origin, hn::Mul(fit.value[0][s.c0 + a], dv[a]));
+      origin = hn::Add(origin, mul16(fit.value[0][s.c0 + a], dv[a]));
     }
     const auto spread = hn::RebindMask(df, hn::Gt(dd, hn::Zero(d)));
     const VF scale = hn::IfThenElseZero(spread, hn::Div(hn::Set(df, float(L)), f(hn::Max(dd, hn::Set(d, 1)))));
     fit.error = hn::Zero(d);
     for (int i = 0; i < 16; ++i) {
       V t = hn::Neg(origin);
-      for (int a = 0; a < s.n; ++a) t = hn::Add(t, hn::Mul(s.x[i][s.c0 + a], dv[a]));
-      V j = hn::ConvertTo(d, hn::Round(hn::Mul(f(t), scale)));
-      j = hn::Min(hn::Max(j, hn::Zero(d)), hn::Set(d, L));
+      for (int a = 0; a < s.n; ++a) t = hn::Add(t, mul16(s.x[i][s.c0 + a], dv[a]));
+      V j = round_clamped(hn::Mul(f(t), scale), float(L));
       V e = texel_error(s, fit, dv, i, j, L);
       if (exact) {
         const V j0 = j, lo = hn::Sub(j0, hn::Set(d, 1)), hi = hn::Add(j0, hn::Set(d, 1));
@@ -277,8 +274,8 @@ struct Bc7FitLanes {
     for (int i = 0; i < 16; ++i) {
       const M m = s.member[i];
       const V b = hn::IfThenElseZero(m, weight(fit.index[i], L)), a = hn::IfThenElseZero(m, hn::Sub(hn::Set(d, 64), b));
-      AA = hn::Add(AA, hn::Mul(a, a)), AB = hn::Add(AB, hn::Mul(a, b)), BB = hn::Add(BB, hn::Mul(b, b));
-      for (int c = 0; c < s.n; ++c) RA[c] = hn::Add(RA[c], hn::Mul(a, s.x[i][s.c0 + c])), RB[c] = hn::Add(RB[c], hn::Mul(b, s.x[i][s.c0 + c]));
+      AA = hn::Add(AA, mul16(a, a)), AB = hn::Add(AB, mul16(a, b)), BB = hn::Add(BB, mul16(b, b));
+      for (int c = 0; c < s.n; ++c) RA[c] = hn::Add(RA[c], mul16(a, s.x[i][s.c0 + c])), RB[c] = hn::Add(RB[c], mul16(b, s.x[i][s.c0 + c]));
     }
     const VF fAA = f(AA), fAB = f(AB), fBB = f(BB);
     H[0] = fAA, H[1] = hn::Mul(hn::Set(df, 2.0f), fAB), H[2] = fBB;
