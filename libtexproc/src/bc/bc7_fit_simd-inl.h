@@ -3,6 +3,10 @@
 // from its principal line or its seeds, quantized (alone or jointly) to the
 // mode's codes and p-bits, the indices assigned, refined by least squares
 // and stepped. As the ref:: functions of the same names in bc7_lanes.cpp.
+// The texel passes (line_ends, assign, lsq_ends) and quantize_joint are
+// out of line, one copy for each channel count (1, 3, 4), and so is
+// fit_set: inlined into every caller, bc7_lanes_simd.cpp took 5-7 minutes
+// to compile for every target, and ran 7-10% slower (session 17).
 #if defined(TEXPROC_BC7_FIT_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef TEXPROC_BC7_FIT_SIMD_INL_H_
 #undef TEXPROC_BC7_FIT_SIMD_INL_H_
@@ -62,64 +66,70 @@ struct Bc7FitLanes {
   HWY_INLINE VF f(V v) const { return hn::ConvertTo(df, v); }
 
   // As ref::line_ends.
-  HWY_INLINE void line_ends(const SetV& s, VF e[2][4]) const {
+  template <int N>  // the channels, 1, 3 or 4
+  HWY_NOINLINE void line_ends_n(const SetV& s, VF e[2][4]) const {
     V cnt = hn::Zero(d), S[4], Q[4][4], mn[4], mx[4];
-    for (int a = 0; a < s.n; ++a) {
+    for (int a = 0; a < N; ++a) {
       S[a] = hn::Zero(d), mn[a] = hn::Set(d, 255), mx[a] = hn::Zero(d);
-      for (int b = a; b < s.n; ++b) Q[a][b] = hn::Zero(d);
+      for (int b = a; b < N; ++b) Q[a][b] = hn::Zero(d);
     }
     for (int i = 0; i < 16; ++i) {
       const M m = s.member[i];
       cnt = hn::Add(cnt, hn::IfThenElseZero(m, hn::Set(d, 1)));
-      for (int a = 0; a < s.n; ++a) {
+      for (int a = 0; a < N; ++a) {
         const V xa = s.x[i][s.c0 + a];
         S[a] = hn::Add(S[a], hn::IfThenElseZero(m, xa));
         mn[a] = hn::IfThenElse(m, hn::Min(mn[a], xa), mn[a]), mx[a] = hn::IfThenElse(m, hn::Max(mx[a], xa), mx[a]);
-        for (int b = a; b < s.n; ++b) Q[a][b] = hn::Add(Q[a][b], hn::IfThenElseZero(m, mul16(xa, s.x[i][s.c0 + b])));
+        for (int b = a; b < N; ++b) Q[a][b] = hn::Add(Q[a][b], hn::IfThenElseZero(m, mul16(xa, s.x[i][s.c0 + b])));
       }
     }
     VF mean[4];
-    for (int a = 0; a < s.n; ++a) mean[a] = hn::Div(f(S[a]), f(cnt));
-    if (s.n == 1) {
+    for (int a = 0; a < N; ++a) mean[a] = hn::Div(f(S[a]), f(cnt));
+    if (N == 1) {
       e[0][s.c0] = f(mn[0]), e[1][s.c0] = f(mx[0]);
       return;
     }
     VF C[4][4];
-    for (int a = 0; a < s.n; ++a)
-      for (int b = a; b < s.n; ++b) C[a][b] = C[b][a] = f(hn::Sub(hn::Mul(cnt, Q[a][b]), mul16(S[a], S[b])));
+    for (int a = 0; a < N; ++a)
+      for (int b = a; b < N; ++b) C[a][b] = C[b][a] = f(hn::Sub(hn::Mul(cnt, Q[a][b]), mul16(S[a], S[b])));
     VF diag = C[0][0], v[4];
-    for (int a = 0; a < s.n; ++a) v[a] = C[a][0];
-    for (int j = 1; j < s.n; ++j) {
+    for (int a = 0; a < N; ++a) v[a] = C[a][0];
+    for (int j = 1; j < N; ++j) {
       const auto gt = hn::Gt(C[j][j], diag);
       diag = hn::IfThenElse(gt, C[j][j], diag);
-      for (int a = 0; a < s.n; ++a) v[a] = hn::IfThenElse(gt, C[a][j], v[a]);
+      for (int a = 0; a < N; ++a) v[a] = hn::IfThenElse(gt, C[a][j], v[a]);
     }
     const auto flat = hn::Eq(diag, hn::Zero(df));
     for (int it = 0; it < 3; ++it) {
       VF w[4], m = hn::Zero(df);
-      for (int a = 0; a < s.n; ++a) {
+      for (int a = 0; a < N; ++a) {
         w[a] = hn::Zero(df);
-        for (int b = 0; b < s.n; ++b) w[a] = hn::Add(w[a], hn::Mul(C[a][b], v[b]));
+        for (int b = 0; b < N; ++b) w[a] = hn::Add(w[a], hn::Mul(C[a][b], v[b]));
         m = hn::Max(m, hn::Abs(w[a]));
       }
       const auto moved = hn::Ne(m, hn::Zero(df));
       const VF inv = hn::Div(hn::Set(df, 1.0f), hn::IfThenElse(moved, m, hn::Set(df, 1.0f)));
-      for (int a = 0; a < s.n; ++a) v[a] = hn::IfThenElse(moved, hn::Mul(w[a], inv), v[a]);
+      for (int a = 0; a < N; ++a) v[a] = hn::IfThenElse(moved, hn::Mul(w[a], inv), v[a]);
     }
     VF tmin = hn::Set(df, HUGE_VALF), tmax = hn::Set(df, -HUGE_VALF), tmean = hn::Zero(df), vv = hn::Zero(df);
     for (int i = 0; i < 16; ++i) {
       VF t = hn::Zero(df);
-      for (int a = 0; a < s.n; ++a) t = hn::Add(t, hn::Mul(v[a], f(s.x[i][s.c0 + a])));
+      for (int a = 0; a < N; ++a) t = hn::Add(t, hn::Mul(v[a], f(s.x[i][s.c0 + a])));
       const auto m = hn::RebindMask(df, s.member[i]);
       tmin = hn::IfThenElse(m, hn::Min(tmin, t), tmin), tmax = hn::IfThenElse(m, hn::Max(tmax, t), tmax);
     }
-    for (int a = 0; a < s.n; ++a) tmean = hn::Add(tmean, hn::Mul(v[a], mean[a])), vv = hn::Add(vv, hn::Mul(v[a], v[a]));
+    for (int a = 0; a < N; ++a) tmean = hn::Add(tmean, hn::Mul(v[a], mean[a])), vv = hn::Add(vv, hn::Mul(v[a], v[a]));
     const VF safe_vv = hn::IfThenElse(flat, hn::Set(df, 1.0f), vv);
     const VF s0 = hn::Div(hn::Sub(tmin, tmean), safe_vv), s1 = hn::Div(hn::Sub(tmax, tmean), safe_vv);
-    for (int a = 0; a < s.n; ++a) {
+    for (int a = 0; a < N; ++a) {
       e[0][s.c0 + a] = hn::IfThenElse(flat, mean[a], hn::Add(mean[a], hn::Mul(s0, v[a])));
       e[1][s.c0 + a] = hn::IfThenElse(flat, mean[a], hn::Add(mean[a], hn::Mul(s1, v[a])));
     }
+  }
+  HWY_INLINE void line_ends(const SetV& s, VF e[2][4]) const {
+    if (s.n == 3) return line_ends_n<3>(s, e);
+    if (s.n == 4) return line_ends_n<4>(s, e);
+    line_ends_n<1>(s, e);
   }
 
   // As ref::quantize_ends; `force_p1` per lane.
@@ -155,13 +165,14 @@ struct Bc7FitLanes {
 
   // As ref::quantize_joint (forced lanes' p-bits 1 in every choice, so
   // their first is kept, as the reference's only one).
-  HWY_INLINE void quantize_joint(const SetV& s, const VF e[2][4], const VF H[3], EndpointFormat fmt, M force_p1, SetFitV& fit) const {
+  template <int N>  // the channels, 1, 3 or 4
+  HWY_NOINLINE void quantize_joint_n(const SetV& s, const VF e[2][4], const VF H[3], EndpointFormat fmt, M force_p1, SetFitV& fit) const {
     const std::int32_t* table = bc7::kQuantPairs[fmt.bits - 4][fmt.pbit == Pbit::none ? 0 : 1];
     const int top = (1 << fmt.bits) - 1;
     const int combos = fmt.pbit == Pbit::none ? 1 : fmt.pbit == Pbit::unique ? 4 : 2;
     V v[2][4], pair[2][4];
     for (int k = 0; k < 2; ++k)
-      for (int a = 0; a < s.n; ++a) {
+      for (int a = 0; a < N; ++a) {
         v[k][a] = round_clamped(e[k][s.c0 + a], 255.0f);
         pair[k][a] = hn::GatherIndex(d, table, v[k][a]);
       }
@@ -174,7 +185,7 @@ struct Bc7FitLanes {
       V pbit[2], code[2][4], value[2][4];
       VF total = hn::Zero(df);
       for (int k = 0; k < 2; ++k) pbit[k] = hn::IfThenElseZero(p1[k], hn::Set(d, 1));
-      for (int a = 0; a < s.n; ++a) {
+      for (int a = 0; a < N; ++a) {
         V cand[2][2], val[2][2];
         for (int k = 0; k < 2; ++k) {
           const V pr = pair[k][a];
@@ -204,11 +215,16 @@ struct Bc7FitLanes {
       best_total = hn::IfThenElse(better, total, best_total);
       for (int k = 0; k < 2; ++k) {
         fit.pbit[k] = hn::IfThenElse(take, pbit[k], fit.pbit[k]);
-        for (int a = 0; a < s.n; ++a)
+        for (int a = 0; a < N; ++a)
           fit.code[k][s.c0 + a] = hn::IfThenElse(take, code[k][a], fit.code[k][s.c0 + a]),
           fit.value[k][s.c0 + a] = hn::IfThenElse(take, value[k][a], fit.value[k][s.c0 + a]);
       }
     }
+  }
+  HWY_INLINE void quantize_joint(const SetV& s, const VF e[2][4], const VF H[3], EndpointFormat fmt, M force_p1, SetFitV& fit) const {
+    if (s.n == 3) return quantize_joint_n<3>(s, e, H, fmt, force_p1, fit);
+    if (s.n == 4) return quantize_joint_n<4>(s, e, H, fmt, force_p1, fit);
+    quantize_joint_n<1>(s, e, H, fmt, force_p1, fit);
   }
 
   // The weight (out of 64) of index j of 2^bits: the table's, one lane
@@ -223,10 +239,11 @@ struct Bc7FitLanes {
   // Texel i's squared error at index j: each channel's palette entry
   // (64 - w) e0 + w e1 + 32 >> 6 as e0 + (w (e1 - e0) + 32 >> 6), the same
   // integer (64 e0 is a whole multiple of 64).
+  template <int N>
   HWY_INLINE V texel_error(const SetV& s, const SetFitV& fit, const V dv[4], int i, V j, int L) const {
     const V w = weight(j, L);
     V t = hn::Zero(d);
-    for (int a = 0; a < s.n; ++a) {
+    for (int a = 0; a < N; ++a) {
       const V p = hn::Add(fit.value[0][s.c0 + a], hn::ShiftRight<6>(hn::Add(mul16(w, dv[a]), hn::Set(d, 32))));
       const V e = hn::Sub(p, s.x[i][s.c0 + a]);
       t = hn::Add(t, hn::Mul(e, e));
@@ -236,10 +253,11 @@ struct Bc7FitLanes {
 
   // As ref::assign; the projection's sum of (x - e0) d as x d - e0 d.
   HWY_INLINE void assign(const SetV& s, int bits, SetFitV& fit) const { assign(s, bits, level.exact_indices, fit); }
-  HWY_INLINE void assign(const SetV& s, int bits, bool exact, SetFitV& fit) const {
+  template <int N>  // the channels, 1, 3 or 4
+  HWY_NOINLINE void assign_n(const SetV& s, int bits, bool exact, SetFitV& fit) const {
     const int L = (1 << bits) - 1;
     V dv[4], dd = hn::Zero(d), origin = hn::Zero(d);
-    for (int a = 0; a < s.n; ++a) {
+    for (int a = 0; a < N; ++a) {
       dv[a] = hn::Sub(fit.value[1][s.c0 + a], fit.value[0][s.c0 + a]), dd = hn::Add(dd, hn::Mul(dv[a], dv[a]));
       origin = hn::Add(origin, mul16(fit.value[0][s.c0 + a], dv[a]));
     }
@@ -248,15 +266,15 @@ struct Bc7FitLanes {
     fit.error = hn::Zero(d);
     for (int i = 0; i < 16; ++i) {
       V t = hn::Neg(origin);
-      for (int a = 0; a < s.n; ++a) t = hn::Add(t, mul16(s.x[i][s.c0 + a], dv[a]));
+      for (int a = 0; a < N; ++a) t = hn::Add(t, mul16(s.x[i][s.c0 + a], dv[a]));
       V j = round_clamped(hn::Mul(f(t), scale), float(L));
-      V e = texel_error(s, fit, dv, i, j, L);
+      V e = texel_error<N>(s, fit, dv, i, j, L);
       if (exact) {
         const V j0 = j, lo = hn::Sub(j0, hn::Set(d, 1)), hi = hn::Add(j0, hn::Set(d, 1));
-        const V elo = texel_error(s, fit, dv, i, hn::Max(lo, hn::Zero(d)), L);
+        const V elo = texel_error<N>(s, fit, dv, i, hn::Max(lo, hn::Zero(d)), L);
         const M take_lo = hn::And(hn::Gt(j0, hn::Zero(d)), hn::Lt(elo, e));
         e = hn::IfThenElse(take_lo, elo, e), j = hn::IfThenElse(take_lo, lo, j);
-        const V ehi = texel_error(s, fit, dv, i, hn::Min(hi, hn::Set(d, L)), L);
+        const V ehi = texel_error<N>(s, fit, dv, i, hn::Min(hi, hn::Set(d, L)), L);
         const M take_hi = hn::And(hn::Lt(j0, hn::Set(d, L)), hn::Lt(ehi, e));
         e = hn::IfThenElse(take_hi, ehi, e), j = hn::IfThenElse(take_hi, hi, j);
       }
@@ -264,29 +282,40 @@ struct Bc7FitLanes {
       fit.error = hn::Add(fit.error, hn::IfThenElseZero(s.member[i], e));
     }
   }
+  HWY_INLINE void assign(const SetV& s, int bits, bool exact, SetFitV& fit) const {
+    if (s.n == 3) return assign_n<3>(s, bits, exact, fit);
+    if (s.n == 4) return assign_n<4>(s, bits, exact, fit);
+    assign_n<1>(s, bits, exact, fit);
+  }
 
   // As ref::lsq_ends: the mask of lanes with a determined solution; the
   // weights' sums as floats in H (AA, 2 AB, BB: ref::quantize_joint's).
-  HWY_INLINE M lsq_ends(const SetV& s, int bits, const SetFitV& fit, VF e[2][4], VF H[3]) const {
+  template <int N>  // the channels, 1, 3 or 4
+  HWY_NOINLINE M lsq_ends_n(const SetV& s, int bits, const SetFitV& fit, VF e[2][4], VF H[3]) const {
     const int L = (1 << bits) - 1;
     V AA = hn::Zero(d), AB = AA, BB = AA, RA[4], RB[4];
-    for (int c = 0; c < s.n; ++c) RA[c] = RB[c] = hn::Zero(d);
+    for (int c = 0; c < N; ++c) RA[c] = RB[c] = hn::Zero(d);
     for (int i = 0; i < 16; ++i) {
       const M m = s.member[i];
       const V b = hn::IfThenElseZero(m, weight(fit.index[i], L)), a = hn::IfThenElseZero(m, hn::Sub(hn::Set(d, 64), b));
       AA = hn::Add(AA, mul16(a, a)), AB = hn::Add(AB, mul16(a, b)), BB = hn::Add(BB, mul16(b, b));
-      for (int c = 0; c < s.n; ++c) RA[c] = hn::Add(RA[c], mul16(a, s.x[i][s.c0 + c])), RB[c] = hn::Add(RB[c], mul16(b, s.x[i][s.c0 + c]));
+      for (int c = 0; c < N; ++c) RA[c] = hn::Add(RA[c], mul16(a, s.x[i][s.c0 + c])), RB[c] = hn::Add(RB[c], mul16(b, s.x[i][s.c0 + c]));
     }
     const VF fAA = f(AA), fAB = f(AB), fBB = f(BB);
     H[0] = fAA, H[1] = hn::Mul(hn::Set(df, 2.0f), fAB), H[2] = fBB;
     const VF det = hn::Sub(hn::Mul(fAA, fBB), hn::Mul(fAB, fAB));
     const auto ok = hn::Gt(det, hn::Zero(df));
     const VF inv = hn::Div(hn::Set(df, 64.0f), hn::IfThenElse(ok, det, hn::Set(df, 1.0f)));
-    for (int c = 0; c < s.n; ++c) {
+    for (int c = 0; c < N; ++c) {
       e[0][s.c0 + c] = hn::Mul(hn::Sub(hn::Mul(f(RA[c]), fBB), hn::Mul(f(RB[c]), fAB)), inv);
       e[1][s.c0 + c] = hn::Mul(hn::Sub(hn::Mul(f(RB[c]), fAA), hn::Mul(f(RA[c]), fAB)), inv);
     }
     return hn::RebindMask(d, ok);
+  }
+  HWY_INLINE M lsq_ends(const SetV& s, int bits, const SetFitV& fit, VF e[2][4], VF H[3]) const {
+    if (s.n == 3) return lsq_ends_n<3>(s, bits, fit, e, H);
+    if (s.n == 4) return lsq_ends_n<4>(s, bits, fit, e, H);
+    return lsq_ends_n<1>(s, bits, fit, e, H);
   }
 
   HWY_INLINE void select_fit(M m, const SetFitV& from, SetFitV& to, const SetV& s) const {
@@ -347,7 +376,7 @@ struct Bc7FitLanes {
   }
 
   // As ref::fit_set.
-  HWY_INLINE void fit_set(const SetV& s, EndpointFormat fmt, int bits, M force_p1, SetFitV& best_fit) const {
+  HWY_NOINLINE void fit_set(const SetV& s, EndpointFormat fmt, int bits, M force_p1, SetFitV& best_fit) const {
     VF line[2][4];
     line_ends(s, line);
     for (int seed = 0; seed < std::max(level.seeds, 1); ++seed) {

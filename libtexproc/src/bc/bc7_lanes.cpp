@@ -491,7 +491,7 @@ void step_winner(const Block& b, const Bc7Level& level, Choice& c) {
       line_ends(set, line);
       for (int seed = std::max(level.seeds, 1); seed < level.winner_seeds; ++seed) {
         SetFit next = fit_seed(set, line, seed, f, M.index_bits, b.opaque && n == 4, level);
-        assign(set, M.index_bits, exact, next);
+        if (exact != level.exact_indices) assign(set, M.index_bits, exact, next);  // else next's indices are already these
         if (next.error < fit.error) fit = next;
       }
     }

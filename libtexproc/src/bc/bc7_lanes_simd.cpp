@@ -194,7 +194,7 @@ struct Bc7Batch : Bc7FitLanes {
         for (int seed = std::max(level.seeds, 1); seed < level.winner_seeds; ++seed) {
           SetFitV next;
           fit_seed(set, line, seed, fmt, Md.index_bits, force, next);
-          assign(set, Md.index_bits, exact, next);
+          if (exact != level.exact_indices) assign(set, Md.index_bits, exact, next);  // else next's indices are already these
           select_fit(hn::Lt(next.error, fit.error), next, fit, set);
         }
       }
