@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <climits>
 #include <cstdint>
+#include <type_traits>
 
 #include "bc/bc7_estimate_simd-inl.h"
 #include "bc/bc7_lanes.h"
@@ -64,6 +65,15 @@ struct Bc7FitLanes {
   }
 
   HWY_INLINE VF f(V v) const { return hn::ConvertTo(df, v); }
+
+  // f(N) with the set's channel count N (1, 3 or 4) a constant: the texel
+  // passes' one copy for each count.
+  template <class F>
+  static HWY_INLINE auto by_channels(int n, F&& f) {
+    if (n == 3) return f(std::integral_constant<int, 3>());
+    if (n == 4) return f(std::integral_constant<int, 4>());
+    return f(std::integral_constant<int, 1>());
+  }
 
   // As ref::line_ends.
   template <int N>  // the channels, 1, 3 or 4
@@ -127,9 +137,7 @@ struct Bc7FitLanes {
     }
   }
   HWY_INLINE void line_ends(const SetV& s, VF e[2][4]) const {
-    if (s.n == 3) return line_ends_n<3>(s, e);
-    if (s.n == 4) return line_ends_n<4>(s, e);
-    line_ends_n<1>(s, e);
+    return by_channels(s.n, [&](auto N) { line_ends_n<N>(s, e); });
   }
 
   // As ref::quantize_ends; `force_p1` per lane.
@@ -222,9 +230,7 @@ struct Bc7FitLanes {
     }
   }
   HWY_INLINE void quantize_joint(const SetV& s, const VF e[2][4], const VF H[3], EndpointFormat fmt, M force_p1, SetFitV& fit) const {
-    if (s.n == 3) return quantize_joint_n<3>(s, e, H, fmt, force_p1, fit);
-    if (s.n == 4) return quantize_joint_n<4>(s, e, H, fmt, force_p1, fit);
-    quantize_joint_n<1>(s, e, H, fmt, force_p1, fit);
+    return by_channels(s.n, [&](auto N) { quantize_joint_n<N>(s, e, H, fmt, force_p1, fit); });
   }
 
   // The weight (out of 64) of index j of 2^bits: the table's, one lane
@@ -283,9 +289,7 @@ struct Bc7FitLanes {
     }
   }
   HWY_INLINE void assign(const SetV& s, int bits, bool exact, SetFitV& fit) const {
-    if (s.n == 3) return assign_n<3>(s, bits, exact, fit);
-    if (s.n == 4) return assign_n<4>(s, bits, exact, fit);
-    assign_n<1>(s, bits, exact, fit);
+    return by_channels(s.n, [&](auto N) { assign_n<N>(s, bits, exact, fit); });
   }
 
   // As ref::lsq_ends: the mask of lanes with a determined solution; the
@@ -313,9 +317,7 @@ struct Bc7FitLanes {
     return hn::RebindMask(d, ok);
   }
   HWY_INLINE M lsq_ends(const SetV& s, int bits, const SetFitV& fit, VF e[2][4], VF H[3]) const {
-    if (s.n == 3) return lsq_ends_n<3>(s, bits, fit, e, H);
-    if (s.n == 4) return lsq_ends_n<4>(s, bits, fit, e, H);
-    return lsq_ends_n<1>(s, bits, fit, e, H);
+    return by_channels(s.n, [&](auto N) { return lsq_ends_n<N>(s, bits, fit, e, H); });
   }
 
   HWY_INLINE void select_fit(M m, const SetFitV& from, SetFitV& to, const SetV& s) const {
