@@ -96,8 +96,11 @@ HWY_INLINE void insert(RankedV& r, VF e, V p) {
 
 // As ref::rank_partitions. The sums of each subset but the last come
 // from an earlier subset's (SumPlan): integer sums, so the same as the
-// reference's texel by texel.
-HWY_INLINE void rank_partitions(const V (&x)[16][4], int subsets, int scanned, RankedV& all, RankedV* first16) {
+// reference's texel by texel. The two-subset pass keeps its residuals in
+// `two` (slot 2 p + s); the three-subset pass takes those of the first
+// `two_scanned` two-subset partitions, and its own, where a subset is one
+// already seen (kResidualReuse): the same floats, fewer divisions.
+HWY_INLINE void rank_partitions(const V (&x)[16][4], int subsets, int scanned, RankedV& all, RankedV* first16, VF* two, int two_scanned) {
   const DI d;
   const DF df;
   const bc7::SumPlan& plan = subsets == 2 ? bc7::kSumPlan2 : bc7::kSumPlan3;
@@ -113,6 +116,7 @@ HWY_INLINE void rank_partitions(const V (&x)[16][4], int subsets, int scanned, R
   }
   const int last = subsets - 1;
   V sums[2 * 64][9];  // slot 2 p + s: subset s of partition p, S then Q
+  VF three[3 * 64];    // the three-subset pass's residuals, slot 3 p + s
   for (int part = 0; part < scanned; ++part) {
     int cnt[3];
     V S[3][3], Q[3][6];
@@ -146,8 +150,23 @@ HWY_INLINE void rank_partitions(const V (&x)[16][4], int subsets, int scanned, R
       for (int q = 0; q < 6; ++q) Q[last][q] = hn::Sub(Q[last][q], Q[s][q]);
     }
     VF est = hn::Zero(df);
-    for (int s = 0; s < subsets; ++s)  // an empty subset adds 0 (the reference's residual of no texels)
-      if (cnt[s] > 0) est = hn::Add(est, subset_residual(cnt[s], S[s], Q[s]));
+    for (int s = 0; s < subsets; ++s) {
+      if (cnt[s] == 0) continue;  // an empty subset adds 0 (the reference's residual of no texels)
+      VF r;
+      if (subsets == 2) {
+        r = two[2 * part + s] = subset_residual(cnt[s], S[s], Q[s]);
+      } else {
+        const int from2 = bc7::kResidualReuse.two[part][s], from3 = bc7::kResidualReuse.three[part][s];
+        if (from2 >= 0 && from2 / 2 < two_scanned)
+          r = two[from2];
+        else if (from3 >= 0)
+          r = three[from3];
+        else
+          r = subset_residual(cnt[s], S[s], Q[s]);
+        three[3 * part + s] = r;
+      }
+      est = hn::Add(est, r);
+    }
     insert(all, est, hn::Set(d, part));
     if (first16 && part < 16) insert(*first16, est, hn::Set(d, part));
   }

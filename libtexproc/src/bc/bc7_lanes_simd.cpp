@@ -217,8 +217,10 @@ struct Bc7Batch : Bc7FitLanes {
     try_mode6();
     RankedV two;
     init(two, std::min(level.partitions2, level.estimated2));
+    VF residuals2[2 * 64];
+    const int scanned2 = level.partitions2 > 0 ? level.estimated2 : 0;
     if (level.partitions2 > 0) {
-      rank_partitions(x, 2, level.estimated2, two, nullptr);
+      rank_partitions(x, 2, level.estimated2, two, nullptr, residuals2, 0);
       for (int r = 0; r < two.k; ++r) {
         try_partitioned(1, two.partition[r], all);
         if (level.mode3) try_partitioned(3, two.partition[r], all);
@@ -227,7 +229,7 @@ struct Bc7Batch : Bc7FitLanes {
     if (level.partitions3 > 0) {
       RankedV three, three16;
       init(three, std::min(level.partitions3, 64)), init(three16, std::min(level.partitions3, 16));
-      rank_partitions(x, 3, 64, three, &three16);
+      rank_partitions(x, 3, 64, three, &three16, residuals2, scanned2);
       for (int r = 0; r < three16.k; ++r) try_partitioned(0, three16.partition[r], all);
       for (int r = 0; r < three.k; ++r) try_partitioned(2, three.partition[r], all);
     }

@@ -53,4 +53,35 @@ constexpr SumPlan make_sum_plan(const std::uint32_t (&table)[64], int subsets) {
 }
 inline constexpr SumPlan kSumPlan2 = make_sum_plan(bptc::kPartitions2, 2);
 inline constexpr SumPlan kSumPlan3 = make_sum_plan(bptc::kPartitions3, 3);
+
+// Where the estimate finds a three-subset partition's subset residual
+// already computed: 62 of the 192 subsets are a two-subset partition's
+// subset (`two`: slot 2 p + s of the two-subset pass, -1: none) and 16
+// more an earlier three-subset partition's (`three`: slot 3 p + s, -1:
+// none). A residual is a function of the subset's integer sums alone, so
+// the same float either way: 242 residuals instead of 320.
+struct ResidualReuse {
+  int two[64][3], three[64][3];
+};
+constexpr ResidualReuse make_residual_reuse() {
+  ResidualReuse r{};
+  for (int p = 0; p < 64; ++p)
+    for (int s = 0; s < 3; ++s) {
+      const unsigned m = subset_mask(bptc::kPartitions3[p], s);
+      r.two[p][s] = r.three[p][s] = -1;
+      for (int slot = 0; slot < 2 * 64 && r.two[p][s] < 0; ++slot)
+        if (subset_mask(bptc::kPartitions2[slot / 2], slot % 2) == m) r.two[p][s] = slot;
+      for (int slot = 0; slot < 3 * p + s && r.three[p][s] < 0; ++slot)
+        if (subset_mask(bptc::kPartitions3[slot / 3], slot % 3) == m) r.three[p][s] = slot;
+    }
+  return r;
+}
+inline constexpr ResidualReuse kResidualReuse = make_residual_reuse();
+constexpr int residuals_computed(const ResidualReuse& r) {
+  int n = 0;
+  for (int p = 0; p < 64; ++p)
+    for (int s = 0; s < 3; ++s) n += r.two[p][s] < 0 && r.three[p][s] < 0;
+  return n;
+}
+static_assert(2 * 64 + residuals_computed(kResidualReuse) == 242, "the estimate's distinct subsets, as the comment above counts them");
 }  // namespace texproc::bc7
