@@ -32,20 +32,27 @@ using M = hn::Mask<DI>;
 
 HWY_INLINE VF as_float(V v) { return hn::ConvertTo(DF(), v); }
 
-// a b for a in [0, 32767] and b in [-32768, 32767]: one 16-bit
-// multiply-add a lane (vpmaddwd on x86, half the cost of a 32-bit
-// product), a's upper half zero so the upper halves add nothing; the same
-// integer as hn::Mul.
-// (HWY_SCALAR's one lane has no 16-bit halves: the 32-bit product.)
-HWY_INLINE V mul16(V a, V b) {
-#if HWY_TARGET == HWY_SCALAR
-  return hn::Mul(a, b);
-#else
+#if HWY_TARGET != HWY_SCALAR
+// Each lane's two 16-bit halves as signed integers, a_lo b_lo + a_hi b_hi:
+// one 16-bit multiply-add a lane (vpmaddwd on x86).
+HWY_INLINE V dot16(V a, V b) {
   const DI d;
   const hn::Repartition<std::int16_t, DI> d16;
   V odd = hn::Zero(d);
   const V even = hn::ReorderWidenMulAccumulate(d, hn::BitCast(d16, a), hn::BitCast(d16, b), hn::Zero(d), odd);
   return hn::RearrangeToOddPlusEven(even, odd);
+}
+#endif
+
+// a b for a in [0, 32767] and b in [-32768, 32767]: dot16 (half the cost
+// of a 32-bit product), a's upper half zero so the upper halves add
+// nothing; the same integer as hn::Mul.
+// (HWY_SCALAR's one lane has no 16-bit halves: the 32-bit product.)
+HWY_INLINE V mul16(V a, V b) {
+#if HWY_TARGET == HWY_SCALAR
+  return hn::Mul(a, b);
+#else
+  return dot16(a, b);
 #endif
 }
 

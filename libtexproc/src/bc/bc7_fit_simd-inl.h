@@ -41,12 +41,30 @@ struct SetFitV {
   V error;
 };
 
+// Whether a lane's two 16-bit halves can hold two channels (every target
+// but HWY_SCALAR, whose one lane has no halves).
+#define TEXPROC_BC7_PAIRS (HWY_TARGET != HWY_SCALAR)
+
+// Two channels a lane, lo in the low 16 bits and hi in the high (each in
+// [-32768, 32767]): for dot16 and 16-bit lane arithmetic.
+HWY_INLINE V pair16(V lo, V hi) {
+  const DI d;
+  return hn::Or(hn::And(lo, hn::Set(d, 0xFFFF)), hn::ShiftLeft<16>(hi));
+}
+
+// The texels' channels in pairs (pair16): R G, B alone, B A; a set of 3
+// channels uses the first two, of 4 the first and the third.
+using PairsV = V[3];
+HWY_INLINE void make_pairs(const V x[4], PairsV& xp) { xp[0] = pair16(x[0], x[1]), xp[1] = x[2], xp[2] = pair16(x[2], x[3]); }
+
 // As the reference's Set: the texels (possibly rotated), the members (a
-// mask per texel), the channels.
+// mask per texel), the channels; the texels in pairs too (for sets of 3
+// and 4 channels from channel 0, where TEXPROC_BC7_PAIRS).
 struct SetV {
   const V (*x)[4];
   const M* member;
   int c0, n;
+  const PairsV* xp;
 };
 
 // The fit of one subset at a time, on every lane: what Bc7Batch builds on.
@@ -56,11 +74,14 @@ struct Bc7FitLanes {
   const Bc7Level& level;
   V weight_table[3];  // 2-, 3- and 4-bit indices' weights, as many as the lanes hold
 
+  V weight_pairs[3];  // the same, each weight in both 16-bit halves
+
   HWY_ATTR explicit Bc7FitLanes(const Bc7Level& l) : level(l) {
     for (int b = 2; b <= 4; ++b) {
       std::int32_t w[kBc7Batch] = {};
       for (int j = 0; j < std::min(1 << b, kBc7Batch); ++j) w[j] = bptc::weights(b)[j];
       weight_table[b - 2] = hn::LoadU(d, w);
+      weight_pairs[b - 2] = pair16(weight_table[b - 2], weight_table[b - 2]);
     }
   }
 
@@ -242,6 +263,12 @@ struct Bc7FitLanes {
     const VF num = f(hn::Add(hn::Mul(j, hn::Set(d, 128)), hn::Set(d, L)));
     return hn::ConvertTo(d, hn::Floor(hn::Mul(num, hn::Set(df, 1.0f / float(2 * L)))));
   }
+  // The weight in both 16-bit halves.
+  HWY_INLINE V weight_pair(V j, int L) const {
+    if (L < int(hn::Lanes(d))) return hn::TableLookupLanes(weight_pairs[L == 3 ? 0 : L == 7 ? 1 : 2], hn::IndicesFromVec(d, j));
+    const V w = weight(j, L);
+    return hn::Or(w, hn::ShiftLeft<16>(w));
+  }
   // Texel i's squared error at index j: each channel's palette entry
   // (64 - w) e0 + w e1 + 32 >> 6 as e0 + (w (e1 - e0) + 32 >> 6), the same
   // integer (64 e0 is a whole multiple of 64).
@@ -257,6 +284,32 @@ struct Bc7FitLanes {
     return t;
   }
 
+#if TEXPROC_BC7_PAIRS
+  // texel_error for 3 or 4 channels from channel 0, two channels a lane: the same integers in 16-bit halves (|w (e1 - e0)| <= 64 255,
+  // the palette entry and the texel in [0, 255]), the squares' pair sums
+  // by dot16. dvp and v0p: (e1 - e0) and e0 in pairs as s.xp's.
+  template <int N>
+  HWY_INLINE V texel_error_pairs(const SetV& s, const V dvp[2], const V v0p[2], int i, V j, int L) const {
+    const hn::Repartition<std::int16_t, DI> d16;
+    const auto w = hn::BitCast(d16, weight_pair(j, L));
+    V t = hn::Zero(d);
+    for (int k = 0; k < 2; ++k) {
+      const auto p = hn::Add(hn::BitCast(d16, v0p[k]), hn::ShiftRight<6>(hn::Add(hn::Mul(w, hn::BitCast(d16, dvp[k])), hn::Set(d16, 32))));
+      const V e = hn::BitCast(d, hn::Sub(p, hn::BitCast(d16, s.xp[i][k == 0 ? 0 : N == 3 ? 1 : 2])));
+      t = hn::Add(t, dot16(e, e));
+    }
+    return t;
+  }
+#endif
+
+  // Texel i's x d.
+  template <int N>
+  HWY_INLINE V projection(const SetV& s, const V dv[4], int i) const {
+    V t = mul16(s.x[i][s.c0], dv[0]);
+    for (int a = 1; a < N; ++a) t = hn::Add(t, mul16(s.x[i][s.c0 + a], dv[a]));
+    return t;
+  }
+
   // As ref::assign; the projection's sum of (x - e0) d as x d - e0 d.
   HWY_INLINE void assign(const SetV& s, int bits, SetFitV& fit) const { assign(s, bits, level.exact_indices, fit); }
   template <int N>  // the channels, 1, 3 or 4
@@ -269,18 +322,37 @@ struct Bc7FitLanes {
     }
     const auto spread = hn::RebindMask(df, hn::Gt(dd, hn::Zero(d)));
     const VF scale = hn::IfThenElseZero(spread, hn::Div(hn::Set(df, float(L)), f(hn::Max(dd, hn::Set(d, 1)))));
+    // Two channels a lane where the target has halves (the set's channels
+    // from 0: sets of 3 and 4 always are).
+#if TEXPROC_BC7_PAIRS
+    constexpr bool paired = N >= 3;
+    V dvp[2], v0p[2];
+    if (paired) {
+      const V* v0 = fit.value[0];
+      dvp[0] = pair16(dv[0], dv[1]), v0p[0] = pair16(v0[0], v0[1]);
+      dvp[1] = N == 4 ? pair16(dv[2], dv[3]) : hn::And(dv[2], hn::Set(d, 0xFFFF));
+      v0p[1] = N == 4 ? pair16(v0[2], v0[3]) : v0[2];
+    }
+    auto error_at = [&](int i, V j) { return paired ? texel_error_pairs<N>(s, dvp, v0p, i, j, L) : texel_error<N>(s, fit, dv, i, j, L); };
+    auto project = [&](int i) {
+      if (!paired) return projection<N>(s, dv, i);
+      return hn::Add(dot16(s.xp[i][0], dvp[0]), dot16(s.xp[i][N == 3 ? 1 : 2], dvp[1]));
+    };
+#else
+    auto error_at = [&](int i, V j) { return texel_error<N>(s, fit, dv, i, j, L); };
+    auto project = [&](int i) { return projection<N>(s, dv, i); };
+#endif
     fit.error = hn::Zero(d);
     for (int i = 0; i < 16; ++i) {
-      V t = hn::Neg(origin);
-      for (int a = 0; a < N; ++a) t = hn::Add(t, mul16(s.x[i][s.c0 + a], dv[a]));
+      const V t = hn::Sub(project(i), origin);
       V j = round_clamped(hn::Mul(f(t), scale), float(L));
-      V e = texel_error<N>(s, fit, dv, i, j, L);
+      V e = error_at(i, j);
       if (exact) {
         const V j0 = j, lo = hn::Sub(j0, hn::Set(d, 1)), hi = hn::Add(j0, hn::Set(d, 1));
-        const V elo = texel_error<N>(s, fit, dv, i, hn::Max(lo, hn::Zero(d)), L);
+        const V elo = error_at(i, hn::Max(lo, hn::Zero(d)));
         const M take_lo = hn::And(hn::Gt(j0, hn::Zero(d)), hn::Lt(elo, e));
         e = hn::IfThenElse(take_lo, elo, e), j = hn::IfThenElse(take_lo, lo, j);
-        const V ehi = texel_error<N>(s, fit, dv, i, hn::Min(hi, hn::Set(d, L)), L);
+        const V ehi = error_at(i, hn::Min(hi, hn::Set(d, L)));
         const M take_hi = hn::And(hn::Lt(j0, hn::Set(d, L)), hn::Lt(ehi, e));
         e = hn::IfThenElse(take_hi, ehi, e), j = hn::IfThenElse(take_hi, hi, j);
       }

@@ -33,6 +33,7 @@ struct BestV {
 
 struct Bc7Batch : Bc7FitLanes {
   V x[16][4];
+  PairsV xp[16];
   M opaque, solid;
   V alpha_error;
   BestV best;
@@ -49,6 +50,7 @@ struct Bc7Batch : Bc7FitLanes {
     for (int i = 0; i < 16; ++i) {
       const V t = hn::LoadU(d, reinterpret_cast<const std::int32_t*>(texel[i]) + k0);
       for (int c = 0; c < 4; ++c) x[i][c] = hn::And(hn::ShiftRightSame(t, 8 * c), hn::Set(d, 255));  // masked: the shift is arithmetic
+      make_pairs(x[i], xp[i]);
       opaque = hn::And(opaque, hn::Eq(x[i][3], hn::Set(d, 255)));
       solid = hn::And(solid, hn::Eq(t, first));
       const V da = hn::Sub(hn::Set(d, 255), x[i][3]);
@@ -89,7 +91,7 @@ struct Bc7Batch : Bc7FitLanes {
   HWY_INLINE void try_mode6() {
     SetFitV fit;
     const bool rgb = hn::AllTrue(d, opaque);
-    fit_set(SetV{x, all_members, 0, rgb ? 3 : 4}, bc7::color_format(6), 4, opaque, fit);
+    fit_set(SetV{x, all_members, 0, rgb ? 3 : 4, xp}, bc7::color_format(6), 4, opaque, fit);
     if (rgb)
       for (int k = 0; k < 2; ++k) fit.code[k][3] = hn::Set(d, 127), fit.value[k][3] = hn::Set(d, 255);
     V code[3][2][4], pbit[3][2], zero[16];
@@ -126,7 +128,7 @@ struct Bc7Batch : Bc7FitLanes {
       M member[16];
       for (int i = 0; i < 16; ++i) member[i] = hn::Eq(hn::And(hn::ShiftRightSame(bits, 2 * i), hn::Set(d, 3)), hn::Set(d, s));
       SetFitV fit;
-      fit_set(SetV{x, member, 0, n}, bc7::color_format(mode), Md.index_bits, force, fit);
+      fit_set(SetV{x, member, 0, n, xp}, bc7::color_format(mode), Md.index_bits, force, fit);
       error = hn::Add(error, fit.error);
       for (int k = 0; k < 2; ++k) {
         pbit[s][k] = fit.pbit[k];
@@ -143,15 +145,17 @@ struct Bc7Batch : Bc7FitLanes {
     if (hn::AllFalse(d, hn::AndNot(solid, allowed))) return;
     const bptc::Bc7Mode& Md = bptc::kBc7Modes[mode];
     V y[16][4];
+    PairsV yp[16];
     for (int i = 0; i < 16; ++i) {
       for (int c = 0; c < 4; ++c) y[i][c] = x[i][c];
       if (rotation) std::swap(y[i][3], y[i][rotation - 1]);
+      make_pairs(y[i], yp[i]);
     }
     const int color_bits = isel ? Md.index2_bits : Md.index_bits, alpha_bits = isel ? Md.index_bits : Md.index2_bits;
     const M none = hn::FirstN(d, 0);
     SetFitV rgb, alpha;
-    fit_set(SetV{y, all_members, 0, 3}, {Md.color_bits, Pbit::none}, color_bits, none, rgb);
-    fit_set(SetV{y, all_members, 3, 1}, {Md.alpha_bits, Pbit::none}, alpha_bits, none, alpha);
+    fit_set(SetV{y, all_members, 0, 3, yp}, {Md.color_bits, Pbit::none}, color_bits, none, rgb);
+    fit_set(SetV{y, all_members, 3, 1, yp}, {Md.alpha_bits, Pbit::none}, alpha_bits, none, alpha);
     V code[3][2][4], pbit[3][2], zero[16];
     zero_candidate(code, pbit, zero);
     for (int k = 0; k < 2; ++k) {
@@ -175,7 +179,7 @@ struct Bc7Batch : Bc7FitLanes {
     for (int s = 0; s < Md.subsets; ++s) {
       M member[16];
       for (int i = 0; i < 16; ++i) member[i] = hn::Eq(hn::And(hn::ShiftRightSame(bits, 2 * i), hn::Set(d, 3)), hn::Set(d, s));
-      const SetV set{x, member, 0, n};
+      const SetV set{x, member, 0, n, xp};
       SetFitV fit;
       for (int k = 0; k < 2; ++k) {
         fit.pbit[k] = best.pbit[s][k];
