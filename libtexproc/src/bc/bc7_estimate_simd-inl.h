@@ -67,15 +67,18 @@ HWY_INLINE V round_clamped(VF v, float hi) {
   return hn::Sub(hn::BitCast(d, hn::Add(c, hn::Set(df, 12582912.0f))), hn::Set(d, 0x4B400000));
 }
 
-// As ref::subset_residual.
-HWY_INLINE VF subset_residual(int cnt, const V S[3], const V Q[6]) {
-  const DI d;
+// As ref::subset_residual, from the sums as floats: every sum, product
+// and difference is an integer below 2^24 (16 255^2 16 < 2^24), so exact
+// in float arithmetic, fused or not: the reference's integers.
+HWY_INLINE VF subset_residual(int cnt, const VF S[3], const VF Q[6]) {
   const DF df;
-  const V n = hn::Set(d, cnt);
-  const VF c00 = as_float(hn::Sub(hn::Mul(n, Q[0]), hn::Mul(S[0], S[0]))), c01 = as_float(hn::Sub(hn::Mul(n, Q[1]), hn::Mul(S[0], S[1]))),
-           c02 = as_float(hn::Sub(hn::Mul(n, Q[2]), hn::Mul(S[0], S[2]))), c11 = as_float(hn::Sub(hn::Mul(n, Q[3]), hn::Mul(S[1], S[1]))),
-           c12 = as_float(hn::Sub(hn::Mul(n, Q[4]), hn::Mul(S[1], S[2]))), c22 = as_float(hn::Sub(hn::Mul(n, Q[5]), hn::Mul(S[2], S[2])));
-  return hn::Mul(axis_residual(df, c00, c01, c02, c11, c12, c22), hn::Set(df, 1.0f / float(cnt)));
+  static constexpr float kInverse[17] = {0.0f,        1.0f / 1,  1.0f / 2,  1.0f / 3,  1.0f / 4,  1.0f / 5,
+                                         1.0f / 6,    1.0f / 7,  1.0f / 8,  1.0f / 9,  1.0f / 10, 1.0f / 11,
+                                         1.0f / 12,   1.0f / 13, 1.0f / 14, 1.0f / 15, 1.0f / 16};
+  const VF n = hn::Set(df, float(cnt));
+  auto entry = [&](int q, int a, int b) { return hn::NegMulAdd(S[a], S[b], hn::Mul(n, Q[q])); };
+  const VF c00 = entry(0, 0, 0), c01 = entry(1, 0, 1), c02 = entry(2, 0, 2), c11 = entry(3, 1, 1), c12 = entry(4, 1, 2), c22 = entry(5, 2, 2);
+  return hn::Mul(axis_residual(df, c00, c01, c02, c11, c12, c22), hn::Set(df, kInverse[cnt]));
 }
 
 // As ref::Ranked, a list per lane.
@@ -102,8 +105,8 @@ HWY_INLINE void insert(RankedV& r, VF e, V p) {
 }
 
 // As ref::rank_partitions. The sums of each subset but the last come
-// from an earlier subset's (SumPlan): integer sums, so the same as the
-// reference's texel by texel. The two-subset pass keeps its residuals in
+// from an earlier subset's (SumPlan): whole numbers below 2^24 in floats,
+// so exact, the same as the reference's integer sums texel by texel. The two-subset pass keeps its residuals in
 // `two` (slot 2 p + s); the three-subset pass takes those of the first
 // `two_scanned` two-subset partitions, and its own, where a subset is one
 // already seen (kResidualReuse): the same floats, fewer divisions.
@@ -111,37 +114,38 @@ HWY_INLINE void rank_partitions(const V (&x)[16][4], int subsets, int scanned, R
   const DI d;
   const DF df;
   const bc7::SumPlan& plan = subsets == 2 ? bc7::kSumPlan2 : bc7::kSumPlan3;
-  V tS[3], tQ[6], prod[16][6];
-  for (auto& v : tS) v = hn::Zero(d);
-  for (auto& v : tQ) v = hn::Zero(d);
+  VF xf[16][3], tS[3], tQ[6], prod[16][6];
+  for (auto& v : tS) v = hn::Zero(df);
+  for (auto& v : tQ) v = hn::Zero(df);
   for (int i = 0; i < 16; ++i) {
-    const V* xi = x[i];
-    prod[i][0] = mul16(xi[0], xi[0]), prod[i][1] = mul16(xi[0], xi[1]), prod[i][2] = mul16(xi[0], xi[2]);
-    prod[i][3] = mul16(xi[1], xi[1]), prod[i][4] = mul16(xi[1], xi[2]), prod[i][5] = mul16(xi[2], xi[2]);
+    VF* xi = xf[i];
+    for (int c = 0; c < 3; ++c) xi[c] = hn::ConvertTo(df, x[i][c]);
+    prod[i][0] = hn::Mul(xi[0], xi[0]), prod[i][1] = hn::Mul(xi[0], xi[1]), prod[i][2] = hn::Mul(xi[0], xi[2]);
+    prod[i][3] = hn::Mul(xi[1], xi[1]), prod[i][4] = hn::Mul(xi[1], xi[2]), prod[i][5] = hn::Mul(xi[2], xi[2]);
     for (int c = 0; c < 3; ++c) tS[c] = hn::Add(tS[c], xi[c]);
     for (int q = 0; q < 6; ++q) tQ[q] = hn::Add(tQ[q], prod[i][q]);
   }
   const int last = subsets - 1;
-  V sums[2 * 64][9];  // slot 2 p + s: subset s of partition p, S then Q
+  VF sums[2 * 64][9];  // slot 2 p + s: subset s of partition p, S then Q
   VF three[3 * 64];    // the three-subset pass's residuals, slot 3 p + s
   for (int part = 0; part < scanned; ++part) {
     int cnt[3];
-    V S[3][3], Q[3][6];
+    VF S[3][3], Q[3][6];
     for (int s = 0; s < last; ++s) {
       const bc7::SumStep& st = plan.step[part][s];
-      V* out = sums[2 * part + s];
+      VF* out = sums[2 * part + s];
       if (st.parent < 0)
-        for (int c = 0; c < 9; ++c) out[c] = hn::Zero(d);
+        for (int c = 0; c < 9; ++c) out[c] = hn::Zero(df);
       else
         for (int c = 0; c < 9; ++c) out[c] = sums[st.parent][c];
       for (unsigned m = st.add; m; m &= m - 1) {
         const int i = __builtin_ctz(m);
-        for (int c = 0; c < 3; ++c) out[c] = hn::Add(out[c], x[i][c]);
+        for (int c = 0; c < 3; ++c) out[c] = hn::Add(out[c], xf[i][c]);
         for (int q = 0; q < 6; ++q) out[3 + q] = hn::Add(out[3 + q], prod[i][q]);
       }
       for (unsigned m = st.sub; m; m &= m - 1) {
         const int i = __builtin_ctz(m);
-        for (int c = 0; c < 3; ++c) out[c] = hn::Sub(out[c], x[i][c]);
+        for (int c = 0; c < 3; ++c) out[c] = hn::Sub(out[c], xf[i][c]);
         for (int q = 0; q < 6; ++q) out[3 + q] = hn::Sub(out[3 + q], prod[i][q]);
       }
       cnt[s] = st.count;
