@@ -73,7 +73,6 @@ struct Bc7FitLanes {
   const DF df;
   const Bc7Level& level;
   V weight_table[3];  // 2-, 3- and 4-bit indices' weights, as many as the lanes hold
-
   V weight_pairs[3];  // the same, each weight in both 16-bit halves
 
   HWY_ATTR explicit Bc7FitLanes(const Bc7Level& l) : level(l) {
@@ -285,9 +284,10 @@ struct Bc7FitLanes {
   }
 
 #if TEXPROC_BC7_PAIRS
-  // texel_error for 3 or 4 channels from channel 0, two channels a lane: the same integers in 16-bit halves (|w (e1 - e0)| <= 64 255,
-  // the palette entry and the texel in [0, 255]), the squares' pair sums
-  // by dot16. dvp and v0p: (e1 - e0) and e0 in pairs as s.xp's.
+  // texel_error for 3 or 4 channels from channel 0, two channels a lane:
+  // the same integers in 16-bit halves (|w (e1 - e0)| <= 64 255, the
+  // palette entry and the texel in [0, 255]), the squares' pair sums by
+  // dot16. dvp and v0p: (e1 - e0) and e0 in pairs as s.xp's.
   template <int N>
   HWY_INLINE V texel_error_pairs(const SetV& s, const V dvp[2], const V v0p[2], int i, V j, int L) const {
     const hn::Repartition<std::int16_t, DI> d16;
