@@ -369,14 +369,23 @@ struct Bc7FitLanes {
   template <int N>  // the channels, 1, 3 or 4
   HWY_NOINLINE M lsq_ends_n(const SetV& s, int bits, const SetFitV& fit, VF e[2][4], VF H[3]) const {
     const int L = (1 << bits) - 1;
-    V AA = hn::Zero(d), AB = AA, BB = AA, RA[4], RB[4];
-    for (int c = 0; c < N; ++c) RA[c] = RB[c] = hn::Zero(d);
+    // With a = 64 - b on the members, the reference's sums from b's alone
+    // and the texels' (the same integers): AA = 4096 n - 128 Sb + BB,
+    // AB = 64 Sb - BB, RA = 64 Sx - RB.
+    V n = hn::Zero(d), Sb = n, BB = n, Sx[4], RB[4], RA[4];
+    for (int c = 0; c < N; ++c) Sx[c] = RB[c] = hn::Zero(d);
     for (int i = 0; i < 16; ++i) {
       const M m = s.member[i];
-      const V b = hn::IfThenElseZero(m, weight(fit.index[i], L)), a = hn::IfThenElseZero(m, hn::Sub(hn::Set(d, 64), b));
-      AA = hn::Add(AA, mul16(a, a)), AB = hn::Add(AB, mul16(a, b)), BB = hn::Add(BB, mul16(b, b));
-      for (int c = 0; c < N; ++c) RA[c] = hn::Add(RA[c], mul16(a, s.x[i][s.c0 + c])), RB[c] = hn::Add(RB[c], mul16(b, s.x[i][s.c0 + c]));
+      const V b = hn::IfThenElseZero(m, weight(fit.index[i], L));
+      n = hn::Sub(n, hn::VecFromMask(d, m));  // the mask's lanes are -1
+      Sb = hn::Add(Sb, b), BB = hn::Add(BB, mul16(b, b));
+      for (int c = 0; c < N; ++c) {
+        const V x = s.x[i][s.c0 + c];
+        Sx[c] = hn::IfThenElse(m, hn::Add(Sx[c], x), Sx[c]), RB[c] = hn::Add(RB[c], mul16(b, x));
+      }
     }
+    const V AA = hn::Add(hn::Sub(hn::ShiftLeft<12>(n), hn::ShiftLeft<7>(Sb)), BB), AB = hn::Sub(hn::ShiftLeft<6>(Sb), BB);
+    for (int c = 0; c < N; ++c) RA[c] = hn::Sub(hn::ShiftLeft<6>(Sx[c]), RB[c]);
     const VF fAA = f(AA), fAB = f(AB), fBB = f(BB);
     H[0] = fAA, H[1] = hn::Mul(hn::Set(df, 2.0f), fAB), H[2] = fBB;
     const VF det = hn::Sub(hn::Mul(fAA, fBB), hn::Mul(fAB, fAB));
