@@ -96,7 +96,7 @@ void run(benchmark::State& state, const std::string& who, TexelFormat format, Qu
   // clock around every crop's scoring (as this did until session 18) timed
   // the pause's own cost and the worker threads' wake-up from the
   // scoring's idle, not the encoding (texproc fast's two threads read
-  // 1.79x one this way, 1.9x unpaused).
+  // 1.79x one this way, 1.97x unpaused).
   const auto& crops = bench::centred_crops();
   std::vector<std::vector<std::uint8_t>> out(crops.size());
   for (auto _ : state) {
