@@ -313,7 +313,15 @@ std::vector<std::size_t> select_work(std::vector<FileReport>& reports, const Ses
       continue;
     }
     try {
-      for (const auto& out : r.outputs) check_output(out, {r.input}, common.force || s.incremental);
+      for (const auto& out : r.outputs) {
+        // An incremental build replaces only what it made itself.
+        const bool replace = common.force || (s.incremental && s.owned_outputs.count(output_key(out)));
+        if (s.incremental && !replace && fs::exists(out, ec)) {
+          throw Error(ErrorCode::bad_arguments, out + ": output exists and was not written by this recipe; --force "
+                                                     "replaces it");
+        }
+        check_output(out, {r.input}, replace);
+      }
       todo.push_back(i);
     } catch (const Error& e) {
       fail(r, e.code(), e.what());
@@ -327,7 +335,11 @@ std::vector<std::size_t> select_work(std::vector<FileReport>& reports, const Ses
 void run_file(const BatchCommand& c, FileReport& r, const std::string& output, const CommonOptions& common) {
   const auto t0 = std::chrono::steady_clock::now();
   try {
+    // The file's outputs are put in place together once all are written,
+    // or none is.
+    CommitGroup outputs;
     c.run(r.input, output, r);
+    outputs.commit();
   } catch (const Error& e) {
     fail(r, e.code(), e.what());
   } catch (const std::bad_alloc&) {
@@ -371,7 +383,15 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
                                                all_recorded.end());
   const std::vector<InputFile> files = expand_inputs(b, c.input_extensions);
   const std::vector<std::string> outputs = name_outputs(c, b, files);
-  if (s.check_only) return 0;
+  if (s.check_only) {
+    if (s.plans) {
+      const std::vector<FileReport> planned = plan_files(c, files, outputs, shared_inputs);
+      for (std::size_t i = 0; i < planned.size(); ++i) {
+        s.plans->push_back({planned[i].inputs, claimed_outputs(planned[i], outputs[i])});
+      }
+    }
+    return 0;
+  }
 
   // Without --force (or --write-if-changed), an output that appears between
   // the check below and the end of the work is not replaced either: the
@@ -444,6 +464,15 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
   progress.close();
   for (std::size_t k = started; k < todo.size(); ++k) reports[todo[k]].status = "not_run";
   return finish();
+}
+
+std::string output_key(const std::string& path) {
+  std::error_code ec;
+  const fs::path abs = fs::absolute(path, ec);
+  if (ec) return fs::path(path).lexically_normal().string();
+  const fs::path dir = fs::weakly_canonical(abs.parent_path(), ec);
+  if (ec) return abs.lexically_normal().string();
+  return (dir / abs.filename()).lexically_normal().string();
 }
 
 std::string to_json(const Json::Value& v) {

@@ -15,6 +15,7 @@
 
 #include <chrono>
 #include <functional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -132,7 +133,21 @@ struct SessionOptions {
   // to date; any other is rebuilt, its old outputs replaced.
   bool incremental = false;
   std::vector<std::string> run_inputs;  // what every file depends on besides its own inputs: the recipe
+  // Set by `build`: the outputs its recipe wrote in earlier runs (keys from
+  // output_key). An incremental run replaces an existing output only if it
+  // is one of them; any other existing file needs --force.
+  std::set<std::string> owned_outputs;
+  // Set by `build` for its first pass: run_batch appends each file's inputs
+  // and outputs here, so that every output can be checked against every
+  // input of every job before the first job runs.
+  struct PlannedFile {
+    std::vector<std::string> inputs, outputs;
+  };
+  std::vector<PlannedFile>* plans = nullptr;
 };
+// The key a file is known by in owned_outputs: its absolute, normalized
+// path with symlinks in its folders resolved.
+std::string output_key(const std::string& path);
 SessionOptions& session_options();
 
 // Every FileReport of this process, in order (a `build` recipe adds several

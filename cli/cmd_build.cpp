@@ -3,10 +3,16 @@
 // parsed by the same parser as the command itself, so a recipe accepts
 // exactly what the command line does and its mistakes are named with the
 // recipe's line and key.
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
+#include <set>
 
 #include "batch.h"
 #include "report.h"
@@ -14,6 +20,9 @@
 #include "common.h"
 #include "recipe.h"
 #include "texproc/error.h"
+#include "texproc/file_io.h"
+
+namespace fs = std::filesystem;
 
 namespace texproc::cli {
 namespace {
@@ -108,6 +117,71 @@ PreparedJob prepare(const Recipe& r, const RecipeJob& j, const CommonOptions& co
   return p;
 }
 
+// The outputs a recipe has written, kept beside them in
+// ".RECIPE_FILE_NAME.outputs" (one path a line, relative to the folder the
+// outputs are taken from), so that an incremental build replaces only files
+// it made, never a source that a job's output happens to name.
+struct OwnedOutputs {
+  fs::path root, file;
+  std::set<std::string> keys;  // output_key of each
+  std::vector<std::string> lines;
+
+  OwnedOutputs(const std::string& recipe, const std::string& out_dir) {
+    root = out_dir.empty() ? fs::path(recipe).parent_path() : fs::path(out_dir);
+    if (root.empty()) root = ".";
+    file = root / ("." + fs::path(recipe).filename().string() + ".outputs");
+    std::ifstream in(file);
+    for (std::string line; std::getline(in, line);) {
+      if (!line.empty()) add_relative(line);
+    }
+  }
+  void add_relative(const std::string& rel) {
+    if (keys.insert(output_key((root / rel).string())).second) lines.push_back(rel);
+  }
+  void add(const std::string& output) {
+    std::error_code ec;
+    const fs::path rel = fs::relative(fs::absolute(output, ec), fs::absolute(root, ec), ec);
+    add_relative(ec || rel.empty() ? fs::absolute(output).lexically_normal().string() : rel.string());
+  }
+  void save() const {
+    std::string text;
+    for (const std::string& l : lines) text += l + "\n";
+    std::error_code ec;
+    fs::create_directories(root, ec);
+    write_file_atomic(file.string(), text, CommitPolicy::replace);
+  }
+};
+
+// Before any job runs: no output of one job may be a file that another job
+// reads, unless this recipe made it (an intermediate).
+void check_outputs_against_inputs(const Recipe& r, const std::vector<PreparedJob>& jobs,
+                                  const std::vector<std::vector<SessionOptions::PlannedFile>>& plans,
+                                  const OwnedOutputs& owned) {
+  std::map<std::pair<dev_t, ino_t>, std::size_t> reader;  // an input file -> the job that reads it
+  for (std::size_t j = 0; j < plans.size(); ++j) {
+    for (const auto& f : plans[j]) {
+      for (const std::string& in : f.inputs) {
+        struct stat st {};
+        if (::stat(in.c_str(), &st) == 0) reader.emplace(std::pair{st.st_dev, st.st_ino}, j);
+      }
+    }
+  }
+  for (std::size_t j = 0; j < plans.size(); ++j) {
+    for (const auto& f : plans[j]) {
+      for (const std::string& out : f.outputs) {
+        struct stat st {};
+        if (::stat(out.c_str(), &st) != 0 || owned.keys.count(output_key(out))) continue;
+        const auto it = reader.find({st.st_dev, st.st_ino});
+        if (it == reader.end()) continue;
+        throw Error(ErrorCode::bad_arguments,
+                    where(r, *jobs[j].job, jobs[j].job->output_line) + ": output " + out + " is an input of " +
+                        where(r, *jobs[it->second].job, 0) +
+                        " and was not made by this recipe; outputs never overwrite sources: choose another name");
+      }
+    }
+  }
+}
+
 // The command whose runner runs the job (`sat` for `sat blur`).
 CLI::App* top_command(const PreparedJob& p) {
   return p.command->get_parent() == p.app.get() ? p.command : p.command->get_parent();
@@ -128,20 +202,30 @@ int run_build(const BuildArgs& a) {
     if (!a.only.empty() && std::find(a.only.begin(), a.only.end(), j.name) == a.only.end()) continue;
     jobs.push_back(prepare(recipe, j, a.common));
   }
-  // Incremental unless --force: up-to-date files are skipped, changed ones rebuilt.
-  session_options().incremental = !a.common.force;
-  session_options().run_inputs = {a.recipe};
-  // A first pass checks each job's option values, inputs and output names.
-  session_options().check_only = true;
-  for (PreparedJob& p : jobs) {
+  // Incremental unless --force: up-to-date files are skipped, changed ones
+  // rebuilt, and only outputs this recipe made may be replaced.
+  OwnedOutputs owned(a.recipe, a.out_dir);
+  SessionOptions& s = session_options();
+  s.incremental = !a.common.force;
+  s.run_inputs = {a.recipe};
+  s.owned_outputs = owned.keys;
+  // A first pass checks each job's option values, inputs and output names,
+  // and plans every file, so that no output overwrites any job's input.
+  std::vector<std::vector<SessionOptions::PlannedFile>> plans(jobs.size());
+  s.check_only = true;
+  for (std::size_t j = 0; j < jobs.size(); ++j) {
+    s.plans = &plans[j];
     try {
-      (*runner_of(*top_command(p)))();
+      (*runner_of(*top_command(jobs[j])))();
     } catch (const Error& e) {
-      session_options().check_only = false;
-      throw Error(e.code(), locate(recipe, *p.job, e.what()) + ": " + e.what());
+      s.check_only = false;
+      s.plans = nullptr;
+      throw Error(e.code(), locate(recipe, *jobs[j].job, e.what()) + ": " + e.what());
     }
   }
-  session_options().check_only = false;
+  s.check_only = false;
+  s.plans = nullptr;
+  check_outputs_against_inputs(recipe, jobs, plans, owned);
   int rc = 0;
   for (PreparedJob& p : jobs) {
     const std::size_t first = session_reports().size();
@@ -153,7 +237,18 @@ int run_build(const BuildArgs& a) {
       job_rc = int(e.code());
     }
     const std::string name = p.job->name.empty() ? "jobs[" + std::to_string(p.job->index) + "]" : p.job->name;
-    for (std::size_t i = first; i < session_reports().size(); ++i) session_reports()[i].details["job"] = name;
+    bool wrote = false;
+    for (std::size_t i = first; i < session_reports().size(); ++i) {
+      FileReport& fr = session_reports()[i];
+      fr.details["job"] = name;
+      if (fr.status != "ok" || dry_run()) continue;
+      for (const std::string& o : fr.outputs) owned.add(o);
+      wrote = true;
+    }
+    if (wrote) {
+      owned.save();
+      s.owned_outputs = owned.keys;
+    }
     if (job_rc != 0 && rc == 0) rc = job_rc;
     if (job_rc != 0 && session_options().fail_fast) break;
   }

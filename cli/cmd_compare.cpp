@@ -62,12 +62,19 @@ Image first_channels(const Image& img, int n) {
 
 Json::Value finite(double v) { return std::isfinite(v) ? Json::Value(v) : Json::Value(); }
 
-std::string db(double v) {
-  if (!std::isfinite(v)) return "inf";
+// A figure as a number, or as the word for what it is: nan, inf, -inf.
+std::string number(double v, const char* format = "%g") {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
   char b[32];
-  std::snprintf(b, sizeof b, "%.2f", v);
+  std::snprintf(b, sizeof b, format, v);
   return b;
 }
+std::string db(double v) { return number(v, "%.2f"); }
+
+// Limits compare so that a NaN figure fails them.
+bool below(double value, double limit) { return !(value >= limit); }
+bool above(double value, double limit) { return !(value <= limit); }
 
 int run_compare(const CompareArgs& a) {
   ThreadLimit threads(a.common.threads);
@@ -98,15 +105,18 @@ int run_compare(const CompareArgs& a) {
   std::vector<std::string> failed;
   const bool limits = a.min_psnr >= 0 || a.max_error >= 0 || a.min_ssim >= 0 || a.max_log_rmse >= 0;
   if (!limits && d.differing_texels > 0) failed.push_back("texels differ");
-  if (a.min_psnr >= 0 && d.psnr() < a.min_psnr) failed.push_back("PSNR " + db(d.psnr()) + " dB < " + db(a.min_psnr));
-  if (a.max_error >= 0 && d.max_abs > a.max_error) {
-    failed.push_back("max error " + std::to_string(d.max_abs) + " > " + std::to_string(a.max_error));
+  // NaN and infinities are differences whatever the limits: the figures
+  // describe the finite texels only.
+  if (d.nonfinite_texels > 0) failed.push_back(std::to_string(d.nonfinite_texels) + " texels hold NaN or infinity");
+  if (a.min_psnr >= 0 && below(d.psnr(), a.min_psnr)) failed.push_back("PSNR " + db(d.psnr()) + " dB < " + db(a.min_psnr));
+  if (a.max_error >= 0 && above(d.max_abs, a.max_error)) {
+    failed.push_back("max error " + number(d.max_abs) + " > " + number(a.max_error));
   }
-  if (a.max_log_rmse >= 0 && d.log_rmse_rgb() > a.max_log_rmse) {
-    failed.push_back("log2 RMSE " + std::to_string(d.log_rmse_rgb()) + " > " + std::to_string(a.max_log_rmse));
+  if (a.max_log_rmse >= 0 && above(d.log_rmse_rgb(), a.max_log_rmse)) {
+    failed.push_back("log2 RMSE " + number(d.log_rmse_rgb()) + " > " + number(a.max_log_rmse));
   }
-  if (a.min_ssim >= 0 && ssim_mean < a.min_ssim) {
-    failed.push_back("SSIM " + std::to_string(ssim_mean) + " < " + std::to_string(a.min_ssim));
+  if (a.min_ssim >= 0 && below(ssim_mean, a.min_ssim)) {
+    failed.push_back("SSIM " + number(ssim_mean) + " < " + number(a.min_ssim));
   }
   const int rc = failed.empty() ? 0 : int(ErrorCode::difference_found);
 
@@ -120,24 +130,25 @@ int run_compare(const CompareArgs& a) {
     j["channels"] = n;
     j["psnr"] = finite(d.psnr());
     if (n >= 3) j["psnr_rgb"] = finite(d.psnr_rgb());
-    j["rmse"] = std::sqrt(d.mse);
-    j["max_error"] = d.max_abs;
-    j["log_rmse_rgb"] = d.log_rmse_rgb();
+    j["rmse"] = finite(std::sqrt(d.mse));
+    j["max_error"] = finite(d.max_abs);
+    j["log_rmse_rgb"] = finite(d.log_rmse_rgb());
     j["hdr"] = d.hdr;
     j["differing_texels"] = Json::UInt64(d.differing_texels);
+    j["nonfinite_texels"] = Json::UInt64(d.nonfinite_texels);
     Json::Value per(Json::arrayValue);
     for (int c = 0; c < n; ++c) {
       Json::Value ch(Json::objectValue);
       ch["name"] = std::string(1, names[c]);
       ch["psnr"] = finite(d.psnr_channel(c));
-      ch["rmse"] = std::sqrt(d.channel[std::size_t(c)].mse);
-      ch["mean_error"] = d.channel[std::size_t(c)].mean_abs;
-      ch["max_error"] = d.channel[std::size_t(c)].max_abs;
-      if (want_ssim) ch["ssim"] = ssim[std::size_t(c)];
+      ch["rmse"] = finite(std::sqrt(d.channel[std::size_t(c)].mse));
+      ch["mean_error"] = finite(d.channel[std::size_t(c)].mean_abs);
+      ch["max_error"] = finite(d.channel[std::size_t(c)].max_abs);
+      if (want_ssim) ch["ssim"] = finite(ssim[std::size_t(c)]);
       per.append(ch);
     }
     j["channel"] = per;
-    if (want_ssim) j["ssim"] = ssim_mean;
+    if (want_ssim) j["ssim"] = finite(ssim_mean);
     j["identical"] = d.differing_texels == 0;
     j["within_limits"] = failed.empty();
     std::cout << to_json(j) << "\n";
@@ -147,13 +158,14 @@ int run_compare(const CompareArgs& a) {
     if (n >= 3) s << " (RGB " << db(d.psnr_rgb()) << " dB)";
     s << " [";
     for (int c = 0; c < n; ++c) s << (c ? " " : "") << names[c] << " " << db(d.psnr_channel(c));
-    s << "], RMSE " << std::sqrt(d.mse) << ", max error " << d.max_abs << " (" << std::lround(d.max_abs * 255)
-      << "/255)";
-    if (d.hdr) s << ", log2 RMSE " << d.log_rmse_rgb() << " (HDR)";
-    if (want_ssim) s << ", SSIM " << ssim_mean;
+    s << "], RMSE " << number(std::sqrt(d.mse)) << ", max error " << number(d.max_abs);
+    if (std::isfinite(d.max_abs)) s << " (" << std::lround(d.max_abs * 255) << "/255)";
+    if (d.hdr) s << ", log2 RMSE " << number(d.log_rmse_rgb()) << " (HDR)";
+    if (want_ssim) s << ", SSIM " << number(ssim_mean);
     char pct[32];
     std::snprintf(pct, sizeof pct, "%.2f", 100.0 * double(d.differing_texels) / (double(d.width) * d.height));
     s << ", " << d.differing_texels << " texels differ (" << pct << "%)";
+    if (d.nonfinite_texels > 0) s << ", " << d.nonfinite_texels << " of them NaN or infinite";
     std::cout << s.str() << "\n";
   }
   if (!failed.empty()) print_note("texproc compare: " + a.a + " and " + a.b + " differ: " + join(failed));
@@ -173,12 +185,12 @@ void add_compare_command(CLI::App& app) {
       "log2 RMSE over RGB, the RMSE of sign(v) log2(1 + |v|): about stops for bright values, linear near 0.");
   cmd->add_option("a", args->a, "First image or texture")->required();
   cmd->add_option("b", args->b, "Second image or texture")->required();
-  cmd->add_option("--level", args->level, "Mip level of textures to compare (default 0)");
-  cmd->add_option("--min-psnr", args->min_psnr, "Exit 7 when the PSNR (all channels) is below this, in dB");
-  cmd->add_option("--max-error", args->max_error, "Exit 7 when any value differs by more than this (0..1; 1/255 = 0.0039)");
+  cmd->add_option("--level", args->level, "Mip level of textures to compare (default 0)")->check(in_range(0, 31));
+  cmd->add_option("--min-psnr", args->min_psnr, "Exit 7 when the PSNR (all channels) is below this, in dB")->check(in_range(0, 1000));
+  cmd->add_option("--max-error", args->max_error, "Exit 7 when any value differs by more than this (0..1; 1/255 = 0.0039)")->check(in_range(0, 3.4e38));
   cmd->add_option("--max-log-rmse", args->max_log_rmse,
-                  "Exit 7 when the log2 RMSE over RGB (the HDR metric, float images) is above this");
-  cmd->add_option("--min-ssim", args->min_ssim, "Exit 7 when the mean SSIM is below this (0..1)");
+                  "Exit 7 when the log2 RMSE over RGB (the HDR metric, float images) is above this")->check(in_range(0, 1000));
+  cmd->add_option("--min-ssim", args->min_ssim, "Exit 7 when the mean SSIM is below this (0..1)")->check(in_range(-1, 1));
   cmd->add_flag("--ssim", args->ssim, "Also compute SSIM (11x11 Gaussian window)");
   cmd->add_option("--threads", args->common.threads, "Worker threads (default 0: all cores)")
       ->check(CLI::NonNegativeNumber);

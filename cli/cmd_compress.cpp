@@ -315,7 +315,7 @@ void add_compress_command(CLI::App& app) {
                 "Float input to an LDR format: clip values outside [0, 1] without the warning (an HDR format keeps them)");
   cmd->add_option("--astc-effort", args->astc_effort,
                   "ASTC: astc-encoder's numeric quality 0-100 in place of --quality's preset (0 -fastest, 10 -fast, "
-                  "60 -medium, 98 -thorough, 99 -verythorough, 100 -exhaustive)");
+                  "60 -medium, 98 -thorough, 99 -verythorough, 100 -exhaustive)")->check(in_range(0, 100));
   cmd->add_flag("--mips", args->mips, "Compress a whole mip chain (mip options below)");
   cmd->add_flag("--normal-map", args->normal_map,
                 "The input is a normal map: linear, renormalized mips; bc5/eac-rg11 store X and Y, bc3 the DXT5nm "
@@ -324,12 +324,12 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option("--wrap", args->wrap, "Mip filter taps past the edges: clamp, repeat, mirror")->capture_default_str();
   cmd->add_option("--alpha-coverage", args->alpha_coverage,
                   "With --mips: keep the fraction of texels with alpha >= REF equal to level 0's in every level "
-                  "(cutouts; 0.5 for bc1a and etc2a1, whose alpha is cut at 128), 0 < REF <= 1");
+                  "(cutouts; 0.5 for bc1a and etc2a1, whose alpha is cut at 128), 0 < REF <= 1")->check(in_range(0, 1, true));
   cmd->add_flag("--no-premultiply", args->no_premultiply,
                 "With --mips: filter colour without weighting it by alpha (an alpha channel that holds data)");
   add_chain_options(*cmd, args->chain);
   cmd->add_option("--dds-header", args->dds_header, "auto, dx9, dx10")->capture_default_str();
-  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")
+  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")->check(in_range(1, 22))
       ->group("Container");
   cmd->add_option("--transparent-color", args->transparent_color,
                   "Colour under alpha 0 (bc1a, bc2, bc3, etc2a1, etc2a): keep, bleed (from the visible texels), zero")

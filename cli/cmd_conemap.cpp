@@ -137,8 +137,8 @@ void add_conemap_command(CLI::App& app) {
                    "Output cone map (RGB: height, sqrt ratio, 0), folder (DIR/: {stem}.png each) or template");
   cmd->add_option("--height-channel", args->height_channel, "Height from: auto, r, g, b, a, luma")->capture_default_str();
   cmd->add_flag("--invert", args->invert, "Depth map: use 1 - h");
-  cmd->add_option("--depth", args->depth, "Relief depth in texture widths (> 0)")->capture_default_str();
-  cmd->add_option("--max-ratio", args->max_ratio, "Cap on the cone ratio (> 0)")->capture_default_str();
+  cmd->add_option("--depth", args->depth, "Relief depth in texture widths (> 0)")->check(in_range(0, 1e6, true))->capture_default_str();
+  cmd->add_option("--max-ratio", args->max_ratio, "Cap on the cone ratio (> 0)")->check(in_range(0, 1e6, true))->capture_default_str();
   cmd->add_option("--wrap", args->wrap, "repeat (tiling reliefs see across edges) or clamp")->capture_default_str();
   cmd->add_option("--mode", args->mode,
                  "conservative (no relief inside a cone) or relaxed (a ray entering the relief inside a cone does not "
@@ -161,8 +161,8 @@ void add_conemap_command(CLI::App& app) {
   cmd->add_option("--preview", args->preview,
                   "Also render a preview PNG: linear search, cone stepping and relaxed cone stepping, with lookups-per-pixel heat maps "
                   "(a template such as 'previews/{stem}.png' for several inputs)");
-  cmd->add_option("--preview-size", args->preview_size, "Preview panel size in pixels")->capture_default_str();
-  cmd->add_option("--view-angle", args->view_angle, "Preview view angle from the normal, degrees")->capture_default_str();
+  cmd->add_option("--preview-size", args->preview_size, "Preview panel size in pixels")->check(in_range(16, 8192))->capture_default_str();
+  cmd->add_option("--view-angle", args->view_angle, "Preview view angle from the normal, degrees")->check(in_range(0, 89))->capture_default_str();
   add_common_options(*cmd, args->common);
   set_runner(*cmd, [args] {
     BatchCommand c;

@@ -504,9 +504,9 @@ void add_cubemap_command(CLI::App& app) {
                   "What OUT holds: auto (a cube texture for .ktx2/.dds/.ktx, six faces for DIR/, a cross otherwise), "
                   "cube, cross, vcross, strip, vstrip, equirect, faces")
       ->capture_default_str();
-  cmd->add_option("--size", args->size, "Face size (default: a panorama's width / 4 as a power of two; a cross's face)");
+  cmd->add_option("--size", args->size, "Face size (default: a panorama's width / 4 as a power of two; a cross's face)")->check(in_range(1, 16384));
   cmd->add_flag("--mips", args->mips, "A seamless mip chain down to 1x1");
-  cmd->add_option("--levels", args->levels, "At most this many levels (with --mips or --ibl specular)");
+  cmd->add_option("--levels", args->levels, "At most this many levels (with --mips or --ibl specular)")->check(in_range(0, 32));
   cmd->add_option("--flip", args->flip, "Mirror a world axis of the source: none, x, y, z (z: left-handed engines)")
       ->capture_default_str();
   cmd->add_option("--format", args->format,
@@ -514,19 +514,19 @@ void add_cubemap_command(CLI::App& app) {
                   "input and IBL, rgba8 otherwise)");
   cmd->add_option("--colorspace", args->color_space, "Source color space (default: srgb for 8/16-bit, linear for float)");
   cmd->add_flag("--linear", args->linear, "The input is data: no transfer function");
-  cmd->add_option("--equirect-width", args->equirect_width, "--to equirect: the panorama's width (default 4 x size)");
+  cmd->add_option("--equirect-width", args->equirect_width, "--to equirect: the panorama's width (default 4 x size)")->check(in_range(4, 16384));
   CLI::App& g = *cmd;
   g.add_option("--ibl", args->ibl, "Image-based lighting: none, specular, irradiance, both")->capture_default_str()->group("Lighting");
   g.add_option("--irradiance", args->irradiance_path, "--ibl both: the irradiance map's file (default {stem}_irradiance{ext})")
       ->group("Lighting");
-  g.add_option("--irradiance-size", args->irradiance_size, "Irradiance map face size")->capture_default_str()->group("Lighting");
-  g.add_option("--samples", args->samples, "Importance samples per texel where the GGX lobe is sampled")
+  g.add_option("--irradiance-size", args->irradiance_size, "Irradiance map face size")->check(in_range(1, 4096))->capture_default_str()->group("Lighting");
+  g.add_option("--samples", args->samples, "Importance samples per texel where the GGX lobe is sampled")->check(in_range(1, 1 << 20))
       ->capture_default_str()->group("Lighting");
   g.add_option("--sh", args->sh_path, "Write the 9 spherical-harmonic coefficients of the radiance (JSON)")->group("Lighting");
   g.add_option("--preview", args->preview_path, "Write a PNG: every level's cross and lit spheres")->group("Lighting");
-  g.add_option("--exposure", args->exposure, "Preview exposure (a multiplier)")->capture_default_str()->group("Lighting");
+  g.add_option("--exposure", args->exposure, "Preview exposure (a multiplier)")->check(in_range(0, 1e9, true))->capture_default_str()->group("Lighting");
   cmd->add_option("--dds-header", args->dds_header, "DDS header: auto, dx9, dx10")->capture_default_str()->group("Container");
-  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level (1-22)")->group("Container");
+  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level (1-22)")->check(in_range(1, 22))->group("Container");
   cmd->add_flag("--report", args->report, "With --json: seam figures per level (steps across edges and inside)");
   add_common_options(*cmd, args->common);
   set_runner(*cmd, [args] {

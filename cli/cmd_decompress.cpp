@@ -118,10 +118,10 @@ void add_decompress_command(CLI::App& app) {
       "biased (v + 1) / 2. With -o DIR/, HDR textures (float formats, ASTC HDR) are written as .exr.");
   add_batch_inputs(*cmd, args->io, "Texture files (.dds, .ktx2, .ktx, .pkm, .astc)",
                    "Output image (.png, .exr, .tga, .tif), folder (DIR/: {stem}.png each, .exr for HDR) or template");
-  cmd->add_option("--level", args->level, "Mip level to write (default 0)");
+  cmd->add_option("--level", args->level, "Mip level to write (default 0)")->check(in_range(0, 31));
   cmd->add_flag("--all-levels", args->all_levels, "Write every level as {stem}_mip{L}.{ext}");
-  cmd->add_option("--layer", args->layer, "Array layer (default 0)");
-  cmd->add_option("--face", args->face, "Cubemap face 0-5: +X, -X, +Y, -Y, +Z, -Z (default 0)");
+  cmd->add_option("--layer", args->layer, "Array layer (default 0)")->check(in_range(0, 65535));
+  cmd->add_option("--face", args->face, "Cubemap face 0-5: +X, -X, +Y, -Y, +Z, -Z (default 0)")->check(in_range(0, 5));
   cmd->add_option("--type", args->type, "Output element type: u8, u16, f16, f32 (default u8; f16 for .exr)");
   add_common_options(*cmd, args->common);
   set_runner(*cmd, [args] {

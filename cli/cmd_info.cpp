@@ -64,7 +64,9 @@ void describe(const std::string& path, std::ostringstream& json, std::ostringstr
     return;
   }
   if (is_texture_container(path)) {
-    const Texture t = read_texture(path);
+    ReadLimits headers = read_limits_from_environment();
+    headers.headers_only = true;  // the facts, without inflating or copying a level
+    const Texture t = read_texture(path, headers);
     const FormatInfo& f = format_info(t.format);
     ContainerKind kind = ContainerKind::dds;
     {
@@ -81,7 +83,7 @@ void describe(const std::string& path, std::ostringstream& json, std::ostringstr
          << ", \"is_array\": " << (t.is_array ? "true" : "false") << ", \"levels\": [";
     std::uint64_t total = 0;
     for (std::uint32_t l = 0; l < t.levels; ++l) {
-      const std::uint64_t bytes = std::uint64_t(t.image(l).size()) * t.layers * t.faces;
+      const std::uint64_t bytes = image_bytes(t.format, t.level_width(l), t.level_height(l)) * t.layers * t.faces;
       total += bytes;
       json << (l ? ", " : "") << "{\"width\": " << t.level_width(l) << ", \"height\": " << t.level_height(l)
            << ", \"bytes\": " << bytes << "}";
@@ -94,7 +96,7 @@ void describe(const std::string& path, std::ostringstream& json, std::ostringstr
     text << ", " << total << " bytes of texel data\n";
     for (std::uint32_t l = 0; l < t.levels; ++l) {
       text << "  level " << l << ": " << t.level_width(l) << "x" << t.level_height(l) << ", "
-           << std::uint64_t(t.image(l).size()) * t.layers * t.faces << " bytes\n";
+           << image_bytes(t.format, t.level_width(l), t.level_height(l)) * t.layers * t.faces << " bytes\n";
     }
     return;
   }

@@ -166,7 +166,7 @@ void add_mip_command(CLI::App& app) {
                   "Color space of the written levels (default: the source's; linear for float output)");
   cmd->add_option("--type", args->type, "Output element type: u8, u16, f16, f32 (default: the input's; f16 for .exr)");
   cmd->add_option("--alpha-coverage", args->alpha_coverage,
-                  "Keep the fraction of texels with alpha >= REF equal to level 0's (cutouts), 0 < REF <= 1");
+                  "Keep the fraction of texels with alpha >= REF equal to level 0's (cutouts), 0 < REF <= 1")->check(in_range(0, 1, true));
   cmd->add_flag("--normal-map", args->normal_map, "Input is a tangent-space normal map: renormalize each level");
   cmd->add_flag("--no-premultiply", args->no_premultiply, "Filter color without weighting it by alpha");
   cmd->add_option("--compression", args->compression,
@@ -174,7 +174,7 @@ void add_mip_command(CLI::App& app) {
   cmd->add_option("--dds-header", args->dds_header,
                   "DDS header: auto (legacy when a FourCC or masks can say the format, else DX10), dx9, dx10")
       ->capture_default_str();
-  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")
+  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")->check(in_range(1, 22))
       ->group("Container");
   cmd->add_flag("--report", args->report, "With --json: alpha coverage and its scale per level (--alpha-coverage)");
   add_common_options(*cmd, args->common);

@@ -160,8 +160,8 @@ void add_normalmap_command(CLI::App& app) {
   cmd->add_option("--height-channel", args->height_channel, "Height from: auto (gray, or luma of RGB), r, g, b, a, luma")
       ->capture_default_str();
   cmd->add_flag("--invert", args->invert, "Depth map: use 1 - h");
-  cmd->add_option("--height-scale", args->height_scale, "Texels spanned by a height of 1.0 (> 0)")->capture_default_str();
-  cmd->add_option("--strength", args->strength, "Slope multiplier for artists (> 0)")->capture_default_str();
+  cmd->add_option("--height-scale", args->height_scale, "Texels spanned by a height of 1.0 (> 0)")->check(in_range(0, 1e9, true))->capture_default_str();
+  cmd->add_option("--strength", args->strength, "Slope multiplier for artists (> 0)")->check(in_range(0, 1e9, true))->capture_default_str();
   cmd->add_option("--wrap", args->wrap, "Texels past the edges: clamp, repeat (tiling), mirror")->capture_default_str();
   cmd->add_option("--y", args->y, "Green channel: up (OpenGL, default) or down (DirectX)")->capture_default_str();
   cmd->add_option("--channels", args->channels, "Output channels: xyz, xy, xyzh")->capture_default_str();
@@ -175,7 +175,7 @@ void add_normalmap_command(CLI::App& app) {
   cmd->add_option("--compression", args->compression, "Output compression, as for `texproc mip`");
   cmd->add_option("--dds-header", args->dds_header, "DDS header for .dds output: auto, dx9, dx10")
       ->capture_default_str();
-  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")
+  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")->check(in_range(1, 22))
       ->group("Container");
   add_common_options(*cmd, args->common);
   set_runner(*cmd, [args] {

@@ -185,7 +185,7 @@ void add_sat_command(CLI::App& app) {
   CLI::App* b = cmd->add_subcommand("blur", "Box blur of any radius at constant cost per texel, gamma-correct.");
   add_batch_inputs(*b, args->blur_io, "Input images",
                    "Output image, folder (DIR/: same name each) or template ('blurred/{name}')");
-  b->add_option("--radius", args->radius, "Half-width in texels: a box of 2R+1; fractional radii blend")
+  b->add_option("--radius", args->radius, "Half-width in texels: a box of 2R+1; fractional radii blend")->check(in_range(0, 1e6))
       ->capture_default_str();
   b->add_option("--radius-map", args->radius_map, "Per-texel radius: R times the map's first channel in [0, 1]");
   b->add_option("--wrap", args->wrap, "Texels past the edges: clamp, repeat")->capture_default_str();

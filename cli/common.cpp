@@ -1,6 +1,10 @@
 #include "common.h"
 
 #include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -107,7 +111,20 @@ std::string escape_make(const std::string& path) {
 
 // The rule "outputs: inputs" with spaces and '#' escaped by backslashes (and
 // backslashes right before them doubled) and '$' doubled, as gcc -MD writes.
+// Make reads a depfile line by line: no escape can carry a line break.
+void check_depfile_name(const std::string& path) {
+  if (path.find_first_of("\n\r") != std::string::npos) {
+    std::string shown = path;
+    for (char& c : shown) c = (c == '\n' || c == '\r') ? '?' : c;
+    throw Error(ErrorCode::bad_arguments, shown +
+                                              ": a file name with a line break cannot be written to --depfile (Make "
+                                              "cannot read it): rename the file or drop --depfile");
+  }
+}
+
 std::string make_rule(const std::vector<std::string>& outputs, const std::vector<std::string>& inputs) {
+  for (const auto& o : outputs) check_depfile_name(o);
+  for (const auto& in : inputs) check_depfile_name(in);
   std::string rule;
   for (std::size_t i = 0; i < outputs.size(); ++i) rule += (i ? " " : "") + escape_make(outputs[i]);
   rule += ":";
@@ -147,6 +164,8 @@ void check_output(const std::string& output, const std::vector<std::string>& inp
   for (const auto& in : inputs) record_input(in);
   refuse_overwriting_input(output, inputs, "output");
   if (!d.path.empty()) {  // --depfile, checked before any work
+    check_depfile_name(output);
+    for (const auto& in : inputs) check_depfile_name(in);
     refuse_overwriting_input(d.path, inputs, "--depfile");
     if (fs::path(output).lexically_normal() == fs::path(d.path).lexically_normal()) {
       throw Error(ErrorCode::bad_arguments, d.path + ": --depfile names an output of the command");
@@ -166,18 +185,41 @@ void check_output(const std::string& output, const std::vector<std::string>& inp
   }
 }
 
+CLI::Validator in_range(double lo, double hi, bool lo_open) {
+  auto text = [](double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.10g", v);
+    return std::string(b);
+  };
+  const std::string range = (lo_open ? "(" : "[") + text(lo) + ", " + text(hi) + "]";
+  return CLI::Validator(
+      [lo, hi, lo_open, range](std::string& value) -> std::string {
+        const char* begin = value.c_str();
+        char* end = nullptr;
+        errno = 0;
+        const double v = std::strtod(begin, &end);
+        if (end == begin || *end != '\0') return "'" + value + "' is not a number (valid: " + range + ")";
+        if (!std::isfinite(v) || v < lo || v > hi || (lo_open && v == lo)) {
+          return value + " is outside the valid range " + range;
+        }
+        return "";
+      },
+      range);
+}
+
 void add_chain_options(CLI::App& cmd, ChainArgs& a, const char* group) {
   cmd.add_option("--filter", a.filter, "Mip filter: gaussian, box, triangle, kaiser, lanczos3, mitchell")
       ->capture_default_str()
       ->group(group);
   cmd.add_option("--sigma", a.sigma, "Gaussian standard deviation in destination texels (0 < sigma <= 4)")
       ->capture_default_str()
+      ->check(in_range(0, 4, true))
       ->group(group);
   cmd.add_option("--levels", a.levels, "Number of levels, level 0 included (default 0: down to 1x1)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(in_range(0, 32))
       ->group(group);
   cmd.add_option("--min-size", a.min_size, "Stop before a level whose larger side is below this")
-      ->check(CLI::PositiveNumber)
+      ->check(in_range(1, 1 << 20))
       ->group(group);
 }
 

@@ -93,6 +93,11 @@ bool is_container_path(const std::string& path);
 // --dds-header auto|dx9|dx10. Throws Error{bad_arguments}.
 texproc::DdsHeader parse_dds_header(const std::string& s);
 
+// A CLI11 check for a numeric option: the value must be a finite number in
+// [lo, hi] ((lo, hi] with lo_open), else exit 1 naming the option and the
+// range. NaN and infinities are refused.
+CLI::Validator in_range(double lo, double hi, bool lo_open = false);
+
 // "Strings like a, b, c" for messages.
 std::string join(const std::vector<std::string>& items, const char* sep = ", ");
 

@@ -1,14 +1,43 @@
 // texproc: the command-line front end. Each command lives in cmd_<name>.cpp.
 #include <CLI/CLI.hpp>
+#include <pthread.h>
+#include <signal.h>
+#include <unistd.h>
 
 #include <iostream>
+#include <thread>
 
 #include "commands.h"
 #include "common.h"
 #include "exit_codes.h"
+#include "texproc/file_io.h"
 #include "texproc/version.h"
 
+namespace {
+
+// SIGINT, SIGTERM and SIGHUP are taken by one thread (blocked in every other
+// thread, which inherit the mask): it removes the named temporaries of
+// outputs being written and exits at once with 128 + the signal, as a shell
+// reports it. Outputs already in place stay; unnamed temporaries vanish with
+// the process.
+void remove_temporaries_on_signals() {
+  sigset_t set;
+  sigemptyset(&set);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&set, sig);
+  if (pthread_sigmask(SIG_BLOCK, &set, nullptr) != 0) return;
+  std::thread([set] {
+    int sig = 0;
+    while (sigwait(&set, &sig) != 0) {
+    }
+    texproc::remove_pending_temporaries();
+    ::_exit(128 + sig);
+  }).detach();
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  remove_temporaries_on_signals();
   CLI::App app{"texproc: texture asset processing for asset pipelines.\n" +
                std::string(texproc::cli::kExitCodeHelp)};
   app.set_version_flag("--version", std::string("texproc ") + texproc::version_string());

@@ -1,7 +1,9 @@
 // texproc/file_io.h: atomic output files.
 #pragma once
 
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace texproc {
 
@@ -21,6 +23,8 @@ enum class CommitPolicy { replace, keep_identical, no_replace };
 // is an unnamed file in path()'s folder (O_TMPFILE) that temp_path() names
 // as /proc/self/fd/N: a process killed at any moment leaves nothing behind.
 // Elsewhere it is a hidden file beside path().
+class CommitGroup;
+
 class AtomicFile {
  public:
   explicit AtomicFile(std::string path);
@@ -41,14 +45,55 @@ class AtomicFile {
   // existing path() (even one created since the caller checked) is an error
   // and is left as it was. Returns whether path() was written. Throws
   // Error{io} on failure, naming path() and the OS error.
+  // While a CommitGroup is open on the calling thread, the file is handed to
+  // the group instead, to be put in place with the group's other files
+  // (returns true).
   bool commit();
 
  private:
+  friend class CommitGroup;
+  AtomicFile() = default;
+  bool commit_now();
+  void check_free() const;  // under no_replace: Error{io} if path() exists now
   std::string path_, temp_;
   int fd_ = -1;         // the unnamed temporary, or -1 for a named one
   int policy_ = -1;     // a CommitPolicy of its own, or -1 for the process's
   bool committed_ = false;
 };
+
+// The outputs of one piece of work, put in place together or not at all:
+// while a group is open on a thread, every AtomicFile committed on that
+// thread waits in the group. commit() then checks that each can be put in
+// place (no_replace: none has appeared) and renames them in the order they
+// were written; a group destroyed without commit() (an exception, a failure
+// after the first output) discards them all, so a build system never sees
+// half of a job's outputs. A group opened while another is open on the
+// same thread collects its own files until it is closed.
+class CommitGroup {
+ public:
+  CommitGroup();
+  ~CommitGroup();
+  CommitGroup(const CommitGroup&) = delete;
+  CommitGroup& operator=(const CommitGroup&) = delete;
+  // Throws Error{io}; a file already put in place when a later one fails
+  // is removed again if it was new.
+  void commit();
+
+ private:
+  friend class AtomicFile;
+  std::vector<std::unique_ptr<AtomicFile>> files_;
+  CommitGroup* outer_ = nullptr;
+};
+
+// Removes every named temporary this process has open (hidden files beside
+// outputs; unnamed ones vanish with the process by themselves). Thread-safe;
+// for a signal-handling thread before the process exits.
+void remove_pending_temporaries();
+
+// Removes the hidden temporaries (".~NAME.tmpPID-N.EXT") that processes no
+// longer running left in `folder` (killed with SIGKILL, or a power loss).
+// Done once a folder by the first AtomicFile made there; returns how many.
+int remove_stale_temporaries(const std::string& folder);
 
 void set_commit_policy(CommitPolicy policy);
 CommitPolicy commit_policy();

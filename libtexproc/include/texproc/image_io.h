@@ -41,9 +41,16 @@ ImageIoPath image_io_path();
 // Declared sizes past these are refused (Error{invalid_file}) before any
 // pixel memory is allocated. The defaults hold a 16384 x 8192 image;
 // TEXPROC_MAX_IMAGE_PIXELS overrides max_pixels at start-up.
+// A TIFF tile is refused when a side is over 1024 and over the image's
+// side rounded up to 16, or when it holds more than max_pixels.
+// A JPEG with more than max_jpeg_scans scans is refused before its
+// coefficients are decoded (a normal progressive file has about ten; each
+// scan can cost a pass over the whole image); TEXPROC_MAX_JPEG_SCANS
+// overrides it at start-up.
 struct ImageReadLimits {
   long long max_dimension = 65536;
   long long max_pixels = 16384LL * 8192;
+  int max_jpeg_scans = 100;
 };
 void set_image_read_limits(const ImageReadLimits& limits);
 ImageReadLimits image_read_limits();

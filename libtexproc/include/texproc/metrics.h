@@ -22,6 +22,11 @@ struct ImageDifference {
   double mse_rgb = 0;  // over the first min(3, channels) channels (color without alpha)
   double max_abs = 0;  // over every channel
   std::uint64_t differing_texels = 0;  // texels where any channel differs (by more than 1e-6)
+  // Texels where either image holds NaN or an infinity in any channel. Each
+  // is a differing texel; when there is one, the distance is not defined:
+  // every mse, mean_abs and the log error are NaN (so PSNR is NaN and fails
+  // any limit), and every max_abs is +infinity.
+  std::uint64_t nonfinite_texels = 0;
   // HDR: whether either image holds a value outside [0, 1] (float images
   // only), and the mean over RGB (the first min(3, channels) channels) of
   // the squared difference of L(v) = sign(v) log2(1 + |v|), for float

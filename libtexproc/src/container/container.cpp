@@ -1,6 +1,7 @@
 // Container dispatch: by extension for writing, by signature for reading.
 #include <cstring>
 #include <filesystem>
+#include <cstdlib>
 #include <fstream>
 
 #include "container/streams.h"
@@ -35,6 +36,16 @@ const char* to_string(ContainerKind k) {
   return "?";
 }
 
+ReadLimits read_limits_from_environment() {
+  ReadLimits l;
+  if (const char* e = std::getenv("TEXPROC_MAX_TEXTURE_BYTES")) {
+    char* end = nullptr;
+    const unsigned long long v = std::strtoull(e, &end, 10);
+    if (end != e && *end == '\0' && v > 0) l.max_inflated_bytes = v;
+  }
+  return l;
+}
+
 void write_texture(const std::string& path, const Texture& t, DdsHeader dds_header, int ktx2_zstd_level) {
   ByteWriter stream;
   try {
@@ -50,6 +61,18 @@ void write_texture(const std::string& path, const Texture& t, DdsHeader dds_head
     if (msg.rfind(path, 0) == 0) throw;
     throw Error(e.code(), path + ": " + msg);
   }
+  // What texproc writes it reads back: nothing past the read limits.
+  const ReadLimits limits;
+  if (t.width > limits.max_dimension || t.height > limits.max_dimension) {
+    throw Error(ErrorCode::unsupported, path + ": " + std::to_string(t.width) + "x" + std::to_string(t.height) +
+                                            " is over " + std::to_string(limits.max_dimension) +
+                                            " texels a side, the most a texture may have (Direct3D 11 and 12, and "
+                                            "texproc's readers): resize the image");
+  }
+  if (t.layers > limits.max_layers) {
+    throw Error(ErrorCode::unsupported, path + ": " + std::to_string(t.layers) + " layers, over the limit of " +
+                                            std::to_string(limits.max_layers));
+  }
   // Headers and images go to the file as they lie: no copy of the texture.
   AtomicFile file(path);
   FdWriter out(file.temp_path(), path);
@@ -59,12 +82,29 @@ void write_texture(const std::string& path, const Texture& t, DdsHeader dds_head
 }
 
 namespace {
+// A texture file's bytes: a regular file, or a pipe up to 1 GiB; devices
+// (/dev/zero would never end) and folders are refused.
 std::vector<std::uint8_t> slurp(const std::string& path) {
+  constexpr std::size_t kMaxStreamBytes = std::size_t(1) << 30;
   std::error_code ec;
-  if (!fs::exists(path, ec)) throw Error(ErrorCode::io, path + ": no such file");
+  const fs::file_status st = fs::status(path, ec);
+  if (ec || !fs::exists(st)) throw Error(ErrorCode::io, path + ": no such file");
+  if (!fs::is_regular_file(st) && st.type() != fs::file_type::fifo) {
+    throw Error(ErrorCode::invalid_file, path + ": not a regular file (a file or a pipe is read)");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(ErrorCode::io, path + ": cannot open");
-  return std::vector<std::uint8_t>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<std::uint8_t> bytes;
+  if (fs::is_regular_file(st)) bytes.reserve(std::size_t(fs::file_size(path, ec)));
+  char buf[1 << 16];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+    if (bytes.size() + std::size_t(in.gcount()) > kMaxStreamBytes && !fs::is_regular_file(st)) {
+      throw Error(ErrorCode::io, path + ": more than 1024 MiB from a pipe: refused");
+    }
+    bytes.insert(bytes.end(), buf, buf + in.gcount());
+  }
+  if (in.bad()) throw Error(ErrorCode::io, path + ": cannot read");
+  return bytes;
 }
 }  // namespace
 

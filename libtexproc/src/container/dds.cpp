@@ -277,6 +277,7 @@ Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string
   }
   if (size - offset > need) r.fail(std::to_string(size - offset - need) + " trailing bytes after the texture data");
   t.images.resize(std::size_t(levels) * images);
+  if (limits.headers_only) return t;
   for (std::uint32_t a = 0; a < t.layers; ++a)
     for (std::uint32_t f = 0; f < t.faces; ++f)
       for (std::uint32_t l = 0; l < levels; ++l) {

@@ -262,7 +262,8 @@ std::map<std::string, std::string> read_key_values(const ByteReader& r, const He
 // Each level's images from the level index (inflated where supercompressed);
 // the levels in place, aligned, without overlap, with nothing but alignment
 // padding between them, and nothing after the last.
-void read_levels(const ByteReader& r, std::size_t size, const Header& h, const FormatInfo* fi, Texture& t) {
+void read_levels(const ByteReader& r, std::size_t size, const Header& h, const FormatInfo* fi, Texture& t,
+                 const ReadLimits& limits) {
   const std::uint32_t level_count = h.level_count, scheme = h.scheme, dfd_offset = h.dfd_offset, dfd_length = h.dfd_length,
                       kvd_offset = h.kvd_offset, kvd_length = h.kvd_length;
   const std::uint64_t sgd_offset = h.sgd_offset, sgd_length = h.sgd_length;
@@ -273,6 +274,16 @@ void read_levels(const ByteReader& r, std::size_t size, const Header& h, const F
   const std::uint64_t metadata_end =
       std::max<std::uint64_t>({kHeaderEnd + 24ull * level_count, std::uint64_t(dfd_offset) + dfd_length,
                                kvd_length ? std::uint64_t(kvd_offset) + kvd_length : 0, sgd_offset + sgd_length});
+  if (scheme == 2 || scheme == 3) {  // what the levels inflate to, before any is inflated
+    std::uint64_t total = 0;
+    for (std::uint32_t l = 0; l < level_count; ++l) {
+      total += image_bytes(t.format, t.level_width(l), t.level_height(l)) * t.layers * t.faces;
+    }
+    if (!limits.headers_only && total > limits.max_inflated_bytes) {
+      r.fail("its supercompressed levels inflate to " + std::to_string(total) + " bytes, over the limit of " +
+             std::to_string(limits.max_inflated_bytes) + " (TEXPROC_MAX_TEXTURE_BYTES raises it)");
+    }
+  }
   std::vector<std::pair<std::uint64_t, std::uint32_t>> placed;  // offset, level
   std::vector<std::uint64_t> placed_length(level_count);
   std::uint64_t covered = 0;
@@ -302,6 +313,8 @@ void read_levels(const ByteReader& r, std::size_t size, const Header& h, const F
     placed.push_back({offset, l});
     const std::uint8_t* stored = r.at(offset, length, "level data");
     covered = std::max(covered, offset + length);
+    placed_length[l] = length;
+    if (limits.headers_only) continue;
     std::vector<std::uint8_t> inflated;
     const std::uint8_t* level_data = stored;
     if (scheme == 2 || scheme == 3) {
@@ -378,7 +391,7 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
   t.layers = std::max(h.layer_count, 1u);
   t.is_array = h.layer_count > 0;
   t.images.resize(std::size_t(t.levels) * t.layers * t.faces);
-  read_levels(r, size, h, fi, t);
+  read_levels(r, size, h, fi, t, limits);
   apply_key_values(r, kv, fi, t);
   return t;
 }

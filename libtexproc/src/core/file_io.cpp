@@ -1,6 +1,7 @@
 #include "texproc/file_io.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <stdio.h>
 #include <unistd.h>
 
@@ -10,8 +11,12 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <mutex>
+#include <set>
 #include <vector>
 
+#include "core/fd_writer.h"
 #include "texproc/error.h"
 
 namespace fs = std::filesystem;
@@ -35,10 +40,78 @@ std::string temp_name(const fs::path& p, unsigned n) {
 
 }  // namespace
 
+namespace {
+
+// Named temporaries this process has made and not yet renamed or removed,
+// for remove_pending_temporaries(). commit() holds the lock from naming a
+// temporary to renaming it, so a signal-handling thread that takes the lock
+// finds every name that exists.
+std::mutex g_pending_mutex;
+std::set<std::string>& pending() {
+  static auto* p = new std::set<std::string>;  // never destroyed: used until _exit
+  return *p;
+}
+
+// Folders already swept for stale temporaries by this process.
+std::mutex g_swept_mutex;
+std::set<std::string>& swept() {
+  static auto* s = new std::set<std::string>;
+  return *s;
+}
+
+thread_local CommitGroup* t_group = nullptr;
+
+// The PID in a temporary's name ".~NAME.tmpPID-N.EXT", or 0.
+long temp_pid(const std::string& name) {
+  if (name.rfind(".~", 0) != 0) return 0;
+  const std::size_t at = name.rfind(".tmp");
+  if (at == std::string::npos) return 0;
+  std::size_t i = at + 4;
+  long pid = 0;
+  const std::size_t digits = i;
+  while (i < name.size() && name[i] >= '0' && name[i] <= '9' && pid < (1L << 30)) pid = pid * 10 + (name[i++] - '0');
+  if (i == digits || i >= name.size() || name[i] != '-') return 0;
+  const std::size_t n0 = ++i;
+  while (i < name.size() && name[i] >= '0' && name[i] <= '9') ++i;
+  if (i == n0 || (i < name.size() && name[i] != '.')) return 0;
+  return pid;
+}
+
+void sweep_once(const std::string& dir) {
+  {
+    std::lock_guard<std::mutex> lock(g_swept_mutex);
+    if (!swept().insert(dir).second) return;
+  }
+  remove_stale_temporaries(dir);
+}
+
+}  // namespace
+
+int remove_stale_temporaries(const std::string& folder) {
+  int removed = 0;
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const long pid = temp_pid(name);
+    if (pid <= 0 || pid == long(::getpid())) continue;
+    if (::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;  // running (or not ours to ask about): kept
+    std::error_code rc;
+    if (fs::remove(it->path(), rc)) ++removed;
+  }
+  return removed;
+}
+
+void remove_pending_temporaries() {
+  std::lock_guard<std::mutex> lock(g_pending_mutex);
+  for (const std::string& t : pending()) ::unlink(t.c_str());
+  pending().clear();
+}
+
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   static std::atomic<unsigned> counter{0};
   const fs::path p(path_);
   const std::string dir = p.parent_path().empty() ? "." : p.parent_path().string();
+  sweep_once(dir);
 #ifdef O_TMPFILE
   fd_ = ::open(dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
   if (fd_ >= 0) {
@@ -47,15 +120,19 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   }
 #endif
   temp_ = (p.parent_path() / temp_name(p, counter++)).string();
+  std::lock_guard<std::mutex> lock(g_pending_mutex);
+  pending().insert(temp_);
 }
 
 AtomicFile::AtomicFile(std::string path, CommitPolicy policy) : AtomicFile(std::move(path)) { policy_ = int(policy); }
 
 AtomicFile::~AtomicFile() {
   if (fd_ >= 0) ::close(fd_);  // an unnamed temporary vanishes with its last descriptor
-  if (fd_ < 0 && !committed_) {
+  if (fd_ < 0 && !committed_ && !temp_.empty()) {
+    std::lock_guard<std::mutex> lock(g_pending_mutex);
     std::error_code ec;
     fs::remove(temp_, ec);
+    pending().erase(temp_);
   }
 }
 
@@ -85,6 +162,31 @@ void set_commit_policy(CommitPolicy policy) { g_policy = policy; }
 CommitPolicy commit_policy() { return g_policy; }
 
 bool AtomicFile::commit() {
+  if (CommitGroup* g = t_group) {
+    auto kept = std::unique_ptr<AtomicFile>(new AtomicFile);
+    kept->path_ = path_;
+    kept->temp_ = temp_;
+    kept->fd_ = fd_;
+    kept->policy_ = policy_ >= 0 ? policy_ : int(g_policy.load());
+    fd_ = -1;
+    committed_ = true;  // the group owns the temporary now
+    g->files_.push_back(std::move(kept));
+    return true;
+  }
+  return commit_now();
+}
+
+void AtomicFile::check_free() const {
+  const CommitPolicy policy = policy_ >= 0 ? CommitPolicy(policy_) : g_policy.load();
+  std::error_code ec;
+  if (policy == CommitPolicy::no_replace && fs::exists(fs::symlink_status(path_, ec))) {
+    throw Error(ErrorCode::io, path_ + ": cannot write: the file appeared while this run was writing it (another "
+                                       "process?) and is kept; --force replaces it");
+  }
+}
+
+bool AtomicFile::commit_now() {
+  std::lock_guard<std::mutex> lock(g_pending_mutex);
   const CommitPolicy policy = policy_ >= 0 ? CommitPolicy(policy_) : g_policy.load();
   auto fail = [&](int err) -> bool {
     throw Error(ErrorCode::io, path_ + ": cannot write: " + std::strerror(err));
@@ -97,6 +199,7 @@ bool AtomicFile::commit() {
     if (fd_ < 0) {
       std::error_code ec;
       fs::remove(temp_, ec);
+      pending().erase(temp_);
     }
     committed_ = true;
     return false;
@@ -115,12 +218,21 @@ bool AtomicFile::commit() {
     static std::atomic<unsigned> counter{0};
     const fs::path p(path_);
     const std::string named = (p.parent_path() / temp_name(p, 1000000 + counter++)).string();
-    if (::linkat(AT_FDCWD, temp_.c_str(), AT_FDCWD, named.c_str(), AT_SYMLINK_FOLLOW) != 0) fail(errno);
+    // The lock is held from here to the rename: a signal-handling thread
+    // removing pending temporaries sees this name or its rename, never a
+    // name left behind.
+    pending().insert(named);
+    if (::linkat(AT_FDCWD, temp_.c_str(), AT_FDCWD, named.c_str(), AT_SYMLINK_FOLLOW) != 0) {
+      pending().erase(named);
+      fail(errno);
+    }
     if (std::rename(named.c_str(), path_.c_str()) != 0) {
       const int e = errno;
       ::unlink(named.c_str());
+      pending().erase(named);
       fail(e);
     }
+    pending().erase(named);
     committed_ = true;
     return true;
   }
@@ -134,12 +246,41 @@ bool AtomicFile::commit() {
       if (::link(temp_.c_str(), path_.c_str()) != 0) errno == EEXIST ? exists_now() : fail(errno);
       ::unlink(temp_.c_str());
     }
+    pending().erase(temp_);
     committed_ = true;
     return true;
   }
   if (std::rename(temp_.c_str(), path_.c_str()) != 0) fail(errno);
+  pending().erase(temp_);
   committed_ = true;
   return true;
+}
+
+// A group opened while another is open on the thread (a worker that takes
+// up another file's work while it waits inside this one's parallel loop)
+// holds its own files until it closes, then the outer one is open again.
+CommitGroup::CommitGroup() : outer_(t_group) { t_group = this; }
+
+CommitGroup::~CommitGroup() {
+  t_group = outer_;
+  // files_ goes with the group: each uncommitted temporary is removed.
+}
+
+void CommitGroup::commit() {
+  t_group = outer_;
+  for (const auto& f : files_) f->check_free();
+  std::vector<std::string> made;  // files new under their names, removed again if a later one fails
+  try {
+    for (const auto& f : files_) {
+      std::error_code ec;
+      const bool existed = fs::exists(fs::symlink_status(f->path_, ec));
+      if (f->commit_now() && !existed) made.push_back(f->path_);
+    }
+  } catch (...) {
+    for (const std::string& m : made) ::unlink(m.c_str());
+    throw;
+  }
+  files_.clear();
 }
 
 void write_file_atomic(const std::string& path, const std::string& bytes) {
@@ -148,13 +289,9 @@ void write_file_atomic(const std::string& path, const std::string& bytes) {
 
 void write_file_atomic(const std::string& path, const std::string& bytes, CommitPolicy policy) {
   AtomicFile file(path, policy);
-  {
-    std::ofstream out(file.temp_path(), std::ios::binary);
-    if (!out) throw Error(ErrorCode::io, path + ": cannot create: " + std::strerror(errno));
-    out.write(bytes.data(), std::streamsize(bytes.size()));
-    out.close();
-    if (!out) throw Error(ErrorCode::io, path + ": write failed");
-  }
+  FdWriter out(file.temp_path(), path);  // every failure names path and the OS error
+  out.write(bytes.data(), bytes.size());
+  out.close();
   file.commit();
 }
 

@@ -28,13 +28,14 @@ struct BlockCache {
   std::mutex mutex;
   std::vector<std::pair<void*, std::size_t>> blocks;
   std::size_t bytes = 0;
-  ~BlockCache() {
-    for (auto& b : blocks) std::free(b.first);
-  }
 };
+// Never destroyed: pixel memory is freed by destructors that may run after
+// this file's statics are gone (oneTBB workers' thread_local scratch runs its
+// destructors after exit() has begun destroying statics, a static Image of a
+// program's own). The cached blocks go back to the system with the process.
 BlockCache& cache() {
-  static BlockCache c;
-  return c;
+  static BlockCache* c = new BlockCache;
+  return *c;
 }
 
 std::size_t rounded_size(std::size_t bytes) { return (bytes + kHugePage - 1) / kHugePage * kHugePage; }

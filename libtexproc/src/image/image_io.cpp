@@ -41,6 +41,11 @@ ImageReadLimits limits_from_environment() {
     const long long v = std::strtoll(e, &end, 10);
     if (end != e && v > 0) l.max_pixels = v;
   }
+  if (const char* e = std::getenv("TEXPROC_MAX_JPEG_SCANS")) {
+    char* end = nullptr;
+    const long v = std::strtol(e, &end, 10);
+    if (end != e && v > 0 && v < (1L << 30)) l.max_jpeg_scans = int(v);
+  }
   return l;
 }
 
@@ -120,7 +125,7 @@ ImageFileInfo probe_image(const std::string& path) {
   check_exists(path);
   Kind kind;
   {
-    const codecs::FileBytes f(path);
+    const codecs::FileBytes f(path, /*read_ahead=*/false);  // a header is all a probe reads
     kind = sniff(path, f);
     bool left = false;
     ImageFileInfo info = direct_or_module(
@@ -151,21 +156,27 @@ Image read_image(const std::string& path, ImageFileInfo* info_out) {
   {
     const codecs::FileBytes f(path);
     const Kind kind = sniff(path, f);
-    img = direct_or_module(
-        path,
-        [&]() -> Image {
-          switch (kind) {
-            case Kind::png: return codecs::png_read(path, f, info);
-            case Kind::jpeg: return codecs::jpeg_read(path, f, info);
-            case Kind::tga: return codecs::tga_read(path, f, info);
-            case Kind::exr: return modules::read(Module::exr, path, info);
-            case Kind::tiff: return codecs::tiff_read(path, info);
-            case Kind::container: return codecs::container_read(path, info);
-            case Kind::module: throw codecs::LeaveToModule{"no direct reader"};
-          }
-          throw codecs::LeaveToModule{""};
-        },
-        left);
+    try {
+      img = direct_or_module(
+          path,
+          [&]() -> Image {
+            switch (kind) {
+              case Kind::png: return codecs::png_read(path, f, info);
+              case Kind::jpeg: return codecs::jpeg_read(path, f, info);
+              case Kind::tga: return codecs::tga_read(path, f, info);
+              case Kind::exr: return modules::read(Module::exr, path, info);
+              case Kind::tiff: return codecs::tiff_read(path, info);
+              case Kind::container: return codecs::container_read(path, info);
+              case Kind::module: throw codecs::LeaveToModule{"no direct reader"};
+            }
+            throw codecs::LeaveToModule{""};
+          },
+          left);
+    } catch (const Error&) {
+      f.check_intact(path);  // a decoding error that a truncation caused says so
+      throw;
+    }
+    f.check_intact(path);
   }
   if (left) img = modules::read(Module::oiio, path, info);
   if (info_out) *info_out = info;
@@ -176,7 +187,7 @@ ImageArray read_image_array(const std::string& path, ImageFileInfo* info_out) {
   check_exists(path);
   bool container;
   {
-    const codecs::FileBytes f(path);
+    const codecs::FileBytes f(path, /*read_ahead=*/false);
     container = sniff(path, f) == Kind::container;
   }
   ImageFileInfo info;
@@ -203,6 +214,22 @@ void write_image(const std::string& path, const ImageView& given, const WriteOpt
       for (int x = 0; x < given.width; ++x)
         std::memcpy(rgb.row<std::uint8_t>(y) + std::size_t(x) * 3 * bpc, given.row<std::uint8_t>(y) + std::size_t(x) * 2 * bpc,
                     2 * bpc);
+    image = rgb.view();
+  }
+  if (e == ".hdr" && image.channels != 3) {
+    // Radiance HDR holds RGB: grey is spread to RGB, alpha has no place.
+    if (image.channels != 1) {
+      throw Error(ErrorCode::unsupported, path + ": a Radiance .hdr file holds RGB without alpha, and this image has " +
+                                              std::to_string(image.channels) +
+                                              " channels: write .exr to keep alpha");
+    }
+    rgb = Image::uninitialized(image.width, image.height, 3, image.type);
+    const std::size_t bpc = bytes_per_channel(image.type);
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x)
+        for (int c = 0; c < 3; ++c)
+          std::memcpy(rgb.row<std::uint8_t>(y) + (std::size_t(x) * 3 + c) * bpc,
+                      image.row<const std::uint8_t>(y) + std::size_t(x) * bpc, bpc);
     image = rgb.view();
   }
   AtomicFile file(path);

@@ -64,8 +64,15 @@ struct Partial {
   std::vector<double> sq, abs, max;
   double log_sq = 0;  // over RGB
   bool outside = false;
-  std::uint64_t differing = 0;
+  std::uint64_t differing = 0, nonfinite = 0;
 };
+
+bool all_finite(const double* a, const double* b, int n) {
+  for (int i = 0; i < n; ++i) {
+    if (!std::isfinite(a[i]) || !std::isfinite(b[i])) return false;
+  }
+  return true;
+}
 
 double log_value(double v) { return std::copysign(std::log2(1.0 + std::fabs(v)), v); }
 
@@ -89,6 +96,12 @@ ImageDifference compare_images(const ImageView& a, const ImageView& b) {
       load_row(a, y, ra);
       load_row(b, y, rb);
       for (int x = 0; x < a.width; ++x) {
+        const std::size_t px = std::size_t(x) * std::size_t(channels);
+        if (floats && !all_finite(ra.data() + px, rb.data() + px, channels)) {
+          ++p.nonfinite;  // a difference that no figure can measure
+          ++p.differing;
+          continue;
+        }
         bool differs = false;
         for (int c = 0; c < channels; ++c) {
           const std::size_t i = std::size_t(x) * std::size_t(channels) + std::size_t(c);
@@ -121,6 +134,7 @@ ImageDifference compare_images(const ImageView& a, const ImageView& b) {
       r.channel[std::size_t(c)].max_abs = std::max(r.channel[std::size_t(c)].max_abs, p.max[std::size_t(c)]);
     }
     r.differing_texels += p.differing;
+    r.nonfinite_texels += p.nonfinite;
     r.log_mse_rgb += p.log_sq;
     r.hdr = r.hdr || p.outside;
   }
@@ -135,6 +149,12 @@ ImageDifference compare_images(const ImageView& a, const ImageView& b) {
     r.mse += d.mse / channels;
     if (c < rgb) r.mse_rgb += d.mse / rgb;
     r.max_abs = std::max(r.max_abs, d.max_abs);
+  }
+  if (r.nonfinite_texels > 0) {  // the distance is not defined: NaN, and an infinite largest error
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    r.mse = r.mse_rgb = r.log_mse_rgb = nan;
+    r.max_abs = std::numeric_limits<double>::infinity();
+    for (ChannelDifference& d : r.channel) d = {nan, nan, r.max_abs};
   }
   return r;
 }

@@ -21,6 +21,7 @@
 #include <fstream>
 #include <limits>
 
+#include "core/fd_writer.h"
 #include "texproc/error.h"
 #include "texproc/file_io.h"
 #include "texproc/sat.h"
@@ -53,8 +54,8 @@ T get(const std::string& in, std::size_t at) {
 }  // namespace
 
 void write_sat_file(const std::string& path, const SummedAreaTable& t) {
-  std::string out;
-  out.reserve(kHeaderBytes + 8 * t.block_means.size() + t.data.size());
+  std::string out;  // the header and the block means; the table goes to the file as it lies
+  out.reserve(kHeaderBytes + 8 * t.block_means.size());
   out.append(kMagic, 8);
   put<std::uint32_t>(out, std::uint32_t(t.width));
   put<std::uint32_t>(out, std::uint32_t(t.height));
@@ -68,8 +69,12 @@ void write_sat_file(const std::string& path, const SummedAreaTable& t) {
   put<std::uint32_t>(out, 0);
   put<double>(out, t.max_abs_model);
   for (double m : t.block_means) put<double>(out, m);
-  out.append(reinterpret_cast<const char*>(t.data.data()), t.data.size());
-  write_file_atomic(path, out);
+  AtomicFile file(path);
+  FdWriter writer(file.temp_path(), path);
+  writer.write(out.data(), out.size());
+  writer.write(t.data.data(), t.data.size());
+  writer.close();
+  file.commit();
 }
 
 SummedAreaTable read_sat_file(const std::string& path) {

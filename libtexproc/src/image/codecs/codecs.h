@@ -15,20 +15,33 @@
 
 namespace texproc::codecs {
 
-// A whole input file in memory (mapped when it can be, read otherwise).
+// A whole input file in memory: a regular file is mapped (its pages read
+// ahead when `read_ahead`, for a reader that decodes it all; a probe reads
+// a header only), a pipe is read up to kMaxStreamBytes; devices, sockets and
+// folders are refused (Error{io}).
+//
+// A mapped file truncated by another process while it is read would kill
+// the process with SIGBUS: the pages past the new end read as zeros instead,
+// and truncated() says so; readers then fail with check_intact().
 class FileBytes {
  public:
-  explicit FileBytes(const std::string& path);  // throws Error{io}
+  static constexpr std::size_t kMaxStreamBytes = std::size_t(1) << 30;
+  explicit FileBytes(const std::string& path, bool read_ahead = true);  // throws Error{io}
   ~FileBytes();
   FileBytes(const FileBytes&) = delete;
   FileBytes& operator=(const FileBytes&) = delete;
   const std::uint8_t* data() const { return data_; }
   std::size_t size() const { return size_; }
+  // Whether the file shrank under the map while it was read.
+  bool truncated() const;
+  // Error{invalid_file} naming `path` if truncated().
+  void check_intact(const std::string& path) const;
 
  private:
   const std::uint8_t* data_ = nullptr;
   std::size_t size_ = 0;
   bool mapped_ = false;
+  int slot_ = -1;  // in the table of guarded maps
   std::uint8_t* owned_ = nullptr;
 };
 

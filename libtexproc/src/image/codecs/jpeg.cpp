@@ -21,7 +21,28 @@ struct ErrorManager {
   jpeg_error_mgr pub;
   std::jmp_buf jump;
   char message[JMSG_LENGTH_MAX];
+  bool over_limit = false;  // message says which limit, not a decoding error
 };
+
+// Stops a decoder whose file has more scans than the limit: libjpeg calls
+// this between scans while it absorbs a progressive file.
+struct ScanLimit {
+  jpeg_progress_mgr pub;
+  int max_scans;
+};
+void on_progress(j_common_ptr cinfo) {
+  if (!cinfo->is_decompressor) return;
+  const auto* d = reinterpret_cast<j_decompress_ptr>(cinfo);
+  const auto* limit = reinterpret_cast<const ScanLimit*>(cinfo->progress);
+  if (d->input_scan_number <= limit->max_scans) return;
+  auto* e = reinterpret_cast<ErrorManager*>(cinfo->err);
+  std::snprintf(e->message, sizeof e->message,
+                "more than %d scans (a progressive file has about ten): refused, as each scan can cost a pass over "
+                "the image; TEXPROC_MAX_JPEG_SCANS raises the limit",
+                limit->max_scans);
+  e->over_limit = true;
+  std::longjmp(e->jump, 1);
+}
 
 void on_error(j_common_ptr cinfo) {
   auto* e = reinterpret_cast<ErrorManager*>(cinfo->err);
@@ -53,16 +74,21 @@ struct Header {
 // Everything between setjmp and the end of the decoder's life is plain C:
 // no C++ object with a destructor lives in this frame.
 bool decode(const FileBytes& f, Header& h, std::uint8_t* pixels, std::size_t row_stride, bool header_only,
-            char* message) {
+            char* message, bool* over_limit = nullptr) {
   jpeg_decompress_struct cinfo;
   ErrorManager err;
   cinfo.err = install(err);
+  ScanLimit limit{};
+  limit.pub.progress_monitor = on_progress;
+  limit.max_scans = image_read_limits().max_jpeg_scans;
   if (setjmp(err.jump)) {
     std::strcpy(message, err.message);
+    if (over_limit) *over_limit = err.over_limit;
     jpeg_destroy_decompress(&cinfo);
     return false;
   }
   jpeg_create_decompress(&cinfo);
+  cinfo.progress = &limit.pub;
   jpeg_mem_src(&cinfo, f.data(), (unsigned long)f.size());
   jpeg_read_header(&cinfo, TRUE);
   h.width = int(cinfo.image_width);
@@ -113,8 +139,9 @@ Image jpeg_read(const std::string& path, const FileBytes& f, ImageFileInfo& info
   Image img = Image::uninitialized(info.width, info.height, info.channels, PixelType::u8);
   Header h;
   char message[JMSG_LENGTH_MAX] = {};
-  if (!decode(f, h, img.data(), img.row_stride(), false, message)) {
-    invalid(path, std::string("cannot decode JPEG: ") + message);
+  bool over_limit = false;
+  if (!decode(f, h, img.data(), img.row_stride(), false, message, &over_limit)) {
+    invalid(path, (over_limit ? std::string("JPEG with ") : std::string("cannot decode JPEG: ")) + message);
   }
   return img;
 }

@@ -52,6 +52,9 @@ struct TiffClose {
 };
 using Tiff = std::unique_ptr<TIFF, TiffClose>;
 
+// The largest tile side accepted whatever the image's size.
+constexpr std::uint64_t kMaxSmallTile = 1024;
+
 struct Layout {
   std::uint32_t width = 0, height = 0;
   std::uint16_t spp = 1, bits = 8, format = SAMPLEFORMAT_UINT, photometric = PHOTOMETRIC_MINISBLACK;
@@ -91,6 +94,19 @@ Layout layout_of(const std::string& path, TIFF* t) {
     L.rows_per_strip = std::min(L.rows_per_strip, L.height);
   }
   check_size(path, L.width, L.height, L.spp);
+  if (L.tiled) {
+    // A tile is decoded whole: one far larger than the image (a few bytes of
+    // file declaring gigabytes) is refused before anything is allocated.
+    // Writers use tiles of 64 to 512 over small images and levels.
+    const ImageReadLimits limits = image_read_limits();
+    const auto room = [](std::uint64_t side) { return std::max<std::uint64_t>((side + 15) / 16 * 16, kMaxSmallTile); };
+    if (L.tile_w > room(L.width) || L.tile_h > room(L.height) ||
+        std::uint64_t(L.tile_w) * L.tile_h > std::uint64_t(limits.max_pixels)) {
+      invalid(path, "TIFF tile " + std::to_string(L.tile_w) + "x" + std::to_string(L.tile_h) +
+                        " is larger than its image (" + std::to_string(L.width) + "x" + std::to_string(L.height) +
+                        ") needs (a tile is decoded whole): refused before decoding");
+    }
+  }
   const bool ints = L.format == SAMPLEFORMAT_UINT && (L.bits == 8 || L.bits == 16);
   const bool floats = L.format == SAMPLEFORMAT_IEEEFP && (L.bits == 16 || L.bits == 32);
   const bool photometric = L.photometric == PHOTOMETRIC_MINISBLACK || (L.photometric == PHOTOMETRIC_RGB && L.spp >= 3);
@@ -310,6 +326,7 @@ Image tiff_read(const std::string& path, ImageFileInfo& info) {
       place(L, chunks[std::size_t(i)], buf.data(), img);
     }
   });
+  file.check_intact(path);
   if (!failure.empty()) invalid(path, failure);
   return img;
 }

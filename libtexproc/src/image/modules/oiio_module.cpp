@@ -4,9 +4,13 @@
 // loaded on first use; nothing in libtexproc links OpenImageIO.
 #include "image/modules/image_module.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cctype>
 #include <cstdlib>
 #include <cstring>
@@ -123,6 +127,26 @@ ImageSpec make_spec(const TpImageLevel& v, const TpWriteOptions& o, const std::s
   return spec;
 }
 
+// Writes `bytes` to `file`, every failure (a short write, a full disk, a
+// failed close) an error naming `path` and the OS error.
+void write_checked(const std::string& file, const std::string& path, const std::vector<unsigned char>& bytes) {
+  auto fail = [&](int err) { throw Failure{kIo, path + ": cannot write: " + std::strerror(err)}; };
+  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) fail(errno);
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = n < 0 ? errno : EIO;
+      ::close(fd);
+      fail(err);
+    }
+    done += std::size_t(n);
+  }
+  if (::close(fd) != 0) fail(errno);
+}
+
 [[noreturn]] void write_failed(const std::string& path, ImageOutput& out) {
   std::string msg = out.geterror();
   if (msg.empty()) msg = OIIO::geterror();
@@ -185,10 +209,33 @@ void read(const std::string& path, int channels, int type, void* data, size_t ro
   }
 }
 
+void write_levels(ImageOutput* out, const std::string& file, const std::string& path, const TpImageLevel* levels,
+                  int count, bool mip_file, const TpWriteOptions& o);
+
 void write(const std::string& file, const std::string& path, const TpImageLevel* levels, int count, bool mip_file,
            const TpWriteOptions& o) {
   auto out = ImageOutput::create(oiio_format_for(path));
   if (!out) throw Failure{kUnsupported, path + ": " + OIIO::geterror()};
+  if (!out->supports("ioproxy")) {
+    throw Failure{kUnsupported, path + ": OpenImageIO cannot write this format to memory"};
+  }
+  // The writers write to memory and texproc writes the file: OpenImageIO's
+  // writers do not all check their writes (its BMP writer ignores a full
+  // disk) and OpenEXR's threads hang on a write that fails.
+  OIIO::Filesystem::IOVecOutput memory;
+  out->set_ioproxy(&memory);
+  try {
+    write_levels(out.get(), file, path, levels, count, mip_file, o);
+  } catch (...) {
+    out.reset();  // the writer goes before the buffer it writes to
+    throw;
+  }
+  out.reset();
+  write_checked(file, path, memory.buffer());
+}
+
+void write_levels(ImageOutput* out, const std::string& file, const std::string& path, const TpImageLevel* levels,
+                  int count, bool mip_file, const TpWriteOptions& o) {
   if (!mip_file) {
     const ImageSpec spec = make_spec(levels[0], o, path);
     if (!out->open(file, spec)) write_failed(path, *out);
