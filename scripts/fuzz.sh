@@ -8,7 +8,7 @@ SECONDS_EACH=${1:-60}
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTEXPROC_FUZZ=ON \
   -DTEXPROC_BUILD_TESTS=OFF -DTEXPROC_BUILD_BENCH=OFF -DTEXPROC_STATIC_CODECS=OFF >/dev/null
 # texproc_exr: the OpenEXR module, built with the same sanitizers; fuzz_images loads it for EXR input.
-cmake --build build-fuzz -j "$(nproc)" --target fuzz_containers fuzz_block_decoders fuzz_images texproc_exr
+cmake --build build-fuzz -j "$(nproc)" --target fuzz_containers fuzz_block_decoders fuzz_images fuzz_textures texproc_exr
 # Seeds come from the Release build's texproc (scripts/build.sh).
 T=${TEXPROC:-build/cli/texproc}
 [ -x "$T" ] || bash scripts/build.sh
@@ -33,13 +33,18 @@ $T mip "$S/images/e_piz.exr" -o "$S/images/e_mip.exr" --type f32 -q -f
 head -c 4096 "$S/containers/b.ktx2" > "$S/blocks/seed"
 # From here on the harnesses load the sanitized EXR module, not build/'s.
 export TEXPROC_EXR_MODULE="$PWD/build-fuzz/cli/texproc_exr.so"
-for pair in containers:containers block_decoders:blocks images:images; do
-  h=${pair%%:*} seeds=${pair##*:}
+# Each harness with the dictionary of the fields that declare work; a file
+# that makes a reader allocate past -rss_limit_mb or work past -timeout is a
+# finding, as a crash is.
+for entry in containers:containers:textures block_decoders:blocks: images:images:images textures:containers:textures; do
+  IFS=: read -r h seeds dict <<<"$entry"
   echo "fuzz.sh: fuzz_$h for ${SECONDS_EACH}s"
   mkdir -p "build-fuzz/corpus_$h"
-  build-fuzz/tests/fuzz/fuzz_$h -max_total_time="$SECONDS_EACH" -max_len=262144 -rss_limit_mb=2048 \
-    -print_final_stats=1 "build-fuzz/corpus_$h" "$S/$seeds" > "build-fuzz/fuzz_$h.log" 2>&1 ||
+  dict_arg=()
+  [ -n "$dict" ] && dict_arg=(-dict="tests/fuzz/$dict.dict")
+  build-fuzz/tests/fuzz/fuzz_$h -max_total_time="$SECONDS_EACH" -max_len=262144 -rss_limit_mb=2048 -timeout=20 \
+    "${dict_arg[@]}" -print_final_stats=1 "build-fuzz/corpus_$h" "$S/$seeds" > "build-fuzz/fuzz_$h.log" 2>&1 ||
     { tail -40 "build-fuzz/fuzz_$h.log"; echo "fuzz.sh: fuzz_$h found a crash"; exit 1; }
-  grep -E "stat::number_of_executed_units|Done" "build-fuzz/fuzz_$h.log" | tail -2
+  grep -E "stat::number_of_executed_units|cov: .*ft:|Done" "build-fuzz/fuzz_$h.log" | tail -3
 done
 echo "fuzz.sh: no crash"

@@ -234,16 +234,21 @@ struct Stored {
 
 std::vector<float> as_float(const ImageView& v);
 
+// Float images are converted row by row (no whole float copy of a level
+// beside its half copy).
 Stored stored(const ImageView& v, bool as_half) {
   Stored s;
   const std::size_t n = std::size_t(v.width) * v.channels;
   if (!as_half && v.type == PixelType::f32) {
     s.data = static_cast<const char*>(v.data);
     s.stride = v.row_stride;
-  } else {
+  } else if (!as_half || v.type != PixelType::f32) {
     s.f = as_float(v);
     s.data = reinterpret_cast<const char*>(s.f.data());
     s.stride = n * sizeof(float);
+  } else {
+    s.data = static_cast<const char*>(v.data);
+    s.stride = v.row_stride;
   }
   s.pixel = sizeof(float) * v.channels;
   if (as_half) {
@@ -252,7 +257,7 @@ Stored stored(const ImageView& v, bool as_half) {
       const float* row = reinterpret_cast<const float*>(s.data + std::size_t(y) * s.stride);
       for (std::size_t i = 0; i < n; ++i) s.h[std::size_t(y) * n + i] = half(row[i]);
     }
-    s.f.clear();
+    s.f = std::vector<float>();  // freed, not just emptied
     s.data = reinterpret_cast<const char*>(s.h.data());
     s.stride = n * sizeof(half);
     s.pixel = sizeof(half) * v.channels;

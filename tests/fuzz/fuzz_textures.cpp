@@ -1,0 +1,91 @@
+// libFuzzer harness: a texture container decoded to images, every level,
+// layer and face to every pixel type (decode_texture_image), in memory and
+// then through the file paths the commands take (probe_image, read_image,
+// read_image_array on a file named for each container). Supercompressed
+// levels are held to a small inflation budget, as the CLI holds them to its
+// own: a file that declares more must be refused, not allocated.
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include "texproc/block_decode.h"
+#include "texproc/container.h"
+#include "texproc/error.h"
+#include "texproc/image_io.h"
+
+using namespace texproc;
+
+namespace {
+using Decode = Texture (*)(const std::uint8_t*, std::size_t, const std::string&, const ReadLimits&);
+
+std::string put(const std::string& ext, const std::uint8_t* data, std::size_t size) {
+  const std::string path = "/dev/shm/texproc_fuzz_tex_" + std::to_string(::getpid()) + ext;
+  FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) return "";
+  std::fwrite(data, 1, size, f);
+  std::fclose(f);
+  return path;
+}
+
+// Every image of `t` at every pixel type; each must have the level's size.
+void decode_all(const Texture& t) {
+  for (std::uint32_t l = 0; l < t.levels; ++l)
+    for (std::uint32_t a = 0; a < t.layers; ++a)
+      for (std::uint32_t f = 0; f < t.faces; ++f)
+        for (PixelType type : {PixelType::u8, PixelType::u16, PixelType::f32}) {
+          const Image img = decode_texture_image(t, l, a, f, type);
+          if (std::uint32_t(img.width()) != t.level_width(l) || std::uint32_t(img.height()) != t.level_height(l)) {
+            __builtin_trap();
+          }
+        }
+}
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const bool once = [] {
+    ImageReadLimits l;
+    l.max_dimension = 4096;
+    l.max_pixels = 1 << 22;
+    set_image_read_limits(l);
+    // The file paths' budget (read_texture takes the environment's).
+    ::setenv("TEXPROC_MAX_TEXTURE_BYTES", "16777216", 1);
+    return true;
+  }();
+  (void)once;
+  ReadLimits limits;
+  limits.max_dimension = 1024;
+  limits.max_layers = 16;
+  limits.max_inflated_bytes = std::uint64_t(16) << 20;
+  const Decode decoders[] = {decode_dds, decode_ktx2, decode_ktx1, decode_pkm, decode_astc};
+  for (Decode decode : decoders) {
+    try {
+      const Texture t = decode(data, size, "fuzz", limits);
+      if (std::uint64_t(t.width) * t.height * t.layers * t.faces > (std::uint64_t(1) << 22)) continue;
+      decode_all(t);
+    } catch (const Error&) {
+    }
+    try {
+      ReadLimits headers = limits;
+      headers.headers_only = true;
+      const Texture h = decode(data, size, "fuzz", headers);
+      if (h.images.size() != std::size_t(h.levels) * h.layers * h.faces) __builtin_trap();
+    } catch (const Error&) {
+    }
+  }
+  for (const char* ext : {".dds", ".ktx2", ".ktx", ".pkm", ".astc"}) {
+    const std::string path = put(ext, data, size);
+    if (path.empty()) return 0;
+    try {
+      const ImageFileInfo info = probe_image(path);
+      const ImageArray all = read_image_array(path);
+      if (all.images.empty() || all.images[0].width() != info.width || all.images[0].height() != info.height) {
+        __builtin_trap();
+      }
+    } catch (const Error&) {
+    }
+    std::remove(path.c_str());
+  }
+  return 0;
+}
