@@ -139,42 +139,48 @@ void write_tiff_levels(const std::string& file, const std::string& error_path, c
       if (!TIFFWriteDirectory(tif.get())) fail(error_path, "directory write failed");
       continue;
     }
-    std::vector<std::vector<std::uint8_t>> out(std::size_t(tiles_x) * tiles_y);
-
-    // One task per row of tiles; each writes only its own tiles' buffers.
-    for_each_row_block(tiles_y, 1, [&](int ty0, int ty1) {
-      thread_local std::vector<std::uint8_t> raw;
-      raw.resize(tile_bytes);
-      // A compressor holds large hash tables: one per thread and level.
-      thread_local std::unique_ptr<libdeflate_compressor, CompressorFree> comp;
-      thread_local int comp_level = -1;
-      if (level_of_deflate > 0 && comp_level != level_of_deflate) {
-        comp.reset(libdeflate_alloc_compressor(level_of_deflate));
-        comp_level = level_of_deflate;
-      }
-      for (int ty = ty0; ty < ty1; ++ty) {
-        for (int tx = 0; tx < tiles_x; ++tx) {
-          fill_tile(raw, tx, ty);
-          std::vector<std::uint8_t>& dst = out[std::size_t(ty) * tiles_x + tx];
-          if (level_of_deflate == 0) {
-            dst = raw;
-            continue;
+    // A row of tiles a task, deflated on any thread and written (and freed)
+    // in order as soon as the rows before it are: the compressed level is
+    // never held whole.
+    std::vector<std::vector<std::vector<std::uint8_t>>> out(static_cast<std::size_t>(tiles_y));
+    for_each_in_order(
+        std::size_t(tiles_y), std::size_t(std::max(1, thread_limit())),
+        [&](std::size_t row) {
+          const int ty = int(row);
+          thread_local std::vector<std::uint8_t> raw;
+          raw.resize(tile_bytes);
+          // A compressor holds large hash tables: one per thread and level.
+          thread_local std::unique_ptr<libdeflate_compressor, CompressorFree> comp;
+          thread_local int comp_level = -1;
+          if (level_of_deflate > 0 && comp_level != level_of_deflate) {
+            comp.reset(libdeflate_alloc_compressor(level_of_deflate));
+            comp_level = level_of_deflate;
           }
-          if (im.type == PixelType::u8) horizontal_difference<std::uint8_t>(raw.data(), im.channels);
-          if (im.type == PixelType::u16) horizontal_difference<std::uint16_t>(raw.data(), im.channels);
-          dst.resize(libdeflate_zlib_compress_bound(comp.get(), tile_bytes));
-          const std::size_t n = libdeflate_zlib_compress(comp.get(), raw.data(), tile_bytes, dst.data(), dst.size());
-          dst.resize(n);
-        }
-      }
-    });
-    for (int ty = 0; ty < tiles_y; ++ty) {
-      for (int tx = 0; tx < tiles_x; ++tx) {
-        auto& t = out[std::size_t(ty) * tiles_x + tx];
-        const ttile_t index = TIFFComputeTile(tif.get(), std::uint32_t(tx * kTile), std::uint32_t(ty * kTile), 0, 0);
-        if (TIFFWriteRawTile(tif.get(), index, t.data(), tmsize_t(t.size())) < 0) fail(error_path, "tile write failed");
-      }
-    }
+          out[row].resize(std::size_t(tiles_x));
+          for (int tx = 0; tx < tiles_x; ++tx) {
+            fill_tile(raw, tx, ty);
+            std::vector<std::uint8_t>& dst = out[row][std::size_t(tx)];
+            if (level_of_deflate == 0) {
+              dst = raw;
+              continue;
+            }
+            if (im.type == PixelType::u8) horizontal_difference<std::uint8_t>(raw.data(), im.channels);
+            if (im.type == PixelType::u16) horizontal_difference<std::uint16_t>(raw.data(), im.channels);
+            dst.resize(libdeflate_zlib_compress_bound(comp.get(), tile_bytes));
+            const std::size_t n = libdeflate_zlib_compress(comp.get(), raw.data(), tile_bytes, dst.data(), dst.size());
+            dst.resize(n);
+          }
+        },
+        [&](std::size_t row) {
+          const int ty = int(row);
+          for (int tx = 0; tx < tiles_x; ++tx) {
+            auto& t = out[row][std::size_t(tx)];
+            const ttile_t index = TIFFComputeTile(tif.get(), std::uint32_t(tx * kTile), std::uint32_t(ty * kTile), 0, 0);
+            if (TIFFWriteRawTile(tif.get(), index, t.data(), tmsize_t(t.size())) < 0) fail(error_path, "tile write failed");
+          }
+          out[row] = {};  // freed
+          return true;
+        });
     if (!TIFFWriteDirectory(tif.get())) fail(error_path, "directory write failed");
   }
   TIFF* raw = tif.release();

@@ -254,40 +254,9 @@ void png_write(const std::string& file, const std::string& path, const ImageView
   // Strips of at least 256 KiB of pixels: fixed by the image, not by threads.
   const int strip_rows = int(std::max<std::size_t>(1, (std::size_t(256) << 10) / std::max<std::size_t>(row_bytes, 1)));
   const int strips = (v.height + strip_rows - 1) / strip_rows;
-  std::vector<std::vector<std::uint8_t>> out(static_cast<std::size_t>(strips));
-  std::vector<uLong> adler(static_cast<std::size_t>(strips));
-  std::vector<uLong> lengths(static_cast<std::size_t>(strips));
-  for_each_row_block(strips, 1, [&](int s0, int s1) {
-    std::vector<std::uint8_t> prev(row_bytes, 0), cur(row_bytes);
-    for (int s = s0; s < s1; ++s) {
-      const int y0 = s * strip_rows, y1 = std::min(v.height, y0 + strip_rows);
-      std::vector<std::uint8_t> filtered(std::size_t(y1 - y0) * (row_bytes + 1));
-      if (y0 > 0) png_row(y0 - 1, prev.data());
-      for (int y = y0; y < y1; ++y) {
-        png_row(y, cur.data());
-        filter_row(cur.data(), prev.data(), row_bytes, bpp,
-                   filtered.data() + std::size_t(y - y0) * (row_bytes + 1));
-        std::swap(prev, cur);
-      }
-      adler[std::size_t(s)] = adler32(1, filtered.data(), uInt(filtered.size()));
-      lengths[std::size_t(s)] = uLong(filtered.size());
-      z_stream z{};
-      if (deflateInit2(&z, level.level, Z_DEFLATED, -15, 8, level.strategy) != Z_OK) {
-        throw Error(ErrorCode::runtime, path + ": zlib could not start");
-      }
-      std::vector<std::uint8_t>& dst = out[std::size_t(s)];
-      dst.resize(deflateBound(&z, uLong(filtered.size())) + 16);
-      z.next_in = filtered.data();
-      z.avail_in = uInt(filtered.size());
-      z.next_out = dst.data();
-      z.avail_out = uInt(dst.size());
-      const int rc = deflate(&z, s + 1 == strips ? Z_FINISH : Z_SYNC_FLUSH);
-      const bool ok = s + 1 == strips ? rc == Z_STREAM_END : rc == Z_OK && z.avail_in == 0;
-      dst.resize(z.total_out);
-      deflateEnd(&z);
-      if (!ok) throw Error(ErrorCode::runtime, path + ": zlib could not compress");
-    }
-  });
+  // The file's head, then the strips, each deflated on any thread and
+  // written (and freed) in order as soon as those before it are: the
+  // compressed image is never held whole.
   std::vector<std::uint8_t> head;
   static const std::uint8_t kSig[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   head.insert(head.end(), kSig, kSig + 8);
@@ -308,31 +277,69 @@ void png_write(const std::string& file, const std::string& path, const ImageView
   }
   static const char kSoftware[] = "Software\0texproc";
   chunk(head, "tEXt", reinterpret_cast<const std::uint8_t*>(kSoftware), sizeof kSoftware - 1);
-
-  // One zlib stream: header, the strips, the Adler-32 of all filtered rows.
-  uLong total_adler = 1;
-  for (int s = 0; s < strips; ++s) {
-    total_adler = s == 0 ? adler[0] : adler32_combine(total_adler, adler[std::size_t(s)], z_off_t(lengths[std::size_t(s)]));
-  }
   FdWriter w(file, path);
   w.write(head.data(), head.size());
-  // IDAT chunks: the zlib header with the first strip, one chunk per strip,
-  // the Adler-32 trailer with the last.
-  for (int s = 0; s < strips; ++s) {
-    std::vector<std::uint8_t> idat;
-    if (s == 0) {
-      const int flevel = level.level <= 1 ? 0 : level.level < 6 ? 1 : level.level == 6 ? 2 : 3;
-      std::uint16_t h = std::uint16_t((0x78 << 8) | (flevel << 6));
-      h = std::uint16_t(h + (31 - h % 31) % 31);
-      idat.push_back(std::uint8_t(h >> 8));
-      idat.push_back(std::uint8_t(h));
-    }
-    idat.insert(idat.end(), out[std::size_t(s)].begin(), out[std::size_t(s)].end());
-    if (s + 1 == strips) put32(idat, std::uint32_t(total_adler));
-    std::vector<std::uint8_t> c;
-    chunk(c, "IDAT", idat.data(), idat.size());
-    w.write(c.data(), c.size());
-  }
+
+  struct Strip {
+    std::vector<std::uint8_t> deflated;
+    uLong adler = 1, length = 0;
+  };
+  std::vector<Strip> out(static_cast<std::size_t>(strips));
+  uLong total_adler = 1;  // of every filtered row so far, for the zlib trailer
+  for_each_in_order(
+      std::size_t(strips), std::size_t(std::max(1, thread_limit())),
+      [&](std::size_t index) {
+        const int s = int(index);
+        std::vector<std::uint8_t> prev(row_bytes, 0), cur(row_bytes);
+        const int y0 = s * strip_rows, y1 = std::min(v.height, y0 + strip_rows);
+        std::vector<std::uint8_t> filtered(std::size_t(y1 - y0) * (row_bytes + 1));
+        if (y0 > 0) png_row(y0 - 1, prev.data());
+        for (int y = y0; y < y1; ++y) {
+          png_row(y, cur.data());
+          filter_row(cur.data(), prev.data(), row_bytes, bpp, filtered.data() + std::size_t(y - y0) * (row_bytes + 1));
+          std::swap(prev, cur);
+        }
+        Strip& strip = out[index];
+        strip.adler = adler32(1, filtered.data(), uInt(filtered.size()));
+        strip.length = uLong(filtered.size());
+        z_stream z{};
+        if (deflateInit2(&z, level.level, Z_DEFLATED, -15, 8, level.strategy) != Z_OK) {
+          throw Error(ErrorCode::runtime, path + ": zlib could not start");
+        }
+        std::vector<std::uint8_t>& dst = strip.deflated;
+        dst.resize(deflateBound(&z, uLong(filtered.size())) + 16);
+        z.next_in = filtered.data();
+        z.avail_in = uInt(filtered.size());
+        z.next_out = dst.data();
+        z.avail_out = uInt(dst.size());
+        const int rc = deflate(&z, s + 1 == strips ? Z_FINISH : Z_SYNC_FLUSH);
+        const bool ok = s + 1 == strips ? rc == Z_STREAM_END : rc == Z_OK && z.avail_in == 0;
+        dst.resize(z.total_out);
+        deflateEnd(&z);
+        if (!ok) throw Error(ErrorCode::runtime, path + ": zlib could not compress");
+      },
+      [&](std::size_t index) {
+        // IDAT chunks: the zlib header with the first strip, one chunk per
+        // strip, the Adler-32 of all filtered rows with the last.
+        const int s = int(index);
+        Strip& strip = out[index];
+        total_adler = s == 0 ? strip.adler : adler32_combine(total_adler, strip.adler, z_off_t(strip.length));
+        std::vector<std::uint8_t> idat;
+        if (s == 0) {
+          const int flevel = level.level <= 1 ? 0 : level.level < 6 ? 1 : level.level == 6 ? 2 : 3;
+          std::uint16_t h = std::uint16_t((0x78 << 8) | (flevel << 6));
+          h = std::uint16_t(h + (31 - h % 31) % 31);
+          idat.push_back(std::uint8_t(h >> 8));
+          idat.push_back(std::uint8_t(h));
+        }
+        idat.insert(idat.end(), strip.deflated.begin(), strip.deflated.end());
+        strip.deflated = std::vector<std::uint8_t>();  // freed
+        if (s + 1 == strips) put32(idat, std::uint32_t(total_adler));
+        std::vector<std::uint8_t> c;
+        chunk(c, "IDAT", idat.data(), idat.size());
+        w.write(c.data(), c.size());
+        return true;
+      });
   std::vector<std::uint8_t> tail;
   chunk(tail, "IEND", nullptr, 0);
   w.write(tail.data(), tail.size());

@@ -298,6 +298,22 @@ void fill_frame_buffer(Imf::FrameBuffer& fb, const ImageView& v, const Stored& s
   }
 }
 
+// Rows [y0, y1) of `v` as the file stores them, addressed as OpenEXR
+// addresses a frame buffer (by the image's row, from the slice's base).
+struct Band {
+  Stored stored;
+  ImageView rows;
+};
+Band band_of(const ImageView& v, int y0, int y1, bool as_half) {
+  Band b;
+  b.rows = v;
+  b.rows.height = y1 - y0;
+  b.rows.data = static_cast<char*>(v.data) + std::size_t(y0) * v.row_stride;
+  b.stored = stored(b.rows, as_half);
+  b.stored.data -= std::ptrdiff_t(y0) * std::ptrdiff_t(b.stored.stride);  // row y at base + y * stride
+  return b;
+}
+
 }  // namespace
 
 namespace {
@@ -307,14 +323,20 @@ void write(const std::string& file, const std::string& path, const std::vector<I
   start_threads();
   const Imf::Compression comp = compression_of(path, o.compression);
   try {
+    // Level by level and band by band: a converted copy of a band, never of
+    // a whole level, beside the image.
+    constexpr int kBandRows = 64;
     if (!mip_file) {
       const ImageView& v = levels[0];
-      const Stored s = stored(v, o.half);
       Imf::OutputFile out(file.c_str(), header_for(v, o, comp));
-      Imf::FrameBuffer fb;
-      fill_frame_buffer(fb, v, s, o.red_green);
-      out.setFrameBuffer(fb);
-      out.writePixels(v.height);
+      for (int y0 = 0; y0 < v.height; y0 += kBandRows) {
+        const int y1 = std::min(v.height, y0 + kBandRows);
+        const Band b = band_of(v, y0, y1, o.half);
+        Imf::FrameBuffer fb;
+        fill_frame_buffer(fb, v, b.stored, o.red_green);
+        out.setFrameBuffer(fb);
+        out.writePixels(y1 - y0);
+      }
       return;
     }
     Imf::Header h = header_for(levels[0], o, comp);
@@ -326,11 +348,15 @@ void write(const std::string& file, const std::string& path, const std::vector<I
     }
     for (int l = 0; l < out.numLevels(); ++l) {
       const ImageView& v = levels[std::size_t(l)];
-      const Stored s = stored(v, o.half);
-      Imf::FrameBuffer fb;
-      fill_frame_buffer(fb, v, s, o.red_green);
-      out.setFrameBuffer(fb);
-      out.writeTiles(0, out.numXTiles(l) - 1, 0, out.numYTiles(l) - 1, l);
+      const int tile_rows = out.numYTiles(l);
+      for (int ty = 0; ty < tile_rows; ++ty) {  // a band of one row of 64x64 tiles
+        const int y0 = ty * 64, y1 = std::min(v.height, y0 + 64);
+        const Band b = band_of(v, y0, y1, o.half);
+        Imf::FrameBuffer fb;
+        fill_frame_buffer(fb, v, b.stored, o.red_green);
+        out.setFrameBuffer(fb);
+        out.writeTiles(0, out.numXTiles(l) - 1, ty, ty, l);
+      }
     }
   } catch (const Error&) {
     throw;
