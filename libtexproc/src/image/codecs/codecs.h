@@ -32,6 +32,11 @@ class FileBytes {
   FileBytes& operator=(const FileBytes&) = delete;
   const std::uint8_t* data() const { return data_; }
   std::size_t size() const { return size_; }
+  // Tells the system that bytes [begin, begin + n) of a mapped file will
+  // not be read again: the whole pages inside go out of the process's
+  // resident memory (a reader that has turned them into pixels calls this,
+  // so that a large input is not held twice). Nothing for a read file.
+  void release(const std::uint8_t* begin, std::size_t n) const;
   // Whether the file shrank under the map while it was read.
   bool truncated() const;
   // Error{invalid_file} naming `path` if truncated().

@@ -156,6 +156,14 @@ FileBytes::~FileBytes() {
   std::free(owned_);
 }
 
+void FileBytes::release(const std::uint8_t* begin, std::size_t n) const {
+  if (!mapped_ || begin < data_ || begin + n > data_ + size_) return;
+  const auto page = std::uintptr_t(::sysconf(_SC_PAGESIZE));
+  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(begin) + page - 1) & ~(page - 1);
+  const std::uintptr_t last = (reinterpret_cast<std::uintptr_t>(begin) + n) & ~(page - 1);
+  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_DONTNEED);
+}
+
 bool FileBytes::truncated() const { return mapped_ && g_maps[slot_].truncated.load(std::memory_order_acquire); }
 
 void FileBytes::check_intact(const std::string& path) const {

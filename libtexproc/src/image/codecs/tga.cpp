@@ -172,6 +172,11 @@ Image tga_read(const std::string& path, const FileBytes& f, ImageFileInfo& info)
         }
       }
     }
+    if (!h.rle()) {  // the rows' file bytes are pixels now: out of resident memory
+      const int s0 = h.top_down() ? y0 : h.height - y1;
+      const std::size_t row_bytes = std::size_t(h.width) * stored;
+      f.release(src + std::size_t(s0) * row_bytes, std::size_t(y1 - y0) * row_bytes);
+    }
   });
   if (bad_index) invalid(path, "TGA colour index outside its colour map of " + std::to_string(entries) + " entries");
   return img;
