@@ -193,7 +193,7 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--min-ssim", args->min_ssim, "Exit 7 when the mean SSIM is below this (0..1)")->check(in_range(-1, 1));
   cmd->add_flag("--ssim", args->ssim, "Also compute SSIM (11x11 Gaussian window)");
   cmd->add_option("--threads", args->common.threads, "Worker threads (default 0: all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(in_range(0, 4096));
   cmd->add_flag("-q,--quiet", args->common.quiet, "Print nothing; the exit code tells");
   cmd->add_flag("--json", args->json, "Print the figures as one JSON object");
   set_runner(*cmd, [args] { return run_compare(*args); });

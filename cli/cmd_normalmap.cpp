@@ -168,7 +168,8 @@ void add_normalmap_command(CLI::App& app) {
   cmd->add_option("--multiscale-weights", args->multiscale_weights,
                   "multiscale kernel: weights of scales 1, 2, 4, ... texels (normalized to sum 1)")
       ->delimiter(',')
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(in_range(0, 1e6));
   cmd->add_option("--type", args->type, "Output element type: u8, u16, f16, f32 (default: u8 for 8-bit input, else u16)");
   cmd->add_flag("--mips", args->mips, "Write a mip chain, renormalized each level");
   add_chain_options(*cmd, args->chain);

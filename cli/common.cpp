@@ -49,12 +49,12 @@ void refuse_overwriting_input(const std::string& output, const std::vector<std::
 void add_common_options(CLI::App& cmd, CommonOptions& o) {
   SessionOptions& s = session_options();
   cmd.add_option("--threads", o.threads, "Worker threads (default 0: all cores). Output is identical for any value.")
-      ->check(CLI::NonNegativeNumber)
+      ->check(in_range(0, 4096))
       ->group("Common");
   cmd.add_option("-j,--jobs", s.jobs,
                  "Files processed at once (default 0: as many as threads); they share the threads, output is "
                  "identical for any value")
-      ->check(CLI::NonNegativeNumber)
+      ->check(in_range(0, 4096))
       ->group("Common");
   cmd.add_flag("--fail-fast", s.fail_fast, "Stop starting files after the first failure (default: do the rest)")
       ->group("Common");

@@ -579,6 +579,9 @@ TEST(Hostile, NumericOptionsAreRangeChecked) {
       {"sat blur " + a + " -o '" + dir + "/b.png' --radius nan", "--radius: nan is outside"},
       {"decompress " + a + " -o '" + dir + "/d.png' --face 6", "--face: 6 is outside the valid range [0, 5]"},
       {"conemap " + a + " -o '" + dir + "/c.png' --view-angle 90", "--view-angle: 90 is outside"},
+      {"normalmap " + a + o + " --kernel multiscale --multiscale-weights 0.5,nan", "--multiscale-weights: nan is outside"},
+      {"mip " + a + o + " -j abc", "'abc' is not a number (valid: [0, 4096])"},
+      {"mip " + a + o + " --threads 100000", "--threads: 100000 is outside the valid range [0, 4096]"},
   };
   for (const auto& [args, message] : cases) {
     SCOPED_TRACE(args);
