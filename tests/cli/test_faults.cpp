@@ -18,6 +18,7 @@
 #include <fstream>
 #include <thread>
 
+#include "support/disks.h"
 #include "support/images.h"
 #include "support/run.h"
 #include "texproc/block_decode.h"
@@ -28,31 +29,6 @@
 using namespace texproc;
 using namespace texproc::test;
 namespace fs = std::filesystem;
-
-namespace {
-
-// A tmpfs of `kib` KiB at a fresh folder, or "" where this process may not
-// mount one (not root, no CAP_SYS_ADMIN).
-struct SmallDisk {
-  std::string dir;
-  explicit SmallDisk(int kib, bool read_only = false) {
-    const std::string d = temp_dir("smalldisk");
-    const std::string opts = "size=" + std::to_string(kib) + "k";
-    if (::mount("tmpfs", d.c_str(), "tmpfs", read_only ? MS_RDONLY : 0, opts.c_str()) == 0) dir = d;
-  }
-  ~SmallDisk() {
-    if (!dir.empty()) ::umount2(dir.c_str(), MNT_DETACH);
-  }
-};
-
-std::vector<std::string> entries(const std::string& dir) {
-  std::vector<std::string> out;
-  for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename().string());
-  std::sort(out.begin(), out.end());
-  return out;
-}
-
-}  // namespace
 
 TEST(Faults, FullDiskLeavesNoFileUnderTheFinalName) {
   SmallDisk disk(64);

@@ -22,6 +22,7 @@
 #include <sys/resource.h>
 
 #include "image/codecs/codecs.h"
+#include "support/disks.h"
 #include "support/images.h"
 #include "support/run.h"
 #include "texproc/container.h"
@@ -63,30 +64,18 @@ class BusyCores {
   std::vector<std::thread> threads_;
 };
 
-std::vector<std::string> entries(const std::string& dir) {
-  std::vector<std::string> out;
-  for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename().string());
-  std::sort(out.begin(), out.end());
-  return out;
+// Starts `texproc ARGS` (shell words, redirections included) in a child
+// process with `env` added ("NAME=value"), without waiting for it.
+pid_t spawn_texproc(const std::string& args, const std::vector<std::string>& env = {}) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    for (const auto& e : env) ::putenv(const_cast<char*>(e.c_str()));
+    const std::string cmd = "exec " + std::string(TEXPROC_CLI_PATH) + " " + args;
+    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return pid;
 }
-
-// A tmpfs of `kib` KiB at a fresh folder, or "" where this process may not
-// mount one (not root).
-struct SmallDisk {
-  std::string dir;
-  explicit SmallDisk(int kib, const std::string& name) {
-    const std::string d = temp_dir(name);
-    const std::string opts = "size=" + std::to_string(kib) + "k";
-    if (::mount("tmpfs", d.c_str(), "tmpfs", 0, opts.c_str()) == 0) dir = d;
-  }
-  ~SmallDisk() {
-    if (!dir.empty()) ::umount2(dir.c_str(), MNT_DETACH);
-  }
-  void fill_to(std::size_t bytes) const {
-    std::ofstream filler(dir + "/filler", std::ios::binary);
-    filler << std::string(bytes, 'x');
-  }
-};
 
 // The exit code and the peak resident memory (KiB) of `texproc ARGS`.
 struct Measured {
@@ -96,13 +85,7 @@ struct Measured {
 };
 Measured run_measured(const std::string& args, const std::vector<std::string>& env = {}) {
   const std::string err_file = temp_dir("measured") + "/err";
-  const pid_t pid = fork();
-  if (pid == 0) {
-    for (const auto& e : env) ::putenv(const_cast<char*>(e.c_str()));
-    const std::string cmd = "exec " + std::string(TEXPROC_CLI_PATH) + " " + args + " >/dev/null 2>" + err_file;
-    ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
+  const pid_t pid = spawn_texproc(args + " >/dev/null 2>" + err_file, env);
   int status = 0;
   rusage usage{};
   ::wait4(pid, &status, 0, &usage);
@@ -271,7 +254,7 @@ TEST(Hostile, BuildNeverOverwritesAnotherJobsSource) {
 // TEXPROC_IMAGE_IO=oiio) on a full disk: exit 2 with the OS error, and no
 // file under any final name.
 TEST(Hostile, ImageModuleWritersOnAFullDiskLeaveNothing) {
-  SmallDisk disk(64, "fullmodule");
+  SmallDisk disk(64, false, "fullmodule");
   if (disk.dir.empty()) GTEST_SKIP() << "cannot mount a tmpfs here (not root?)";
   const std::string src = temp_dir("fullmodule_src");
   write_image(src + "/a.png", random_image(256, 256, 4, PixelType::u8, 9).view());
@@ -437,13 +420,7 @@ TEST(Hostile, CommandsSurviveInputsTruncatedWhileRead) {
     for (int delay_ms : {0, 5, 20, 60}) {
       SCOPED_TRACE(ext + " after " + std::to_string(delay_ms) + " ms");
       write_bytes(in, full);
-      const pid_t pid = fork();
-      if (pid == 0) {
-        const std::string cmd = "exec " + std::string(TEXPROC_CLI_PATH) + " sat '" + in + "' -o '" + dir +
-                                "/x.sat' -f -q 2>" + dir + "/err";
-        ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-        _exit(127);
-      }
+      const pid_t pid = spawn_texproc("sat '" + in + "' -o '" + dir + "/x.sat' -f -q 2>" + dir + "/err");
       std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
       ASSERT_EQ(::truncate(in.c_str(), 1000), 0);
       int status = 0;
@@ -469,12 +446,7 @@ TEST(Hostile, SignalsLeaveNoTemporaries) {
   const std::string args = "mip '" + dir + "/in' -o '" + dir + "/out/' --type f32 -q -f -j 2";
   ASSERT_EQ(run_texproc(args).exit_code, 0);
   for (int sig : {SIGINT, SIGTERM, SIGINT, SIGTERM}) {
-    const pid_t pid = fork();
-    if (pid == 0) {
-      const std::string cmd = "exec " + std::string(TEXPROC_CLI_PATH) + " " + args;
-      ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-      _exit(127);
-    }
+    const pid_t pid = spawn_texproc(args);
     std::this_thread::sleep_for(std::chrono::milliseconds(150));
     ::kill(pid, sig);
     const auto t0 = std::chrono::steady_clock::now();
@@ -503,7 +475,7 @@ TEST(Hostile, SignalsLeaveNoTemporaries) {
 
 // A file's outputs are put in place together or not at all.
 TEST(Hostile, AFilesOutputsAreCommittedTogether) {
-  SmallDisk disk(96, "together");
+  SmallDisk disk(96, false, "together");
   if (disk.dir.empty()) GTEST_SKIP() << "cannot mount a tmpfs here (not root?)";
   const std::string src = temp_dir("together_src");
   write_image(src + "/h.png", random_image(64, 64, 1, PixelType::u8, 11).view());
@@ -604,7 +576,7 @@ TEST(Hostile, ExitCodesAndMessagesNameTheCause) {
   r = run_texproc("mip '" + dir + "/grey.png' -o '" + dir + "/g.hdr' --levels 1");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(read_image(dir + "/g_mip0.hdr").channels(), 3);
-  SmallDisk disk(64, "exitcodes_disk");
+  SmallDisk disk(64, false, "exitcodes_disk");
   if (!disk.dir.empty()) {
     write_image(dir + "/big.png", random_image(256, 256, 4, PixelType::u8, 18).view());
     r = run_texproc("sat '" + dir + "/big.png' -o '" + disk.dir + "/t.sat'");

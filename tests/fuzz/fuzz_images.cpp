@@ -9,34 +9,22 @@
 #include <cstdio>
 #include <string>
 
+#include "fuzz_files.h"
 #include "texproc/error.h"
 #include "texproc/image_io.h"
 #include "texproc/sat.h"
 
 using namespace texproc;
 
-namespace {
-std::string put(const std::string& ext, const std::uint8_t* data, std::size_t size) {
-  const std::string path = "/dev/shm/texproc_fuzz_" + std::to_string(::getpid()) + ext;
-  FILE* f = std::fopen(path.c_str(), "wb");
-  if (!f) return "";
-  std::fwrite(data, 1, size, f);
-  std::fclose(f);
-  return path;
-}
-}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const bool once = [] {
-    ImageReadLimits l;
-    l.max_dimension = 4096;
-    l.max_pixels = 1 << 22;
-    set_image_read_limits(l);
+    fuzz::limit_images();
     return true;
   }();
   (void)once;
   for (const char* ext : {".png", ".tga", ".sat"}) {  // PNG/JPEG/TIFF/EXR by signature, whatever the name
-    const std::string path = put(ext, data, size);
+    const std::string path = fuzz::put_file("img", ext, data, size);
     if (path.empty()) return 0;
     try {
       if (std::string(ext) == ".sat") {

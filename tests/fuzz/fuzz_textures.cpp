@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <string>
 
+#include "fuzz_files.h"
 #include "texproc/block_decode.h"
 #include "texproc/container.h"
 #include "texproc/error.h"
@@ -19,15 +20,6 @@ using namespace texproc;
 
 namespace {
 using Decode = Texture (*)(const std::uint8_t*, std::size_t, const std::string&, const ReadLimits&);
-
-std::string put(const std::string& ext, const std::uint8_t* data, std::size_t size) {
-  const std::string path = "/dev/shm/texproc_fuzz_tex_" + std::to_string(::getpid()) + ext;
-  FILE* f = std::fopen(path.c_str(), "wb");
-  if (!f) return "";
-  std::fwrite(data, 1, size, f);
-  std::fclose(f);
-  return path;
-}
 
 // Every image of `t` at every pixel type; each must have the level's size.
 // Large textures (the seeds) get their first and last level only, so that
@@ -49,10 +41,7 @@ void decode_all(const Texture& t) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const bool once = [] {
-    ImageReadLimits l;
-    l.max_dimension = 4096;
-    l.max_pixels = 1 << 22;
-    set_image_read_limits(l);
+    fuzz::limit_images();
     // The file paths' budget (read_texture takes the environment's).
     ::setenv("TEXPROC_MAX_TEXTURE_BYTES", "16777216", 1);
     return true;
@@ -79,7 +68,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   }
   for (const char* ext : {".ktx2"}) {  // containers are told apart by signature, whatever the name
-    const std::string path = put(ext, data, size);
+    const std::string path = fuzz::put_file("tex", ext, data, size);
     if (path.empty()) return 0;
     try {
       const ImageFileInfo info = probe_image(path);
