@@ -10,6 +10,7 @@
 
 #include "cubemap/convolve.h"
 #include "cubemap/pano_map.h"
+#include "support/images.h"
 #include "support/targets.h"
 #include "support/threads.h"
 #include "texproc/cubemap.h"
@@ -19,6 +20,9 @@
 
 namespace texproc {
 namespace {
+
+using test::corpus_dir;
+using test::have_corpus;
 
 constexpr double kPi = std::numbers::pi;
 
@@ -61,7 +65,7 @@ Cubemap smooth_cube(int n) {
 }
 
 Cubemap corpus_cube(int n) {
-  const Image hdr = read_image(std::string(TEXPROC_CORPUS_DIR) + "/hdr/blender_world_forest.exr");
+  const Image hdr = read_image(corpus_dir() + "/hdr/blender_world_forest.exr");
   const Image rgba = to_linear_rgba(hdr.view(), ColorSpace::linear());
   return cubemap_from_equirect(rgba.view(), n);
 }
@@ -309,10 +313,11 @@ TEST(CubeMips, ASmoothSkyShowsNoStepAcrossTheEdges) {
 }
 
 TEST(CubeMips, NoLevelShowsASeamOnARealPanorama) {
+  if (!have_corpus()) GTEST_SKIP() << "no corpus at " << corpus_dir();
   // On real content the step across the edges depends on what lies there
   // (a horizon along an edge); the level sampled straight from the panorama
   // has no seam by construction, and the chain must not step more than it.
-  const Image hdr = read_image(std::string(TEXPROC_CORPUS_DIR) + "/hdr/blender_world_forest.exr");
+  const Image hdr = read_image(corpus_dir() + "/hdr/blender_world_forest.exr");
   const Image rgba = to_linear_rgba(hdr.view(), ColorSpace::linear());
   Cubemap c = cubemap_from_equirect(rgba.view(), 128);
   generate_cube_mips(c);
@@ -445,6 +450,7 @@ double relative_rms(const CubeLevel& a, const CubeLevel& b) {
 }
 
 TEST(CubeIbl, SpecularMatchesBruteForceConvolution) {
+  if (!have_corpus()) GTEST_SKIP() << "no corpus at " << corpus_dir();
   const Cubemap src = corpus_cube(32);
   EXPECT_EQ(prefilter_specular(src).levels.size(), 3u);  // 32, 16, 8: roughness 1 on 8x8 faces
   SpecularOptions all;
@@ -465,6 +471,7 @@ TEST(CubeIbl, SpecularMatchesBruteForceConvolution) {
 }
 
 TEST(CubeIbl, ConvolutionSimdEqualsScalarOnEveryTarget) {
+  if (!have_corpus()) GTEST_SKIP() << "no corpus at " << corpus_dir();
   const Cubemap src = corpus_cube(16);
   for (float alpha : {-1.0f, 0.05f, 0.5f}) {
     test::expect_same_on_every_target(
@@ -492,7 +499,8 @@ TEST(CubeFromPanorama, Atan2PolynomialIsWithinTwoTenthsOfAMicroradian) {
 }
 
 TEST(CubeFromPanorama, SimdEqualsScalarOnEveryTarget) {
-  const Image hdr = read_image(std::string(TEXPROC_CORPUS_DIR) + "/hdr/blender_world_courtyard.exr");
+  if (!have_corpus()) GTEST_SKIP() << "no corpus at " << corpus_dir();
+  const Image hdr = read_image(corpus_dir() + "/hdr/blender_world_courtyard.exr");
   const Image rgba = to_linear_rgba(hdr.view(), ColorSpace::linear());
   for (CubeFlip flip : {CubeFlip::none, CubeFlip::z}) {
     test::expect_same_on_every_target([&] { return bytes_of(cubemap_from_equirect(rgba.view(), 37, flip)); },
@@ -501,7 +509,8 @@ TEST(CubeFromPanorama, SimdEqualsScalarOnEveryTarget) {
 }
 
 TEST(CubeMaps, BytesDoNotDependOnTheThreadCount) {
-  const Image hdr = read_image(std::string(TEXPROC_CORPUS_DIR) + "/hdr/blender_world_city.exr");
+  if (!have_corpus()) GTEST_SKIP() << "no corpus at " << corpus_dir();
+  const Image hdr = read_image(corpus_dir() + "/hdr/blender_world_city.exr");
   const Image rgba = to_linear_rgba(hdr.view(), ColorSpace::linear());
   auto run = [&] {
     Cubemap c = cubemap_from_equirect(rgba.view(), 64);
