@@ -125,6 +125,48 @@ std::int64_t fixed_size_of(const std::string& type) {
   return -1;
 }
 
+// What a part's header declares that OpenEXR allocates for when it opens
+// the file: its data window, its tiles, its chunk offset table.
+struct DeclaredWork {
+  std::int64_t width = 64, height = 64;  // without a data window, OpenEXR's default header's
+  std::int64_t tile_x = 0, tile_y = 0;  // 0: scanlines
+  int compression = 0;
+};
+
+std::int64_t le32(const std::uint8_t* p) {
+  return std::int32_t(std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 |
+                      std::uint32_t(p[3]) << 24);
+}
+
+// Refuses a header whose buffers OpenEXR would size past any real file: a
+// data window over 2^20 a side, a tile larger than its image needs (and
+// over 1024), a chunk offset table larger than the whole file.
+template <typename Fail>
+void check_declared_work(const DeclaredWork& d, std::uint64_t file_size, Fail&& fail) {
+  if (d.width <= 0 || d.height <= 0) return;  // OpenEXR reports an empty window
+  constexpr std::int64_t kMaxSide = std::int64_t(1) << 20;
+  const std::string size = std::to_string(d.width) + "x" + std::to_string(d.height);
+  if (d.width > kMaxSide || d.height > kMaxSide) fail("data window " + size + " is over 1048576 a side");
+  std::int64_t chunks = 0;
+  if (d.tile_x > 0 && d.tile_y > 0) {
+    if (d.tile_x > std::max<std::int64_t>(1024, d.width) || d.tile_y > std::max<std::int64_t>(1024, d.height)) {
+      fail("tile " + std::to_string(d.tile_x) + "x" + std::to_string(d.tile_y) + " is larger than its " + size +
+           " image needs");
+    }
+    chunks = ((d.width + d.tile_x - 1) / d.tile_x) * ((d.height + d.tile_y - 1) / d.tile_y);
+  } else {
+    // Scanlines a chunk by compression (OpenEXR's table): none, RLE, ZIPS 1; ZIP, PXR24 16;
+    // PIZ, B44, B44A, DWAA 32; DWAB 256.
+    static const int kLines[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
+    const int lines = d.compression >= 0 && d.compression < 10 ? kLines[d.compression] : 1;
+    chunks = (d.height + lines - 1) / lines;
+  }
+  if (std::uint64_t(chunks) * 8 > file_size) {
+    fail(size + " in " + std::to_string(chunks) + " chunks needs an offset table of " + std::to_string(chunks * 8) +
+         " bytes, more than the whole file (" + std::to_string(file_size) + ")");
+  }
+}
+
 void check_header(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw texproc::Error(texproc::ErrorCode::io, path + ": cannot open");
@@ -148,6 +190,7 @@ void check_header(const std::string& path) {
   };
   for (int part = 0;; ++part) {
     std::string name, type;
+    DeclaredWork work;
     read_name(name);
     if (name.empty()) {
       if (!multipart || part > 0) return;  // single part: its header ended; multi-part: the empty header
@@ -167,6 +210,21 @@ void check_header(const std::string& path) {
       const std::string what = "attribute '" + name + "' (" + type + ") of " + std::to_string(n) + " bytes";
       if (const std::int64_t fixed = fixed_size_of(type); fixed >= 0 && fixed != n) {
         fail(what + ": a " + type + " has " + std::to_string(fixed));
+      }
+      if ((name == "dataWindow" && type == "box2i") || (name == "tiles" && type == "tiledesc") ||
+          (name == "compression" && type == "compression")) {
+        std::uint8_t v[16] = {};
+        if (!in.read(reinterpret_cast<char*>(v), n)) fail("truncated header");
+        in.seekg(-std::streamoff(n), std::ios::cur);
+        if (type == "box2i") {
+          work.width = le32(v + 8) - le32(v) + 1;
+          work.height = le32(v + 12) - le32(v + 4) + 1;
+        } else if (type == "tiledesc") {
+          work.tile_x = std::uint32_t(le32(v));
+          work.tile_y = std::uint32_t(le32(v + 4));
+        } else {
+          work.compression = v[0];
+        }
       }
       if (type == "chlist") {  // entries (name, 16 bytes) up to an empty name, all inside the value
         std::uint64_t used = 0;
@@ -193,6 +251,7 @@ void check_header(const std::string& path) {
       }
       in.seekg(std::streamoff(n), std::ios::cur);
     }
+    check_declared_work(work, size, fail);
     if (!multipart) return;
     // Multi-part: another header follows unless the next byte ends the list.
     if (in.peek() == 0) return;
