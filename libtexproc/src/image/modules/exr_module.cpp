@@ -343,16 +343,13 @@ std::vector<float> as_float(const ImageView& v);
 Stored stored(const ImageView& v, bool as_half) {
   Stored s;
   const std::size_t n = std::size_t(v.width) * v.channels;
-  if (!as_half && v.type == PixelType::f32) {
+  if (v.type == PixelType::f32) {
     s.data = static_cast<const char*>(v.data);
     s.stride = v.row_stride;
-  } else if (!as_half || v.type != PixelType::f32) {
+  } else {
     s.f = as_float(v);
     s.data = reinterpret_cast<const char*>(s.f.data());
     s.stride = n * sizeof(float);
-  } else {
-    s.data = static_cast<const char*>(v.data);
-    s.stride = v.row_stride;
   }
   s.pixel = sizeof(float) * v.channels;
   if (as_half) {
