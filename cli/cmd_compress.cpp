@@ -227,18 +227,6 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
     const ColorSpace from = srgb ? ColorSpace::srgb() : ColorSpace::linear();
     for (Image& img : in.images) img = decode_to_linear(img, from);
   }
-  // One chain per surface: a cubemap's faces and an array's layers (index layer * faces + face).
-  std::vector<std::vector<Image>> chains;
-  for (Image& img : in.images) {
-    if (a.mips) {
-      MipOptions m = a.mip;
-      m.color_space = format_info(format).srgb ? "srgb" : "linear";
-      chains.push_back(generate_mips(std::move(img), m).levels);
-    } else {
-      chains.emplace_back();
-      chains.back().push_back(std::move(img));
-    }
-  }
   const auto t0 = std::chrono::steady_clock::now();
   TextureEncodeOptions options;
   options.encode.bc1_black = a.bc1_black;
@@ -246,7 +234,23 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   options.encode.progress = r.progress;
   options.normal_map = a.normal_map;
   options.transparent = a.transparent;
-  const Texture t = compress_texture(chains, in.faces, in.layers, in.is_array, format, a.q, options);
+  // One chain per surface: a cubemap's faces and an array's layers (index
+  // layer * faces + face), encoded as the chain is filtered. Afterwards
+  // in.images hold level 0 as it was encoded.
+  Texture t;
+  if (a.mips) {
+    MipOptions m = a.mip;
+    m.color_space = format_info(format).srgb ? "srgb" : "linear";
+    t = compress_texture_mips(in.images, m, in.faces, in.layers, in.is_array, format, a.q, options);
+  } else {
+    std::vector<std::vector<Image>> chains;
+    for (Image& img : in.images) {
+      chains.emplace_back();
+      chains.back().push_back(std::move(img));
+    }
+    t = compress_texture(chains, in.faces, in.layers, in.is_array, format, a.q, options);
+    for (std::size_t i = 0; i < chains.size(); ++i) in.images[i] = std::move(chains[i][0]);
+  }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   phases.compute_done();
   write_texture(output, t, a.header, zstd_level_for(a.zstd, output));
@@ -261,7 +265,7 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   r.details["quality"] = a.quality;
   r.details["encode_seconds"] = s;
   if (a.report) {
-    const ImageDifference d = encoding_error(chains[0][0], t, a.normal_map && is_astc(format));
+    const ImageDifference d = encoding_error(in.images[0], t, a.normal_map && is_astc(format));
     Json::Value rep(Json::objectValue);
     rep["psnr"] = number_or_null(d.psnr());
     if (d.channels >= 3) rep["psnr_rgb"] = number_or_null(d.psnr_rgb());

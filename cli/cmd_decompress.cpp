@@ -92,10 +92,25 @@ void run_decompress(const DecompressArgs& a, const std::string& input, const std
     write_mip_file(output, levels, w);  // one file with the whole chain
     phases.write_done();
   } else {
+    // Each level decoded band by band as the writer asks for its rows.
     for (std::uint32_t l = first; l < last; ++l) {
-      const Image img = decode(l);
+      ImageView shape;
+      shape.width = int(t.level_width(l));
+      shape.height = int(t.level_height(l));
+      shape.channels = format_info(t.format).channels;
+      shape.type = *type;
+      const RowSource rows = [&](int y0, int y1, void* dst, std::size_t stride) {
+        decode_texture_rows(t, l, std::uint32_t(a.layer), std::uint32_t(a.face), *type, y0, y1, dst, stride);
+        if (!to_linear) return;
+        std::vector<float> lin(std::size_t(shape.width) * shape.channels);
+        for (int y = y0; y < y1; ++y) {
+          float* row = reinterpret_cast<float*>(static_cast<std::uint8_t*>(dst) + std::size_t(y - y0) * stride);
+          ColorSpace::srgb().decode_row(row, PixelType::f32, shape.channels, shape.width, lin.data());
+          std::copy(lin.begin(), lin.end(), row);
+        }
+      };
+      write_image(a.all_levels && r.outputs.size() > 1 ? r.outputs.at(l) : output, shape, rows, w);
       phases.compute_done();
-      write_image(a.all_levels && r.outputs.size() > 1 ? r.outputs.at(l) : output, img.view(), w);
       phases.write_done();
     }
   }

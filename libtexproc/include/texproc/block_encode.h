@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "texproc/image.h"
+#include "texproc/mip.h"
 #include "texproc/texture.h"
 #include "texproc/transparent_color.h"
 
@@ -117,5 +118,18 @@ struct TextureEncodeOptions {
 // Bytes are identical for any thread count.
 Texture compress_texture(std::vector<std::vector<Image>>& chains, std::uint32_t faces, std::uint32_t layers,
                          bool is_array, TexelFormat format, Quality q, const TextureEncodeOptions& options = {});
+
+// compress_texture of the chains generate_mips(surface, mip) builds, one per
+// surface (index layer * faces + face, all of one size), without holding
+// them: each level's block rows are encoded as the filter finishes their
+// texel rows, so memory is the images and the blocks, not the chains. The
+// bytes are generate_mips's then compress_texture's. ASTC, and bleeding
+// the transparent colour (it reads neighbours), filter whole chains first.
+// Level 0 is each image as given (MipOptions::output_type and
+// output_color_space must be unset); on return `surfaces` hold level 0 as
+// it was encoded (DXT5nm layout, transparent colour).
+Texture compress_texture_mips(std::vector<Image>& surfaces, const MipOptions& mip, std::uint32_t faces,
+                              std::uint32_t layers, bool is_array, TexelFormat format, Quality q,
+                              const TextureEncodeOptions& options = {});
 
 }  // namespace texproc

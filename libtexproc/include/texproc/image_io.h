@@ -8,6 +8,7 @@
 // OpenImageIO. See docs/formats.md.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -95,6 +96,18 @@ struct WriteOptions {
 // Writes one image atomically. The format follows the extension. Throws
 // Error{unsupported} for an unknown extension, Error{io} on write failure.
 void write_image(const std::string& path, const ImageView& image, const WriteOptions& options = {});
+
+// Rows [y0, y1) of an image, made on demand (decoded, converted) into `dst`,
+// rows `row_stride` bytes apart: called from several threads at once, for
+// any range, and a row may be asked for more than once.
+using RowSource = std::function<void(int y0, int y1, void* dst, std::size_t row_stride)>;
+
+// write_image of an image that is not held: `shape` gives its width, height,
+// channels and type (its data is not read) and `source` its rows. PNG asks
+// for them strip by strip, so the image is never whole in memory; other
+// formats make it whole first.
+void write_image(const std::string& path, const ImageView& shape, const RowSource& source,
+                 const WriteOptions& options = {});
 
 // True if the extension names a format that holds a MIP chain in one file
 // (.tif/.tiff, .exr).

@@ -61,6 +61,33 @@ MipChain generate_mips(const ImageView& image, const MipOptions& options);
 // becomes levels[0] without a copy.
 MipChain generate_mips(Image&& image, const MipOptions& options);
 
+// Receives the rows of levels 1.. of a chain as generate_mips_rows filters
+// them.
+class MipRowSink {
+ public:
+  virtual ~MipRowSink() = default;
+  // Before any row: how many levels the chain has (level 0 included), and
+  // the element type and channel count of every level.
+  virtual void begin(int levels, PixelType type, int channels) {}
+  // Where row y of `level` (>= 1) goes: mip_level_dim(width, level) *
+  // channels elements of the type. Each row of each level is asked for
+  // once, in no fixed order, from several threads at once (for different
+  // rows); the level's rows below it may still be coming.
+  virtual void* row(int level, int y) = 0;
+  // Row y of `level` is written (called by the thread that asked for it).
+  virtual void row_done(int level, int y) {}
+};
+
+// The chain generate_mips builds, levels 1.. only, streamed into `sink`
+// without holding it: a level's rows stay in float only until every row of
+// the next level that reads them is done, so beside the input the memory is
+// a few hundred rows (with alpha_coverage_ref >= 0, one whole level in
+// float, as its coverage must be known before it is written). Level 0 is
+// the input converted as generate_mips converts it; the sink gets no row of
+// it. Returns the chain with no levels: its color space and coverage.
+// The rows' bytes are generate_mips's, for any thread count.
+MipChain generate_mips_rows(const ImageView& image, const MipOptions& options, MipRowSink& sink);
+
 // The fraction of texels whose alpha (last channel) times `scale` is >= ref.
 // Integer alpha is compared as value / max.
 float alpha_coverage(const ImageView& image, float ref, float scale = 1.0f);

@@ -250,6 +250,21 @@ void write_image(const std::string& path, const ImageView& given, const WriteOpt
   file.commit();
 }
 
+void write_image(const std::string& path, const ImageView& shape, const RowSource& source,
+                 const WriteOptions& options) {
+  check_writable_extension(path);
+  const std::string e = lower_ext(path);
+  if (e == ".png" && !module_writes(e) && !(options.red_green && shape.channels == 2)) {
+    AtomicFile file(path);
+    codecs::png_write(file.temp_path(), path, shape, source, options);
+    file.commit();
+    return;
+  }
+  Image whole = Image::uninitialized(shape.width, shape.height, shape.channels, shape.type);
+  source(0, shape.height, whole.data(), whole.row_stride());
+  write_image(path, whole.view(), options);
+}
+
 bool holds_mip_levels(const std::string& path) {
   const std::string e = lower_ext(path);
   return e == ".tif" || e == ".tiff" || e == ".exr";

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "image/srgb_rows.h"
+#include "mip/chain_rows.h"
 #include "mip/resample.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
@@ -28,37 +29,14 @@ int mip_level_count(int width, int height, int max_levels, int min_size) {
   return n;
 }
 
-namespace {
+namespace mip_rows {
 
-constexpr int kBlockRows = 16;  // output rows per task; fixed, so bytes never depend on threads
-
-using FloatBuffer = std::vector<float, detail::DefaultInitAllocator<float>>;
-
-// Per-thread scratch, reused from block to block: a fresh multi-megabyte
-// allocation per block would cost a page fault per 4 KiB.
-struct Scratch {
-  FloatBuffer decoded, row, row_out;
-  std::vector<const float*> rows, taps;
-};
 Scratch& scratch() {
   thread_local Scratch s;
   return s;
 }
 
-bool has_alpha(int channels) { return channels == 2 || channels == 4; }
-
-struct ChainSetup {
-  int channels = 0;
-  bool alpha = false;
-  bool premultiply = false;
-  bool normal_map = false;
-  ColorSpace in_cs = ColorSpace::linear();
-  ColorSpace out_cs = ColorSpace::linear();
-  PixelType out_type = PixelType::u8;
-  WrapMode wrap = WrapMode::clamp;
-  // 8-bit sRGB RGBA in and out, premultiplied: the SIMD row codecs apply.
-  bool rgba8_srgb_fast = false;
-};
+namespace {
 
 void premultiply_row(float* px, int channels, int width) {
   if (channels == 4) {
@@ -98,7 +76,8 @@ void unpremultiply_row(float* px, int channels, int width) {
   }
 }
 
-// Tangent-space normals stored as xyz * 0.5 + 0.5: back to unit length.
+}  // namespace
+
 void renormalize_row(float* px, int channels, int width) {
   for (int x = 0; x < width; ++x) {
     float* p = px + x * channels;
@@ -116,21 +95,12 @@ void renormalize_row(float* px, int channels, int width) {
   }
 }
 
-// A level as the filter sees it: rows of linear (premultiplied) floats.
-// Level 0 is decoded from the input on demand; later levels are stored.
-struct LevelRows {
-  const ImageView* input = nullptr;  // level 0
-  const float* stored = nullptr;     // levels >= 1
-  int width = 0, height = 0;
-};
-
 void decode_input_row(const ChainSetup& s, const ImageView& in, int y, float* dst) {
   if (s.rgba8_srgb_fast) return decode_srgb8_rgba_premultiplied(in.row<const std::uint8_t>(y), in.width, dst);
   s.in_cs.decode_row(in.row<const void>(y), in.type, s.channels, in.width, dst);
   if (s.premultiply) premultiply_row(dst, s.channels, in.width);
 }
 
-// One level row from linear premultiplied float to the output encoding.
 void encode_level_row(const ChainSetup& s, const float* src, int w, float alpha_scale, void* dst) {
   if (s.rgba8_srgb_fast && alpha_scale == 1.0f) {
     return encode_srgb8_rgba_unpremultiplied(src, w, static_cast<std::uint8_t*>(dst));
@@ -146,10 +116,27 @@ void encode_level_row(const ChainSetup& s, const float* src, int w, float alpha_
   s.out_cs.encode_row(row.data(), C, w, dst, s.out_type);
 }
 
-void encode_level(const ChainSetup& s, const float* src, int w, int h, float alpha_scale, Image& out) {
+}  // namespace mip_rows
+
+namespace {
+
+using namespace mip_rows;
+
+// A level as the filter sees it: rows of linear (premultiplied) floats.
+// Level 0 is decoded from the input on demand; later levels are stored.
+struct LevelRows {
+  const ImageView* input = nullptr;  // level 0
+  const float* stored = nullptr;     // levels >= 1
+  int width = 0, height = 0;
+};
+
+bool has_alpha(int channels) { return channels == 2 || channels == 4; }
+
+void encode_level(const ChainSetup& s, const float* src, int level, int w, int h, float alpha_scale, MipRowSink& sink) {
   for_each_row_block(h, kBlockRows, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y) {
-      encode_level_row(s, src + std::size_t(y) * w * s.channels, w, alpha_scale, out.row<void>(y));
+      encode_level_row(s, src + std::size_t(y) * w * s.channels, w, alpha_scale, sink.row(level, y));
+      sink.row_done(level, y);
     }
   });
 }
@@ -158,7 +145,7 @@ void encode_level(const ChainSetup& s, const float* src, int w, int h, float alp
 // into it while still in cache (when no whole-level statistic such as alpha
 // coverage must be known first).
 FloatBuffer downsample(const ChainSetup& s, const LevelRows& src, int dw, int dh, const Filter& filter,
-                       Image* encoded) {
+                       int level, MipRowSink* encoded) {
   const int C = s.channels;
   const int sw = src.width, sh = src.height;
   const AxisWeights wx = compute_axis_weights(sw, dw, filter);
@@ -203,7 +190,10 @@ FloatBuffer downsample(const ChainSetup& s, const LevelRows& src, int dw, int dh
       float* out = dst.data() + std::size_t(y) * dw * C;
       horizontal_pass(mid, C, wx.first.data(), wx.weights.data(), wx.taps, dw, out);
       if (s.normal_map) renormalize_row(out, C, dw);
-      if (encoded) encode_level_row(s, out, dw, 1.0f, encoded->row<void>(y));
+      if (encoded) {
+        encode_level_row(s, out, dw, 1.0f, encoded->row(level, y));
+        encoded->row_done(level, y);
+      }
     }
   });
   return dst;
@@ -277,18 +267,41 @@ float alpha_coverage(const ImageView& image, float ref, float scale) {
 }
 
 namespace {
-MipChain generate(const ImageView& image, Image* owned, const MipOptions& o);
+// Levels 1.. into the sink: in waves (cascade) or, where a whole level must
+// be known before it is written (alpha coverage) or asked for, whole float
+// levels one after the other.
+void stream_levels(const ChainSetup& s, const ImageView& image, int levels, const MipOptions& o, bool whole_levels,
+                   MipRowSink& sink, MipChain& chain) {
+  const bool coverage = s.alpha && o.alpha_coverage_ref >= 0.0f && !o.normal_map;
+  float target = 0.0f;
+  if (coverage) {
+    target = alpha_coverage(image, o.alpha_coverage_ref);
+    chain.alpha_coverage.push_back(target);
+    chain.alpha_scale.push_back(1.0f);
+  }
+  if (!coverage && !whole_levels) {
+    if (levels > 1) cascade(s, image, levels, o.filter, sink);
+    return;
+  }
+  FloatBuffer prev;
+  LevelRows src{&image, nullptr, image.width, image.height};
+  for (int level = 1; level < levels; ++level) {
+    const int dw = mip_level_dim(image.width, level), dh = mip_level_dim(image.height, level);
+    FloatBuffer cur = downsample(s, src, dw, dh, o.filter, level, coverage ? nullptr : &sink);
+    if (coverage) {
+      // Coverage is judged on straight alpha, which premultiplication leaves alone.
+      const float scale = coverage_scale(cur.data(), std::size_t(dw) * dh, s.channels, o.alpha_coverage_ref, target);
+      chain.alpha_coverage.push_back(
+          coverage_of(cur.data(), std::size_t(dw) * dh, s.channels, o.alpha_coverage_ref, scale));
+      chain.alpha_scale.push_back(scale);
+      encode_level(s, cur.data(), level, dw, dh, scale, sink);
+    }
+    prev = std::move(cur);
+    src = LevelRows{nullptr, prev.data(), dw, dh};
+  }
 }
 
-MipChain generate_mips(const ImageView& image, const MipOptions& o) { return generate(image, nullptr, o); }
-
-MipChain generate_mips(Image&& image, const MipOptions& o) {
-  const ImageView view = image.view();
-  return generate(view, &image, o);
-}
-
-namespace {
-MipChain generate(const ImageView& image, Image* owned, const MipOptions& o) {
+ChainSetup setup_chain(const ImageView& image, const MipOptions& o) {
   assert(image.data && image.width > 0 && image.height > 0);
   if (image.channels < 1 || image.channels > 4) {
     throw Error(ErrorCode::unsupported, "images with " + std::to_string(image.channels) +
@@ -330,10 +343,23 @@ MipChain generate(const ImageView& image, Image* owned, const MipOptions& o) {
       s.out_cs = s.in_cs;
     }
   }
-
   s.rgba8_srgb_fast = s.channels == 4 && s.premultiply && image.type == PixelType::u8 &&
                       s.out_type == PixelType::u8 && s.in_cs.is_srgb() && s.out_cs.is_srgb();
+  return s;
+}
 
+// Writes rows into the chain's images.
+class ChainSink final : public MipRowSink {
+ public:
+  explicit ChainSink(std::vector<Image>& levels) : levels_(levels) {}
+  void* row(int level, int y) override { return levels_[level].row<void>(y); }
+
+ private:
+  std::vector<Image>& levels_;
+};
+
+MipChain generate(const ImageView& image, Image* owned, const MipOptions& o, bool whole_levels) {
+  const ChainSetup s = setup_chain(image, o);
   MipChain chain;
   chain.color_space = s.out_cs.name();
   const int levels = mip_level_count(image.width, image.height, o.max_levels, o.min_size);
@@ -345,36 +371,38 @@ MipChain generate(const ImageView& image, Image* owned, const MipOptions& o) {
   } else {
     chain.levels.push_back(convert_level0(s, image));
   }
-
-  const bool coverage = s.alpha && o.alpha_coverage_ref >= 0.0f && !o.normal_map;
-  float target = 0.0f;
-  if (coverage) {
-    target = alpha_coverage(image, o.alpha_coverage_ref);
-    chain.alpha_coverage.push_back(target);
-    chain.alpha_scale.push_back(1.0f);
-  }
-
-  FloatBuffer prev;
-  LevelRows src{&image, nullptr, image.width, image.height};
   for (int level = 1; level < levels; ++level) {
-    const int dw = mip_level_dim(image.width, level), dh = mip_level_dim(image.height, level);
-    Image out = Image::uninitialized(dw, dh, s.channels, s.out_type);
-    FloatBuffer cur = downsample(s, src, dw, dh, o.filter, coverage ? nullptr : &out);
-    float scale = 1.0f;
-    if (coverage) {
-      // Coverage is judged on straight alpha, which premultiplication leaves alone.
-      scale = coverage_scale(cur.data(), std::size_t(dw) * dh, s.channels, o.alpha_coverage_ref, target);
-      chain.alpha_coverage.push_back(
-          coverage_of(cur.data(), std::size_t(dw) * dh, s.channels, o.alpha_coverage_ref, scale));
-      chain.alpha_scale.push_back(scale);
-      encode_level(s, cur.data(), dw, dh, scale, out);
-    }
-    chain.levels.push_back(std::move(out));
-    prev = std::move(cur);
-    src = LevelRows{nullptr, prev.data(), dw, dh};
+    chain.levels.push_back(Image::uninitialized(mip_level_dim(image.width, level), mip_level_dim(image.height, level),
+                                                s.channels, s.out_type));
   }
+  ChainSink sink(chain.levels);
+  stream_levels(s, image, levels, o, whole_levels, sink, chain);
   return chain;
 }
+
 }  // namespace
+
+MipChain generate_mips(const ImageView& image, const MipOptions& o) { return generate(image, nullptr, o, false); }
+
+MipChain generate_mips(Image&& image, const MipOptions& o) {
+  const ImageView view = image.view();
+  return generate(view, &image, o, false);
+}
+
+MipChain generate_mips_rows(const ImageView& image, const MipOptions& o, MipRowSink& sink) {
+  const ChainSetup s = setup_chain(image, o);
+  MipChain chain;
+  chain.color_space = s.out_cs.name();
+  const int levels = mip_level_count(image.width, image.height, o.max_levels, o.min_size);
+  sink.begin(levels, s.out_type, s.channels);
+  stream_levels(s, image, levels, o, false, sink, chain);
+  return chain;
+}
+
+namespace detail {
+MipChain generate_mips_whole_levels(const ImageView& image, const MipOptions& o) {
+  return generate(image, nullptr, o, true);
+}
+}  // namespace detail
 
 }  // namespace texproc

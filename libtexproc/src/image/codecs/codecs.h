@@ -74,6 +74,10 @@ std::uint8_t sample_u8(const ImageView& v, int y, std::size_t i);
 ImageFileInfo png_probe(const std::string& path, const FileBytes& f);
 Image png_read(const std::string& path, const FileBytes& f, ImageFileInfo& info);
 void png_write(const std::string& file, const std::string& path, const ImageView& v, const WriteOptions& o);
+// The same for rows made on demand: `shape` gives the size, channels and
+// type (no pixels); each strip asks `source` for its rows.
+void png_write(const std::string& file, const std::string& path, const ImageView& shape, const RowSource& source,
+               const WriteOptions& o);
 
 // JPEG (libjpeg-turbo).
 ImageFileInfo jpeg_probe(const std::string& path, const FileBytes& f);

@@ -225,6 +225,11 @@ Deflate png_level(const std::string& path, const std::string& c) {
 }  // namespace
 
 void png_write(const std::string& file, const std::string& path, const ImageView& v, const WriteOptions& o) {
+  png_write(file, path, v, RowSource{}, o);
+}
+
+void png_write(const std::string& file, const std::string& path, const ImageView& v, const RowSource& source,
+               const WriteOptions& o) {
   const Deflate level = png_level(path, o.compression);
   const bool sixteen = v.type != PixelType::u8;
   const int bps = sixteen ? 2 : 1;
@@ -232,17 +237,17 @@ void png_write(const std::string& file, const std::string& path, const ImageView
   const std::size_t row_bytes = std::size_t(v.width) * bpp;
   // Rows as PNG stores them (big-endian 16-bit; float clamped and rounded
   // to 16 bits, as OpenImageIO writes float to PNG).
-  auto png_row = [&](int y, std::uint8_t* dst) {
+  auto png_row = [&](const void* src, std::uint8_t* dst) {
     if (v.type == PixelType::u8) {
-      std::memcpy(dst, v.row<const std::uint8_t>(y), row_bytes);
+      std::memcpy(dst, src, row_bytes);
     } else if (v.type == PixelType::u16) {
-      const std::uint16_t* s = v.row<const std::uint16_t>(y);
+      const auto* s = static_cast<const std::uint16_t*>(src);
       for (std::size_t i = 0; i < std::size_t(v.width) * v.channels; ++i) {
         dst[2 * i] = std::uint8_t(s[i] >> 8);
         dst[2 * i + 1] = std::uint8_t(s[i]);
       }
     } else {
-      const float* s = v.row<const float>(y);
+      const auto* s = static_cast<const float*>(src);
       for (std::size_t i = 0; i < std::size_t(v.width) * v.channels; ++i) {
         const float c = std::clamp(s[i], 0.0f, 1.0f);
         const auto q = std::uint16_t(std::lround(c * 65535.0f));
@@ -293,9 +298,20 @@ void png_write(const std::string& file, const std::string& path, const ImageView
         std::vector<std::uint8_t> prev(row_bytes, 0), cur(row_bytes);
         const int y0 = s * strip_rows, y1 = std::min(v.height, y0 + strip_rows);
         std::vector<std::uint8_t> filtered(std::size_t(y1 - y0) * (row_bytes + 1));
-        if (y0 > 0) png_row(y0 - 1, prev.data());
+        // Rows made on demand: the strip's and the one above it.
+        const int f0 = std::max(0, y0 - 1);
+        const std::size_t pixel_row = std::size_t(v.width) * v.channels * bytes_per_channel(v.type);
+        std::vector<std::uint8_t> made;
+        if (source) {
+          made.resize(std::size_t(y1 - f0) * pixel_row);
+          source(f0, y1, made.data(), pixel_row);
+        }
+        auto src = [&](int y) -> const void* {
+          return source ? made.data() + std::size_t(y - f0) * pixel_row : v.row<const void>(y);
+        };
+        if (y0 > 0) png_row(src(y0 - 1), prev.data());
         for (int y = y0; y < y1; ++y) {
-          png_row(y, cur.data());
+          png_row(src(y), cur.data());
           filter_row(cur.data(), prev.data(), row_bytes, bpp, filtered.data() + std::size_t(y - y0) * (row_bytes + 1));
           std::swap(prev, cur);
         }
