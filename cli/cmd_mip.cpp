@@ -69,6 +69,9 @@ std::vector<std::string> plan(const MipArgs& a, const std::string& input, const 
   return level_outputs(output, mip_level_count(info.width, info.height, a.mip.max_levels, a.mip.min_size));
 }
 
+void report_mip(const MipArgs& a, const std::string& input, const std::string& output, const ImageFileInfo& info,
+                std::size_t level_count, PixelType level_type, const MipChain& chain, FileReport& r);
+
 void run_mip(const MipArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   MipOptions o = a.mip;
   WriteOptions w = a.write;
@@ -93,14 +96,35 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
   const PixelType out_type = o.output_type ? *o.output_type : in.images[0].type();
   const bool srgb_in = o.color_space.empty() ? in.images[0].type() != PixelType::f32 : ColorSpace::from_name(o.color_space).is_srgb();
   if (container && out_type == PixelType::u16 && srgb_in && o.output_color_space.empty()) o.output_color_space = "linear";
+  const int width = in.images[0].width(), height = in.images[0].height();
+  const std::size_t level_count = std::size_t(mip_level_count(width, height, o.max_levels, o.min_size));
+  const PixelType level_type = out_type;
+  MipChain chain;
+  // One float OpenEXR chain down to 1x1: written band by band as the levels
+  // are filtered, the chain never held.
+  if (in.images.size() == 1 && out_type == PixelType::f32 && MipFileWriter::supports(output) &&
+      level_count == std::size_t(mip_level_count(width, height))) {
+    MipFileWriter file(output, width, height, in.images[0].channels(), w);
+    struct Sink final : MipRowSink {
+      MipFileWriter* file = nullptr;
+      bool wants_level0() const override { return true; }
+      void* row(int level, int y) override { return file->row(level, y); }
+      void row_done(int level, int y) override { file->row_done(level, y); }
+    } sink;
+    sink.file = &file;
+    chain = generate_mips_rows(in.images[0].view(), o, sink);
+    phases.compute_done();
+    file.commit();
+    phases.write_done();
+    report_mip(a, input, output, info, level_count, level_type, chain, r);
+    return;
+  }
   // A cubemap's faces and an array's layers are each mipped on their own.
   std::vector<std::vector<Image>> more;
   for (std::size_t s = 1; s < in.images.size(); ++s) more.push_back(generate_mips(std::move(in.images[s]), o).levels);
-  MipChain chain = generate_mips(std::move(in.images[0]), o);
+  chain = generate_mips(std::move(in.images[0]), o);
   phases.compute_done();
   w.color_space = chain.color_space == "srgb" ? "srgb" : chain.color_space == "linear" ? "linear" : "";
-  const std::size_t level_count = chain.levels.size();
-  const PixelType level_type = chain.levels[0].type();
   if (container && !more.empty()) {
     std::vector<std::vector<Image>> chains;
     chains.push_back(std::move(chain.levels));
@@ -116,6 +140,11 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
     write_levels(output, chain.levels, w);
   }
   phases.write_done();
+  report_mip(a, input, output, info, level_count, level_type, chain, r);
+}
+
+void report_mip(const MipArgs& a, const std::string& input, const std::string& output, const ImageFileInfo& info,
+                std::size_t level_count, PixelType level_type, const MipChain& chain, FileReport& r) {
   std::ostringstream line;
   line << input << " -> " << (r.outputs.size() == 1 ? output : r.outputs[0] + " ...") << ": " << level_count
        << " levels, " << info.width << "x" << info.height << " " << to_string(level_type) << " "

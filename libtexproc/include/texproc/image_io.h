@@ -9,6 +9,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -117,5 +118,37 @@ bool holds_mip_levels(const std::string& path);
 // maketx writes) or a tiled OpenEXR file in MIPMAP_LEVELS mode (round down).
 // OpenImageIO reads them back as MIP levels. EXR needs the whole chain.
 void write_mip_file(const std::string& path, const std::vector<Image>& levels, const WriteOptions& options = {});
+
+// A MIP file written as its levels' rows are made, holding neither the chain
+// nor a level: an OpenEXR file, tiled, every level down to 1x1 of f32
+// pixels, with the bytes write_mip_file writes for the same levels. Each
+// row is asked for (row) and then given (row_done) once, in any order, from
+// several threads at once; a band of 64 rows goes to the file as soon as
+// its last row is done. commit() names the file; a writer destroyed before
+// that (an error, an exception) leaves nothing under the path.
+class MipFileWriter {
+ public:
+  // True where a path can be written this way (.exr, through texproc's
+  // OpenEXR module; not with TEXPROC_IMAGE_IO=oiio).
+  static bool supports(const std::string& path);
+
+  // Throws Error{unsupported} where !supports(path).
+  MipFileWriter(const std::string& path, int width, int height, int channels, const WriteOptions& options = {});
+  ~MipFileWriter();
+  MipFileWriter(const MipFileWriter&) = delete;
+  MipFileWriter& operator=(const MipFileWriter&) = delete;
+
+  // Where row y of `level` goes: width(level) * channels floats.
+  float* row(int level, int y);
+  // Row y of `level` is written; a band's last row writes the band. Throws
+  // Error{io} when the file cannot be written.
+  void row_done(int level, int y);
+  // Checks every row was given, closes and names the file.
+  void commit();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace texproc

@@ -69,7 +69,10 @@ class MipRowSink {
   // Before any row: how many levels the chain has (level 0 included), and
   // the element type and channel count of every level.
   virtual void begin(int levels, PixelType type, int channels) {}
-  // Where row y of `level` (>= 1) goes: mip_level_dim(width, level) *
+  // True to be given level 0 too (the input converted to the output type
+  // and color space, as generate_mips's levels[0]), before the other levels.
+  virtual bool wants_level0() const { return false; }
+  // Where row y of `level` (>= 1, or 0 where wanted) goes: mip_level_dim(width, level) *
   // channels elements of the type. Each row of each level is asked for
   // once, in no fixed order, from several threads at once (for different
   // rows); the level's rows below it may still be coming.
@@ -83,8 +86,9 @@ class MipRowSink {
 // the next level that reads them is done, so beside the input the memory is
 // a few hundred rows (with alpha_coverage_ref >= 0, one whole level in
 // float, as its coverage must be known before it is written). Level 0 is
-// the input converted as generate_mips converts it; the sink gets no row of
-// it. Returns the chain with no levels: its color space and coverage.
+// the input converted as generate_mips converts it; the sink gets its rows
+// only if it wants them. Returns the chain with no levels: its color space
+// and coverage.
 // The rows' bytes are generate_mips's, for any thread count.
 MipChain generate_mips_rows(const ImageView& image, const MipOptions& options, MipRowSink& sink);
 

@@ -227,22 +227,34 @@ bool level0_is_input(const ChainSetup& s, const ImageView& in) {
   return in.type == s.out_type && s.in_cs.name() == s.out_cs.name();
 }
 
-Image convert_level0(const ChainSetup& s, const ImageView& in) {
-  Image out = Image::uninitialized(in.width, in.height, s.channels, s.out_type);
-  if (level0_is_input(s, in)) {
-    for_each_row_block(in.height, 64, [&](int y0, int y1) {
-      for (int y = y0; y < y1; ++y) std::memcpy(out.row<void>(y), in.row<void>(y), out.row_stride());
-    });
-    return out;
-  }
-  for_each_row_block(in.height, kBlockRows, [&](int y0, int y1) {
+// Level 0 row by row: a byte copy of the input, or the input converted.
+void convert_level0_rows(const ChainSetup& s, const ImageView& in, MipRowSink& sink) {
+  const bool copy = level0_is_input(s, in);
+  const std::size_t bytes = std::size_t(in.width) * s.channels * bytes_per_channel(s.out_type);
+  for_each_row_block(in.height, copy ? 64 : kBlockRows, [&](int y0, int y1) {
     FloatBuffer& row = scratch().row;
     row.resize(std::size_t(in.width) * s.channels);
     for (int y = y0; y < y1; ++y) {
-      s.in_cs.decode_row(in.row<const void>(y), in.type, s.channels, in.width, row.data());
-      s.out_cs.encode_row(row.data(), s.channels, in.width, out.row<void>(y), out.type());
+      void* dst = sink.row(0, y);
+      if (copy) {
+        std::memcpy(dst, in.row<const void>(y), bytes);
+      } else {
+        s.in_cs.decode_row(in.row<const void>(y), in.type, s.channels, in.width, row.data());
+        s.out_cs.encode_row(row.data(), s.channels, in.width, dst, s.out_type);
+      }
+      sink.row_done(0, y);
     }
   });
+}
+
+Image convert_level0(const ChainSetup& s, const ImageView& in) {
+  Image out = Image::uninitialized(in.width, in.height, s.channels, s.out_type);
+  struct Into final : MipRowSink {
+    Image* out = nullptr;
+    void* row(int, int y) override { return out->row<void>(y); }
+  } sink;
+  sink.out = &out;
+  convert_level0_rows(s, in, sink);
   return out;
 }
 
@@ -395,6 +407,7 @@ MipChain generate_mips_rows(const ImageView& image, const MipOptions& o, MipRowS
   chain.color_space = s.out_cs.name();
   const int levels = mip_level_count(image.width, image.height, o.max_levels, o.min_size);
   sink.begin(levels, s.out_type, s.channels);
+  if (sink.wants_level0()) convert_level0_rows(s, image, sink);
   stream_levels(s, image, levels, o, false, sink, chain);
   return chain;
 }

@@ -19,6 +19,7 @@
 #include <cctype>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <mutex>
 #include <vector>
 
@@ -466,6 +467,61 @@ void write(const std::string& file, const std::string& path, const std::vector<I
   }
 }
 
+// The streamed MIP file: the same header, tiles and order as write()'s
+// (OpenEXR keeps a tile that arrives before its turn, compressed, until
+// the tiles before it are in the file).
+struct MipWriter {
+  std::string path;
+  WriteOptions options;
+  int channels = 0;
+  long long bands_left = 0;  // bands not yet given
+  std::string failed;         // after a failed write: its message (OpenEXR must not be called again)
+  std::unique_ptr<Imf::TiledOutputFile> out;
+};
+
+MipWriter* mip_open(const std::string& file, const std::string& path, int width, int height, int channels,
+                    const WriteOptions& o) {
+  start_threads();
+  auto w = std::make_unique<MipWriter>(MipWriter{path, o, channels});
+  try {
+    ImageView shape{nullptr, width, height, channels, PixelType::f32, 0};
+    Imf::Header h = header_for(shape, o, compression_of(path, o.compression));
+    h.setTileDescription(Imf::TileDescription(64, 64, Imf::MIPMAP_LEVELS, Imf::ROUND_DOWN));
+    w->out = std::make_unique<Imf::TiledOutputFile>(file.c_str(), h);
+    for (int l = 0; l < w->out->numLevels(); ++l) w->bands_left += w->out->numYTiles(l);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(ErrorCode::io, path + ": cannot write: " + e.what());
+  }
+  return w.release();
+}
+
+void mip_band(MipWriter& w, int level, int band, const void* rows, std::size_t row_stride) {
+  if (!w.failed.empty()) throw Error(ErrorCode::io, w.failed);
+  Imf::TiledOutputFile& out = *w.out;
+  if (level < 0 || level >= out.numLevels() || band < 0 || band >= out.numYTiles(level))
+    throw Error(ErrorCode::bad_arguments, w.path + ": band " + std::to_string(band) + " is outside the file");
+  try {
+    const int height = out.levelHeight(level);
+    const int y0 = band * 64, y1 = std::min(height, y0 + 64);
+    // The band's rows, addressed as the level's rows y0 .. y1-1.
+    const ImageView v{const_cast<char*>(static_cast<const char*>(rows)) - std::ptrdiff_t(y0) * std::ptrdiff_t(row_stride),
+                      out.levelWidth(level), height, w.channels, PixelType::f32, row_stride};
+    const Band b = band_of(v, y0, y1, w.options.half);
+    Imf::FrameBuffer fb;
+    fill_frame_buffer(fb, v, b.stored, w.options.red_green);
+    out.setFrameBuffer(fb);
+    out.writeTiles(0, out.numXTiles(level) - 1, band, band, level);
+    --w.bands_left;
+  } catch (const std::exception& e) {
+    // A failed write leaves the file's tile buffers waiting: no more calls.
+    const auto* known = dynamic_cast<const Error*>(&e);
+    w.failed = known ? e.what() : w.path + ": cannot write: " + e.what();
+    throw Error(known ? known->code() : ErrorCode::io, w.failed);
+  }
+}
+
 int report(int code, const std::string& message, char* err, size_t err_size) {
   if (err && err_size) copy_string(err, err_size, message);
   return code;
@@ -492,6 +548,16 @@ int read_c(const char* path, int channels, int type, void* data, size_t row_stri
     read(path, channels, data, row_stride);
   });
 }
+WriteOptions options_of(const TpWriteOptions* o) {
+  WriteOptions w;
+  w.half = o->half != 0;
+  w.compression = o->compression ? o->compression : "";
+  w.color_space = o->color_space ? o->color_space : "";
+  w.quality = o->quality;
+  w.red_green = o->red_green != 0;
+  return w;
+}
+
 int write_c(const char* file, const char* path, const TpImageLevel* levels, int count, int mip_file,
             const TpWriteOptions* o, char* err, size_t err_size) {
   return guarded(path, "cannot write", err, err_size, [&] {
@@ -500,17 +566,32 @@ int write_c(const char* file, const char* path, const TpImageLevel* levels, int 
       views.push_back({const_cast<void*>(levels[i].data), levels[i].width, levels[i].height, levels[i].channels,
                        PixelType(levels[i].type), levels[i].row_stride});
     }
-    WriteOptions w;
-    w.half = o->half != 0;
-    w.compression = o->compression ? o->compression : "";
-    w.color_space = o->color_space ? o->color_space : "";
-    w.quality = o->quality;
-    w.red_green = o->red_green != 0;
-    write(file, path, views, mip_file != 0, w);
+    write(file, path, views, mip_file != 0, options_of(o));
   });
 }
 
-const TpImageModule kModule = {TP_IMAGE_MODULE_ABI, probe_c, read_c, write_c};
+
+int mip_open_c(const char* file, const char* path, int width, int height, int channels, const TpWriteOptions* o,
+               void** writer, char* err, size_t err_size) {
+  *writer = nullptr;
+  return guarded(path, "cannot write", err, err_size,
+                 [&] { *writer = mip_open(file, path, width, height, channels, options_of(o)); });
+}
+int mip_band_c(void* writer, int level, int band, const void* rows, size_t row_stride, char* err, size_t err_size) {
+  MipWriter& w = *static_cast<MipWriter*>(writer);
+  return guarded(w.path, "cannot write", err, err_size, [&] { mip_band(w, level, band, rows, row_stride); });
+}
+int mip_close_c(void* writer, int commit, char* err, size_t err_size) {
+  std::unique_ptr<MipWriter> w(static_cast<MipWriter*>(writer));
+  return guarded(w->path, "cannot write", err, err_size, [&] {
+    if (commit && w->bands_left != 0) {
+      throw Error(ErrorCode::runtime, w->path + ": " + std::to_string(w->bands_left) + " bands of the MIP file were not given");
+    }
+    w->out.reset();  // writes the tile offsets and closes the file
+  });
+}
+
+const TpImageModule kModule = {TP_IMAGE_MODULE_ABI, probe_c, read_c, write_c, mip_open_c, mip_band_c, mip_close_c};
 
 }  // namespace
 

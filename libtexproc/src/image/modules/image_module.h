@@ -13,7 +13,7 @@
 
 extern "C" {
 
-enum { TP_IMAGE_MODULE_ABI = 2, TP_IMAGE_MAX_LEVELS = 32 };
+enum { TP_IMAGE_MODULE_ABI = 3, TP_IMAGE_MAX_LEVELS = 32, TP_MIP_BAND_ROWS = 64 };
 
 // The pixel types of texproc::PixelType, in its order.
 enum { TP_U8 = 0, TP_U16 = 1, TP_F32 = 2 };
@@ -56,6 +56,18 @@ struct TpImageModule {
   // or OpenEXR file.
   int (*write)(const char* file, const char* format_path, const struct TpImageLevel* levels, int level_count,
                int mip_file, const struct TpWriteOptions* options, char* err, size_t err_size);
+  // A MIP file written band by band, the levels' rows given as they are
+  // made (null where the module has no such writer). mip_open starts
+  // `file` for a width x height chain of f32 pixels down to 1x1 and sets
+  // *writer; mip_band gives one band of TP_MIP_BAND_ROWS rows of a level
+  // (fewer at its bottom), `band` counted from its top, in any order, one
+  // call at a time; mip_close finishes the file (commit 1) or abandons it,
+  // and frees the writer either way. The file's bytes are those write
+  // gives for the same chain.
+  int (*mip_open)(const char* file, const char* format_path, int width, int height, int channels,
+                  const struct TpWriteOptions* options, void** writer, char* err, size_t err_size);
+  int (*mip_band)(void* writer, int level, int band, const void* rows, size_t row_stride, char* err, size_t err_size);
+  int (*mip_close)(void* writer, int commit, char* err, size_t err_size);
 };
 
 // Each module's one exported symbol.

@@ -112,4 +112,30 @@ void write(Module m, const std::string& file, const std::string& path, const std
   check(t.write(file.c_str(), path.c_str(), tl.data(), int(tl.size()), mip_file ? 1 : 0, &o, err, sizeof err), err);
 }
 
+MipBands::MipBands(Module m, const std::string& file, const std::string& path, int width, int height, int channels,
+                   const WriteOptions& options)
+    : t_(&module_for(m, path)) {
+  if (!t_->mip_open) throw Error(ErrorCode::unsupported, path + ": the module writes no MIP file band by band");
+  const TpWriteOptions o{options.half ? 1 : 0, options.compression.c_str(), options.color_space.c_str(),
+                         options.quality, options.red_green ? 1 : 0};
+  char err[1024] = {};
+  check(t_->mip_open(file.c_str(), path.c_str(), width, height, channels, &o, &writer_, err, sizeof err), err);
+}
+
+MipBands::~MipBands() {
+  if (writer_) t_->mip_close(writer_, 0, nullptr, 0);
+}
+
+void MipBands::band(int level, int band, const void* rows, std::size_t row_stride) {
+  char err[1024] = {};
+  check(t_->mip_band(writer_, level, band, rows, row_stride, err, sizeof err), err);
+}
+
+void MipBands::close() {
+  char err[1024] = {};
+  void* w = writer_;
+  writer_ = nullptr;
+  check(t_->mip_close(w, 1, err, sizeof err), err);
+}
+
 }  // namespace texproc::modules

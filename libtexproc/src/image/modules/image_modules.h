@@ -9,6 +9,8 @@
 #include "texproc/image.h"
 #include "texproc/image_io.h"
 
+struct TpImageModule;
+
 namespace texproc::modules {
 
 enum class Module { oiio, exr };
@@ -22,5 +24,22 @@ ImageFileInfo probe(Module m, const std::string& path);
 Image read(Module m, const std::string& path, ImageFileInfo& info);
 void write(Module m, const std::string& file, const std::string& path, const std::vector<ImageView>& levels,
            bool mip_file, const WriteOptions& options);
+
+// A module's band-by-band MIP file (image_module.h: mip_open, mip_band,
+// mip_close). Destroyed without close(), the file is abandoned.
+class MipBands {
+ public:
+  MipBands(Module m, const std::string& file, const std::string& path, int width, int height, int channels,
+           const WriteOptions& options);
+  ~MipBands();
+  MipBands(const MipBands&) = delete;
+  MipBands& operator=(const MipBands&) = delete;
+  void band(int level, int band, const void* rows, std::size_t row_stride);  // one call at a time
+  void close();
+
+ private:
+  const TpImageModule* t_ = nullptr;
+  void* writer_ = nullptr;
+};
 
 }  // namespace texproc::modules

@@ -296,7 +296,7 @@ int write_c(const char* file, const char* path, const TpImageLevel* levels, int 
   return guarded(err, err_size, [&] { write(file, path, levels, count, mip_file != 0, *o); });
 }
 
-const TpImageModule kModule = {TP_IMAGE_MODULE_ABI, probe_c, read_c, write_c};
+const TpImageModule kModule = {TP_IMAGE_MODULE_ABI, probe_c, read_c, write_c, nullptr, nullptr, nullptr};
 
 }  // namespace
 
