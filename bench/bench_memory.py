@@ -24,15 +24,17 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 
 
-def make_tga(path, size):
-    """An uncompressed 32-bit TGA, written in row bands (numpy-free)."""
+def make_tga(path, size, height=None):
+    """An uncompressed 32-bit TGA, size x height (default square), numpy-free."""
+    height = height or size
     import random
     rnd = random.Random(7)
     noise = bytes(rnd.getrandbits(8) for _ in range(4096))
     with open(path, "wb") as f:
-        f.write(bytes([0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0]) + size.to_bytes(2, "little") * 2 + bytes([32, 8 | 32]))
-        for y in range(size):
-            g = (y * 255 // max(1, size - 1)) & 0xFF
+        f.write(bytes([0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0]) + size.to_bytes(2, "little") +
+                height.to_bytes(2, "little") + bytes([32, 8 | 32]))
+        for y in range(height):
+            g = (y * 255 // max(1, height - 1)) & 0xFF
             row = bytearray(size * 4)
             for x in range(0, size * 4, 4096):
                 chunk = noise[(y * 31) % 4096:] + noise
@@ -78,6 +80,9 @@ def main():
     src = os.path.join(work, "in.tga")
     if not os.path.exists(src):
         make_tga(src, a.size)
+    pano = os.path.join(work, "pano.tga")  # 2:1, for cubemap
+    if not os.path.exists(pano):
+        make_tga(pano, a.size, a.size // 2)
     input_bytes = a.size * a.size * 4
     cases = [
         ("info", [T, "info", src], None),
@@ -95,8 +100,7 @@ def main():
         ("compress astc fast", [T, "compress", src, "-o", "{w}/o_astc.ktx2", "--format", "astc-6x6", "--quality",
                                 "fast", "-f", "-q"], "o_astc"),
         ("conemap --fast", [T, "conemap", src, "-o", "{w}/o_cone.png", "--fast", "-f", "-q"], "o_cone"),
-        ("cubemap --mips", [T, "cubemap", src, "--layout", "equirect", "-o", "{w}/o_cube.ktx2", "--mips", "-f", "-q"],
-         "o_cube"),
+        ("cubemap --mips", [T, "cubemap", pano, "-o", "{w}/o_cube.ktx2", "--mips", "-f", "-q"], "o_cube"),
         ("compare", [T, "compare", src, "{w}/o_bc1.dds"], None),
     ]
     only = set(filter(None, a.only.split(",")))
@@ -115,7 +119,7 @@ def main():
             continue
         # decompress reads the BC1 file; compare decodes both images it compares.
         inp = {"decompress": os.path.getsize(os.path.join(work, "o_bc1.dds")),
-               "compare": 2 * input_bytes}.get(name, input_bytes)
+               "compare": 2 * input_bytes, "cubemap --mips": input_bytes // 2}.get(name, input_bytes)
         out = outputs_size(work, stem) if stem else 0
         ratio = peak / (inp + out)
         worst = max(worst, ratio)

@@ -3,6 +3,7 @@
 // the given limits.
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <sstream>
 
@@ -28,36 +29,77 @@ struct CompareArgs {
   bool ssim = false, json = false;
 };
 
-// An image file, or one level of a texture decoded (SNORM to [0, 1]).
-Image load(const std::string& path, int level) {
+// An image file, or one level of a texture, decoded band by band as the
+// comparison reaches it (SNORM to [0, 1]).
+struct Loaded {
+  Image image;
+  Texture texture;
+  bool is_texture = false;
+  std::uint32_t level = 0;
+  ImageView shape;  // width, height, channels and type of what is compared
+};
+
+Loaded load(const std::string& path, int level) {
+  Loaded l;
   if (is_texture_container(path)) {
-    const Texture t = read_texture(path);
-    if (level < 0 || std::uint32_t(level) >= t.levels) {
+    l.texture = read_texture(path);
+    l.is_texture = true;
+    if (level < 0 || std::uint32_t(level) >= l.texture.levels) {
       throw Error(ErrorCode::bad_arguments, path + ": --level " + std::to_string(level) + " (valid: 0 to " +
-                                                std::to_string(t.levels - 1) + ")");
+                                                std::to_string(l.texture.levels - 1) + ")");
     }
-    Image img = decode_texture_image(t, std::uint32_t(level), 0, 0, PixelType::f32);
-    if (format_info(t.format).snorm) {
-      for (int y = 0; y < img.height(); ++y)
-        for (std::size_t i = 0; i < std::size_t(img.width()) * img.channels(); ++i) {
-          float& v = img.row<float>(y)[i];
-          v = (v + 1.0f) * 0.5f;
-        }
-    }
-    return img;
+    l.level = std::uint32_t(level);
+    l.shape.width = int(l.texture.level_width(l.level));
+    l.shape.height = int(l.texture.level_height(l.level));
+    l.shape.channels = format_info(l.texture.format).channels;
+    l.shape.type = PixelType::f32;
+    return l;
   }
   if (level != 0) throw Error(ErrorCode::bad_arguments, path + ": --level applies to textures (.dds, .ktx2, .ktx)");
-  return read_image(path);
+  l.image = read_image(path);
+  l.shape = l.image.view();
+  return l;
 }
 
-// The first `n` channels of `img`.
-Image first_channels(const Image& img, int n) {
-  if (img.channels() == n) return img;
-  Image out = Image::uninitialized(img.width(), img.height(), n, PixelType::f32);
-  for (int y = 0; y < img.height(); ++y)
-    for (int x = 0; x < img.width(); ++x)
-      for (int c = 0; c < n; ++c) out.row<float>(y)[x * n + c] = img.get(x, y, c);
-  return out;
+// The first `n` channels of what was loaded, as rows made on demand: a
+// texture's decoded, an image's as they are (or as floats when only some
+// of its channels are compared).
+ImageRows rows_of(const Loaded& l, int n) {
+  if (!l.is_texture && l.shape.channels == n) return ImageRows{l.shape, {}};
+  ImageRows r;
+  r.shape = l.shape;
+  r.shape.data = nullptr;
+  r.shape.channels = n;
+  r.shape.type = PixelType::f32;
+  r.rows = [&l, n](int y0, int y1, void* dst, std::size_t stride) {
+    const int w = l.shape.width, C = l.shape.channels;
+    std::vector<float> decoded;
+    if (l.is_texture) {
+      decoded.resize(std::size_t(w) * C * std::size_t(y1 - y0));
+      decode_texture_rows(l.texture, l.level, 0, 0, PixelType::f32, y0, y1, decoded.data(), std::size_t(w) * C * 4);
+    }
+    const bool snorm = l.is_texture && format_info(l.texture.format).snorm;
+    for (int y = y0; y < y1; ++y) {
+      float* out = reinterpret_cast<float*>(static_cast<std::uint8_t*>(dst) + std::size_t(y - y0) * stride);
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < n; ++c) {
+          float v = l.is_texture ? decoded[(std::size_t(y - y0) * w + x) * C + c] : l.image.get(x, y, c);
+          out[x * n + c] = snorm ? (v + 1.0f) * 0.5f : v;
+        }
+    }
+  };
+  return r;
+}
+
+// All of it at once (SSIM's planes need every row).
+Image whole(const ImageRows& r) {
+  Image img = Image::uninitialized(r.shape.width, r.shape.height, r.shape.channels, r.shape.type);
+  if (!r.rows) {
+    for (int y = 0; y < img.height(); ++y) std::memcpy(img.row<void>(y), r.shape.row<const void>(y), img.row_stride());
+  } else {
+    r.rows(0, img.height(), img.data(), img.row_stride());
+  }
+  return img;
 }
 
 Json::Value finite(double v) { return std::isfinite(v) ? Json::Value(v) : Json::Value(); }
@@ -78,27 +120,30 @@ bool above(double value, double limit) { return !(value <= limit); }
 
 int run_compare(const CompareArgs& a) {
   ThreadLimit threads(a.common.threads);
-  const Image ia = load(a.a, a.level), ib = load(a.b, a.level);
-  if (ia.width() != ib.width() || ia.height() != ib.height()) {
-    throw Error(ErrorCode::bad_arguments, a.a + " is " + std::to_string(ia.width()) + "x" +
-                                              std::to_string(ia.height()) + ", " + a.b + " is " +
-                                              std::to_string(ib.width()) + "x" + std::to_string(ib.height()) +
+  const Loaded la = load(a.a, a.level), lb = load(a.b, a.level);
+  const ImageView& ia = la.shape;
+  const ImageView& ib = lb.shape;
+  if (ia.width != ib.width || ia.height != ib.height) {
+    throw Error(ErrorCode::bad_arguments, a.a + " is " + std::to_string(ia.width) + "x" +
+                                              std::to_string(ia.height) + ", " + a.b + " is " +
+                                              std::to_string(ib.width) + "x" + std::to_string(ib.height) +
                                               ": images of different sizes cannot be compared");
   }
   // The log2 RMSE is computed for float images only: a limit on two 8/16-bit
   // images would pass whatever they hold.
-  if (a.max_log_rmse >= 0 && ia.type() != PixelType::f32 && ib.type() != PixelType::f32) {
+  if (a.max_log_rmse >= 0 && ia.type != PixelType::f32 && ib.type != PixelType::f32) {
     throw Error(ErrorCode::bad_arguments, "--max-log-rmse: " + a.a + " and " + a.b +
                                               " hold 8/16-bit values, not floats; the log2 RMSE is for HDR images "
                                               "(use --min-psnr)");
   }
   // A texture format may store fewer channels than the image it came from
   // (BC1: RGB of an RGBA image): compare the channels both have.
-  const int n = std::min(ia.channels(), ib.channels());
-  const Image ca = first_channels(ia, n), cb = first_channels(ib, n);
-  const ImageDifference d = compare_images(ca.view(), cb.view());
+  const int n = std::min(ia.channels, ib.channels);
+  const ImageRows ra = rows_of(la, n), rb = rows_of(lb, n);
+  const ImageDifference d = compare_image_rows(ra, rb, n);
   const bool want_ssim = a.ssim || a.min_ssim >= 0;
-  const std::vector<double> ssim = want_ssim ? ssim_per_channel(ca.view(), cb.view()) : std::vector<double>{};
+  const std::vector<double> ssim =
+      want_ssim ? ssim_per_channel(whole(ra).view(), whole(rb).view()) : std::vector<double>{};
   double ssim_mean = 0;
   for (double s : ssim) ssim_mean += s / double(ssim.size());
 

@@ -81,14 +81,24 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
   read_as_finite(input, img, r.warnings);
   phases.read_done();
   const std::vector<float> h = extract_height(img.view(), a.channel, a.invert);
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<float> ratios = a.brute_force ? cone_ratios_brute_force(h, img.width(), img.height(), o)
-                                                  : cone_ratios(h, img.width(), img.height(), o);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const int width = img.width(), height = img.height();
   const PixelType out_type = a.type_choice ? *a.type_choice : (img.type() == PixelType::u8 ? PixelType::u8 : PixelType::u16);
-  const Image map = cone_map_image(h, ratios, img.width(), img.height(), o, out_type, int(a.channels.size()));
+  img = Image();  // the heights are all that is read from here on
+  detail::release_cached_pixels();
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<float> ratios = a.brute_force ? cone_ratios_brute_force(h, width, height, o)
+                                                  : cone_ratios(h, width, height, o);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   phases.compute_done();
-  write_image(output, map.view(), w);
+  // The map's rows made as the writer takes them: never the whole image.
+  ImageView shape;
+  shape.width = width;
+  shape.height = height;
+  shape.channels = int(a.channels.size());
+  shape.type = out_type;
+  write_image(output, shape, [&](int y0, int y1, void* dst, std::size_t stride) {
+    cone_map_rows(h, ratios, width, height, o, out_type, shape.channels, y0, y1, dst, stride);
+  }, w);
   phases.write_done();
   const std::string preview = r.outputs.size() > 1 ? r.outputs[1] : "";
   if (!preview.empty()) {
@@ -97,16 +107,16 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
     other.mode = o.mode == ConeMode::relaxed ? ConeMode::conservative : ConeMode::relaxed;
     other.bilinear_safe = false;  // relaxed cones are texel-centre cones
     if (r.progress) other.progress = [&r](double done) { r.progress(0.5 + 0.5 * done); };
-    const std::vector<float> second = cone_ratios(h, img.width(), img.height(), other);
+    const std::vector<float> second = cone_ratios(h, width, height, other);
     const bool relaxed = o.mode == ConeMode::relaxed;
-    const Image shown = render_preview(h, relaxed ? second : ratios, img.width(), img.height(), o, a.preview_size,
+    const Image shown = render_preview(h, relaxed ? second : ratios, width, height, o, a.preview_size,
                                        a.view_angle, relaxed ? ratios : second);
     phases.compute_done();
     write_image(preview, shown.view());
     phases.write_done();
   }
   std::ostringstream line;
-  line << input << " -> " << output << ": " << img.width() << "x" << img.height() << " " << a.mode
+  line << input << " -> " << output << ": " << width << "x" << height << " " << a.mode
        << (a.bilinear_safe ? " bilinear-safe" : "") << " cones ("
        << (a.brute_force ? "brute force"
            : a.fast      ? "fast, never wider than exact"
@@ -115,8 +125,8 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
   r.line = line.str();
   double mean = 0;
   for (float v : ratios) mean += v;
-  r.details["width"] = img.width();
-  r.details["height"] = img.height();
+  r.details["width"] = width;
+  r.details["height"] = height;
   r.details["cone_seconds"] = seconds;
   r.details["mean_ratio"] = ratios.empty() ? 0.0 : mean / double(ratios.size());
   r.details["mode"] = a.mode;

@@ -78,6 +78,11 @@ std::vector<float> cone_ratios_brute_force(const std::vector<float>& heights, in
 // 2 (RG), 3 (B = 0) or 4 channels (B = 0, A = 1).
 Image cone_map_image(const std::vector<float>& heights, const std::vector<float>& ratios, int width, int height,
                      const ConeMapOptions& o, PixelType type, int channels = 3);
+// Rows [y0, y1) of that image into `dst`, rows `row_stride` bytes apart
+// (for writers that take rows as they go: image_io.h's RowSource).
+void cone_map_rows(const std::vector<float>& heights, const std::vector<float>& ratios, int width, int height,
+                   const ConeMapOptions& o, PixelType type, int channels, int y0, int y1, void* dst,
+                   std::size_t row_stride);
 
 // Ray tracing through the relief, in texture space. A ray starts at (u, v)
 // on the top plane (height 1) and moves by (du, dv) per unit of height

@@ -54,6 +54,10 @@ namespace detail {
 // rather than 16384.
 void* allocate_pixels(std::size_t bytes);
 void free_pixels(void* p, std::size_t bytes) noexcept;
+// Freed large blocks are kept (up to 512 MiB) for the next image of their
+// size; this gives them back to the system (after freeing an image that
+// nothing of its size will follow).
+void release_cached_pixels() noexcept;
 
 // An allocator whose resize() leaves new elements uninitialized: buffers that
 // are about to be overwritten are not zero-filled first (at 4096x4096 the

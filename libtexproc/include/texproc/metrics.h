@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "texproc/image.h"
+#include "texproc/image_io.h"
 
 namespace texproc {
 
@@ -57,5 +58,19 @@ std::vector<double> ssim_per_channel(const ImageView& a, const ImageView& b);
 // result is the same for any thread count. Throws Error{bad_arguments} when
 // the sizes or channel counts differ.
 ImageDifference compare_images(const ImageView& a, const ImageView& b);
+
+// An image compared without being held whole: `shape` gives its width,
+// height, channels and type; `rows`, where set, makes its rows on demand
+// (a block of 32 at a time), else they are shape's.
+struct ImageRows {
+  ImageView shape;
+  RowSource rows;
+};
+
+// compare_images of the first `channels` channels of each image (a BC1
+// texture's RGB against an RGBA image's), reading a block of rows of each
+// at a time: the same figures. Throws Error{bad_arguments} when the sizes
+// differ or either image has fewer channels.
+ImageDifference compare_image_rows(const ImageRows& a, const ImageRows& b, int channels);
 
 }  // namespace texproc

@@ -247,12 +247,15 @@ std::vector<std::uint8_t> encode(const ImageView& img, TexelFormat format, Quali
     throw Error(ErrorCode::bad_arguments, "astc effort " + std::to_string(effort) + " is not in [0, 100]");
   if (options.normal_map && fi.is_float)
     throw Error(ErrorCode::bad_arguments, std::string("a normal map is LDR data: ") + fi.name + " is an HDR format");
-  Packed packed = pack(img, fi.is_float, options.normal_map);
+  // An 8-bit RGBA image in packed rows is what astc-encoder reads: no copy.
+  const bool as_is = !fi.is_float && img.type == PixelType::u8 && img.channels == 4 &&
+                     img.row_stride == std::size_t(img.width) * 4;
+  Packed packed = as_is ? Packed{} : pack(img, fi.is_float, options.normal_map);
   const Key key{profile_of(fi, false), unsigned(fi.block_width), unsigned(fi.block_height), effort,
                 (options.normal_map ? ASTCENC_FLG_MAP_NORMAL : 0u) | ASTCENC_FLG_SELF_DECOMPRESS_ONLY,
                 threads_now()};
   std::vector<std::uint8_t> out(image_bytes(format, std::uint32_t(img.width), std::uint32_t(img.height)));
-  void* slice = packed.data();
+  void* slice = as_is ? img.data : packed.data();
   astcenc_image image{unsigned(img.width), unsigned(img.height), 1, packed.type, &slice};
   // A normal map's X goes to RGB and Y to alpha (astc-encoder's rrrg, as its
   // CLI's -normal): the swizzle is the library's, which reads it per texel.

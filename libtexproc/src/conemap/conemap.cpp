@@ -178,11 +178,13 @@ std::vector<float> cone_ratios_brute_force(const std::vector<float>& heights, in
   return square_roots(std::move(r2));
 }
 
-Image cone_map_image(const std::vector<float>& heights, const std::vector<float>& ratios, int W, int H,
-                     const ConeMapOptions& o, PixelType type, int channels) {
+void cone_map_rows(const std::vector<float>& heights, const std::vector<float>& ratios, int W, int H,
+                   const ConeMapOptions& o, PixelType type, int channels, int y0, int y1, void* dst,
+                   std::size_t row_stride) {
   if (channels < 2 || channels > 4) throw Error(ErrorCode::bad_arguments, "a cone map has 2, 3 or 4 channels");
-  Image img = Image::uninitialized(W, H, channels, type);
-  for (int y = 0; y < H; ++y)
+  if (y0 < 0 || y1 > H || y0 > y1) throw Error(ErrorCode::bad_arguments, "cone_map_rows: rows outside the map");
+  for (int y = y0; y < y1; ++y) {
+    std::uint8_t* row = static_cast<std::uint8_t*>(dst) + std::size_t(y - y0) * row_stride;
     for (int x = 0; x < W; ++x) {
       const std::size_t i = std::size_t(y) * W + x;
       const double g = std::sqrt(std::min(1.0, double(ratios[i]) / o.max_ratio));
@@ -199,11 +201,19 @@ Image cone_map_image(const std::vector<float>& heights, const std::vector<float>
         if (channels > 3) p[3] = T(scale);
       };
       switch (type) {
-        case PixelType::u8: put(img.row<std::uint8_t>(y) + channels * x, 255.0, true); break;
-        case PixelType::u16: put(img.row<std::uint16_t>(y) + channels * x, 65535.0, true); break;
-        case PixelType::f32: put(img.row<float>(y) + channels * x, 1.0, false); break;
+        case PixelType::u8: put(row + channels * x, 255.0, true); break;
+        case PixelType::u16: put(reinterpret_cast<std::uint16_t*>(row) + channels * x, 65535.0, true); break;
+        case PixelType::f32: put(reinterpret_cast<float*>(row) + channels * x, 1.0, false); break;
       }
     }
+  }
+}
+
+Image cone_map_image(const std::vector<float>& heights, const std::vector<float>& ratios, int W, int H,
+                     const ConeMapOptions& o, PixelType type, int channels) {
+  if (channels < 2 || channels > 4) throw Error(ErrorCode::bad_arguments, "a cone map has 2, 3 or 4 channels");
+  Image img = Image::uninitialized(W, H, channels, type);
+  cone_map_rows(heights, ratios, W, H, o, type, channels, 0, H, img.data(), img.row_stride());
   return img;
 }
 

@@ -79,6 +79,14 @@ void free_pixels(void* p, std::size_t bytes) noexcept {
   }
   std::free(p);
 }
+
+void release_cached_pixels() noexcept {
+  BlockCache& c = cache();
+  std::lock_guard<std::mutex> lock(c.mutex);
+  for (const auto& b : c.blocks) std::free(b.first);
+  c.blocks.clear();
+  c.bytes = 0;
+}
 }  // namespace detail
 
 const char* to_string(PixelType t) {

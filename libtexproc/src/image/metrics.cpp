@@ -21,28 +21,52 @@ double ImageDifference::log_rmse_rgb() const { return std::sqrt(log_mse_rgb); }
 
 namespace {
 
-// One row as doubles on the [0, 1] scale.
-void load_row(const ImageView& v, int y, std::vector<double>& out) {
-  const std::size_t n = std::size_t(v.width) * std::size_t(v.channels);
+// One row (`n` values of `type`) as doubles on the [0, 1] scale.
+void load_values(const void* row, PixelType type, std::size_t n, std::vector<double>& out) {
   out.resize(n);
-  switch (v.type) {
+  switch (type) {
     case PixelType::u8: {
-      const auto* p = v.row<const std::uint8_t>(y);
+      const auto* p = static_cast<const std::uint8_t*>(row);
       for (std::size_t i = 0; i < n; ++i) out[i] = p[i] / 255.0;
       break;
     }
     case PixelType::u16: {
-      const auto* p = v.row<const std::uint16_t>(y);
+      const auto* p = static_cast<const std::uint16_t*>(row);
       for (std::size_t i = 0; i < n; ++i) out[i] = p[i] / 65535.0;
       break;
     }
     case PixelType::f32: {
-      const auto* p = v.row<const float>(y);
+      const auto* p = static_cast<const float*>(row);
       for (std::size_t i = 0; i < n; ++i) out[i] = p[i];
       break;
     }
   }
 }
+
+void load_row(const ImageView& v, int y, std::vector<double>& out) {
+  load_values(v.row<const void>(y), v.type, std::size_t(v.width) * std::size_t(v.channels), out);
+}
+
+// The rows of one block of an image: its own, or made by its source.
+class BlockRows {
+ public:
+  BlockRows(const ImageRows& image, int y0, int y1) : image_(image), y0_(y0) {
+    if (!image.rows) return;
+    stride_ = std::size_t(image.shape.width) * image.shape.channels * bytes_per_channel(image.shape.type);
+    made_.resize(stride_ * std::size_t(y1 - y0));
+    image.rows(y0, y1, made_.data(), stride_);
+  }
+  void load(int y, std::vector<double>& out) const {
+    const void* row = image_.rows ? made_.data() + std::size_t(y - y0_) * stride_ : image_.shape.row<const void>(y);
+    load_values(row, image_.shape.type, std::size_t(image_.shape.width) * std::size_t(image_.shape.channels), out);
+  }
+
+ private:
+  const ImageRows& image_;
+  int y0_;
+  std::size_t stride_ = 0;
+  std::vector<std::uint8_t> made_;
+};
 
 void check_same_shape(const ImageView& a, const ImageView& b) {
   if (a.width != b.width || a.height != b.height) {
@@ -80,7 +104,18 @@ double log_value(double v) { return std::copysign(std::log2(1.0 + std::fabs(v)),
 
 ImageDifference compare_images(const ImageView& a, const ImageView& b) {
   check_same_shape(a, b);
-  const int channels = a.channels;
+  return compare_image_rows(ImageRows{a, {}}, ImageRows{b, {}}, a.channels);
+}
+
+ImageDifference compare_image_rows(const ImageRows& ia, const ImageRows& ib, int channels) {
+  const ImageView& a = ia.shape;
+  const ImageView& b = ib.shape;
+  if (a.width != b.width || a.height != b.height) check_same_shape(a, b);
+  if (channels < 1 || channels > a.channels || channels > b.channels) {
+    throw Error(ErrorCode::bad_arguments, "cannot compare " + std::to_string(channels) + " channels of images of " +
+                                              std::to_string(a.channels) + " and " + std::to_string(b.channels));
+  }
+  const std::size_t ca = std::size_t(a.channels), cb = std::size_t(b.channels);
   const bool floats = a.type == PixelType::f32 || b.type == PixelType::f32;
   const int rgb = std::min(3, channels);
   constexpr int kBlockRows = 32;
@@ -91,29 +126,30 @@ ImageDifference compare_images(const ImageView& a, const ImageView& b) {
     p.sq.assign(std::size_t(channels), 0.0);
     p.abs.assign(std::size_t(channels), 0.0);
     p.max.assign(std::size_t(channels), 0.0);
+    const BlockRows rows_a(ia, y0, y1), rows_b(ib, y0, y1);
     std::vector<double> ra, rb;
     for (int y = y0; y < y1; ++y) {
-      load_row(a, y, ra);
-      load_row(b, y, rb);
+      rows_a.load(y, ra);
+      rows_b.load(y, rb);
       for (int x = 0; x < a.width; ++x) {
-        const std::size_t px = std::size_t(x) * std::size_t(channels);
-        if (floats && !all_finite(ra.data() + px, rb.data() + px, channels)) {
+        const double* pa = ra.data() + std::size_t(x) * ca;
+        const double* pb = rb.data() + std::size_t(x) * cb;
+        if (floats && !all_finite(pa, pb, channels)) {
           ++p.nonfinite;  // a difference that no figure can measure
           ++p.differing;
           continue;
         }
         bool differs = false;
         for (int c = 0; c < channels; ++c) {
-          const std::size_t i = std::size_t(x) * std::size_t(channels) + std::size_t(c);
-          const double d = std::fabs(ra[i] - rb[i]);
+          const double d = std::fabs(pa[c] - pb[c]);
           p.sq[std::size_t(c)] += d * d;
           p.abs[std::size_t(c)] += d;
           if (d > p.max[std::size_t(c)]) p.max[std::size_t(c)] = d;
           differs |= d > kSameValue;
           if (floats) {
-            p.outside = p.outside || ra[i] < 0.0 || ra[i] > 1.0 || rb[i] < 0.0 || rb[i] > 1.0;
+            p.outside = p.outside || pa[c] < 0.0 || pa[c] > 1.0 || pb[c] < 0.0 || pb[c] > 1.0;
             if (c < rgb) {
-              const double ld = log_value(ra[i]) - log_value(rb[i]);
+              const double ld = log_value(pa[c]) - log_value(pb[c]);
               p.log_sq += ld * ld;
             }
           }
