@@ -118,8 +118,10 @@ def main():
             print(f"{name:<22} failed with exit {rc}")
             continue
         # decompress reads the BC1 file; compare decodes both images it compares.
-        inp = {"decompress": os.path.getsize(os.path.join(work, "o_bc1.dds")),
-               "compare": 2 * input_bytes, "cubemap --mips": input_bytes // 2}.get(name, input_bytes)
+        if name == "decompress":
+            inp = os.path.getsize(os.path.join(work, "o_bc1.dds"))
+        else:
+            inp = {"compare": 2 * input_bytes, "cubemap --mips": input_bytes // 2}.get(name, input_bytes)
         out = outputs_size(work, stem) if stem else 0
         ratio = peak / (inp + out)
         worst = max(worst, ratio)

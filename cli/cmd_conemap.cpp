@@ -85,22 +85,35 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
   const PixelType out_type = a.type_choice ? *a.type_choice : (img.type() == PixelType::u8 ? PixelType::u8 : PixelType::u16);
   img = Image();  // the heights are all that is read from here on
   detail::release_cached_pixels();
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<float> ratios = a.brute_force ? cone_ratios_brute_force(h, width, height, o)
-                                                  : cone_ratios(h, width, height, o);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  phases.compute_done();
+  const std::string preview = r.outputs.size() > 1 ? r.outputs[1] : "";
   // The map's rows made as the writer takes them: never the whole image.
   ImageView shape;
   shape.width = width;
   shape.height = height;
   shape.channels = int(a.channels.size());
   shape.type = out_type;
-  write_image(output, shape, [&](int y0, int y1, void* dst, std::size_t stride) {
-    cone_map_rows(h, ratios, width, height, o, out_type, shape.channels, y0, y1, dst, stride);
-  }, w);
-  phases.write_done();
-  const std::string preview = r.outputs.size() > 1 ? r.outputs[1] : "";
+  const auto t0 = std::chrono::steady_clock::now();
+  double seconds = 0, ratio_sum = 0;
+  std::vector<float> ratios;  // whole only where the preview or brute force needs it
+  if (preview.empty() && !a.brute_force) {
+    // Ratios a band at a time, as the writer takes the rows: the search's
+    // time is counted as it happens, inside the write.
+    const ConeRatioSearch search(h, width, height, o);
+    write_image(output, shape, [&](int y0, int y1, void* dst, std::size_t stride) {
+      search.map_rows(out_type, shape.channels, y0, y1, dst, stride, &ratio_sum);
+    }, w);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    phases.compute_done();
+    phases.write_done();
+  } else {
+    ratios = a.brute_force ? cone_ratios_brute_force(h, width, height, o) : cone_ratios(h, width, height, o);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    phases.compute_done();
+    write_image(output, shape, [&](int y0, int y1, void* dst, std::size_t stride) {
+      cone_map_rows(h, ratios, width, height, o, out_type, shape.channels, y0, y1, dst, stride);
+    }, w);
+    phases.write_done();
+  }
   if (!preview.empty()) {
     // The preview shows both kinds side by side: the other map is computed too.
     ConeMapOptions other = o;
@@ -123,12 +136,11 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
                          : "exact, max-mip branch and bound")
        << ") in " << seconds << " s" << (preview.empty() ? "" : ", preview " + preview);
   r.line = line.str();
-  double mean = 0;
-  for (float v : ratios) mean += v;
+  for (float v : ratios) ratio_sum += v;
   r.details["width"] = width;
   r.details["height"] = height;
   r.details["cone_seconds"] = seconds;
-  r.details["mean_ratio"] = ratios.empty() ? 0.0 : mean / double(ratios.size());
+  r.details["mean_ratio"] = ratio_sum / (double(width) * height);
   r.details["mode"] = a.mode;
   r.details["bilinear_safe"] = a.bilinear_safe;
   r.details["channels"] = a.channels;

@@ -241,28 +241,35 @@ Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r
     s.alpha = in.images[0].channels() == 2 || in.images[0].channels() == 4;
     if (in.faces == 6 && in.images.size() == 6) {
       std::vector<Image> faces;
-      for (const Image& im : in.images) faces.push_back(to_linear_rgba(im.view(), s.space));
+      for (Image& im : in.images) {
+        faces.push_back(to_linear_rgba(im.view(), s.space));
+        im = Image();  // each face read is dropped once it is in floats
+      }
       s.cube = cubemap_from_images(faces);
       s.layout = "cube " + std::to_string(s.cube.size());
     } else {
       if (in.images.size() != 1) {
         throw Error(ErrorCode::unsupported, input + ": an array texture is not a cube map (6 faces, one layer)");
       }
-      const Image& img = in.images[0];
+      const int width = in.images[0].width(), height = in.images[0].height();
       const CubeLayout layout =
-          a.layout == "auto" ? detect_cube_layout(img.width(), img.height()) : parse_cube_layout(a.layout);
-      const Image rgba = to_linear_rgba(img.view(), s.space);
+          a.layout == "auto" ? detect_cube_layout(width, height) : parse_cube_layout(a.layout);
+      if (layout == CubeLayout::equirect && width != 2 * height) {
+        throw Error(ErrorCode::bad_arguments, std::to_string(width) + "x" + std::to_string(height) +
+                                                  " is not a 2:1 panorama");
+      }
+      Image rgba = to_linear_rgba(in.images[0].view(), s.space);
+      in.images.clear();  // the floats are all that is read from here on
+      detail::release_cached_pixels();
       if (layout == CubeLayout::equirect) {
-        if (img.width() != 2 * img.height()) {
-          throw Error(ErrorCode::bad_arguments, std::to_string(img.width()) + "x" + std::to_string(img.height()) +
-                                                    " is not a 2:1 panorama");
-        }
-        const int size = a.size > 0 ? a.size : default_cube_size(img.width());
+        const int size = a.size > 0 ? a.size : default_cube_size(width);
         s.cube = cubemap_from_equirect(rgba.view(), size, a.flip_axis);
       } else {
         s.cube = cubemap_from_layout(rgba.view(), layout);
       }
-      s.layout = std::string(to_string(layout)) + " " + std::to_string(img.width()) + "x" + std::to_string(img.height());
+      rgba = Image();
+      detail::release_cached_pixels();
+      s.layout = std::string(to_string(layout)) + " " + std::to_string(width) + "x" + std::to_string(height);
     }
   }
   s.srgb = s.space.is_srgb();

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <random>
 
 #include "support/images.h"
@@ -456,4 +457,48 @@ TEST(ConeMap, OptionsAreChecked) {
   o.wrap = WrapMode::mirror;
   EXPECT_THROW(cone_ratios(f, 4, 4, o), Error);
   EXPECT_THROW(cone_ratios(f, 5, 4, ConeMapOptions{}), Error);
+}
+
+// The banded search gives each row exactly as the whole map does, for every
+// kind of cone, bands on and off the 8-row cells, and its map rows are
+// cone_map_image's rows.
+TEST(ConeMap, BandsEqualTheWholeMap) {
+  const int w = 45, h = 37;
+  const std::vector<float> f = field(w, h, "random", 11);
+  for (int kind = 0; kind < 4; ++kind) {
+    ConeMapOptions o;
+    o.depth = 0.3f;
+    o.fast_reach = kind == 1 ? 2 : 0;
+    o.mode = kind == 2 ? ConeMode::relaxed : ConeMode::conservative;
+    o.bilinear_safe = kind == 3;
+    SCOPED_TRACE(kind);
+    const std::vector<float> whole = cone_ratios(f, w, h, o);
+    const ConeRatioSearch search(f, w, h, o);
+    for (const auto& [y0, y1] : {std::pair{0, h}, std::pair{0, 8}, std::pair{3, 21}, std::pair{16, 24},
+                                  std::pair{30, 37}, std::pair{36, 37}}) {
+      std::vector<float> band(std::size_t(y1 - y0) * w);
+      search.rows(y0, y1, band.data());
+      EXPECT_TRUE(std::equal(band.begin(), band.end(), whole.begin() + std::ptrdiff_t(y0) * w)) << y0 << ".." << y1;
+    }
+    const Image map = cone_map_image(f, whole, w, h, o, PixelType::u16, 4);
+    Image banded = Image::uninitialized(w, h, 4, PixelType::u16);
+    double sum = 0;
+    search.map_rows(PixelType::u16, 4, 0, 20, banded.data(), banded.row_stride(), &sum);
+    search.map_rows(PixelType::u16, 4, 20, h, banded.row<std::uint8_t>(20), banded.row_stride(), &sum);
+    EXPECT_EQ(0, std::memcmp(map.data(), banded.data(), map.byte_size()));
+    double expected = 0;
+    for (float v : whole) expected += v;
+    EXPECT_EQ(expected, sum);
+  }
+  ConeMapOptions o;
+  std::vector<double> seen;
+  o.progress = [&](double done) { seen.push_back(done); };
+  const ConeRatioSearch search(f, w, h, o);
+  Image map = Image::uninitialized(w, h, 2, PixelType::u8);
+  search.map_rows(PixelType::u8, 2, 0, h, map.data(), map.row_stride());
+  ASSERT_FALSE(seen.empty());
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  EXPECT_EQ(seen.back(), 1.0);
+  float one[45];
+  EXPECT_THROW(search.rows(36, 38, one), Error);
 }

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "texproc/filters.h"
@@ -68,6 +69,32 @@ struct ConeMapOptions {
 // Throws Error{bad_arguments} for invalid options (mirror wrap is not
 // supported; bilinear_safe is conservative only).
 std::vector<float> cone_ratios(const std::vector<float>& heights, int width, int height, const ConeMapOptions& o);
+
+// cone_ratios a band of rows at a time, for maps too large to hold their
+// ratios beside the heights: the search's pyramids are built once, and
+// rows() computes only the rows asked for (bit for bit those rows of
+// cone_ratios). bilinear_safe needs windows over the whole map: with it the
+// ratios are computed whole at construction. `heights` must outlive the
+// object; rows() may be called from one thread at a time.
+class ConeRatioSearch {
+ public:
+  ConeRatioSearch(const std::vector<float>& heights, int width, int height, const ConeMapOptions& o);
+  ~ConeRatioSearch();
+  ConeRatioSearch(const ConeRatioSearch&) = delete;
+  ConeRatioSearch& operator=(const ConeRatioSearch&) = delete;
+  // Ratios of rows [y0, y1) into out (width floats per row). o.progress
+  // hears the fraction of the map's rows done up to y1.
+  void rows(int y0, int y1, float* out) const;
+  // Rows [y0, y1) of cone_map_image(heights, cone_ratios(...), ...), a band
+  // of rows at a time, into `dst`, rows `row_stride` bytes apart. Where
+  // `ratio_sum` is set, the rows' ratios are added to it in row order.
+  void map_rows(PixelType type, int channels, int y0, int y1, void* dst, std::size_t row_stride,
+                double* ratio_sum = nullptr) const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
 
 // The O(N^2)-per-texel definition, for tests and small maps.
 std::vector<float> cone_ratios_brute_force(const std::vector<float>& heights, int width, int height,

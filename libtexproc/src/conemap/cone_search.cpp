@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "conemap/cone_cells.h"
 #include "texproc/runtime.h"
@@ -394,12 +395,19 @@ struct CellSearch {
 // as one obstacle. `apex`: the apex heights (the heights, or their 3x3
 // minima for --bilinear-safe, with distances shrunk by `shrink`);
 // `relaxed`: relaxed cones (their exits and bound heights).
-std::vector<float> cell_cones(const std::vector<float>& heights, const std::vector<float>& apex, int W, int H,
-                           const ConeMapOptions& o, const Pyramid& pyr, int shrink, const RelaxedBounds* relaxed) {
+struct CellCones::State {
+  std::vector<float> row_max8;
+  std::unique_ptr<CellContext> context;
+};
+
+CellCones::CellCones(const std::vector<float>& heights, const std::vector<float>& apex, int W, int H,
+                     const ConeMapOptions& o, const Pyramid& pyr, int shrink, const RelaxedBounds* relaxed)
+    : s_(std::make_unique<State>()) {
   using detail::kConeCell;
   detail::ConeGeometry g = geometry(W, H, o, shrink);
   const int runs = (W + kConeCell - 1) / kConeCell;
-  std::vector<float> row_max8(std::size_t(runs) * H);
+  std::vector<float>& row_max8 = s_->row_max8;
+  row_max8.resize(std::size_t(runs) * H);
   for_each_row_block(H, 64, [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y)
       for (int x = 0; x < W; ++x) {
@@ -418,22 +426,41 @@ std::vector<float> cell_cones(const std::vector<float>& heights, const std::vect
   // (--fast does not use the slope bound: its blocks are near the cell.)
   // (Nor do relaxed cones: their bound heights are not the slope's anchor.)
   const bool repeat = g.repeat;
-  const CellContext context{heights, apex, W, H, pyr, shrink, relaxed, g,
-                            Metric{1.0 / (double(W) * W), 1.0 / (double(H) * H), double(o.depth) * o.depth},
-                            repeat, top, o.fast_reach, summit, o.max_ratio * o.max_ratio,
-                            shrink > 0 || o.fast_reach > 0 || relaxed ? SlopePyramid{} : build_slopes(heights, W, H, repeat, pyr)};
-  const int cw = (W + kConeCell - 1) / kConeCell, ch = (H + kConeCell - 1) / kConeCell;
-  std::vector<float> out(heights.size());
-  for_each_row_block(ch, 1, [&](int r0, int r1) {
+  s_->context.reset(new CellContext{
+      heights, apex, W, H, pyr, shrink, relaxed, g,
+      Metric{1.0 / (double(W) * W), 1.0 / (double(H) * H), double(o.depth) * o.depth}, repeat, top, o.fast_reach,
+      summit, o.max_ratio * o.max_ratio,
+      shrink > 0 || o.fast_reach > 0 || relaxed ? SlopePyramid{} : build_slopes(heights, W, H, repeat, pyr)});
+}
+
+CellCones::~CellCones() = default;
+
+int CellCones::cell_rows() const { return (s_->context->H + detail::kConeCell - 1) / detail::kConeCell; }
+
+void CellCones::rows(int cy0, int cy1, float* out, const std::function<void(double)>& progress) const {
+  using detail::kConeCell;
+  const CellContext& context = *s_->context;
+  const int W = context.W;
+  const int cw = (W + kConeCell - 1) / kConeCell;
+  const std::size_t first = std::size_t(cy0) * kConeCell;
+  for_each_row_block(cy1 - cy0, 1, [&](int r0, int r1) {
     CellSearch cell(context);
-    for (int cy = r0; cy < r1; ++cy)
+    for (int cy = cy0 + r0; cy < cy0 + r1; ++cy)
       for (int cx = 0; cx < cw; ++cx) {
         cell.begin(cx, cy);
         cell.search();
         for (int r = 0; r < cell.h; ++r)
-          for (int l = 0; l < cell.w; ++l) out[std::size_t(cell.c.y0 + r) * W + cell.c.x0 + l] = cell.c.best[r][l];
+          for (int l = 0; l < cell.w; ++l)
+            out[(std::size_t(cell.c.y0 + r) - first) * W + std::size_t(cell.c.x0 + l)] = cell.c.best[r][l];
       }
-  }, o.progress);
+  }, progress);
+}
+
+std::vector<float> cell_cones(const std::vector<float>& heights, const std::vector<float>& apex, int W, int H,
+                              const ConeMapOptions& o, const Pyramid& pyr, int shrink, const RelaxedBounds* relaxed) {
+  const CellCones cones(heights, apex, W, H, o, pyr, shrink, relaxed);
+  std::vector<float> out(heights.size());
+  cones.rows(0, cones.cell_rows(), out.data(), o.progress);
   return out;
 }
 

@@ -4,6 +4,8 @@
 // that survive with the SIMD kernels of cone_cells.h.
 #pragma once
 
+#include <functional>
+#include <memory>
 #include <vector>
 
 #include "conemap/cone_cells.h"
@@ -78,5 +80,22 @@ RelaxedBounds relaxed_bounds(const std::vector<float>& heights, int W, int H, bo
 // `relaxed`: relaxed cones (their exits and bound heights).
 std::vector<float> cell_cones(const std::vector<float>& heights, const std::vector<float>& apex, int W, int H,
                            const ConeMapOptions& o, const Pyramid& pyr, int shrink, const RelaxedBounds* relaxed = nullptr);
+
+// cell_cones a band of cell rows at a time: the search's bounds are built
+// once, and each call fills the squared ratios of texel rows 8 cy0 up to
+// 8 cy1 (or the map's end) into `out`, rows of W floats from row 8 cy0.
+// Every argument of the constructor must outlive the object.
+class CellCones {
+ public:
+  CellCones(const std::vector<float>& heights, const std::vector<float>& apex, int W, int H, const ConeMapOptions& o,
+            const Pyramid& pyr, int shrink, const RelaxedBounds* relaxed = nullptr);
+  ~CellCones();
+  int cell_rows() const;
+  void rows(int cy0, int cy1, float* out, const std::function<void(double)>& progress) const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
 
 }  // namespace texproc::cone

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <type_traits>
 
 #include "conemap/cone_cells.h"
@@ -178,13 +179,13 @@ std::vector<float> cone_ratios_brute_force(const std::vector<float>& heights, in
   return square_roots(std::move(r2));
 }
 
-void cone_map_rows(const std::vector<float>& heights, const std::vector<float>& ratios, int W, int H,
-                   const ConeMapOptions& o, PixelType type, int channels, int y0, int y1, void* dst,
-                   std::size_t row_stride) {
-  if (channels < 2 || channels > 4) throw Error(ErrorCode::bad_arguments, "a cone map has 2, 3 or 4 channels");
-  if (y0 < 0 || y1 > H || y0 > y1) throw Error(ErrorCode::bad_arguments, "cone_map_rows: rows outside the map");
-  for (int y = y0; y < y1; ++y) {
-    std::uint8_t* row = static_cast<std::uint8_t*>(dst) + std::size_t(y - y0) * row_stride;
+namespace {
+
+// Rows of a cone map from the heights and ratios of those rows (W per row).
+void quantize_rows(const float* heights, const float* ratios, int W, const ConeMapOptions& o, PixelType type,
+                   int channels, int rows, void* dst, std::size_t row_stride) {
+  for (int y = 0; y < rows; ++y) {
+    std::uint8_t* row = static_cast<std::uint8_t*>(dst) + std::size_t(y) * row_stride;
     for (int x = 0; x < W; ++x) {
       const std::size_t i = std::size_t(y) * W + x;
       const double g = std::sqrt(std::min(1.0, double(ratios[i]) / o.max_ratio));
@@ -206,6 +207,96 @@ void cone_map_rows(const std::vector<float>& heights, const std::vector<float>& 
         case PixelType::f32: put(reinterpret_cast<float*>(row) + channels * x, 1.0, false); break;
       }
     }
+  }
+}
+
+void check_map_rows(int channels, int y0, int y1, int H) {
+  if (channels < 2 || channels > 4) throw Error(ErrorCode::bad_arguments, "a cone map has 2, 3 or 4 channels");
+  if (y0 < 0 || y1 > H || y0 > y1) throw Error(ErrorCode::bad_arguments, "cone map rows outside the map");
+}
+
+}  // namespace
+
+void cone_map_rows(const std::vector<float>& heights, const std::vector<float>& ratios, int W, int H,
+                   const ConeMapOptions& o, PixelType type, int channels, int y0, int y1, void* dst,
+                   std::size_t row_stride) {
+  check_map_rows(channels, y0, y1, H);
+  if (heights.size() != std::size_t(W) * H || ratios.size() != heights.size()) {
+    throw Error(ErrorCode::bad_arguments, "cone_map_rows: heights or ratios do not match the size");
+  }
+  const std::size_t first = std::size_t(y0) * W;
+  quantize_rows(heights.data() + first, ratios.data() + first, W, o, type, channels, y1 - y0, dst, row_stride);
+}
+
+struct ConeRatioSearch::State {
+  const std::vector<float>& heights;
+  int W, H;
+  ConeMapOptions o;
+  Pyramid pyr;
+  RelaxedBounds relaxed;
+  std::unique_ptr<cone::CellCones> cells;
+  std::vector<float> whole;  // bilinear_safe: every ratio, computed at construction
+};
+
+ConeRatioSearch::ConeRatioSearch(const std::vector<float>& heights, int W, int H, const ConeMapOptions& o) {
+  check(heights, W, H, o);
+  s_.reset(new State{heights, W, H, o, {}, {}, {}, {}});
+  if (o.bilinear_safe) {
+    s_->whole = cone_ratios(heights, W, H, o);
+    return;
+  }
+  s_->pyr = build_pyramid(heights, W, H);
+  const RelaxedBounds* rb = nullptr;
+  if (o.mode == ConeMode::relaxed) {
+    s_->relaxed = relaxed_bounds(heights, W, H, o.wrap == WrapMode::repeat);
+    rb = &s_->relaxed;
+  }
+  s_->cells = std::make_unique<cone::CellCones>(heights, heights, W, H, s_->o, s_->pyr, 0, rb);
+}
+
+ConeRatioSearch::~ConeRatioSearch() = default;
+
+void ConeRatioSearch::rows(int y0, int y1, float* out) const {
+  const State& s = *s_;
+  if (y0 < 0 || y1 > s.H || y0 > y1) throw Error(ErrorCode::bad_arguments, "ConeRatioSearch::rows: rows outside the map");
+  if (y0 == y1) return;
+  const std::size_t W = std::size_t(s.W);
+  if (!s.whole.empty()) {
+    std::copy(s.whole.begin() + std::ptrdiff_t(y0 * W), s.whole.begin() + std::ptrdiff_t(y1 * W), out);
+    return;
+  }
+  using detail::kConeCell;
+  const int cy0 = y0 / kConeCell, cy1 = (y1 + kConeCell - 1) / kConeCell;
+  const int first = cy0 * kConeCell, last = std::min(s.H, cy1 * kConeCell);
+  // Whole cells when the band is aligned; otherwise the cells' rows, then the band's.
+  const bool aligned = first == y0 && last == y1;
+  std::vector<float> cells(aligned ? 0 : std::size_t(last - first) * W);
+  float* r2 = aligned ? out : cells.data();
+  std::function<void(double)> progress;
+  if (s.o.progress) {
+    progress = [&s, y0, y1](double done) { s.o.progress((y0 + done * (y1 - y0)) / s.H); };
+  }
+  s.cells->rows(cy0, cy1, r2, progress);
+  const std::size_t n = std::size_t(y1 - y0) * W, skip = std::size_t(y0 - first) * W;
+  for (std::size_t i = 0; i < n; ++i) out[i] = std::sqrt(r2[skip + i]);
+}
+
+void ConeRatioSearch::map_rows(PixelType type, int channels, int y0, int y1, void* dst, std::size_t row_stride,
+                               double* ratio_sum) const {
+  const State& s = *s_;
+  check_map_rows(channels, y0, y1, s.H);
+  // Bands of whole cells, enough of them to keep every thread busy.
+  const int band = detail::kConeCell * std::max(16, 4 * thread_limit());
+  std::vector<float> ratios;
+  for (int b0 = y0; b0 < y1;) {
+    const int b1 = std::min(y1, (b0 / band + 1) * band);
+    ratios.resize(std::size_t(b1 - b0) * s.W);
+    rows(b0, b1, ratios.data());
+    if (ratio_sum)
+      for (float v : ratios) *ratio_sum += v;
+    quantize_rows(s.heights.data() + std::size_t(b0) * s.W, ratios.data(), s.W, s.o, type, channels, b1 - b0,
+                  static_cast<std::uint8_t*>(dst) + std::size_t(b0 - y0) * row_stride, row_stride);
+    b0 = b1;
   }
 }
 

@@ -203,6 +203,9 @@ Cubemap cubemap_from_equirect(const ImageView& pano, int size, CubeFlip flip) {
   }
   if (size < 1) throw Error(ErrorCode::bad_arguments, "cube face size must be at least 1");
   const PanoPyramid pyr(pano);
+  // The pyramid's row-filtered temporaries are cached for images of their
+  // sizes, which the faces are not: back to the system before the faces grow.
+  detail::release_cached_pixels();
   const int W = pano.width, H = pano.height;
   const int top = int(pyr.levels.size()) - 1;
   Cubemap c;
