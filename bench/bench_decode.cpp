@@ -122,7 +122,7 @@ double agreement(TexelFormat f, PeerDecode decode, int bytes) {
   return total ? double(equal) / double(total) : 0.0;
 }
 
-void run_peer(benchmark::State& state, TexelFormat f, PeerDecode decode, int bytes) {
+[[maybe_unused]] void run_peer(benchmark::State& state, TexelFormat f, PeerDecode decode, int bytes) {
   const auto& e = encoded(f);
   double pixels = 0;
   for (const Encoded& x : e) pixels += double(x.width) * x.height;

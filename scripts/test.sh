@@ -3,7 +3,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-bash scripts/build.sh
+bash scripts/build.sh -DTEXPROC_WERROR=ON  # CI: a warning fails the build
 # The readers and decoders under libFuzzer with ASan and UBSan, 10 s each
 # (scripts/fuzz.sh SECONDS runs them longer).
 bash scripts/fuzz.sh 10

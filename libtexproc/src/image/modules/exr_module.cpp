@@ -100,7 +100,6 @@ void info_of(const Imf::Header& h, TpImageSpec& out) {
   out.level_height[0] = out.height;
 }
 
-
 // The header as the OpenEXR file layout has it (magic, version, then per part
 // a list of attributes: name, type name, int32 size, value; an empty name
 // ends a header, and in a multi-part file an empty header ends the list),
@@ -482,7 +481,10 @@ struct MipWriter {
 MipWriter* mip_open(const std::string& file, const std::string& path, int width, int height, int channels,
                     const WriteOptions& o) {
   start_threads();
-  auto w = std::make_unique<MipWriter>(MipWriter{path, o, channels});
+  auto w = std::make_unique<MipWriter>();
+  w->path = path;
+  w->options = o;
+  w->channels = channels;
   try {
     ImageView shape{nullptr, width, height, channels, PixelType::f32, 0};
     Imf::Header h = header_for(shape, o, compression_of(path, o.compression));
@@ -569,7 +571,6 @@ int write_c(const char* file, const char* path, const TpImageLevel* levels, int 
     write(file, path, views, mip_file != 0, options_of(o));
   });
 }
-
 
 int mip_open_c(const char* file, const char* path, int width, int height, int channels, const TpWriteOptions* o,
                void** writer, char* err, size_t err_size) {
