@@ -4,6 +4,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <iostream>
 #include <thread>
 
@@ -42,6 +43,14 @@ int main(int argc, char** argv) {
                std::string(texproc::cli::kExitCodeHelp)};
   app.set_version_flag("--version", std::string("texproc ") + texproc::version_string());
   app.require_subcommand(1, 1);
+  // The runtime modules (OpenEXR, OpenImageIO, OpenColorIO) are loaded on
+  // first use; this is read then, so setting it while parsing is in time.
+  app.add_option_function<std::string>(
+         "--module-dir",
+         [](const std::string& dir) { ::setenv("TEXPROC_MODULE_DIR", dir.c_str(), 1); },
+         "Folder of texproc's runtime modules (default: beside the binary, then the installed lib/.../texproc; "
+         "also TEXPROC_MODULE_DIR)")
+      ->check(CLI::ExistingDirectory);
   texproc::cli::add_all_commands(app);
   try {
     app.parse(argc, argv);

@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <vector>
@@ -11,19 +12,31 @@ namespace fs = std::filesystem;
 namespace texproc {
 namespace {
 
+#ifndef TEXPROC_MODULE_RELATIVE_DIR
+#define TEXPROC_MODULE_RELATIVE_DIR "../lib/texproc"
+#endif
+#ifndef TEXPROC_MODULE_INSTALL_DIR
+#define TEXPROC_MODULE_INSTALL_DIR ""
+#endif
+
 std::vector<std::string> candidates(const ModuleSpec& spec) {
   if (const char* env = std::getenv(spec.env); env && *env) return {env};
+  if (const char* dir = std::getenv("TEXPROC_MODULE_DIR"); dir && *dir) return {(fs::path(dir) / spec.file).string()};
   std::vector<std::string> out;
+  auto add = [&out](const fs::path& p) {
+    const std::string s = p.lexically_normal().string();
+    if (std::find(out.begin(), out.end(), s) == out.end()) out.push_back(s);
+  };
   Dl_info self{};
   if (dladdr(reinterpret_cast<void*>(&candidates), &self) && self.dli_fname) {
     std::error_code ec;
     fs::path object = fs::canonical(self.dli_fname, ec);
     if (ec) object = self.dli_fname;
     const fs::path dir = object.parent_path();
-    out.push_back((dir / spec.file).string());
-    out.push_back((dir / ".." / "lib" / "texproc" / spec.file).lexically_normal().string());
+    add(dir / spec.file);
+    add(dir / TEXPROC_MODULE_RELATIVE_DIR / spec.file);
   }
-  if (spec.build_path && *spec.build_path) out.push_back(spec.build_path);
+  if (*TEXPROC_MODULE_INSTALL_DIR) add(fs::path(TEXPROC_MODULE_INSTALL_DIR) / spec.file);
   return out;
 }
 

@@ -18,13 +18,8 @@ const TpOcioModule& ocio_module() {
   static const TpOcioModule* module = nullptr;
   static std::string why;
   std::call_once(once, [] {
-#ifdef TEXPROC_OCIO_MODULE_BUILD_PATH
-    const char* build = TEXPROC_OCIO_MODULE_BUILD_PATH;
-#else
-    const char* build = "";
-#endif
     using Entry = const TpOcioModule* (*)();
-    const ModuleSpec spec{"texproc_ocio.so", "TEXPROC_OCIO_MODULE", "texproc_ocio_module", build,
+    const ModuleSpec spec{"texproc_ocio.so", "TEXPROC_OCIO_MODULE", "texproc_ocio_module",
                           [](void* entry) -> const void* { return reinterpret_cast<Entry>(entry)(); }};
     module = static_cast<const TpOcioModule*>(load_module(spec, why));
     if (module && module->abi != TP_OCIO_MODULE_ABI) {

@@ -12,10 +12,6 @@
 namespace texproc::modules {
 namespace {
 
-#ifndef TEXPROC_MODULE_BUILD_DIR
-#define TEXPROC_MODULE_BUILD_DIR ""
-#endif
-
 struct Slot {
   Slot(ModuleSpec s, const char* w) : spec(s), what(w) {}
   ModuleSpec spec;
@@ -27,13 +23,10 @@ struct Slot {
 };
 
 Slot& slot(Module m) {
-  static const std::string dir = TEXPROC_MODULE_BUILD_DIR;
-  static const std::string oiio_path = dir.empty() ? "" : dir + "/texproc_oiio.so";
-  static const std::string exr_path = dir.empty() ? "" : dir + "/texproc_exr.so";
   const auto call = [](void* entry) -> const void* { return reinterpret_cast<TpImageModuleEntry>(entry)(); };
-  static Slot oiio(ModuleSpec{"texproc_oiio.so", "TEXPROC_OIIO_MODULE", "texproc_oiio_module", oiio_path.c_str(), call},
+  static Slot oiio(ModuleSpec{"texproc_oiio.so", "TEXPROC_OIIO_MODULE", "texproc_oiio_module", call},
                    "this format is read and written through OpenImageIO, and texproc's OpenImageIO module");
-  static Slot exr(ModuleSpec{"texproc_exr.so", "TEXPROC_EXR_MODULE", "texproc_exr_module", exr_path.c_str(), call},
+  static Slot exr(ModuleSpec{"texproc_exr.so", "TEXPROC_EXR_MODULE", "texproc_exr_module", call},
                   "OpenEXR files are read and written through texproc's OpenEXR module, which");
   return m == Module::oiio ? oiio : exr;
 }
