@@ -4,8 +4,8 @@
 // --reps timings, MPix/s) and PSNR over RGB pooled over every crop. The
 // rows come from the command line, one argument a row of eighteen numbers
 // in Bc7Level's order (`4,0,64,1,1,0,1,0,1,0,0,0,0,0,0,1,1,4`), or a grid
-// (--grid=normal, --grid=high: every combination of session 15's knobs near
-// a level; --grid=seeds-normal, --grid=seeds-high: session 16's seeds, joint
+// (--grid=normal, --grid=high: every combination of the search knobs near
+// a level; --grid=seeds-normal, --grid=seeds-high: the fit's seeds, joint
 // quantization and winner seeds beside them; below), or, with none, the
 // levels fast, normal and high.
 // Rows are timed interleaved, rep by rep, so that a slow spell of a busy
@@ -94,7 +94,7 @@ std::vector<Bc7Level> grid(const std::string& name) {
               for (bool ew : {false, true})
                 for (bool orot : {false, true})
                   if (winner > 0 || !ew) g.push_back(level(p2, m3, p3, orot ? 4 : 1, false, orot, refine, false, winner, false, false, ew));
-  } else if (name == "seeds-normal") {  // session 16's knobs around `normal`
+  } else if (name == "seeds-normal") {  // the fit's knobs around `normal`
     for (int p2 : {1, 2, 4})
       for (int winner : {0, 1})
         for (bool ew : {false, true})

@@ -3,7 +3,7 @@
 // checkout of richgel999/bc7enc_rdo outside this tree; skipped when absent),
 // bc7enc (bc7enc_rdo's C++ block encoder: uber 0 with 16 partitions, uber 4
 // with 64, linear RGB weights) and, with -DTEXPROC_CVTT_DIR=, cvtt
-// (ConvectionKernels at qualities 1, 10 and 50, uniform weights), in one run. The setting: 256x256
+// (ConvectionKernels at qualities 1, 10 and 50, uniform weights), in one run. The setting: 256x256
 // centred crops of the corpus's 15 albedo and photo images, opaque, single
 // thread (and texproc on two), PSNR over RGB pooled over every crop's
 // squared errors, scored with texproc's exact decoder (which matches
@@ -93,7 +93,7 @@ std::vector<std::uint8_t> cvtt_image(const Image& img, int quality) {
 void run(benchmark::State& state, const std::string& who, TexelFormat format, Quality q, int threads, int uber, int partitions) {
   ThreadLimit limit(threads);
   // Each crop's blocks kept and scored after the timed loop: pausing the
-  // clock around every crop's scoring (as this did until session 18) timed
+  // clock around every crop's scoring (as an earlier version did) timed
   // the pause's own cost and the worker threads' wake-up from the
   // scoring's idle, not the encoding (texproc fast's two threads read
   // 1.79x one this way, 1.97x unpaused).

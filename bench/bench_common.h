@@ -62,7 +62,7 @@ inline std::vector<std::string> corpus_color_paths() {
 }
 
 // 256x256 centred RGBA8 crops (alpha opaque) of corpus_color_paths()'s 15
-// images: the BC7 issue's setting (bench_bc7, bc7_sweep).
+// images: the BC7 benchmarks' setting (bench_bc7, bc7_sweep).
 inline const std::vector<Image>& centred_crops() {
   static const std::vector<Image> c = [] {
     std::vector<Image> out;

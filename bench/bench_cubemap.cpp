@@ -1,6 +1,6 @@
 // texproc cubemap: speed of the panorama-to-cube, seamless-mip and IBL
-// paths (issue 21's targets), and, printed before the timings, the quality
-// figures those targets name: seams at every level against per-face
+// paths, and, printed before the timings, the quality figures that go with
+// them: seams at every level against per-face
 // filtering, the specular prefilter against a brute-force convolution, the
 // spherical harmonics against a brute-force integral.
 #include <benchmark/benchmark.h>

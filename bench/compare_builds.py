@@ -6,7 +6,7 @@
 Runs each Google Benchmark program of both builds in turn (old, new, old,
 new, ...), so drift of a noisy machine hits both alike, and prints the median
 time of every benchmark in each build and new / old. Default benchmarks: the
-encoders issue 18's restructuring must keep at speed (bench_bc1, bench_bc4,
+encoders a restructuring must keep at speed (bench_bc1, bench_bc4,
 bench_etc).
 """
 import json

@@ -336,7 +336,8 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")->check(in_range(1, 22))
       ->group("Container");
   cmd->add_option("--transparent-color", args->transparent_color,
-                  "Colour under alpha 0 (bc1a, bc2, bc3, etc2a1, etc2a): keep, bleed (from the visible texels), zero")
+                  "Colour under alpha 0 (formats with alpha: bc1a, bc2, bc3, bc7, etc2a1, etc2a, astc): keep, bleed (from the "
+                  "visible texels), zero")
       ->capture_default_str();
   cmd->add_flag("--bc1-black", args->bc1_black,
                 "bc1: dark texels may take the three-colour mode's black where that lowers the error (Direct3D "

@@ -272,8 +272,8 @@ TEST(Bc7Encode, FitKnobsOffTheLevelsSimdMatchesScalar) {
 }
 
 // BC7 against BC1 on the same opaque crop: more than 3 dB better at `fast`
-// (BC1 has one 4-colour line a block at 5:6:5; the issue measures about 8 dB
-// on whole images), and sRGB is the same search on the stored values.
+// (BC1 has one 4-colour line a block at 5:6:5; on whole images the gap is
+// about 8 dB), and sRGB is the same search on the stored values.
 TEST(Bc7Encode, BeatsBc1AndSrgbIsTheSameBlocks) {
   if (!have_corpus()) GTEST_SKIP() << "no corpus at " << corpus_dir();
   const Image crop = crop_rgba8(read_image(corpus_dir() + "/photo/skimage_astronaut_512.png"), 128, 128, 128, 128, true);

@@ -164,7 +164,7 @@ TEST(Bc4Encode, NarrowEightBitBlocksAreLosslessInImages) {
 }
 
 // On small images, `high` is never more than 0.05 dB below the exhaustive
-// search over every endpoint pair in both modes (the bound); it is
+// search over every endpoint pair in both modes (the promised bound); it is
 // held to 0.01 dB here (0.005 measured).
 TEST(Bc4Encode, HighIsWithinAHundredthOfADecibelOfExhaustive) {
   std::mt19937 rng(2);
@@ -730,7 +730,7 @@ TEST(BlockEncode, SimdMatchesScalarOnCorpusCrops) {
                                     std::string("crop ") + std::to_string(n) + " " + format_info(f).name + " " + to_string(q));
 }
 
-// The error bound: on every corpus colour image (albedo, photos,
+// BC1's error bound: on every corpus colour image (albedo, photos,
 // cutouts' colour, normal maps; a centred crop of at most 256x256), BC1 at
 // `high` is never more than 0.05 dB below libsquish's cluster fit (Debian's
 // 1.15, uniform weights), PSNR over RGB under texproc's decoder. The

@@ -6,7 +6,7 @@
 // The texel passes (line_ends, assign, lsq_ends) and quantize_joint are
 // out of line, one copy for each channel count (1, 3, 4), and so is
 // fit_set: inlined into every caller, bc7_lanes_simd.cpp took 5-7 minutes
-// to compile for every target, and ran 7-10% slower (session 17).
+// to compile for every target, and ran 7-10% slower.
 #if defined(TEXPROC_BC7_FIT_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
 #ifdef TEXPROC_BC7_FIT_SIMD_INL_H_
 #undef TEXPROC_BC7_FIT_SIMD_INL_H_
