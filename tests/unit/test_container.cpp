@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 #include <zstd.h>
-#include <OpenImageIO/imageio.h>
 
 #include <cstring>
 #include <filesystem>
@@ -433,38 +432,6 @@ TEST(Container, ReaderLimitsAndMessages) {
     EXPECT_NE(std::string(e.what()).find("dwMipMapCount 9 is more than a 64x2 texture has (7)"), std::string::npos)
         << e.what();
   }
-}
-
-// OpenImageIO's DDS reader (which no one here wrote) reads texproc's legacy
-// DDS files back with the same pixels: RGBA8, BGRA8, L8 (r8), L8A8 (rg8).
-TEST(Container, OpenImageIoReadsLegacyDds) {
-  const std::string dir = temp_dir("dds_oiio");
-  for (TexelFormat f : {TexelFormat::rgba8_unorm, TexelFormat::bgra8_unorm, TexelFormat::r8_unorm, TexelFormat::rg8_unorm}) {
-    const Texture t = random_texture(f, 13, 6, 3, 1, 1, 21);
-    const std::string path = dir + "/" + format_info(f).name + ".dds";
-    write_texture(path, t);
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path, &config);
-    ASSERT_TRUE(in) << OIIO::geterror();
-    for (std::uint32_t l = 0; l < t.levels; ++l) {
-      ASSERT_TRUE(in->seek_subimage(0, int(l)));
-      const Image want = image_from_texture(t, l);
-      const int C = in->spec().nchannels;
-      std::vector<std::uint8_t> px(std::size_t(in->spec().width) * in->spec().height * C);
-      ASSERT_TRUE(in->read_image(0, int(l), 0, C, OIIO::TypeDesc::UINT8, px.data()));
-      ASSERT_EQ(in->spec().width, want.width());
-      for (int y = 0; y < want.height(); ++y)
-        for (int x = 0; x < want.width(); ++x) {
-          // OIIO reads L8 as one channel, L8A8 as two (gray, alpha).
-          for (int c = 0; c < want.channels(); ++c) {
-            ASSERT_EQ(px[(std::size_t(y) * want.width() + x) * C + c], want.row<std::uint8_t>(y)[x * want.channels() + c])
-                << format_info(f).name << " level " << l << " at " << x << "," << y << " c" << c;
-          }
-        }
-    }
-  }
-  fs::remove_all(dir);
 }
 
 // NVIDIA Texture Tools' nvddsinfo reads the DX10 header texproc writes.

@@ -1,6 +1,5 @@
 // Image files: every corpus file loads, round trips, MIP files, errors, atomicity.
 #include <gtest/gtest.h>
-#include <OpenImageIO/imageio.h>
 
 #include <chrono>
 #include <cmath>
@@ -103,42 +102,6 @@ TEST(ImageIo, RoundTripsEveryWritableFormat) {
   EXPECT_EQ(info.file_type, "half");
   for (int y = 0; y < 8; ++y)
     for (int x = 0; x < 8; ++x) EXPECT_NEAR(back.get(x, y, 1), img.get(x, y, 1), 1e-3);
-  fs::remove_all(dir);
-}
-
-// OpenImageIO must read our TIFF and EXR MIP files back as MIP levels, with
-// the levels' pixels intact.
-TEST(ImageIo, MipFilesReadBackAsMipLevels) {
-  const std::string dir = temp_dir("mipfile");
-  const Image img = random_image(40, 24, 4, PixelType::u8, 8);
-  const MipChain chain = generate_mips(img.view(), MipOptions{});
-  MipOptions fo;
-  fo.output_type = PixelType::f32;
-  const MipChain fchain = generate_mips(img.view(), fo);
-  for (const char* name : {"/m.tif", "/m.exr"}) {
-    const std::string path = dir + name;
-    const bool exr = std::string(name) == "/m.exr";
-    const MipChain& c = exr ? fchain : chain;
-    write_mip_file(path, c.levels);
-    OIIO::ImageSpec config;  // our alpha is straight; keep OpenImageIO from premultiplying it
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path, &config);
-    ASSERT_TRUE(in) << OIIO::geterror();
-    for (std::size_t l = 0; l < c.levels.size(); ++l) {
-      ASSERT_TRUE(in->seek_subimage(0, int(l))) << path << " level " << l;
-      EXPECT_EQ(in->spec().width, c.levels[l].width());
-      EXPECT_EQ(in->spec().height, c.levels[l].height());
-      std::vector<float> px(std::size_t(in->spec().width) * in->spec().height * 4);
-      ASSERT_TRUE(in->read_image(0, int(l), 0, 4, OIIO::TypeDesc::FLOAT, px.data()));
-      for (int y = 0; y < c.levels[l].height(); ++y)
-        for (int x = 0; x < c.levels[l].width(); ++x)
-          ASSERT_NEAR(px[(y * c.levels[l].width() + x) * 4 + 1], c.levels[l].get(x, y, 1), exr ? 1e-3 : 1e-6);
-    }
-    EXPECT_FALSE(in->seek_subimage(0, int(c.levels.size())));
-  }
-  // OpenEXR MIP files hold the whole chain.
-  std::vector<Image> partial(chain.levels.begin(), chain.levels.begin() + 2);
-  EXPECT_THROW(write_mip_file(dir + "/partial.exr", partial), Error);
   fs::remove_all(dir);
 }
 
