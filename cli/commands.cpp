@@ -19,6 +19,7 @@ void add_all_commands(CLI::App& app) {
   add_cubemap_command(app);
   add_compress_command(app);
   add_decompress_command(app);
+  add_convert_command(app);
   add_info_command(app);
   add_compare_command(app);
   add_build_command(app);
