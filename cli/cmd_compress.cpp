@@ -7,6 +7,7 @@
 #include <sstream>
 #include <iostream>
 #include <map>
+#include <optional>
 
 #include "commands.h"
 #include "batch.h"
@@ -46,7 +47,19 @@ struct CompressArgs {
 
 // --format and the colour space: BC1-BC3 take the sRGB variant for colour
 // (the default for 8/16-bit input) and UNORM with --linear; BC4/BC5 hold data.
+// A full format name (as `info` prints it, or DXGI's or Vulkan's): the
+// block format it names exactly, sRGB or not whatever the input is.
+std::optional<TexelFormat> explicit_format(const std::string& f) {
+  try {
+    const TexelFormat t = parse_texel_format(f);
+    if (format_info(t).compressed) return t;
+  } catch (const Error&) {
+  }
+  return std::nullopt;
+}
+
 TexelFormat format_for(const std::string& f, bool srgb) {
+  if (const auto t = explicit_format(f)) return *t;
   using F = TexelFormat;
   static const std::map<std::string, std::pair<F, F>> k = {
       {"bc1", {F::bc1_rgb_unorm, F::bc1_rgb_srgb}},   {"bc1a", {F::bc1_rgba_unorm, F::bc1_rgba_srgb}},
@@ -97,7 +110,8 @@ TexelFormat format_for(const std::string& f, bool srgb) {
                                             "' (valid: bc1, bc1a, bc2, bc3, bc4, bc4s, bc5, bc5s, bc7, bc6h, bc6hs, etc1, etc2, etc2a1, "
                                             "etc2a, eac-r11, eac-r11s, eac-rg11, eac-rg11s, astc-WxH and astc-WxH-hdr "
                                             "for the footprints 4x4, 5x4, 5x5, 6x5, 6x6, 8x5, 8x6, 8x8, 10x5, 10x6, "
-                                            "10x8, 10x10, 12x10, 12x12)");
+                                            "10x8, 10x10, 12x10, 12x12; or a full name as info prints it, DXGI's or "
+                                            "Vulkan's: bc7_srgb, BC7_UNORM_SRGB, VK_FORMAT_BC7_SRGB_BLOCK)");
 }
 
 void validate(CompressArgs& a) {
@@ -106,6 +120,11 @@ void validate(CompressArgs& a) {
   a.header = parse_dds_header(a.dds_header);
   a.transparent = parse_transparent_color(a.transparent_color);
   format_for(a.format, false);  // a known format, or an error now
+  if (const auto t = explicit_format(a.format); t && !format_info(*t).is_float) {
+    const bool named_srgb = format_info(*t).srgb;
+    if (a.srgb && !named_srgb) throw Error(ErrorCode::bad_arguments, "--srgb contradicts --format " + a.format);
+    if (a.linear && named_srgb) throw Error(ErrorCode::bad_arguments, "--linear contradicts --format " + a.format);
+  }
   if (a.srgb && format_info(format_for(a.format, false)).is_float) {
     throw Error(ErrorCode::bad_arguments, "--srgb: --format " + a.format + " is HDR (linear floats); drop --srgb");
   }
@@ -218,7 +237,10 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   phases.read_done();
   const PixelType input_type = in.images[0].type();
   // Colour is sRGB unless --linear, a normal map, or float input.
-  const bool srgb = a.srgb || (!a.linear && !a.normal_map && input_type != PixelType::f32);
+  bool srgb = a.srgb || (!a.linear && !a.normal_map && input_type != PixelType::f32);
+  // A full LDR format name says it: an sRGB format's input is sRGB colour,
+  // a UNORM format's is data (as --linear).
+  if (const auto t = explicit_format(a.format); t && !format_info(*t).is_float) srgb = format_info(*t).srgb;
   const TexelFormat format = format_for(a.format, srgb);
   if (!a.clip) warn_if_clipped(input, in, format, r.warnings);
   // HDR formats hold linear values: 8/16-bit colour is decoded from sRGB
@@ -349,7 +371,11 @@ void add_compress_command(CLI::App& app) {
     c.name = "compress";
     std::string f = args->format;
     for (auto& ch : f) ch = char(std::tolower(static_cast<unsigned char>(ch)));
-    const bool no_dds = f.rfind("etc", 0) == 0 || f.rfind("eac", 0) == 0 || f.rfind("astc", 0) == 0;
+    bool no_dds = false;  // DDS has no ETC or ASTC formats (an unknown name fails in validate)
+    try {
+      no_dds = format_info(format_for(f, false)).dxgi_format == 0;
+    } catch (const Error&) {
+    }
     c.default_extension = no_dds ? ".ktx2" : ".dds";  // DDS has no ETC or ASTC formats
     c.input_extensions = image_extensions();
     c.validate = [args] { validate(*args); };

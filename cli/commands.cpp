@@ -1,5 +1,6 @@
 #include "commands.h"
 
+#include <cctype>
 #include <iostream>
 
 #include "batch.h"
@@ -10,6 +11,32 @@
 #include "texproc/file_io.h"
 
 namespace texproc::cli {
+
+namespace {
+
+// Options whose values are names from a fixed list: read in any case
+// (`--quality High`, `--format BC7_UNORM_SRGB`). Colour-space names are not
+// among them: OpenColorIO's names are case-sensitive.
+void lower_case_enumerations(CLI::App& app) {
+  static const char* const kEnumerated[] = {"--format", "--quality", "--wrap", "--filter", "--dds-header",
+                                            "--transparent-color", "--precision", "--mode", "--kernel",
+                                            "--height-channel", "--channels", "--y", "--type", "--to", "--ibl",
+                                            "--layout", "--flip", "--compression"};
+  const CLI::Validator lower(
+      [](std::string& value) {
+        for (char& c : value) c = char(std::tolower(static_cast<unsigned char>(c)));
+        return std::string();
+      },
+      "", "lower case");
+  for (CLI::Option* opt : app.get_options()) {
+    for (const char* name : kEnumerated) {
+      if (opt->check_lname(name + 2)) opt->transform(lower);
+    }
+  }
+  for (CLI::App* sub : app.get_subcommands({})) lower_case_enumerations(*sub);
+}
+
+}  // namespace
 
 void add_all_commands(CLI::App& app) {
   add_mip_command(app);
@@ -23,6 +50,7 @@ void add_all_commands(CLI::App& app) {
   add_info_command(app);
   add_compare_command(app);
   add_build_command(app);
+  lower_case_enumerations(app);
 }
 
 namespace {

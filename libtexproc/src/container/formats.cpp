@@ -5,8 +5,10 @@
 #include <Imath/half.h>
 
 #include <cassert>
+#include <cctype>
 #include <cstring>
 
+#include "container/format_names.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
 #include "texproc/texture.h"
@@ -161,11 +163,28 @@ std::vector<std::string> texel_format_names() {
 }
 
 TexelFormat parse_texel_format(std::string_view name) {
+  // texproc's names, DXGI's (DXGI_FORMAT_ optional) and Vulkan's (VK_FORMAT_
+  // optional), in any case; the first format of the table where two share
+  // a name (DXGI's BC1_UNORM: opaque BC1).
+  std::string n(name);
+  for (char& c : n) c = char(std::toupper(static_cast<unsigned char>(c)));
+  for (const char* prefix : {"DXGI_FORMAT_", "VK_FORMAT_"}) {
+    if (n.rfind(prefix, 0) == 0) n.erase(0, std::strlen(prefix));
+  }
+  auto upper = [](std::string s) {
+    for (char& c : s) c = char(std::toupper(static_cast<unsigned char>(c)));
+    return s;
+  };
   for (const auto& i : kFormats) {
-    if (name == i.name) return i.format;
+    if (n == upper(i.name)) return i.format;
+  }
+  for (const auto& i : kFormats) {
+    // (ETC1 has no Vulkan name of its own: Vulkan's ETC2 RGB name is ETC2's.)
+    const bool vk = i.format != TexelFormat::etc1_rgb && n == upper(vk_format_name(i.vk_format));
+    if ((i.dxgi_format && n == upper(dxgi_format_name(i.dxgi_format))) || vk) return i.format;
   }
   std::string valid;
-  for (const auto& n : texel_format_names()) valid += (valid.empty() ? "" : ", ") + n;
+  for (const auto& known : texel_format_names()) valid += (valid.empty() ? "" : ", ") + known;
   throw Error(ErrorCode::bad_arguments, "unknown texel format '" + std::string(name) + "' (valid: " + valid + ")");
 }
 
