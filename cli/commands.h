@@ -19,7 +19,9 @@ void add_compare_command(CLI::App& app);
 void add_cubemap_command(CLI::App& app);
 
 void add_all_commands(CLI::App& app);
-int report_usage_error(CLI::App& app, const CLI::ParseError& e);
+// A command line CLI11 refused: the error (an unknown option first, with the
+// closest valid one), a hint, and with --json the JSON error document.
+int report_usage_error(CLI::App& app, const CLI::ParseError& e, int argc, const char* const* argv);
 int run_selected(CLI::App& app);
 
 }  // namespace texproc::cli

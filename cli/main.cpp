@@ -51,6 +51,7 @@ int main(int argc, char** argv) {
          "Folder of texproc's runtime modules (default: beside the binary, then the installed lib/.../texproc; "
          "also TEXPROC_MODULE_DIR)")
       ->check(CLI::ExistingDirectory);
+  app.fallthrough();  // top-level options (--module-dir) may follow the command too
   texproc::cli::add_all_commands(app);
   try {
     app.parse(argc, argv);
@@ -61,7 +62,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    return texproc::cli::report_usage_error(app, e);
+    return texproc::cli::report_usage_error(app, e, argc, argv);
   }
   return texproc::cli::run_selected(app);
 }

@@ -75,3 +75,30 @@ TEST(Names, CompressTakesFullNamesAndAnyCase) {
   EXPECT_NE(r.err.find("fast, normal, high, max"), std::string::npos) << r.err;
   fs::remove_all(dir);
 }
+
+// A mistyped option is named, with the closest valid one, before the errors
+// it causes (a required option it was meant to be); with --json a parse
+// failure still prints the JSON document.
+TEST(Names, UnknownOptionsAreNamedWithTheClosest) {
+  const std::string dir = temp_dir("names_unknown");
+  write_image(dir + "/c.png", random_image(8, 8, 3, PixelType::u8, 8).view());
+  const std::string in = "'" + dir + "/c.png'";
+  RunResult r = run_texproc("compress " + in + " -o '" + dir + "/x.dds' --fromat bc1");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("unknown option --fromat (did you mean --format?)"), std::string::npos) << r.err;
+  r = run_texproc("mip " + in + " -o '" + dir + "/x.dds' --json --fliter=box");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("unknown option --fliter (did you mean --filter?)"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("\"error\" : \"unknown option --fliter (did you mean --filter?)\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"exit_code\" : 1"), std::string::npos) << r.out;
+  r = run_texproc("sat blur " + in + " -o '" + dir + "/b.png' --radius 2 --wrpa repeat");  // a command's command
+  EXPECT_NE(r.err.find("unknown option --wrpa (did you mean --wrap?)"), std::string::npos) << r.err;
+  r = run_texproc("mip " + in + " -o '" + dir + "/x.dds' --zzzzzz");
+  EXPECT_NE(r.err.find("unknown option --zzzzzz\n"), std::string::npos) << r.err;  // nothing close: no guess
+  // Top-level options may follow the command.
+  r = run_texproc("mip " + in + " -o '" + dir + "/x.exr' --module-dir '" + dir + "'");
+  EXPECT_EQ(r.exit_code, 5) << r.err;  // no modules in that folder: named
+  EXPECT_NE(r.err.find(dir + "/texproc_exr.so (absent)"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/x.exr"));
+  fs::remove_all(dir);
+}
