@@ -5,10 +5,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <map>
 #include <mutex>
+
+#include <unistd.h>
 
 #include "batch.h"
 #include "texproc/error.h"
@@ -134,6 +137,24 @@ std::string make_rule(const std::vector<std::string>& outputs, const std::vector
 }
 }  // namespace
 
+// The depfile's folder is made (as an output's is) and must be writable
+// before any work: a depfile that fails after the outputs were written
+// would leave Make with outputs and no record of their inputs.
+namespace {
+void check_depfile_folder(const std::string& path) {
+  static std::string checked;
+  if (checked == path) return;
+  const fs::path parent = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec || ::access(parent.c_str(), W_OK) != 0) {
+    const std::string why = ec ? ec.message() : std::strerror(errno);
+    throw Error(ErrorCode::io, path + ": --depfile cannot be written in " + parent.string() + ": " + why);
+  }
+  checked = path;
+}
+}  // namespace
+
 void write_depfile_if_requested() {
   const BuildState& d = build_state();
   if (d.path.empty() || d.dry_run) return;
@@ -164,6 +185,7 @@ void check_output(const std::string& output, const std::vector<std::string>& inp
   for (const auto& in : inputs) record_input(in);
   refuse_overwriting_input(output, inputs, "output");
   if (!d.path.empty()) {  // --depfile, checked before any work
+    check_depfile_folder(d.path);
     check_depfile_name(output);
     for (const auto& in : inputs) check_depfile_name(in);
     refuse_overwriting_input(d.path, inputs, "--depfile");

@@ -70,6 +70,20 @@ Kind sniff(const std::string& path, const codecs::FileBytes& f) {
   if (starts("II*\0", 4) || starts("MM\0*", 4) || starts("II+\0", 4) || starts("MM\0+", 4)) return Kind::tiff;
   const std::string e = lower_ext(path);
   if (e == ".tga" || e == ".tpic" || e == ".icb" || e == ".vda" || e == ".vst") return Kind::tga;
+  // A file whose extension names a format with a signature, without that
+  // signature, is refused here, in microseconds (OpenImageIO would take a
+  // second to load and then refuse it too).
+  if (n == 0) throw Error(ErrorCode::invalid_file, path + ": empty file (0 bytes)");
+  static const std::pair<const char*, const char*> kSigned[] = {
+      {".png", "PNG"},     {".jpg", "JPEG"}, {".jpeg", "JPEG"}, {".exr", "OpenEXR"}, {".tif", "TIFF"},
+      {".tiff", "TIFF"},   {".dds", "DDS"},  {".ktx2", "KTX2"},  {".ktx", "KTX"},      {".pkm", "PKM"},
+      {".astc", ".astc"}};
+  for (const auto& [ext, name] : kSigned) {
+    if (e == ext) {
+      throw Error(ErrorCode::invalid_file, path + ": the extension says " + std::string(name) +
+                                               ", but the file does not start with " + name + "'s signature");
+    }
+  }
   return Kind::module;
 }
 
