@@ -88,15 +88,36 @@ void describe(const std::string& path, std::ostringstream& json, std::ostringstr
       json << (l ? ", " : "") << "{\"width\": " << t.level_width(l) << ", \"height\": " << t.level_height(l)
            << ", \"bytes\": " << bytes << "}";
     }
-    json << "], \"data_bytes\": " << total << "}";
+    json << "], \"data_bytes\": " << total;
+    Ktx2Storage storage;
+    if (kind == ContainerKind::ktx2) {
+      storage = ktx2_storage(path);
+      std::uint64_t stored = 0;
+      for (std::uint64_t b : storage.stored_bytes) stored += b;
+      json << ", \"supercompression\": \"" << ktx2_scheme_name(storage.scheme) << "\", \"stored_level_bytes\": [";
+      for (std::size_t l = 0; l < storage.stored_bytes.size(); ++l) json << (l ? ", " : "") << storage.stored_bytes[l];
+      json << "], \"stored_bytes\": " << stored;
+    }
+    json << "}";
+    const bool packed = storage.scheme != 0 && storage.stored_bytes.size() == t.levels;
     text << path << ": " << container << ", " << f.name << " (" << (f.srgb ? "sRGB" : "linear") << "), " << t.width
          << "x" << t.height << ", " << t.levels << " level(s)";
     if (t.faces == 6) text << ", cubemap";
     if (t.is_array) text << ", " << t.layers << " layers";
-    text << ", " << total << " bytes of texel data\n";
+    text << ", " << total << " bytes of texel data";
+    if (packed) {
+      std::uint64_t stored = 0;
+      for (std::uint64_t b : storage.stored_bytes) stored += b;
+      char share[32];
+      std::snprintf(share, sizeof share, "%.1f%%", 100.0 * double(stored) / double(std::max<std::uint64_t>(1, total)));
+      text << ", " << ktx2_scheme_name(storage.scheme) << "-supercompressed to " << stored << " bytes (" << share << ")";
+    }
+    text << "\n";
     for (std::uint32_t l = 0; l < t.levels; ++l) {
-      text << "  level " << l << ": " << t.level_width(l) << "x" << t.level_height(l) << ", "
-           << image_bytes(t.format, t.level_width(l), t.level_height(l)) * t.layers * t.faces << " bytes\n";
+      const std::uint64_t bytes = image_bytes(t.format, t.level_width(l), t.level_height(l)) * t.layers * t.faces;
+      text << "  level " << l << ": " << t.level_width(l) << "x" << t.level_height(l) << ", " << bytes << " bytes";
+      if (packed) text << ", stored in " << storage.stored_bytes[l];
+      text << "\n";
     }
     return;
   }
@@ -136,6 +157,8 @@ int run_info(const InfoArgs& args) {
       json << (k && json.str().size() > 1 ? ", " : "") << j.str();
     } catch (const Error& e) {
       print_error("info", about(files[k], e.what()));
+      json << (json.str().size() > 1 ? ", " : "") << "{\"file\": " << quoted(files[k]) << ", \"error\": "
+           << quoted(about(files[k], e.what())) << ", \"exit_code\": " << int(e.code()) << "}";
       ++failures;
       last = e.code();
     }

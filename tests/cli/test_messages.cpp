@@ -7,6 +7,7 @@
 
 #include "support/images.h"
 #include "support/run.h"
+#include "texproc/container.h"
 #include "texproc/image_io.h"
 
 using namespace texproc;
@@ -57,5 +58,32 @@ TEST(Messages, DepfileFolderIsCheckedBeforeAnyWork) {
   const RunResult ok = run_texproc("mip '" + dir + "/a.png' -o '" + dir + "/a.dds' --depfile '" + dir + "/deps/a.d' -q");
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_TRUE(fs::exists(dir + "/deps/a.d"));
+  fs::remove_all(dir);
+}
+
+// info: a KTX2 file's supercompression and stored level sizes (text and
+// JSON, the sizes those of the level index), and failed files in the JSON.
+TEST(Messages, InfoShowsSupercompressionAndFailures) {
+  const std::string dir = temp_dir("info_zstd");
+  write_image(dir + "/a.png", random_image(32, 32, 3, PixelType::u8, 3).view());
+  ASSERT_EQ(run_texproc("mip '" + dir + "/a.png' -o '" + dir + "/z.ktx2' --zstd 19 -q").exit_code, 0);
+  ASSERT_EQ(run_texproc("mip '" + dir + "/a.png' -o '" + dir + "/p.ktx2' -q").exit_code, 0);
+  const Ktx2Storage st = ktx2_storage(dir + "/z.ktx2");
+  EXPECT_EQ(st.scheme, 2u);
+  ASSERT_EQ(st.stored_bytes.size(), 6u);
+  EXPECT_EQ(st.inflated_bytes[0], 32u * 32u * 4u);
+  RunResult r = run_texproc("info '" + dir + "/z.ktx2'");
+  EXPECT_NE(r.out.find("Zstandard-supercompressed to "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("level 0: 32x32, 4096 bytes, stored in " + std::to_string(st.stored_bytes[0])), std::string::npos)
+      << r.out;
+  r = run_texproc("info '" + dir + "/p.ktx2'");
+  EXPECT_EQ(r.out.find("supercompressed"), std::string::npos) << r.out;
+  std::ofstream(dir + "/bad.png") << "no";
+  r = run_texproc("info --json '" + dir + "/z.ktx2' '" + dir + "/bad.png' '" + dir + "/p.ktx2'");
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.out.find("\"supercompression\": \"Zstandard\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"supercompression\": \"none\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"error\": \"" + dir + "/bad.png: the extension says PNG"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"exit_code\": 3}"), std::string::npos) << r.out;
   fs::remove_all(dir);
 }

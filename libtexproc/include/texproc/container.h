@@ -65,6 +65,18 @@ Texture decode_astc(const std::uint8_t* data, std::size_t size, const std::strin
 void write_texture(const std::string& path, const Texture& t, DdsHeader dds_header = DdsHeader::automatic,
                    int ktx2_zstd_level = 0);
 Texture read_texture(const std::string& path, const ReadLimits& limits = read_limits_from_environment());
+// How a KTX2 file stores its levels, for `info`: the supercompression scheme
+// (0 none, 2 Zstandard, 3 zlib) and each level's bytes as stored and as
+// inflated (equal without supercompression), level 0 first. Reads the
+// header and the level index only; Error{invalid_file} if they do not fit
+// the file.
+struct Ktx2Storage {
+  std::uint32_t scheme = 0;
+  std::vector<std::uint64_t> stored_bytes, inflated_bytes;
+};
+Ktx2Storage ktx2_storage(const std::string& path);
+const char* ktx2_scheme_name(std::uint32_t scheme);  // "none", "Zstandard", "zlib", "BasisLZ", "unknown"
+
 // The container a file's first bytes (at least 12 where present) announce:
 // false when they are none of DDS, KTX2, KTX1, PKM, .astc.
 bool container_from_signature(const std::uint8_t* head, std::size_t n, ContainerKind& kind);

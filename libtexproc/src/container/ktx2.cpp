@@ -6,6 +6,8 @@
 #include <zstd.h>
 
 #include <algorithm>
+#include <cstring>
+#include <fstream>
 #include <map>
 #include <numeric>
 
@@ -394,6 +396,40 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
   read_levels(r, size, h, fi, t, limits);
   apply_key_values(r, kv, fi, t);
   return t;
+}
+
+const char* ktx2_scheme_name(std::uint32_t scheme) {
+  switch (scheme) {
+    case 0: return "none";
+    case 1: return "BasisLZ";
+    case 2: return "Zstandard";
+    case 3: return "zlib";
+    default: return "unknown";
+  }
+}
+
+Ktx2Storage ktx2_storage(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(ErrorCode::io, path + ": cannot open");
+  std::uint8_t head[80] = {};
+  in.read(reinterpret_cast<char*>(head), sizeof head);
+  if (in.gcount() != sizeof head || std::memcmp(head, "\xABKTX 20\xBB\r\n\x1A\n", 12) != 0) {
+    throw Error(ErrorCode::invalid_file, path + ": not a KTX2 file");
+  }
+  auto u32 = [](const std::uint8_t* p) { return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24; };
+  auto u64 = [&](const std::uint8_t* p) { return std::uint64_t(u32(p)) | std::uint64_t(u32(p + 4)) << 32; };
+  Ktx2Storage s;
+  s.scheme = u32(head + 44);
+  const std::uint32_t levels = std::max<std::uint32_t>(1, u32(head + 40));
+  if (levels > 32) throw Error(ErrorCode::invalid_file, path + ": levelCount " + std::to_string(levels) + " (at most 32)");
+  std::vector<std::uint8_t> index(std::size_t(levels) * 24);
+  in.read(reinterpret_cast<char*>(index.data()), std::streamsize(index.size()));
+  if (std::size_t(in.gcount()) != index.size()) throw Error(ErrorCode::invalid_file, path + ": the level index is cut short");
+  for (std::uint32_t l = 0; l < levels; ++l) {
+    s.stored_bytes.push_back(u64(index.data() + 24 * l + 8));
+    s.inflated_bytes.push_back(u64(index.data() + 24 * l + 16));
+  }
+  return s;
 }
 
 }  // namespace texproc
