@@ -332,14 +332,53 @@ std::vector<std::size_t> select_work(std::vector<FileReport>& reports, const Ses
 
 // One file's work (on a worker thread): any failure is the file's, its
 // warnings and phase times go into its report.
+// An output's identity before the work, for --write-if-changed's report: an
+// output kept unchanged is the same file (inode) with the same time stamp.
+struct Identity {
+  bool exists = false;
+  ino_t inode = 0;
+  struct timespec mtime {};
+};
+Identity identity(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return {};
+  return {true, st.st_ino, st.st_mtim};
+}
+
+// --write-if-changed: which outputs were kept (their bytes would not change)
+// and which replaced, in the file's line and in its JSON details.
+void report_kept(FileReport& r, const std::vector<Identity>& before) {
+  Json::Value kept(Json::arrayValue), replaced(Json::arrayValue);
+  for (std::size_t i = 0; i < r.outputs.size() && i < before.size(); ++i) {
+    const Identity now = identity(r.outputs[i]);
+    const bool same = before[i].exists && now.exists && now.inode == before[i].inode &&
+                      now.mtime.tv_sec == before[i].mtime.tv_sec && now.mtime.tv_nsec == before[i].mtime.tv_nsec;
+    (same ? kept : replaced).append(r.outputs[i]);
+  }
+  r.details["kept"] = kept;
+  r.details["replaced"] = replaced;
+  if (r.line.empty()) return;
+  const std::string note = replaced.empty() ? " (unchanged: kept)"
+                           : kept.empty()   ? " (written)"
+                                            : " (" + std::to_string(kept.size()) + " kept unchanged, " +
+                                                std::to_string(replaced.size()) + " written)";
+  const std::size_t nl = r.line.find('\n');
+  r.line.insert(nl == std::string::npos ? r.line.size() : nl, note);
+}
+
 void run_file(const BatchCommand& c, FileReport& r, const std::string& output, const CommonOptions& common) {
   const auto t0 = std::chrono::steady_clock::now();
+  std::vector<Identity> before;
+  if (write_if_changed()) {
+    for (const std::string& o : r.outputs) before.push_back(identity(o));
+  }
   try {
     // The file's outputs are put in place together once all are written,
     // or none is.
     CommitGroup outputs;
     c.run(r.input, output, r);
     outputs.commit();
+    if (write_if_changed()) report_kept(r, before);
   } catch (const Error& e) {
     fail(r, e.code(), e.what());
   } catch (const std::bad_alloc&) {

@@ -87,3 +87,22 @@ TEST(Messages, InfoShowsSupercompressionAndFailures) {
   EXPECT_NE(r.out.find("\"exit_code\": 3}"), std::string::npos) << r.out;
   fs::remove_all(dir);
 }
+
+// --write-if-changed says which outputs it kept and which it wrote, in the
+// line and in --json.
+TEST(Messages, WriteIfChangedReportsKeptAndReplaced) {
+  const std::string dir = temp_dir("kept");
+  write_image(dir + "/a.png", random_image(16, 16, 3, PixelType::u8, 4).view());
+  const std::string cmd = "mip '" + dir + "/a.png' -o '" + dir + "/a.dds' --write-if-changed";
+  RunResult r = run_texproc(cmd);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("(written)"), std::string::npos) << r.out;
+  r = run_texproc(cmd);
+  EXPECT_NE(r.out.find("(unchanged: kept)"), std::string::npos) << r.out;
+  r = run_texproc(cmd + " --json");
+  EXPECT_NE(r.out.find("\"kept\" : \n      [\n        \"" + dir + "/a.dds\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"replaced\" : []"), std::string::npos) << r.out;
+  r = run_texproc(cmd + " --wrap repeat --json");
+  EXPECT_NE(r.out.find("\"kept\" : []"), std::string::npos) << r.out;
+  fs::remove_all(dir);
+}
