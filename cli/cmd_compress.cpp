@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <sstream>
 #include <iostream>
+#include <filesystem>
 #include <map>
 #include <optional>
 
@@ -22,6 +23,8 @@
 #include "texproc/mip.h"
 #include "texproc/runtime.h"
 #include "texproc/transparent_color.h"
+
+namespace fs = std::filesystem;
 
 namespace texproc::cli {
 namespace {
@@ -112,6 +115,20 @@ TexelFormat format_for(const std::string& f, bool srgb) {
                                             "for the footprints 4x4, 5x4, 5x5, 6x5, 6x6, 8x5, 8x6, 8x8, 10x5, 10x6, "
                                             "10x8, 10x10, 12x10, 12x12; or a full name as info prints it, DXGI's or "
                                             "Vulkan's: bc7_srgb, BC7_UNORM_SRGB, VK_FORMAT_BC7_SRGB_BLOCK)");
+}
+
+// A DXT name asks for what DX9-era tools read; sRGB colour in DDS needs the
+// DX10 header, which some of them (NVTT 2's nvdecompress) cannot read.
+void warn_if_dx10_for_dxt(const CompressArgs& a, TexelFormat format, const std::string& output,
+                          std::vector<std::string>& warnings) {
+  std::string f = a.format;
+  for (char& c : f) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const bool dxt = f == "dxt1" || f == "dxt1a" || f == "dxt3" || f == "dxt5";
+  if (!dxt || !format_info(format).srgb || a.header == DdsHeader::dx9) return;
+  if (fs::path(output).extension() != ".dds") return;
+  warnings.push_back(output + ": --format " + a.format + " on sRGB colour writes " + format_info(format).name +
+                     ", which needs a DX10 header that DX9-era readers (NVTT 2) cannot read; --linear writes a "
+                     "legacy DXT" + f.substr(3, 1) + " header (UNORM)");
 }
 
 void validate(CompressArgs& a) {
@@ -243,6 +260,7 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   if (const auto t = explicit_format(a.format); t && !format_info(*t).is_float) srgb = format_info(*t).srgb;
   const TexelFormat format = format_for(a.format, srgb);
   if (!a.clip) warn_if_clipped(input, in, format, r.warnings);
+  warn_if_dx10_for_dxt(a, format, output, r.warnings);
   // HDR formats hold linear values: 8/16-bit colour is decoded from sRGB
   // first (as data with --linear), so the chain and the encoder see light.
   if (format_info(format).is_float && input_type != PixelType::f32) {

@@ -102,3 +102,22 @@ TEST(Names, UnknownOptionsAreNamedWithTheClosest) {
   EXPECT_FALSE(fs::exists(dir + "/x.exr"));
   fs::remove_all(dir);
 }
+
+// --format dxt5 (a DX9-era name) on sRGB colour writes the DX10 header that
+// sRGB needs: said, with the way to a legacy header.
+TEST(Names, DxtNamesOnSrgbColourSayTheHeaderNeedsDx10) {
+  const std::string dir = temp_dir("names_dxt");
+  write_image(dir + "/c.png", random_image(8, 8, 3, PixelType::u8, 9).view());
+  const std::string base = "compress '" + dir + "/c.png' -o '" + dir + "/d.dds' --format dxt5 -f";
+  RunResult r = run_texproc(base);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("needs a DX10 header that DX9-era readers (NVTT 2) cannot read; --linear writes a legacy "
+                       "DXT5 header"), std::string::npos) << r.err;
+  r = run_texproc(base + " --linear");
+  EXPECT_EQ(r.err.find("DX10"), std::string::npos) << r.err;
+  EXPECT_EQ(read_texture(dir + "/d.dds").format, TexelFormat::bc3_unorm);
+  r = run_texproc("compress '" + dir + "/c.png' -o '" + dir + "/d.dds' --format bc3 -f");  // texproc's name
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("DX10"), std::string::npos) << r.err;
+  fs::remove_all(dir);
+}
