@@ -5,6 +5,7 @@
 #include <cstring>
 #include <numeric>
 
+#include "support/filters.h"
 #include "support/images.h"
 #include "texproc/error.h"
 #include "texproc/image_io.h"
@@ -15,9 +16,6 @@ using namespace texproc;
 using namespace texproc::test;
 
 namespace {
-const FilterKind kAllFilters[] = {FilterKind::box,    FilterKind::triangle, FilterKind::gaussian,
-                                  FilterKind::kaiser, FilterKind::lanczos3, FilterKind::mitchell};
-const WrapMode kAllWraps[] = {WrapMode::clamp, WrapMode::repeat, WrapMode::mirror};
 
 MipOptions options(FilterKind k, WrapMode w) {
   MipOptions o;

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "mip/chain_rows.h"
+#include "support/filters.h"
 #include "support/images.h"
 #include "texproc/mip.h"
 #include "texproc/runtime.h"
@@ -17,10 +18,6 @@ using namespace texproc;
 using namespace texproc::test;
 
 namespace {
-
-const FilterKind kAllFilters[] = {FilterKind::box,    FilterKind::triangle, FilterKind::gaussian,
-                                  FilterKind::kaiser, FilterKind::lanczos3, FilterKind::mitchell};
-const WrapMode kAllWraps[] = {WrapMode::clamp, WrapMode::repeat, WrapMode::mirror};
 
 ::testing::AssertionResult same_chains(const MipChain& a, const MipChain& b) {
   if (a.levels.size() != b.levels.size()) {
