@@ -360,7 +360,8 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option("--astc-effort", args->astc_effort,
                   "ASTC: astc-encoder's numeric quality 0-100 in place of --quality's preset (0 -fastest, 10 -fast, "
                   "60 -medium, 98 -thorough, 99 -verythorough, 100 -exhaustive)")->check(in_range(0, 100));
-  cmd->add_flag("--mips", args->mips, "Compress a whole mip chain (mip options below)");
+  cmd->add_flag("--mips,!--no-mips", args->mips,
+                "Compress a whole mip chain (mip options below); --no-mips: level 0 only (the default)");
   cmd->add_flag("--normal-map", args->normal_map,
                 "The input is a normal map: linear, renormalized mips; bc5/eac-rg11 store X and Y, bc3 the DXT5nm "
                 "layout (X in alpha, Y in green, red 1, blue 0), astc astc-encoder's normal mode (X in RGB, Y in "

@@ -121,3 +121,22 @@ TEST(Names, DxtNamesOnSrgbColourSayTheHeaderNeedsDx10) {
   EXPECT_EQ(r.err.find("DX10"), std::string::npos) << r.err;
   fs::remove_all(dir);
 }
+
+// --no-mips exists and the last of --mips / --no-mips wins; without either,
+// level 0 only.
+TEST(Names, NoMipsIsTheStatedDefault) {
+  const std::string dir = temp_dir("names_mips");
+  write_image(dir + "/c.png", random_image(16, 16, 3, PixelType::u8, 10).view());
+  const std::string base = "compress '" + dir + "/c.png' -o '" + dir + "/m.ktx2' --format bc1 -f -q";
+  struct Case {
+    const char* flags;
+    std::uint32_t levels;
+  };
+  for (const Case& c : {Case{"", 1}, Case{" --mips", 5}, Case{" --no-mips", 1}, Case{" --mips --no-mips", 1},
+                        Case{" --no-mips --mips", 5}}) {
+    const RunResult r = run_texproc(base + c.flags);
+    ASSERT_EQ(r.exit_code, 0) << c.flags << ": " << r.err;
+    EXPECT_EQ(read_texture(dir + "/m.ktx2").levels, c.levels) << c.flags;
+  }
+  fs::remove_all(dir);
+}

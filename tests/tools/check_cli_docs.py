@@ -15,7 +15,7 @@ import sys
 
 # An option in CLI11's help: two spaces, then "-x,--name" or "--name", then
 # its type or its description.
-OPTION = re.compile(r"^  (-\w)?,?(--[a-z0-9][a-z0-9-]*)?(?=[\s,])(.*)$")
+OPTION = re.compile(r"^  ((?:-\w|--[a-z0-9][a-z0-9-]*)(?:,(?:-\w|--[a-z0-9][a-z0-9-]*))*)(?:\{[^}]*\})?(?=\s|$)(.*)$")
 SUBCOMMANDS = re.compile(r"^Subcommands:\s*$")
 DOC_OPTION = re.compile(r"(?<![\w-])--[a-z0-9][a-z0-9-]*")
 
@@ -35,14 +35,20 @@ def parse_help(text):
             if line.strip() and not line.startswith("   "):
                 in_subs = False
         m = OPTION.match(line)
-        if m and (m.group(1) or m.group(2)):
-            # " TYPE  description": the type, if any, ends at the first run of spaces.
-            rest = m.group(3)
+        if m:
+            # "-x,--name,--no-name{default} TYPE  description": the type, if
+            # any, ends at the first run of spaces.
+            names = m.group(1).split(",")
+            short = next((n for n in names if not n.startswith("--")), "")
+            longs = [n for n in names if n.startswith("--")] or [""]
+            rest = m.group(2)
             arg, desc = "", rest.strip()
             t = re.match(r"^ (\S(?:.*?\S)?)(?:\s{2,}(.*))?$", rest)
             if t:
                 arg, desc = t.group(1), (t.group(2) or "").strip()
-            options.append((m.group(1) or "", m.group(2) or "", arg, desc))
+            options.append((short, longs[0], arg, desc))
+            for extra in longs[1:]:  # a negated flag (--no-mips) beside its flag
+                options.append(("", extra, "", "(the negation of " + longs[0] + ")"))
         elif options and line.startswith(" " * 30) and line.strip():
             short, long_, arg, desc = options[-1]
             options[-1] = (short, long_, arg, (desc + " " + line.strip()).strip())
@@ -111,24 +117,26 @@ Options:
   --filter TEXT=gaussian      Mip filter: gaussian, box,
                               triangle
   -x                          A short option alone
+  --mips,--no-mips{false}     A flag and its negation
 
 Subcommands:
   blur                        Box blur
 """
     opts, subs = parse_help(help_text)
-    assert [o[1] for o in opts] == ["--help", "--output", "--filter", ""], opts
+    assert [o[1] for o in opts] == ["--help", "--output", "--filter", "", "--mips", "--no-mips"], opts
+    assert opts[4][3] == "A flag and its negation", opts[4]
     assert opts[2][2] == "TEXT=gaussian" and opts[2][3] == "Mip filter: gaussian, box, triangle", opts[2]
     assert opts[3][:3] == ("-x", "", ""), opts[3]
     assert subs == ["blur"], subs
     helps = {"mip": help_text}
-    good = "Use `-o` or `--output`, `--filter`, and `-x` alone."
+    good = "Use `-o` or `--output`, `--filter`, `--mips` or `--no-mips`, and `-x` alone."
     assert check(helps, good) == [], check(helps, good)
-    missing = check(helps, "Use `--output` and `-x` alone.")
+    missing = check(helps, "Use `--output`, `--mips`, `--no-mips` and `-x` alone.")
     assert missing == ["texproc mip: --filter is not in docs/cli.md"], missing
     extra = check(helps, good + " And --fliter.")
     assert extra == ["docs/cli.md names --fliter, which no command has"], extra
     # A longer option does not stand in for a shorter one's mention.
-    assert "texproc mip: --filter is not in docs/cli.md" in check(helps, "`--output` `--filter-size` `-x` ")
+    assert "texproc mip: --filter is not in docs/cli.md" in check(helps, "`--output` `--filter-size` `-x` `--mips` `--no-mips`")
     print("self-test passed")
 
 
