@@ -124,7 +124,8 @@ void describe(const std::string& path, std::ostringstream& json, std::ostringstr
   const ImageFileInfo i = probe_image(path);
   json << "{\"file\": " << quoted(path) << ", \"container\": " << quoted(i.format) << ", \"width\": " << i.width
        << ", \"height\": " << i.height << ", \"channels\": " << i.channels << ", \"type\": " << quoted(i.file_type)
-       << ", \"color_space_tag\": " << quoted(i.color_space_tag) << ", \"subimages\": " << i.subimages
+       << ", \"color_space_tag\": " << quoted(i.color_space_tag)
+       << ", \"color_space_tagged\": " << (i.color_space_tagged ? "true" : "false") << ", \"subimages\": " << i.subimages
        << ", \"levels\": [";
   for (std::size_t l = 0; l < i.level_sizes.size(); ++l) {
     json << (l ? ", " : "") << "{\"width\": " << i.level_sizes[l].first << ", \"height\": " << i.level_sizes[l].second
@@ -133,7 +134,10 @@ void describe(const std::string& path, std::ostringstream& json, std::ostringstr
   json << "]}";
   text << path << ": " << i.format << ", " << i.width << "x" << i.height << ", " << i.channels << " channel(s) of "
        << i.file_type;
-  if (!i.color_space_tag.empty()) text << ", tagged " << i.color_space_tag;
+  if (!i.color_space_tag.empty()) {
+    text << (i.color_space_tagged ? ", tagged " : ", no colour tag (read as ") << i.color_space_tag
+         << (i.color_space_tagged ? "" : ")");
+  }
   if (i.mip_levels > 1) text << ", " << i.mip_levels << " MIP levels";
   if (i.subimages > 1) text << ", " << i.subimages << " subimages";
   text << "\n";

@@ -2,6 +2,7 @@
 // format its bytes do not have, and a depfile that could not be written.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -104,5 +105,24 @@ TEST(Messages, WriteIfChangedReportsKeptAndReplaced) {
   EXPECT_NE(r.out.find("\"replaced\" : []"), std::string::npos) << r.out;
   r = run_texproc(cmd + " --wrap repeat --json");
   EXPECT_NE(r.out.find("\"kept\" : []"), std::string::npos) << r.out;
+  fs::remove_all(dir);
+}
+
+// info says "tagged" only for a file that carries a colour tag: a PNG with
+// an sRGB chunk is tagged, one without (Pillow writes none) is read as sRGB
+// by default and says so.
+TEST(Messages, InfoSaysTaggedOnlyForTaggedFiles) {
+  if (std::system("/usr/bin/python3 -c 'import PIL' >/dev/null 2>&1") != 0) GTEST_SKIP() << "python3-pil not installed";
+  const std::string dir = temp_dir("info_tag");
+  const std::string make = "/usr/bin/python3 -c \"from PIL import Image; Image.new('RGB', (4, 4)).save('" + dir +
+                           "/plain.png')\"";
+  ASSERT_EQ(std::system(make.c_str()), 0);
+  RunResult r = run_texproc("info '" + dir + "/plain.png'");
+  EXPECT_NE(r.out.find("no colour tag (read as sRGB)"), std::string::npos) << r.out;
+  r = run_texproc("info --json '" + dir + "/plain.png'");
+  EXPECT_NE(r.out.find("\"color_space_tagged\": false"), std::string::npos) << r.out;
+  r = run_texproc("info '" + std::string(TEXPROC_SAMPLES_DIR) + "/albedo_desert_512.png'");  // has an sRGB chunk
+  EXPECT_NE(r.out.find("tagged sRGB"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("no colour tag"), std::string::npos) << r.out;
   fs::remove_all(dir);
 }

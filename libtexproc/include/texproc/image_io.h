@@ -25,6 +25,10 @@ struct ImageFileInfo {
   std::string file_type;    // element type in the file: "uint8", "uint16", "half", "float", ...
   PixelType type = PixelType::u8;  // the type read_image returns
   std::string color_space_tag;     // what the file says ("sRGB", "Linear"...), a hint only
+  // Whether the file carries that tag (a PNG sRGB, gAMA or iCCP chunk, a
+  // texture format's sRGB or UNORM); false: the tag is the format's default
+  // (a PNG or JPEG without one reads as sRGB).
+  bool color_space_tagged = false;
   int subimages = 1;
   int mip_levels = 1;
   std::vector<std::pair<int, int>> level_sizes;  // probe_image: width, height of each MIP level

@@ -46,6 +46,7 @@ ImageFileInfo info_of(const std::string& path, const Texture& t, const char* nam
   info.file_type = fi.name;
   info.type = natural_type(t.format);
   info.color_space_tag = fi.srgb ? "sRGB" : "Linear";
+  info.color_space_tagged = true;  // the format itself says
   info.subimages = int(t.faces * t.layers);
   info.mip_levels = int(t.levels);
   for (std::uint32_t l = 0; l < t.levels; ++l) info.level_sizes.emplace_back(int(t.level_width(l)), int(t.level_height(l)));

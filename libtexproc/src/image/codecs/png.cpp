@@ -88,7 +88,10 @@ ImageFileInfo info_of(const std::string& path, spng_ctx* ctx, const PngLayout& L
   std::uint8_t intent = 0;
   std::uint32_t gamma = 0;
   info.color_space_tag = "sRGB";
+  struct spng_iccp iccp {};
+  info.color_space_tagged = spng_get_srgb(ctx, &intent) == 0 || spng_get_iccp(ctx, &iccp) == 0;
   if (spng_get_srgb(ctx, &intent) != 0 && spng_get_gama_int(ctx, &gamma) == 0 && gamma > 0) {
+    info.color_space_tagged = true;
     const float g = std::round(100.0f * float(100000.0 / double(gamma))) / 100.0f;
     if (g == 1.0f) {
       info.color_space_tag = "linear";

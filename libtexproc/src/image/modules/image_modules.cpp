@@ -70,6 +70,7 @@ ImageFileInfo probe(Module m, const std::string& path) {
   info.file_type = spec.file_type;
   info.type = from_tp(spec.type);
   info.color_space_tag = spec.color_space;
+  info.color_space_tagged = spec.color_space[0] != 0;  // as OpenImageIO reports it
   info.subimages = spec.subimages;
   info.mip_levels = spec.mip_levels;
   for (int l = 0; l < std::min(spec.mip_levels, int(TP_IMAGE_MAX_LEVELS)); ++l) {
