@@ -29,6 +29,9 @@ def rules(rel):
                     lambda k, h: k == "<" and (h.startswith("hwy/") or h.startswith("tbb/"))))
         out.append(("the CLI includes only public headers and its own",
                     lambda k, h: k == '"' and "/" in h and not h.startswith("texproc/")))
+    if rel.startswith("python/"):
+        out.append(("the Python extension includes only public headers, pybind11 and its own",
+                    lambda k, h: k == '"' and "/" in h and not h.startswith("texproc/")))
     if rel.startswith("libtexproc/include/"):
         out.append(("public headers include the standard library and texproc/ only",
                     lambda k, h: (k == '"' and not h.startswith("texproc/")) or
@@ -57,7 +60,7 @@ def rules(rel):
 def main():
     bad = 0
     checked = 0
-    for top in ("cli", "libtexproc"):
+    for top in ("cli", "libtexproc", "python"):
         for d, _, files in os.walk(os.path.join(ROOT, top)):
             for f in files:
                 if not f.endswith((".cpp", ".h")):
@@ -80,6 +83,7 @@ def self_test():
     breaks = {
         "cli/cmd_x.cpp": "#include <tbb/parallel_for.h>\n",
         "cli/cmd_y.cpp": '#include "bc/bc1_lanes.h"\n',
+        "python/src/x.cpp": '#include "core/module.h"\n',
         "libtexproc/include/texproc/x.h": "#include <hwy/highway.h>\n",
         "libtexproc/src/bc/bc_decode.cpp": '#include "bc/bc1_encode.h"\n',
         "libtexproc/src/container/ktx9.cpp": '#include "texproc/block_encode.h"\n',

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The size rules of docs/architecture.md, checked on every source file of
-libtexproc/ and cli/: no file over 600 lines, no function (or lambda, or
+libtexproc/, cli/ and python/: no file over 600 lines, no function (or lambda, or
 member function) body over 150 lines unless the comment just above it says
 why with a line starting `// Long:`. Exit 1 naming each one that breaks a
 rule. Run by ctest (Layers.Sizes).
@@ -72,7 +72,7 @@ def reasoned(lines, start):
 def main():
     bad = 0
     checked = 0
-    for top in ("cli", "libtexproc"):
+    for top in ("cli", "libtexproc", "python"):
         for d, _, files in os.walk(os.path.join(ROOT, top)):
             for f in sorted(files):
                 if not f.endswith((".cpp", ".h")):
