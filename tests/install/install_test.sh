@@ -4,6 +4,7 @@
 # build tree; a CMake project (find_package) and a Makefile-style build
 # (pkg-config) compile against the installed headers and library and run
 # (a mip chain, BC1 and an OpenEXR file through the installed module); the
+# installed Python package reads an EXR and compresses as the tool does; the
 # installed texproc runs a sample, also from a copy of the prefix moved
 # elsewhere (modules found relative to the binary).
 #   tests/install/install_test.sh BUILD_DIR SOURCE_DIR
@@ -46,13 +47,36 @@ c++ -std=c++20 -O1 $(pkg-config --cflags texproc) "$SRC/tests/install/consumer/c
   -o "$WORK/pc_consumer" $(pkg-config --libs texproc) || fail "building against pkg-config texproc"
 TEXPROC_MODULE_DIR="$LIBDIR/texproc" "$WORK/pc_consumer" "$WORK/level1_pc.exr" || fail "the pkg-config consumer"
 
-# 3. The installed tool, in place and moved (modules relative to the binary).
+# 3. The Python package (where the build has it), in place and below.
+PYEXT=$(find "$PREFIX" -name '_texproc*.so' | head -1)
+py_check() {  # site-packages folder, output file
+  env -u PYTHONPATH PYTHONPATH="$1" /usr/bin/python3 -c "
+import sys, texproc
+assert texproc.__file__.startswith(sys.argv[1]), texproc.__file__
+sky = texproc.read_image(sys.argv[2])      # OpenEXR: the module beside the extension
+t = texproc.compress(texproc.read_image(sys.argv[3]), 'bc7_srgb', mips=True)
+open(sys.argv[4], 'wb').write(t.to_bytes('ktx2'))
+" "$1" "$SRC/samples/sky_forest_512x256.exr" "$SRC/samples/albedo_desert_512.png" "$2"
+}
+if [ -n "$PYEXT" ]; then
+  SITE=$(dirname "$(dirname "$PYEXT")")
+  SITE_REL=${SITE#"$PREFIX"/}
+  py_check "$SITE" "$WORK/py.ktx2" || fail "the installed Python package"
+  "$PREFIX/bin/texproc" compress "$SRC/samples/albedo_desert_512.png" -o "$WORK/cli.ktx2" --format bc7 --mips -q
+  cmp -s "$WORK/py.ktx2" "$WORK/cli.ktx2" || fail "the installed Python package and texproc wrote other bytes"
+fi
+
+# 4. The installed tool, in place and moved (modules relative to the binary).
 "$PREFIX/bin/texproc" --version | grep -q "^texproc " || fail "texproc --version"
 "$PREFIX/bin/texproc" mip "$SRC/samples/albedo_desert_512.png" -o "$WORK/a.exr" -q || fail "installed texproc mip -> .exr"
 mv "$PREFIX" "$WORK/moved"
 "$WORK/moved/bin/texproc" mip "$SRC/samples/albedo_desert_512.png" -o "$WORK/b.exr" -q ||
   fail "texproc moved to another prefix: mip -> .exr"
 cmp -s "$WORK/a.exr" "$WORK/b.exr" || fail "the moved texproc wrote other bytes"
+if [ -n "$PYEXT" ]; then
+  py_check "$WORK/moved/$SITE_REL" "$WORK/py_moved.ktx2" || fail "the Python package moved to another prefix"
+  cmp -s "$WORK/py.ktx2" "$WORK/py_moved.ktx2" || fail "the moved Python package wrote other bytes"
+fi
 # --module-dir names a folder; a folder without the modules is an error naming what was tried.
 if "$WORK/moved/bin/texproc" --module-dir "$WORK" mip "$SRC/samples/albedo_desert_512.png" -o "$WORK/c.exr" -q \
     2>"$WORK/err"; then
@@ -60,6 +84,6 @@ if "$WORK/moved/bin/texproc" --module-dir "$WORK" mip "$SRC/samples/albedo_deser
 fi
 grep -q "texproc_exr.so" "$WORK/err" || { cat "$WORK/err"; fail "the error does not name the module"; }
 [ ! -e "$WORK/c.exr" ] || fail "a failed run left c.exr"
-"$WORK/moved/bin/texproc" --module-dir "$(dirname "$(find "$WORK/moved" -name texproc_exr.so)")" \
+"$WORK/moved/bin/texproc" --module-dir "$(dirname "$(find "$WORK/moved" -name texproc_exr.so -not -path '*-packages*' | head -1)")" \
   mip "$SRC/samples/albedo_desert_512.png" -o "$WORK/d.exr" -q || fail "--module-dir with the modules"
 echo "install, find_package, pkg-config and relocation: ok"
