@@ -1,7 +1,7 @@
 #include "batch.h"
 #include "report.h"
 
-#include "texproc/file_io.h"
+#include "texproc/tools.h"
 
 #include <json/writer.h>
 #include <sys/stat.h>
@@ -366,7 +366,8 @@ void report_kept(FileReport& r, const std::vector<Identity>& before) {
   r.line.insert(nl == std::string::npos ? r.line.size() : nl, note);
 }
 
-void run_file(const BatchCommand& c, FileReport& r, const std::string& output, const CommonOptions& common) {
+void run_file(const BatchCommand& c, FileReport& r, const std::string& output, const CommonOptions& common,
+              CommitPolicy policy) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<Identity> before;
   if (write_if_changed()) {
@@ -375,7 +376,7 @@ void run_file(const BatchCommand& c, FileReport& r, const std::string& output, c
   try {
     // The file's outputs are put in place together once all are written,
     // or none is.
-    CommitGroup outputs;
+    CommitGroup outputs(policy);
     c.run(r.input, output, r);
     outputs.commit();
     if (write_if_changed()) report_kept(r, before);
@@ -435,9 +436,9 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
   // Without --force (or --write-if-changed), an output that appears between
   // the check below and the end of the work is not replaced either: the
   // final rename refuses it atomically (two processes, one output).
-  if (!write_if_changed()) {
-    set_commit_policy(common.force || s.incremental ? CommitPolicy::replace : CommitPolicy::no_replace);
-  }
+  const CommitPolicy policy = write_if_changed()             ? CommitPolicy::keep_identical
+                              : common.force || s.incremental ? CommitPolicy::replace
+                                                              : CommitPolicy::no_replace;
   std::vector<FileReport> reports = plan_files(c, files, outputs, shared_inputs);
   check_no_input_overwritten(reports, outputs);
   check_one_writer(reports, outputs);
@@ -484,7 +485,7 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
         FileReport& r = reports[todo[k]];
         progress.started(r.input);
         r.progress = [&progress, &r](double done) { progress.fraction(r.input, done); };
-        run_file(c, r, outputs[todo[k]], common);
+        run_file(c, r, outputs[todo[k]], common, policy);
       },
       [&](std::size_t k) {
         FileReport& r = reports[todo[k]];

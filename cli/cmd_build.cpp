@@ -20,7 +20,7 @@
 #include "common.h"
 #include "recipe.h"
 #include "texproc/error.h"
-#include "texproc/file_io.h"
+#include "texproc/tools.h"
 
 namespace fs = std::filesystem;
 

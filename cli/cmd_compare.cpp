@@ -42,7 +42,7 @@ struct Loaded {
 Loaded load(const std::string& path, int level) {
   Loaded l;
   if (is_texture_container(path)) {
-    l.texture = read_texture(path);
+    l.texture = read_texture(path, cli_read_options().limits);
     l.is_texture = true;
     if (level < 0 || std::uint32_t(level) >= l.texture.levels) {
       throw Error(ErrorCode::bad_arguments, path + ": --level " + std::to_string(level) + " (valid: 0 to " +
@@ -56,7 +56,7 @@ Loaded load(const std::string& path, int level) {
     return l;
   }
   if (level != 0) throw Error(ErrorCode::bad_arguments, path + ": --level applies to textures (.dds, .ktx2, .ktx)");
-  l.image = read_image(path);
+  l.image = read_image(path, nullptr, cli_read_options());
   l.shape = l.image.view();
   return l;
 }

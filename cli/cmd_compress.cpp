@@ -249,7 +249,7 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   check_dds_header_fits(a.dds_header, output);
   zstd_level_for(a.zstd, output);  // checked before any work
   PhaseTimer phases(r);
-  ImageArray in = read_image_array(input);
+  ImageArray in = read_image_array(input, nullptr, cli_read_options());
   for (Image& im : in.images) read_as_finite(input, im, r.warnings);
   phases.read_done();
   const PixelType input_type = in.images[0].type();

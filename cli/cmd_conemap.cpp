@@ -74,10 +74,11 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
   // The progress line: the map, and with a preview the other kind of map as the second half.
   const double share = r.outputs.size() > 1 ? 0.5 : 1.0;
   if (r.progress) o.progress = [&r, share](double done) { r.progress(done * share); };
-  const WriteOptions& w = a.write;
+  WriteOptions w = a.write;
+  w.io_path = cli_write_options().io_path;
   PhaseTimer phases(r);
   ImageFileInfo info;
-  Image img = read_image(input, &info);
+  Image img = read_image(input, &info, cli_read_options());
   read_as_finite(input, img, r.warnings);
   phases.read_done();
   const std::vector<float> h = extract_height(img.view(), a.channel, a.invert);
@@ -125,7 +126,7 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
     const Image shown = render_preview(h, relaxed ? second : ratios, width, height, o, a.preview_size,
                                        a.view_angle, relaxed ? ratios : second);
     phases.compute_done();
-    write_image(preview, shown.view());
+    write_image(preview, shown.view(), cli_write_options());
     phases.write_done();
   }
   std::ostringstream line;

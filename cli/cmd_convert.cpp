@@ -31,7 +31,7 @@ std::string shape_of(const Texture& t) {
 
 void run_convert(const ConvertArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   PhaseTimer phases(r);
-  const Texture t = read_texture(input);
+  const Texture t = read_texture(input, cli_read_options().limits);
   phases.read_done();
   // The target container refuses what it cannot hold (BC in PKM, mips in
   // .astc, ETC in DDS...) with the reason, naming the output; nothing is

@@ -13,7 +13,7 @@
 #include "texproc/container.h"
 #include "texproc/cubemap.h"
 #include "texproc/error.h"
-#include "texproc/file_io.h"
+#include "texproc/tools.h"
 #include "texproc/image_io.h"
 #include "texproc/runtime.h"
 
@@ -119,7 +119,7 @@ Target target_for(const CubemapArgs& a, const std::string& output) {
 std::string image_extension_for(const std::string& input, const std::string& output) {
   std::string ext = fs::path(output).extension().string();
   if (ext == ".jpg" || ext == ".jpeg" || is_container_path(output) || ext.empty()) {
-    const ImageFileInfo info = probe_image(input);
+    const ImageFileInfo info = probe_image(input, cli_read_options());
     ext = info.type == PixelType::f32 ? ".exr" : ".png";
   }
   return ext;
@@ -206,7 +206,7 @@ Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r
   if (!a.faces.empty()) {
     std::array<Image, 6> faces;
     for (int f = 0; f < 6; ++f) {
-      Image img = read_image(a.faces[f]);
+      Image img = read_image(a.faces[f], nullptr, cli_read_options());
       read_as_finite(a.faces[f], img, r.warnings);
       if (img.width() != img.height()) {
         throw Error(ErrorCode::bad_arguments, a.faces[f] + ": a face is square; this one is " +
@@ -233,7 +233,7 @@ Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r
     s.layout = "faces";
   } else {
     ImageFileInfo info;
-    ImageArray in = read_image_array(input, &info);
+    ImageArray in = read_image_array(input, &info, cli_read_options());
     for (Image& im : in.images) read_as_finite(input, im, r.warnings);
     phases.read_done();
     s.hdr = in.images[0].type() == PixelType::f32;
@@ -349,7 +349,7 @@ void write_images(const Source& s, const std::vector<Image>& levels, const std::
   const bool keeps_float = ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff" || ext == ".pfm";
   const int channels = s.alpha ? 4 : 3;
   std::vector<Image> out;
-  WriteOptions w;
+  WriteOptions w = cli_write_options();
   if (keeps_float) {
     for (const Image& l : levels) out.push_back(from_linear_rgba(l.view(), ColorSpace::linear(), channels, PixelType::f32));
     w.half = ext == ".exr";
@@ -450,7 +450,7 @@ void run_cubemap(const CubemapArgs& a, const std::string& input, const std::stri
     if (!plan.sh.empty()) write_sh(plan.sh, project_sh9(env));
     if (!plan.preview.empty()) {
       const Image p = render_cube_preview(env, specular.levels.empty() ? nullptr : &specular, a.exposure);
-      write_image(plan.preview, p.view());
+      write_image(plan.preview, p.view(), cli_write_options());
     }
     phases.write_done();
     std::ostringstream line;

@@ -43,7 +43,7 @@ std::vector<std::string> plan(const DecompressArgs& a, const std::string& input,
   const bool folder = !a.io.output.empty() && (a.io.output.back() == '/' || fs::is_directory(a.io.output));
   const bool default_png = folder && fs::path(output).extension() == ".png";
   if (!default_png && !a.all_levels) return {output};
-  const Texture t = read_texture(input);
+  const Texture t = read_texture(input, cli_read_options().limits);
   if (default_png && format_info(t.format).is_float) output = fs::path(output).replace_extension(".exr").string();
   if (!a.all_levels) return {output};
   // One level, or a file that holds a MIP chain (.exr, .tif): the one output.
@@ -55,6 +55,7 @@ void run_decompress(const DecompressArgs& a, const std::string& input, const std
   // plan() may have chosen another name (.exr for HDR into a folder).
   const std::string output = r.outputs.size() == 1 ? r.outputs[0] : requested;
   WriteOptions w = a.write;
+  w.io_path = cli_write_options().io_path;
   const bool exr = fs::path(output).extension() == ".exr";
   std::optional<PixelType> type = a.type_choice;
   if (!type) {
@@ -62,7 +63,7 @@ void run_decompress(const DecompressArgs& a, const std::string& input, const std
     w.half = exr;
   }
   PhaseTimer phases(r);
-  const Texture t = read_texture(input);
+  const Texture t = read_texture(input, cli_read_options().limits);
   phases.read_done();
   check_index(input, "--level", a.level, t.levels);
   check_index(input, "--layer", a.layer, t.layers);

@@ -64,7 +64,7 @@ void describe(const std::string& path, std::ostringstream& json, std::ostringstr
     return;
   }
   if (is_texture_container(path)) {
-    ReadLimits headers = read_limits_from_environment();
+    ReadLimits headers = cli_read_options().limits;
     headers.headers_only = true;  // the facts, without inflating or copying a level
     const Texture t = read_texture(path, headers);
     const FormatInfo& f = format_info(t.format);
@@ -121,7 +121,7 @@ void describe(const std::string& path, std::ostringstream& json, std::ostringstr
     }
     return;
   }
-  const ImageFileInfo i = probe_image(path);
+  const ImageFileInfo i = probe_image(path, cli_read_options());
   json << "{\"file\": " << quoted(path) << ", \"container\": " << quoted(i.format) << ", \"width\": " << i.width
        << ", \"height\": " << i.height << ", \"channels\": " << i.channels << ", \"type\": " << quoted(i.file_type)
        << ", \"color_space_tag\": " << quoted(i.color_space_tag)

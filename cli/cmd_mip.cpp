@@ -65,7 +65,7 @@ void validate(MipArgs& a) {
 
 std::vector<std::string> plan(const MipArgs& a, const std::string& input, const std::string& output) {
   if (is_container_path(output)) return {output};
-  const ImageFileInfo info = probe_image(input);
+  const ImageFileInfo info = probe_image(input, cli_read_options());
   return level_outputs(output, mip_level_count(info.width, info.height, a.mip.max_levels, a.mip.min_size));
 }
 
@@ -75,6 +75,7 @@ void report_mip(const MipArgs& a, const std::string& input, const std::string& o
 void run_mip(const MipArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   MipOptions o = a.mip;
   WriteOptions w = a.write;
+  w.io_path = cli_write_options().io_path;
   const bool container = is_container_path(output);
   if (!o.output_type && fs::path(output).extension() == ".exr") {
     o.output_type = PixelType::f32;  // OpenEXR holds floats: write half
@@ -84,7 +85,7 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
   zstd_level_for(a.zstd, output);  // checked before any work
   PhaseTimer phases(r);
   ImageFileInfo info;
-  ImageArray in = read_image_array(input, &info);
+  ImageArray in = read_image_array(input, &info, cli_read_options());
   for (Image& im : in.images) read_as_finite(input, im, r.warnings);
   phases.read_done();
   check_surfaces_fit(input, in, output);
@@ -102,7 +103,7 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
   MipChain chain;
   // One float OpenEXR chain down to 1x1: written band by band as the levels
   // are filtered, the chain never held.
-  if (in.images.size() == 1 && out_type == PixelType::f32 && MipFileWriter::supports(output) &&
+  if (in.images.size() == 1 && out_type == PixelType::f32 && MipFileWriter::supports(output, w) &&
       level_count == std::size_t(mip_level_count(width, height))) {
     MipFileWriter file(output, width, height, in.images[0].channels(), w);
     struct Sink final : MipRowSink {

@@ -66,18 +66,19 @@ void validate(NormalMapArgs& a) {
 
 std::vector<std::string> plan(const NormalMapArgs& a, const std::string& input, const std::string& output) {
   if (!a.mips || is_container_path(output)) return {output};
-  const ImageFileInfo info = probe_image(input);
+  const ImageFileInfo info = probe_image(input, cli_read_options());
   return level_outputs(output, mip_level_count(info.width, info.height, a.chain.levels, a.chain.min_size));
 }
 
 void run_normalmap(const NormalMapArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   const NormalMapOptions& o = a.options;
   WriteOptions w = a.write;
+  w.io_path = cli_write_options().io_path;
   check_dds_header_fits(a.dds_header, output);
   zstd_level_for(a.zstd, output);  // checked before any work
   PhaseTimer phases(r);
   ImageFileInfo info;
-  Image heights = read_image(input, &info);
+  Image heights = read_image(input, &info, cli_read_options());
   read_as_finite(input, heights, r.warnings);
   phases.read_done();
   std::optional<PixelType> type = a.type_choice;

@@ -55,7 +55,7 @@ void run_build(const SatArgs& a, const std::string& input, const std::string& ou
   if (!a.precision.empty()) requested = parse_sat_precision(a.precision);
   PhaseTimer phases(r);
   ImageFileInfo info;
-  Image img = read_image(input, &info);
+  Image img = read_image(input, &info, cli_read_options());
   read_as_finite(input, img, r.warnings);
   phases.read_done();
   const SatPrecision p = requested ? *requested : default_sat_precision(img.type(), img.width(), img.height());
@@ -75,7 +75,7 @@ void run_build(const SatArgs& a, const std::string& input, const std::string& ou
         }
     });
     phases.compute_done();
-    write_image(output, view.view());
+    write_image(output, view.view(), cli_write_options());
   }
   phases.write_done();
   std::ostringstream line;
@@ -131,14 +131,14 @@ void validate_blur(SatArgs& a) {
   if (a.blur.wrap == WrapMode::mirror) throw Error(ErrorCode::bad_arguments, "--wrap for sat blur: valid: clamp, repeat");
   a.blur.color_space = a.linear ? "linear" : a.color_space;
   if (!a.radius_map.empty()) {
-    a.map = read_image(a.radius_map);
+    a.map = read_image(a.radius_map, nullptr, cli_read_options());
     record_input(a.radius_map);
   }
 }
 
 void run_blur(const SatArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   PhaseTimer phases(r);
-  Image img = read_image(input);
+  Image img = read_image(input, nullptr, cli_read_options());
   read_as_finite(input, img, r.warnings);
   phases.read_done();
   BoxBlurOptions o = a.blur;
@@ -146,7 +146,7 @@ void run_blur(const SatArgs& a, const std::string& input, const std::string& out
   if (!a.map.empty()) o.radius_map = &mv;
   const Image out = box_blur(img.view(), o);
   phases.compute_done();
-  write_image(output, out.view(), WriteOptions{});
+  write_image(output, out.view(), cli_write_options());
   phases.write_done();
   r.line = input + " -> " + output + ": box blur radius " + number(a.radius) +
            (a.radius_map.empty() ? "" : " x " + a.radius_map) + ", wrap " + a.wrap;

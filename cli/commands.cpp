@@ -11,7 +11,7 @@
 #include "exit_codes.h"
 #include "report.h"
 #include "texproc/error.h"
-#include "texproc/file_io.h"
+#include "texproc/tools.h"
 
 namespace texproc::cli {
 
@@ -141,7 +141,6 @@ int run_selected(CLI::App& app) {
     CommandRunner* run = runner_of(*sub);
     if (!run) break;
     try {
-      if (write_if_changed()) set_commit_policy(CommitPolicy::keep_identical);
       const int rc = (*run)();
       if (rc == 0) write_depfile_if_requested();
       print_failure_summary(cmd);

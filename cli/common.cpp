@@ -15,7 +15,7 @@
 
 #include "batch.h"
 #include "texproc/error.h"
-#include "texproc/file_io.h"
+#include "texproc/tools.h"
 
 namespace fs = std::filesystem;
 
@@ -265,6 +265,17 @@ std::vector<std::string> level_outputs(const std::string& output, int levels) {
     names.push_back((p.parent_path() / (p.stem().string() + "_mip" + std::to_string(l) + p.extension().string())).string());
   }
   return names;
+}
+
+const ReadOptions& cli_read_options() {
+  static const ReadOptions options = ReadOptions::from_environment();
+  return options;
+}
+
+WriteOptions cli_write_options() {
+  WriteOptions w;
+  w.io_path = cli_read_options().io_path;
+  return w;
 }
 
 void write_levels(const std::string& output, const std::vector<Image>& levels, const WriteOptions& options) {

@@ -52,6 +52,13 @@ CommandRunner* runner_of(CLI::App& cmd);
 // Creates the parent folder (not under --dry-run). Throws Error{bad_arguments}.
 void check_output(const std::string& output, const std::vector<std::string>& inputs, bool force);
 
+// How the tool reads files: ReadOptions::from_environment() (TEXPROC_IMAGE_IO,
+// TEXPROC_MAX_IMAGE_PIXELS, TEXPROC_MAX_JPEG_SCANS, TEXPROC_MAX_TEXTURE_BYTES),
+// read once.
+const texproc::ReadOptions& cli_read_options();
+// Default write options, with the image I/O path of cli_read_options().
+texproc::WriteOptions cli_write_options();
+
 // Options that shape a mip chain, shared by every command that writes one.
 struct ChainArgs {
   std::string filter = "gaussian";

@@ -11,7 +11,7 @@
 #include "commands.h"
 #include "common.h"
 #include "exit_codes.h"
-#include "texproc/file_io.h"
+#include "texproc/tools.h"
 #include "texproc/version.h"
 
 namespace {

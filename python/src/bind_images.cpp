@@ -34,6 +34,11 @@ MipOptions mip_options(const std::string& filter, float sigma, const std::string
   return o;
 }
 
+const ReadOptions& read_options() {
+  static const ReadOptions options = ReadOptions::from_environment();
+  return options;
+}
+
 namespace {
 
 py::dict file_info_dict(const ImageFileInfo& i) {
@@ -56,7 +61,7 @@ py::array read(const std::string& path) {
   Image image;
   {
     py::gil_scoped_release release;
-    image = read_image(path);
+    image = read_image(path, nullptr, read_options());
   }
   return to_array(std::move(image));
 }
@@ -65,6 +70,7 @@ void write(const std::string& path, const py::handle& array, bool half, const st
            const std::string& color_space, int quality, bool red_green) {
   const InputImage in(array, "image");
   WriteOptions o;
+  o.io_path = read_options().io_path;
   o.half = half;
   o.compression = compression;
   o.color_space = color_space;
@@ -151,7 +157,7 @@ void bind_images(py::module_& m) {
   m.def("read_image", &read, py::arg("path"),
         "Reads an image file (PNG, JPEG, TGA, TIFF, OpenEXR, DDS/KTX2/KTX1/PKM/.astc level 0 decoded, and what "
         "OpenImageIO reads) as an array: height x width x channels of uint8, uint16 or float32.");
-  m.def("probe_image", [](const std::string& path) { return file_info_dict(probe_image(path)); }, py::arg("path"),
+  m.def("probe_image", [](const std::string& path) { return file_info_dict(probe_image(path, read_options())); }, py::arg("path"),
         "Header facts of an image file without reading its pixels, as a dict.");
   m.def("write_image", &write, py::arg("path"), py::arg("image"), py::kw_only(), py::arg("half") = false,
         py::arg("compression") = "", py::arg("color_space") = "", py::arg("quality") = 95,

@@ -78,7 +78,7 @@ TexturePtr from_bytes(const py::buffer& data, const std::string& name) {
     throw Error(ErrorCode::invalid_file, name + ": not a DDS, KTX2, KTX1, PKM or .astc file (no signature)");
   }
   py::gil_scoped_release release;
-  const ReadLimits limits = read_limits_from_environment();
+  const ReadLimits& limits = read_options().limits;
   switch (kind) {
     case ContainerKind::dds: return std::make_shared<Texture>(decode_dds(p, n, name, limits));
     case ContainerKind::ktx2: return std::make_shared<Texture>(decode_ktx2(p, n, name, limits));
@@ -294,7 +294,7 @@ void bind_textures(py::module_& m) {
   bind_texture_class(m);
   m.def("read_texture", [](const std::string& path) {
         py::gil_scoped_release release;
-        return std::make_shared<Texture>(read_texture(path));
+        return std::make_shared<Texture>(read_texture(path, read_options().limits));
       }, py::arg("path"), "Reads a DDS, KTX2, KTX1, PKM or .astc file.");
   m.def("compress", &compress, py::arg("image"), py::arg("format"), py::kw_only(), py::arg("quality") = "normal",
         py::arg("mips") = false, py::arg("faces") = 1, py::arg("is_array") = false, py::arg("color_space") = "",

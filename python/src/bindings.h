@@ -17,6 +17,7 @@ void bind_cubemaps(py::module_& m);  // bind_cubemaps.cpp: cube maps and image-b
 #include <optional>
 #include <string>
 
+#include "texproc/image_io.h"
 #include "texproc/mip.h"
 
 namespace texproc::py_binding {
@@ -25,5 +26,9 @@ namespace texproc::py_binding {
 MipOptions mip_options(const std::string& filter, float sigma, const std::string& wrap,
                        std::optional<float> alpha_coverage, bool premultiplied_alpha, bool normal_map,
                        int max_levels, int min_size);
+
+// How the package reads files: as the texproc tool does
+// (ReadOptions::from_environment(), read once).
+const ReadOptions& read_options();
 
 }  // namespace texproc::py_binding

@@ -18,7 +18,7 @@ std::vector<std::uint8_t> ktx2(const Texture& t) { return encode_ktx2(t, "fuzz")
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   ReadLimits limits;
-  limits.max_dimension = 4096;
+  limits.max_texture_dimension = 4096;
   limits.max_layers = 64;
   limits.max_inflated_bytes = std::uint64_t(64) << 20;
   const std::pair<Decode, Encode> kinds[] = {{decode_dds, dds}, {decode_ktx2, ktx2}, {decode_ktx1, encode_ktx1},

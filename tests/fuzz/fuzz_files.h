@@ -21,13 +21,15 @@ inline std::string put_file(const char* tag, const std::string& ext, const std::
   return std::fclose(f) == 0 && ok ? path : "";
 }
 
-// Images of at most 4096 a side and 4 Mpixels: the harnesses look for
-// faults, not for large allocations the limits allow.
-inline void limit_images() {
-  ImageReadLimits l;
-  l.max_dimension = 4096;
-  l.max_pixels = 1 << 22;
-  set_image_read_limits(l);
+// Images of at most 4096 a side and 4 Mpixels, textures inflating to at
+// most 16 MiB: the harnesses look for faults, not for large allocations the
+// limits allow.
+inline ReadOptions limited_reads() {
+  ReadOptions o;
+  o.limits.max_image_dimension = 4096;
+  o.limits.max_image_pixels = 1 << 22;
+  o.limits.max_inflated_bytes = std::uint64_t(16) << 20;
+  return o;
 }
 
 }  // namespace texproc::fuzz

@@ -18,11 +18,7 @@ using namespace texproc;
 
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const bool once = [] {
-    fuzz::limit_images();
-    return true;
-  }();
-  (void)once;
+  const ReadOptions reads = fuzz::limited_reads();
   for (const char* ext : {".png", ".tga", ".sat"}) {  // PNG/JPEG/TIFF/EXR by signature, whatever the name
     const std::string path = fuzz::put_file("img", ext, data, size);
     if (path.empty()) return 0;
@@ -30,8 +26,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if (std::string(ext) == ".sat") {
         read_sat_file(path);
       } else {
-        const ImageFileInfo info = probe_image(path);
-        const Image img = read_image(path);
+        const ImageFileInfo info = probe_image(path, reads);
+        const Image img = read_image(path, nullptr, reads);
         if (img.width() != info.width || img.height() != info.height) __builtin_trap();
       }
     } catch (const Error&) {

@@ -40,15 +40,9 @@ void decode_all(const Texture& t) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const bool once = [] {
-    fuzz::limit_images();
-    // The file paths' budget (read_texture takes the environment's).
-    ::setenv("TEXPROC_MAX_TEXTURE_BYTES", "16777216", 1);
-    return true;
-  }();
-  (void)once;
+  const ReadOptions reads = fuzz::limited_reads();
   ReadLimits limits;
-  limits.max_dimension = 1024;
+  limits.max_texture_dimension = 1024;
   limits.max_layers = 16;
   limits.max_inflated_bytes = std::uint64_t(16) << 20;
   const Decode decoders[] = {decode_dds, decode_ktx2, decode_ktx1, decode_pkm, decode_astc};
@@ -71,8 +65,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::string path = fuzz::put_file("tex", ext, data, size);
     if (path.empty()) return 0;
     try {
-      const ImageFileInfo info = probe_image(path);
-      const ImageArray all = read_image_array(path);
+      const ImageFileInfo info = probe_image(path, reads);
+      const ImageArray all = read_image_array(path, nullptr, reads);
       if (all.images.empty() || all.images[0].width() != info.width || all.images[0].height() != info.height) {
         __builtin_trap();
       }

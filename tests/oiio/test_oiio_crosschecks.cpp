@@ -131,9 +131,9 @@ TEST(ImageCodecs, RedGreenDataIsNotGreyAndAlpha) {
         EXPECT_EQ(d.row<std::uint8_t>(y)[3 * x + 1], rg.row<std::uint8_t>(y)[2 * x + 1]) << out;
       }
   }
-  set_image_io_path(ImageIoPath::oiio);  // OpenImageIO sees the channel names
-  const ImageFileInfo e = probe_image(dir + "/d.exr");
-  set_image_io_path(ImageIoPath::direct);
+  ReadOptions through_oiio;
+  through_oiio.io_path = ImageIoPath::oiio;  // OpenImageIO sees the channel names
+  const ImageFileInfo e = probe_image(dir + "/d.exr", through_oiio);
   EXPECT_EQ(e.channels, 2);
   auto in = OIIO::ImageInput::open(dir + "/d.exr");
   ASSERT_TRUE(in);

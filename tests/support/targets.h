@@ -14,9 +14,10 @@ namespace texproc::test {
 
 template <typename F>
 void expect_same_on_every_target(F&& compute, const std::string& what) {
-  set_force_scalar(true);
-  const auto scalar = compute();
-  set_force_scalar(false);
+  const auto scalar = [&] {
+    ScalarKernels scalar_only;
+    return compute();
+  }();
   for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
     hwy::SetSupportedTargetsForTest(target);
     EXPECT_EQ(compute(), scalar) << what << " " << hwy::TargetName(target);

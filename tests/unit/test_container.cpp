@@ -414,7 +414,7 @@ TEST(Container, ReaderLimitsAndMessages) {
   Texture t = random_texture(TexelFormat::r8_unorm, 64, 2, 1, 1, 1, 2);
   std::vector<std::uint8_t> b = encode_dds(t);
   ReadLimits small;
-  small.max_dimension = 32;
+  small.max_texture_dimension = 32;
   try {
     decode_dds(b.data(), b.size(), "big.dds", small);
     FAIL();

@@ -32,16 +32,11 @@ struct Read {
 };
 
 Read read_with(ImageIoPath path, const std::string& file) {
-  set_image_io_path(path);
+  ReadOptions options;
+  options.io_path = path;
   Read r;
-  try {
-    r.probed = probe_image(file);
-    r.image = read_image(file, &r.info);
-  } catch (...) {
-    set_image_io_path(ImageIoPath::direct);
-    throw;
-  }
-  set_image_io_path(ImageIoPath::direct);
+  r.probed = probe_image(file, options);
+  r.image = read_image(file, &r.info, options);
   return r;
 }
 

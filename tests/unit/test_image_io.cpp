@@ -11,7 +11,7 @@
 #include "support/images.h"
 #include "texproc/container.h"
 #include "texproc/error.h"
-#include "texproc/file_io.h"
+#include "texproc/tools.h"
 #include "texproc/image_io.h"
 #include "texproc/mip.h"
 
@@ -137,6 +137,54 @@ TEST(ImageIo, ErrorsNameTheFileAndKind) {
 
 // A write that fails leaves neither the final file nor a temporary behind,
 // and a file that existed before is untouched.
+// The limits a read runs under come with the call; nothing else changes them.
+TEST(ImageIo, ReadLimitsComeWithTheCall) {
+  const std::string dir = temp_dir("limits");
+  const std::string png = dir + "/a.png";
+  write_image(png, Image(64, 32, 3, PixelType::u8).view());
+  ReadOptions small;
+  small.limits.max_image_pixels = 1000;
+  for (ImageIoPath io : {ImageIoPath::direct, ImageIoPath::oiio}) {
+    small.io_path = io;
+    try {
+      read_image(png, nullptr, small);
+      ADD_FAILURE() << "a 64x32 image read under a limit of 1000 pixels";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ErrorCode::invalid_file);
+      EXPECT_NE(std::string(e.what()).find(png), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(probe_image(png, small), Error);
+  }
+  EXPECT_EQ(read_image(png).width(), 64);  // the defaults again: no state was left behind
+  fs::remove_all(dir);
+}
+
+// ReadLimits{} and ReadOptions{} are the documented defaults whatever the
+// environment says; from_environment() takes each variable that holds a
+// positive number.
+TEST(ImageIo, ReadOptionsFromEnvironment) {
+  ::setenv("TEXPROC_MAX_IMAGE_PIXELS", "1234", 1);
+  ::setenv("TEXPROC_MAX_JPEG_SCANS", "7", 1);
+  ::setenv("TEXPROC_MAX_TEXTURE_BYTES", "4096", 1);
+  ::setenv("TEXPROC_IMAGE_IO", "oiio", 1);
+  const ReadLimits defaults;
+  EXPECT_EQ(defaults.max_image_pixels, 16384LL * 8192);
+  EXPECT_EQ(ReadOptions{}.io_path, ImageIoPath::direct);
+  const ReadOptions env = ReadOptions::from_environment();
+  EXPECT_EQ(env.io_path, ImageIoPath::oiio);
+  EXPECT_EQ(env.limits.max_image_pixels, 1234);
+  EXPECT_EQ(env.limits.max_jpeg_scans, 7);
+  EXPECT_EQ(env.limits.max_inflated_bytes, 4096u);
+  for (const char* bad : {"0", "-5", "12abc", ""}) {
+    ::setenv("TEXPROC_MAX_IMAGE_PIXELS", bad, 1);
+    EXPECT_EQ(ReadLimits::from_environment().max_image_pixels, defaults.max_image_pixels) << "'" << bad << "'";
+  }
+  for (const char* name : {"TEXPROC_MAX_IMAGE_PIXELS", "TEXPROC_MAX_JPEG_SCANS", "TEXPROC_MAX_TEXTURE_BYTES", "TEXPROC_IMAGE_IO"}) {
+    ::unsetenv(name);
+  }
+  EXPECT_EQ(ReadOptions::from_environment().io_path, ImageIoPath::direct);
+}
+
 TEST(ImageIo, FailedWriteLeavesNothingBehind) {
   const std::string dir = temp_dir("atomic");
   {
@@ -166,6 +214,33 @@ TEST(ImageIo, FailedWriteLeavesNothingBehind) {
   fs::remove_all(dir);
 }
 
+// A group's policy applies to the files committed in it, a file's own policy
+// wins over it, and outside any group files replace what is there.
+TEST(ImageIo, CommitPolicyComesFromTheGroup) {
+  const std::string dir = temp_dir("group_policy");
+  const std::string path = dir + "/f.bin";
+  write_file_atomic(path, "one");
+  {
+    CommitGroup group(CommitPolicy::no_replace);
+    write_file_atomic(path, "two");
+    EXPECT_THROW(group.commit(), Error);
+  }
+  {
+    CommitGroup group(CommitPolicy::no_replace);
+    write_file_atomic(path, "three", CommitPolicy::replace);
+    group.commit();
+  }
+  std::ifstream in(path);
+  std::string s;
+  in >> s;
+  EXPECT_EQ(s, "three");
+  write_file_atomic(path, "four");  // no group: replace
+  std::ifstream again(path);
+  again >> s;
+  EXPECT_EQ(s, "four");
+  fs::remove_all(dir);
+}
+
 // CommitPolicy::keep_identical: the same bytes leave the file (and its time
 // stamp) alone; other bytes, or another size, replace it; no temporaries stay.
 TEST(ImageIo, KeepIdenticalCommitPolicy) {
@@ -174,15 +249,19 @@ TEST(ImageIo, KeepIdenticalCommitPolicy) {
   write_file_atomic(path, "abcdef");
   const auto old_time = fs::file_time_type::clock::now() - std::chrono::seconds(100);
   fs::last_write_time(path, old_time);
-  set_commit_policy(CommitPolicy::keep_identical);
-  write_file_atomic(path, "abcdef");
+  // The policy comes from the group open on this thread.
+  auto write_kept = [&](const std::string& bytes) {
+    CommitGroup group(CommitPolicy::keep_identical);
+    write_file_atomic(path, bytes);
+    group.commit();
+  };
+  write_kept("abcdef");
   EXPECT_EQ(fs::last_write_time(path), old_time);
-  write_file_atomic(path, "abcdeg");  // same size, other bytes
+  write_kept("abcdeg");  // same size, other bytes
   EXPECT_NE(fs::last_write_time(path), old_time);
   fs::last_write_time(path, old_time);
-  write_file_atomic(path, "abcdegh");  // other size
+  write_kept("abcdegh");  // other size
   EXPECT_NE(fs::last_write_time(path), old_time);
-  set_commit_policy(CommitPolicy::replace);
   std::ifstream in(path);
   std::string s;
   in >> s;

@@ -90,9 +90,8 @@ TEST(MipCascade, SameBytesForAnyThreadCountOverManyWaves) {
       ThreadLimit limit(threads);
       EXPECT_TRUE(same_chains(generate_mips(img.view(), o), reference)) << threads << " threads";
     }
-    set_force_scalar(true);
+    ScalarKernels scalar_only;
     EXPECT_TRUE(same_chains(generate_mips(img.view(), o), reference)) << "scalar";
-    set_force_scalar(false);
   }
 }
 

@@ -258,9 +258,10 @@ TEST(NormalMap, SameBytesForThreadsAndSimdTargets) {
       ThreadLimit t(2);
       two = normal_map(img.view(), o, PixelType::u16);
     }
-    set_force_scalar(true);
-    scalar = normal_map(img.view(), o, PixelType::u16);
-    set_force_scalar(false);
+    {
+      ScalarKernels scalar_only;
+      scalar = normal_map(img.view(), o, PixelType::u16);
+    }
     EXPECT_EQ(0, std::memcmp(one.data(), two.data(), one.byte_size())) << to_string(k);
     EXPECT_EQ(0, std::memcmp(one.data(), scalar.data(), one.byte_size())) << to_string(k);
     for (int64_t target : hwy::SupportedAndGeneratedTargets()) {

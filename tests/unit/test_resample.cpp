@@ -162,9 +162,17 @@ TEST(SimdTwins, HorizontalPassMatchesReferenceBitForBit) {
   }
 }
 
-TEST(SimdTwins, ForceScalarSwitch) {
-  set_force_scalar(true);
-  EXPECT_EQ(simd_target_name(), "scalar");
-  set_force_scalar(false);
+TEST(SimdTwins, ScalarKernelsNestAndEnd) {
+  if (force_scalar()) GTEST_SKIP() << "TEXPROC_FORCE_SCALAR is set";
+  {
+    ScalarKernels outer;
+    EXPECT_EQ(simd_target_name(), "scalar");
+    {
+      ScalarKernels inner;
+      EXPECT_TRUE(force_scalar());
+    }
+    EXPECT_TRUE(force_scalar());  // the outer one still holds
+  }
+  EXPECT_FALSE(force_scalar());
   EXPECT_NE(simd_target_name(), "scalar");
 }

@@ -10,6 +10,7 @@
 
 #include "support/threads.h"
 #include "texproc/runtime.h"
+#include "texproc/tools.h"
 
 using namespace texproc;
 

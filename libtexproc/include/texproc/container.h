@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "texproc/read_limits.h"
 #include "texproc/texture.h"
 
 namespace texproc {
@@ -27,23 +28,6 @@ enum class DdsHeader {
   dx10        // always the DX10 extended header
 };
 
-// What a reader accepts before it allocates anything for the texels.
-struct ReadLimits {
-  std::uint32_t max_dimension = 16384;  // DirectXTex's limit; raise for bigger textures
-  std::uint32_t max_layers = 2048;
-  // Texel bytes that supercompressed levels (KTX2 Zstandard or zlib) may
-  // inflate to, all levels together: a small file cannot make a reader
-  // allocate more. Levels stored as they are are bounded by the file's size.
-  // The default, 4 GiB, holds a 16384x16384 RGBA float texture; the CLI
-  // takes TEXPROC_MAX_TEXTURE_BYTES.
-  std::uint64_t max_inflated_bytes = std::uint64_t(4) << 30;
-  // Check every header field and the level index, but leave the images
-  // empty: what `info` needs, at the cost of reading the headers.
-  bool headers_only = false;
-};
-// ReadLimits{} with max_inflated_bytes from TEXPROC_MAX_TEXTURE_BYTES when
-// that is set to a positive number.
-ReadLimits read_limits_from_environment();
 
 // In-memory encoders and decoders (`name` appears in error messages).
 std::vector<std::uint8_t> encode_dds(const Texture& t, DdsHeader header = DdsHeader::automatic);
@@ -64,7 +48,7 @@ Texture decode_astc(const std::uint8_t* data, std::size_t size, const std::strin
 // ktx2_zstd_level applies to .ktx2 outputs (encode_ktx2's zstd_level).
 void write_texture(const std::string& path, const Texture& t, DdsHeader dds_header = DdsHeader::automatic,
                    int ktx2_zstd_level = 0);
-Texture read_texture(const std::string& path, const ReadLimits& limits = read_limits_from_environment());
+Texture read_texture(const std::string& path, const ReadLimits& limits = {});
 // How a KTX2 file stores its levels, for `info`: the supercompression scheme
 // (0 none, 2 Zstandard, 3 zlib) and each level's bytes as stored and as
 // inflated (equal without supercompression), level 0 first. Reads the

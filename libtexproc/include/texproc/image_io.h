@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "texproc/image.h"
+#include "texproc/read_limits.h"
 
 namespace texproc {
 
@@ -38,28 +39,17 @@ struct ImageFileInfo {
 // Where image files go. direct (the default): texproc's own readers and
 // writers for the formats above, the module for the rest. oiio: the module
 // for every format OpenImageIO handles (GPU containers still go through
-// texproc's readers), for comparisons and as a fallback. The environment
-// variable TEXPROC_IMAGE_IO=oiio sets it at start-up.
+// texproc's readers), for comparisons and as a fallback.
 enum class ImageIoPath { direct, oiio };
-void set_image_io_path(ImageIoPath path);
-ImageIoPath image_io_path();
 
-// Declared sizes past these are refused (Error{invalid_file}) before any
-// pixel memory is allocated. The defaults hold a 16384 x 8192 image;
-// TEXPROC_MAX_IMAGE_PIXELS overrides max_pixels at start-up.
-// A TIFF tile is refused when a side is over 1024 and over the image's
-// side rounded up to 16, or when it holds more than max_pixels.
-// A JPEG with more than max_jpeg_scans scans is refused before its
-// coefficients are decoded (a normal progressive file has about ten; each
-// scan can cost a pass over the whole image); TEXPROC_MAX_JPEG_SCANS
-// overrides it at start-up.
-struct ImageReadLimits {
-  long long max_dimension = 65536;
-  long long max_pixels = 16384LL * 8192;
-  int max_jpeg_scans = 100;
+// How read_image, read_image_array and probe_image read a file.
+struct ReadOptions {
+  ImageIoPath io_path = ImageIoPath::direct;
+  ReadLimits limits;  // sizes refused before anything is allocated
+  // The defaults, with io_path from TEXPROC_IMAGE_IO (oiio or direct) and
+  // ReadLimits::from_environment(): what the texproc tool reads with.
+  static ReadOptions from_environment();
 };
-void set_image_read_limits(const ImageReadLimits& limits);
-ImageReadLimits image_read_limits();
 
 // True once this process has loaded the OpenImageIO module.
 bool image_module_loaded();
@@ -68,9 +58,9 @@ bool image_module_loaded();
 // decoded when block-compressed), with at most 4 channels: 8-bit files give
 // u8, 16-bit u16, everything else f32. Throws Error{io} if the file cannot
 // be opened, Error{invalid_file} if it cannot be decoded or declares a size
-// past image_read_limits(), Error{unsupported} if it needs the OpenImageIO
+// past options.limits, Error{unsupported} if it needs the OpenImageIO
 // module and that cannot be loaded. Messages start with the path.
-Image read_image(const std::string& path, ImageFileInfo* info = nullptr);
+Image read_image(const std::string& path, ImageFileInfo* info = nullptr, const ReadOptions& options = {});
 
 // Every face and layer of a GPU container (level 0 of each, decoded as
 // read_image decodes it), or the one image of any other file. images holds
@@ -80,10 +70,10 @@ struct ImageArray {
   std::uint32_t faces = 1, layers = 1;
   bool is_array = false;  // an array texture, even with one layer
 };
-ImageArray read_image_array(const std::string& path, ImageFileInfo* info = nullptr);
+ImageArray read_image_array(const std::string& path, ImageFileInfo* info = nullptr, const ReadOptions& options = {});
 
 // Header facts without reading pixels. Throws as read_image.
-ImageFileInfo probe_image(const std::string& path);
+ImageFileInfo probe_image(const std::string& path, const ReadOptions& options = {});
 
 struct WriteOptions {
   bool half = false;        // store f32 pixels as 16-bit half floats (EXR, TIFF)
@@ -96,6 +86,8 @@ struct WriteOptions {
   // which have no red-green layout (a grey+alpha file would be shown as
   // transparency), get RGB with blue 0.
   bool red_green = false;
+  // ImageIoPath::oiio: the OpenImageIO module writes every format it can.
+  ImageIoPath io_path = ImageIoPath::direct;
 };
 
 // Writes one image atomically. The format follows the extension. Throws
@@ -133,8 +125,8 @@ void write_mip_file(const std::string& path, const std::vector<Image>& levels, c
 class MipFileWriter {
  public:
   // True where a path can be written this way (.exr, through texproc's
-  // OpenEXR module; not with TEXPROC_IMAGE_IO=oiio).
-  static bool supports(const std::string& path);
+  // OpenEXR module; not with ImageIoPath::oiio).
+  static bool supports(const std::string& path, const WriteOptions& options = {});
 
   // Throws Error{unsupported} where !supports(path).
   MipFileWriter(const std::string& path, int width, int height, int channels, const WriteOptions& options = {});

@@ -1,4 +1,4 @@
-// texproc/runtime.h: threads and SIMD switches for the whole library.
+// texproc/runtime.h: how many threads libtexproc uses, and its SIMD kernels.
 #pragma once
 
 #include <cstddef>
@@ -40,18 +40,19 @@ void for_each_row_block(int rows, int block_rows, const std::function<void(int, 
 void for_each_row_block(int rows, int block_rows, const std::function<void(int, int)>& fn,
                         const std::function<void(double)>& progress);
 
-// A batch of `count` items, `in_flight` at most at a time: work(i) runs in
-// parallel for i = 0, 1, ... (started in order of i), and done(i) runs for
-// each item one at a time in order of i, once it and every item before it
-// have finished work. done returning false stops the batch: no item starts
-// after that (those in flight finish and get done). Returns how many items
-// were started (the rest were not run).
-std::size_t for_each_in_order(std::size_t count, std::size_t in_flight, const std::function<void(std::size_t)>& work,
-                              const std::function<bool(std::size_t)>& done);
-
-// Forces the scalar reference kernels instead of the SIMD ones (also set by
-// the environment variable TEXPROC_FORCE_SCALAR=1). Both give identical bytes.
-void set_force_scalar(bool on);
+// While an object lives, libtexproc's dispatched kernels run their scalar
+// references instead of the SIMD ones, on every thread; both give identical
+// bytes, so this is for tests and for measuring what SIMD gains. Objects
+// nest and may be made on any thread. The environment variable
+// TEXPROC_FORCE_SCALAR=1 holds one for the life of the process.
+class ScalarKernels {
+ public:
+  ScalarKernels();
+  ~ScalarKernels();
+  ScalarKernels(const ScalarKernels&) = delete;
+  ScalarKernels& operator=(const ScalarKernels&) = delete;
+};
+// Whether a ScalarKernels object (or the environment) holds now.
 bool force_scalar();
 // The SIMD target the dispatched kernels use now ("scalar" when forced).
 std::string simd_target_name();

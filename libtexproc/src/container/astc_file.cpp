@@ -82,9 +82,9 @@ Texture decode_astc(const std::uint8_t* data, std::size_t size, const std::strin
                                    std::to_string(bytes) + " bytes of blocks, the file has " + std::to_string(size - 16)
                              : std::to_string(size - 16 - bytes) + " trailing bytes");
   }
-  if (w > limits.max_dimension || h > limits.max_dimension) {
+  if (w > limits.max_texture_dimension || h > limits.max_texture_dimension) {
     r.unsupported("texture " + std::to_string(w) + "x" + std::to_string(h) + " is larger than the limit " +
-                  std::to_string(limits.max_dimension));
+                  std::to_string(limits.max_texture_dimension));
   }
   const std::uint8_t* p = r.at(16, bytes, "block data");
   if (astc::has_hdr_blocks(p, bytes, int(bx), int(by))) t.format = astc_format(int(bx), int(by), false, true);

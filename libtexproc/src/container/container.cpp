@@ -8,7 +8,7 @@
 #include "core/fd_writer.h"
 #include "texproc/container.h"
 #include "texproc/error.h"
-#include "texproc/file_io.h"
+#include "texproc/tools.h"
 
 namespace fs = std::filesystem;
 
@@ -36,16 +36,6 @@ const char* to_string(ContainerKind k) {
   return "?";
 }
 
-ReadLimits read_limits_from_environment() {
-  ReadLimits l;
-  if (const char* e = std::getenv("TEXPROC_MAX_TEXTURE_BYTES")) {
-    char* end = nullptr;
-    const unsigned long long v = std::strtoull(e, &end, 10);
-    if (end != e && *end == '\0' && v > 0) l.max_inflated_bytes = v;
-  }
-  return l;
-}
-
 void write_texture(const std::string& path, const Texture& t, DdsHeader dds_header, int ktx2_zstd_level) {
   ByteWriter stream;
   try {
@@ -63,9 +53,9 @@ void write_texture(const std::string& path, const Texture& t, DdsHeader dds_head
   }
   // What texproc writes it reads back: nothing past the read limits.
   const ReadLimits limits;
-  if (t.width > limits.max_dimension || t.height > limits.max_dimension) {
+  if (t.width > limits.max_texture_dimension || t.height > limits.max_texture_dimension) {
     throw Error(ErrorCode::unsupported, path + ": " + std::to_string(t.width) + "x" + std::to_string(t.height) +
-                                            " is over " + std::to_string(limits.max_dimension) +
+                                            " is over " + std::to_string(limits.max_texture_dimension) +
                                             " texels a side, the most a texture may have (Direct3D 11 and 12, and "
                                             "texproc's readers): resize the image");
   }

@@ -169,9 +169,9 @@ Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string
   const std::uint32_t pf_flags = r.u32(80, "ddspf.dwFlags"), pf_fourcc = r.u32(84, "ddspf.dwFourCC");
   const std::uint32_t caps2 = r.u32(112, "dwCaps2");
   if (width == 0 || height == 0) r.fail("zero width or height");
-  if (width > limits.max_dimension || height > limits.max_dimension) {
+  if (width > limits.max_texture_dimension || height > limits.max_texture_dimension) {
     r.unsupported(std::to_string(width) + "x" + std::to_string(height) + " is larger than " +
-                  std::to_string(limits.max_dimension) + " texels a side");
+                  std::to_string(limits.max_texture_dimension) + " texels a side");
   }
   if ((caps2 & 0x200000) || depth > 1) r.unsupported("volume textures are not supported");
   std::uint32_t max_levels = 1;

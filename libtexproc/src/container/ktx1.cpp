@@ -118,7 +118,7 @@ Texture decode_ktx1(const std::uint8_t* data, std::size_t size, const std::strin
     }
   }
   if (width == 0 || height == 0) r.fail("zero pixelWidth or pixelHeight");
-  if (width > limits.max_dimension || height > limits.max_dimension) r.unsupported("texture larger than the limit");
+  if (width > limits.max_texture_dimension || height > limits.max_texture_dimension) r.unsupported("texture larger than the limit");
   if (depth > 1) r.unsupported("3D textures are not supported");
   if (faces != 1 && faces != 6) r.fail("numberOfFaces " + std::to_string(faces) + " (valid: 1, 6)");
   if (faces == 6 && width != height) {

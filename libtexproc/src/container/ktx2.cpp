@@ -184,9 +184,9 @@ const FormatInfo& check_header(const ByteReader& r, std::size_t size, const Head
     r.fail("typeSize " + std::to_string(type_size) + " (valid for " + fi->name + ": " + std::to_string(fi->type_size) + ")");
   }
   if (width == 0 || height == 0) r.fail("zero pixelWidth or pixelHeight (1D textures are not supported)");
-  if (width > limits.max_dimension || height > limits.max_dimension) {
+  if (width > limits.max_texture_dimension || height > limits.max_texture_dimension) {
     r.unsupported(std::to_string(width) + "x" + std::to_string(height) + " is larger than " +
-                  std::to_string(limits.max_dimension) + " texels a side");
+                  std::to_string(limits.max_texture_dimension) + " texels a side");
   }
   if (depth != 0) r.unsupported("3D textures are not supported");
   if (faces != 1 && faces != 6) r.fail("faceCount " + std::to_string(faces) + " (valid: 1, 6)");

@@ -71,7 +71,7 @@ Texture decode_pkm(const std::uint8_t* data, std::size_t size, const std::string
   t.width = get_be16(r, 12, "width");
   t.height = get_be16(r, 14, "height");
   if (t.width == 0 || t.height == 0) r.fail("zero width or height");
-  if (t.width > limits.max_dimension || t.height > limits.max_dimension) r.unsupported("texture larger than the limit");
+  if (t.width > limits.max_texture_dimension || t.height > limits.max_texture_dimension) r.unsupported("texture larger than the limit");
   if (ew != ((t.width + 3) & ~3u) || eh != ((t.height + 3) & ~3u)) r.fail("extended size does not match the size");
   const std::uint64_t bytes = image_bytes(t.format, t.width, t.height);
   if (size - 16 != bytes) {

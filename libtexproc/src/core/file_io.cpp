@@ -1,4 +1,4 @@
-#include "texproc/file_io.h"
+#include "texproc/tools.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -137,7 +137,6 @@ AtomicFile::~AtomicFile() {
 }
 
 namespace {
-std::atomic<CommitPolicy> g_policy{CommitPolicy::replace};
 
 bool same_bytes(const std::string& a, const std::string& b) {
   std::error_code ec;
@@ -158,16 +157,13 @@ bool same_bytes(const std::string& a, const std::string& b) {
 }
 }  // namespace
 
-void set_commit_policy(CommitPolicy policy) { g_policy = policy; }
-CommitPolicy commit_policy() { return g_policy; }
-
 bool AtomicFile::commit() {
   if (CommitGroup* g = t_group) {
     auto kept = std::unique_ptr<AtomicFile>(new AtomicFile);
     kept->path_ = path_;
     kept->temp_ = temp_;
     kept->fd_ = fd_;
-    kept->policy_ = policy_ >= 0 ? policy_ : int(g_policy.load());
+    kept->policy_ = policy_ >= 0 ? policy_ : int(g->policy_);
     fd_ = -1;
     committed_ = true;  // the group owns the temporary now
     g->files_.push_back(std::move(kept));
@@ -177,7 +173,7 @@ bool AtomicFile::commit() {
 }
 
 void AtomicFile::check_free() const {
-  const CommitPolicy policy = policy_ >= 0 ? CommitPolicy(policy_) : g_policy.load();
+  const CommitPolicy policy = policy_ >= 0 ? CommitPolicy(policy_) : CommitPolicy::replace;
   std::error_code ec;
   if (policy == CommitPolicy::no_replace && fs::exists(fs::symlink_status(path_, ec))) {
     throw Error(ErrorCode::io, path_ + ": cannot write: the file appeared while this run was writing it (another "
@@ -187,7 +183,7 @@ void AtomicFile::check_free() const {
 
 bool AtomicFile::commit_now() {
   std::lock_guard<std::mutex> lock(g_pending_mutex);
-  const CommitPolicy policy = policy_ >= 0 ? CommitPolicy(policy_) : g_policy.load();
+  const CommitPolicy policy = policy_ >= 0 ? CommitPolicy(policy_) : CommitPolicy::replace;
   auto fail = [&](int err) -> bool {
     throw Error(ErrorCode::io, path_ + ": cannot write: " + std::strerror(err));
   };
@@ -259,7 +255,7 @@ bool AtomicFile::commit_now() {
 // A group opened while another is open on the thread (a worker that takes
 // up another file's work while it waits inside this one's parallel loop)
 // holds its own files until it closes, then the outer one is open again.
-CommitGroup::CommitGroup() : outer_(t_group) { t_group = this; }
+CommitGroup::CommitGroup(CommitPolicy policy) : outer_(t_group), policy_(policy) { t_group = this; }
 
 CommitGroup::~CommitGroup() {
   t_group = outer_;
@@ -284,7 +280,11 @@ void CommitGroup::commit() {
 }
 
 void write_file_atomic(const std::string& path, const std::string& bytes) {
-  write_file_atomic(path, bytes, g_policy.load());
+  AtomicFile file(path);
+  FdWriter out(file.temp_path(), path);  // every failure names path and the OS error
+  out.write(bytes.data(), bytes.size());
+  out.close();
+  file.commit();
 }
 
 void write_file_atomic(const std::string& path, const std::string& bytes, CommitPolicy policy) {

@@ -13,6 +13,7 @@
 #include <mutex>
 
 #include "texproc/runtime.h"
+#include "texproc/tools.h"
 
 namespace texproc {
 

@@ -5,18 +5,16 @@
 #include "texproc/image_io.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <mutex>
 
 #include "image/codecs/codecs.h"
 #include "image/modules/image_modules.h"
 #include "image/tiff_mip_writer.h"
 #include "texproc/error.h"
-#include "texproc/file_io.h"
+#include "texproc/tools.h"
 
 namespace fs = std::filesystem;
 
@@ -29,33 +27,9 @@ std::string lower_ext(const std::string& path) {
   return e;
 }
 
-ImageIoPath path_from_environment() {
-  const char* e = std::getenv("TEXPROC_IMAGE_IO");
-  return e && std::string(e) == "oiio" ? ImageIoPath::oiio : ImageIoPath::direct;
-}
-
-ImageReadLimits limits_from_environment() {
-  ImageReadLimits l;
-  if (const char* e = std::getenv("TEXPROC_MAX_IMAGE_PIXELS")) {
-    char* end = nullptr;
-    const long long v = std::strtoll(e, &end, 10);
-    if (end != e && v > 0) l.max_pixels = v;
-  }
-  if (const char* e = std::getenv("TEXPROC_MAX_JPEG_SCANS")) {
-    char* end = nullptr;
-    const long v = std::strtol(e, &end, 10);
-    if (end != e && v > 0 && v < (1L << 30)) l.max_jpeg_scans = int(v);
-  }
-  return l;
-}
-
-std::atomic<ImageIoPath> g_path{path_from_environment()};
-std::mutex g_limits_mutex;
-ImageReadLimits g_limits = limits_from_environment();
-
 enum class Kind { png, jpeg, tga, exr, tiff, container, module };
 
-Kind sniff(const std::string& path, const codecs::FileBytes& f) {
+Kind sniff(const std::string& path, const codecs::FileBytes& f, ImageIoPath io_path) {
   const std::uint8_t* b = f.data();
   const std::size_t n = f.size();
   auto starts = [&](const char* sig, std::size_t len) { return n >= len && std::memcmp(b, sig, len) == 0; };
@@ -63,7 +37,7 @@ Kind sniff(const std::string& path, const codecs::FileBytes& f) {
       starts("\x13\xAB\xA1\x5C", 4)) {
     return Kind::container;
   }
-  if (g_path == ImageIoPath::oiio) return Kind::module;
+  if (io_path == ImageIoPath::oiio) return Kind::module;
   if (starts("\x89PNG\r\n\x1a\n", 8)) return Kind::png;
   if (starts("\xFF\xD8\xFF", 3)) return Kind::jpeg;
   if (starts("\x76\x2F\x31\x01", 4)) return Kind::exr;
@@ -105,8 +79,8 @@ auto direct_or_module(const std::string& path, Direct&& direct, bool& left) -> d
   }
 }
 
-bool module_writes(const std::string& e) {
-  if (g_path == ImageIoPath::oiio) return true;
+bool module_writes(const std::string& e, ImageIoPath io_path) {
+  if (io_path == ImageIoPath::oiio) return true;
   return !(e == ".png" || e == ".tga" || e == ".jpg" || e == ".jpeg" || e == ".tif" || e == ".tiff" || e == ".exr");
 }
 
@@ -121,37 +95,34 @@ void check_writable_extension(const std::string& path) {
 
 }  // namespace
 
-void set_image_io_path(ImageIoPath path) { g_path = path; }
-ImageIoPath image_io_path() { return g_path; }
-
-void set_image_read_limits(const ImageReadLimits& limits) {
-  std::lock_guard<std::mutex> lock(g_limits_mutex);
-  g_limits = limits;
-}
-ImageReadLimits image_read_limits() {
-  std::lock_guard<std::mutex> lock(g_limits_mutex);
-  return g_limits;
+ReadOptions ReadOptions::from_environment() {
+  ReadOptions o;
+  const char* e = std::getenv("TEXPROC_IMAGE_IO");
+  o.io_path = e && std::string(e) == "oiio" ? ImageIoPath::oiio : ImageIoPath::direct;
+  o.limits = ReadLimits::from_environment();
+  return o;
 }
 
 bool image_module_loaded() { return modules::loaded(Module::oiio); }
 
-ImageFileInfo probe_image(const std::string& path) {
+ImageFileInfo probe_image(const std::string& path, const ReadOptions& options) {
   check_exists(path);
+  const ReadLimits& limits = options.limits;
   Kind kind;
   {
     const codecs::FileBytes f(path, /*read_ahead=*/false);  // a header is all a probe reads
-    kind = sniff(path, f);
+    kind = sniff(path, f, options.io_path);
     bool left = false;
     ImageFileInfo info = direct_or_module(
         path,
         [&]() -> ImageFileInfo {
           switch (kind) {
-            case Kind::png: return codecs::png_probe(path, f);
-            case Kind::jpeg: return codecs::jpeg_probe(path, f);
-            case Kind::tga: return codecs::tga_probe(path, f);
-            case Kind::exr: return modules::probe(Module::exr, path);
-            case Kind::tiff: return codecs::tiff_probe(path);
-            case Kind::container: return codecs::container_probe(path);
+            case Kind::png: return codecs::png_probe(path, f, limits);
+            case Kind::jpeg: return codecs::jpeg_probe(path, f, limits);
+            case Kind::tga: return codecs::tga_probe(path, f, limits);
+            case Kind::exr: return modules::probe(Module::exr, path, limits);
+            case Kind::tiff: return codecs::tiff_probe(path, limits);
+            case Kind::container: return codecs::container_probe(path, limits);
             case Kind::module: throw codecs::LeaveToModule{"no direct reader"};
           }
           throw codecs::LeaveToModule{""};
@@ -159,28 +130,29 @@ ImageFileInfo probe_image(const std::string& path) {
         left);
     if (!left) return info;
   }
-  return modules::probe(Module::oiio, path);
+  return modules::probe(Module::oiio, path, limits);
 }
 
-Image read_image(const std::string& path, ImageFileInfo* info_out) {
+Image read_image(const std::string& path, ImageFileInfo* info_out, const ReadOptions& options) {
   check_exists(path);
+  const ReadLimits& limits = options.limits;
   ImageFileInfo info;
   Image img;
   bool left = false;
   {
     const codecs::FileBytes f(path);
-    const Kind kind = sniff(path, f);
+    const Kind kind = sniff(path, f, options.io_path);
     try {
       img = direct_or_module(
           path,
           [&]() -> Image {
             switch (kind) {
-              case Kind::png: return codecs::png_read(path, f, info);
-              case Kind::jpeg: return codecs::jpeg_read(path, f, info);
-              case Kind::tga: return codecs::tga_read(path, f, info);
-              case Kind::exr: return modules::read(Module::exr, path, info);
-              case Kind::tiff: return codecs::tiff_read(path, info);
-              case Kind::container: return codecs::container_read(path, info);
+              case Kind::png: return codecs::png_read(path, f, info, limits);
+              case Kind::jpeg: return codecs::jpeg_read(path, f, info, limits);
+              case Kind::tga: return codecs::tga_read(path, f, info, limits);
+              case Kind::exr: return modules::read(Module::exr, path, info, limits);
+              case Kind::tiff: return codecs::tiff_read(path, info, limits);
+              case Kind::container: return codecs::container_read(path, info, limits);
               case Kind::module: throw codecs::LeaveToModule{"no direct reader"};
             }
             throw codecs::LeaveToModule{""};
@@ -192,24 +164,24 @@ Image read_image(const std::string& path, ImageFileInfo* info_out) {
     }
     f.check_intact(path);
   }
-  if (left) img = modules::read(Module::oiio, path, info);
+  if (left) img = modules::read(Module::oiio, path, info, limits);
   if (info_out) *info_out = info;
   return img;
 }
 
-ImageArray read_image_array(const std::string& path, ImageFileInfo* info_out) {
+ImageArray read_image_array(const std::string& path, ImageFileInfo* info_out, const ReadOptions& options) {
   check_exists(path);
   bool container;
   {
     const codecs::FileBytes f(path, /*read_ahead=*/false);
-    container = sniff(path, f) == Kind::container;
+    container = sniff(path, f, options.io_path) == Kind::container;
   }
   ImageFileInfo info;
   ImageArray out;
   if (container) {
-    out = codecs::container_read_all(path, info);
+    out = codecs::container_read_all(path, info, options.limits);
   } else {
-    out.images.push_back(read_image(path, &info));
+    out.images.push_back(read_image(path, &info, options));
   }
   if (info_out) *info_out = info;
   return out;
@@ -221,7 +193,7 @@ void write_image(const std::string& path, const ImageView& given, const WriteOpt
   // Red-green data goes to formats without a red-green layout as RGB, blue 0.
   Image rgb;
   ImageView image = given;
-  if (options.red_green && given.channels == 2 && (e != ".exr" || g_path == ImageIoPath::oiio)) {
+  if (options.red_green && given.channels == 2 && (e != ".exr" || options.io_path == ImageIoPath::oiio)) {
     rgb = Image(given.width, given.height, 3, given.type);  // zero-filled: blue 0
     const std::size_t bpc = bytes_per_channel(given.type);
     for (int y = 0; y < given.height; ++y)
@@ -248,7 +220,7 @@ void write_image(const std::string& path, const ImageView& given, const WriteOpt
   }
   AtomicFile file(path);
   const bool tiff = e == ".tif" || e == ".tiff";
-  if (module_writes(e) || (tiff && (options.half || !tiff_levels_supported(options.compression)))) {
+  if (module_writes(e, options.io_path) || (tiff && (options.half || !tiff_levels_supported(options.compression)))) {
     modules::write(Module::oiio, file.temp_path(), path, {image}, false, options);
   } else if (e == ".png") {
     codecs::png_write(file.temp_path(), path, image, options);
@@ -268,7 +240,7 @@ void write_image(const std::string& path, const ImageView& shape, const RowSourc
                  const WriteOptions& options) {
   check_writable_extension(path);
   const std::string e = lower_ext(path);
-  if (e == ".png" && !module_writes(e) && !(options.red_green && shape.channels == 2)) {
+  if (e == ".png" && !module_writes(e, options.io_path) && !(options.red_green && shape.channels == 2)) {
     AtomicFile file(path);
     codecs::png_write(file.temp_path(), path, shape, source, options);
     file.commit();
@@ -301,7 +273,7 @@ void write_mip_file(const std::string& path, const std::vector<Image>& levels, c
   std::vector<ImageView> views;
   for (const Image& l : levels) views.push_back(l.view());
   AtomicFile file(path);
-  if (g_path == ImageIoPath::oiio || (!exr && (options.half || !tiff_levels_supported(options.compression)))) {
+  if (options.io_path == ImageIoPath::oiio || (!exr && (options.half || !tiff_levels_supported(options.compression)))) {
     modules::write(Module::oiio, file.temp_path(), path, views, true, options);
   } else if (exr) {
     modules::write(Module::exr, file.temp_path(), path, views, true, options);

@@ -8,7 +8,7 @@
 #include "image/modules/image_module.h"
 #include "image/modules/image_modules.h"
 #include "texproc/error.h"
-#include "texproc/file_io.h"
+#include "texproc/tools.h"
 #include "texproc/image_io.h"
 
 namespace texproc {
@@ -56,12 +56,12 @@ struct MipFileWriter::Impl {
   std::size_t row_floats(const Level& l) const { return std::size_t(l.width) * channels; }
 };
 
-bool MipFileWriter::supports(const std::string& path) {
-  return lower_extension(path) == ".exr" && image_io_path() != ImageIoPath::oiio;
+bool MipFileWriter::supports(const std::string& path, const WriteOptions& options) {
+  return lower_extension(path) == ".exr" && options.io_path != ImageIoPath::oiio;
 }
 
 MipFileWriter::MipFileWriter(const std::string& path, int width, int height, int channels, const WriteOptions& o) {
-  if (!supports(path)) {
+  if (!supports(path, o)) {
     throw Error(ErrorCode::unsupported, path + ": written row by row only as OpenEXR through texproc's module");
   }
   if (width < 1 || height < 1 || channels < 1 || channels > 4) {

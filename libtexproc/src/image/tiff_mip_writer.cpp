@@ -15,6 +15,7 @@
 #include "image/codecs/codecs.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
+#include "texproc/tools.h"
 
 namespace texproc {
 namespace {

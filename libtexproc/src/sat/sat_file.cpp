@@ -23,7 +23,7 @@
 
 #include "core/fd_writer.h"
 #include "texproc/error.h"
-#include "texproc/file_io.h"
+#include "texproc/tools.h"
 #include "texproc/sat.h"
 
 namespace texproc {

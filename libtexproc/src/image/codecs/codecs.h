@@ -57,9 +57,9 @@ struct LeaveToModule {
   std::string why;
 };
 
-// Refuses (Error{invalid_file}) a declared size past the process's
-// ImageReadLimits before anything is allocated for it.
-void check_size(const std::string& path, long long width, long long height, int channels);
+// Refuses (Error{invalid_file}) a declared size past `limits` before
+// anything is allocated for it.
+void check_size(const std::string& path, long long width, long long height, int channels, const ReadLimits& limits);
 
 // Sample i of row y as 8 bits, for the formats that hold only 8 (JPEG, TGA):
 // 16-bit rounded, float clamped to [0, 1] (NaN as 0) and rounded.
@@ -71,8 +71,8 @@ std::uint8_t sample_u8(const ImageView& v, int y, std::size_t i);
 
 // PNG (libspng reads; texproc's writer filters and deflates strips of rows
 // in parallel with zlib).
-ImageFileInfo png_probe(const std::string& path, const FileBytes& f);
-Image png_read(const std::string& path, const FileBytes& f, ImageFileInfo& info);
+ImageFileInfo png_probe(const std::string& path, const FileBytes& f, const ReadLimits& limits);
+Image png_read(const std::string& path, const FileBytes& f, ImageFileInfo& info, const ReadLimits& limits);
 void png_write(const std::string& file, const std::string& path, const ImageView& v, const WriteOptions& o);
 // The same for rows made on demand: `shape` gives the size, channels and
 // type (no pixels); each strip asks `source` for its rows.
@@ -80,28 +80,28 @@ void png_write(const std::string& file, const std::string& path, const ImageView
                const WriteOptions& o);
 
 // JPEG (libjpeg-turbo).
-ImageFileInfo jpeg_probe(const std::string& path, const FileBytes& f);
-Image jpeg_read(const std::string& path, const FileBytes& f, ImageFileInfo& info);
+ImageFileInfo jpeg_probe(const std::string& path, const FileBytes& f, const ReadLimits& limits);
+Image jpeg_read(const std::string& path, const FileBytes& f, ImageFileInfo& info, const ReadLimits& limits);
 void jpeg_write(const std::string& file, const std::string& path, const ImageView& v, const WriteOptions& o);
 
 // Truevision TGA (texproc's own: the format is a header and rows).
-ImageFileInfo tga_probe(const std::string& path, const FileBytes& f);
-Image tga_read(const std::string& path, const FileBytes& f, ImageFileInfo& info);
+ImageFileInfo tga_probe(const std::string& path, const FileBytes& f, const ReadLimits& limits);
+Image tga_read(const std::string& path, const FileBytes& f, ImageFileInfo& info, const ReadLimits& limits);
 void tga_write(const std::string& file, const std::string& path, const ImageView& v, const WriteOptions& o);
 
 // OpenEXR: the texproc_exr module (image/modules/), loaded on first use.
 
 // TIFF (libtiff; deflate strips and tiles inflated in parallel).
-ImageFileInfo tiff_probe(const std::string& path);
-Image tiff_read(const std::string& path, ImageFileInfo& info);
+ImageFileInfo tiff_probe(const std::string& path, const ReadLimits& limits);
+Image tiff_read(const std::string& path, ImageFileInfo& info, const ReadLimits& limits);
 
 // libtiff's messages go to the thread's last-error string instead of stderr.
 void quiet_libtiff();
 std::string libtiff_last_error();
 
 // GPU containers as images: level 0, layer 0, face 0 (decoded if compressed).
-ImageFileInfo container_probe(const std::string& path);
-Image container_read(const std::string& path, ImageFileInfo& info);
-ImageArray container_read_all(const std::string& path, ImageFileInfo& info);
+ImageFileInfo container_probe(const std::string& path, const ReadLimits& limits);
+Image container_read(const std::string& path, ImageFileInfo& info, const ReadLimits& limits);
+ImageArray container_read_all(const std::string& path, ImageFileInfo& info, const ReadLimits& limits);
 
 }  // namespace texproc::codecs

@@ -178,14 +178,13 @@ std::uint8_t sample_u8(const ImageView& v, int y, std::size_t i) {
   return std::uint8_t(f * 255.0f + 0.5f);
 }
 
-void check_size(const std::string& path, long long width, long long height, int channels) {
+void check_size(const std::string& path, long long width, long long height, int channels, const ReadLimits& l) {
   if (width <= 0 || height <= 0 || channels <= 0) invalid(path, "image has no pixels");
-  const ImageReadLimits l = image_read_limits();
-  if (width > l.max_dimension || height > l.max_dimension || width * height > l.max_pixels) {
+  if (width > l.max_image_dimension || height > l.max_image_dimension || width * height > l.max_image_pixels) {
     throw Error(ErrorCode::invalid_file,
                 path + ": declared size " + std::to_string(width) + "x" + std::to_string(height) +
-                    " is past the limit of " + std::to_string(l.max_pixels) + " pixels, " +
-                    std::to_string(l.max_dimension) + " a side (TEXPROC_MAX_IMAGE_PIXELS raises it)");
+                    " is past the limit of " + std::to_string(l.max_image_pixels) + " pixels, " +
+                    std::to_string(l.max_image_dimension) + " a side (TEXPROC_MAX_IMAGE_PIXELS raises it)");
   }
 }
 

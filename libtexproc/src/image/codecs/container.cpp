@@ -36,7 +36,7 @@ PixelType natural_type(TexelFormat f) {
   }
 }
 
-ImageFileInfo info_of(const std::string& path, const Texture& t, const char* name) {
+ImageFileInfo info_of(const std::string& path, const Texture& t, const char* name, const ReadLimits& limits) {
   const FormatInfo& fi = format_info(t.format);
   ImageFileInfo info;
   info.format = name;
@@ -50,15 +50,15 @@ ImageFileInfo info_of(const std::string& path, const Texture& t, const char* nam
   info.subimages = int(t.faces * t.layers);
   info.mip_levels = int(t.levels);
   for (std::uint32_t l = 0; l < t.levels; ++l) info.level_sizes.emplace_back(int(t.level_width(l)), int(t.level_height(l)));
-  check_size(path, info.width, info.height, info.channels);
+  check_size(path, info.width, info.height, info.channels, limits);
   return info;
 }
 
 }  // namespace
 
-ImageFileInfo container_probe(const std::string& path) {
+ImageFileInfo container_probe(const std::string& path, const ReadLimits& limits) {
   const FileBytes f(path);
-  return info_of(path, read_texture(path), container_name(path, f));
+  return info_of(path, read_texture(path, limits), container_name(path, f), limits);
 }
 
 namespace {
@@ -66,14 +66,14 @@ namespace {
 // The texture and its facts; `decode` turns it into images, with errors
 // named for the file.
 template <typename Decode>
-auto load(const std::string& path, ImageFileInfo& info, Decode&& decode) {
+auto load(const std::string& path, ImageFileInfo& info, const ReadLimits& limits, Decode&& decode) {
   const char* name;
   {
     const FileBytes f(path);
     name = container_name(path, f);
   }
-  const Texture t = read_texture(path);
-  info = info_of(path, t, name);
+  const Texture t = read_texture(path, limits);
+  info = info_of(path, t, name, limits);
   try {
     return decode(t);
   } catch (const Error& e) {
@@ -85,8 +85,8 @@ auto load(const std::string& path, ImageFileInfo& info, Decode&& decode) {
 
 }  // namespace
 
-ImageArray container_read_all(const std::string& path, ImageFileInfo& info) {
-  return load(path, info, [&](const Texture& t) {
+ImageArray container_read_all(const std::string& path, ImageFileInfo& info, const ReadLimits& limits) {
+  return load(path, info, limits, [&](const Texture& t) {
     ImageArray out;
     out.faces = t.faces;
     out.layers = t.layers;
@@ -97,8 +97,8 @@ ImageArray container_read_all(const std::string& path, ImageFileInfo& info) {
   });
 }
 
-Image container_read(const std::string& path, ImageFileInfo& info) {
-  return load(path, info, [&](const Texture& t) { return decode_texture_image(t, 0, 0, 0, info.type); });
+Image container_read(const std::string& path, ImageFileInfo& info, const ReadLimits& limits) {
+  return load(path, info, limits, [&](const Texture& t) { return decode_texture_image(t, 0, 0, 0, info.type); });
 }
 
 }  // namespace texproc::codecs

@@ -74,13 +74,13 @@ struct Header {
 // Everything between setjmp and the end of the decoder's life is plain C:
 // no C++ object with a destructor lives in this frame.
 bool decode(const FileBytes& f, Header& h, std::uint8_t* pixels, std::size_t row_stride, bool header_only,
-            char* message, bool* over_limit = nullptr) {
+            int max_scans, char* message, bool* over_limit = nullptr) {
   jpeg_decompress_struct cinfo;
   ErrorManager err;
   cinfo.err = install(err);
   ScanLimit limit{};
   limit.pub.progress_monitor = on_progress;
-  limit.max_scans = image_read_limits().max_jpeg_scans;
+  limit.max_scans = max_scans;
   if (setjmp(err.jump)) {
     std::strcpy(message, err.message);
     if (over_limit) *over_limit = err.over_limit;
@@ -110,7 +110,7 @@ bool decode(const FileBytes& f, Header& h, std::uint8_t* pixels, std::size_t row
   return true;
 }
 
-ImageFileInfo info_of(const std::string& path, const Header& h) {
+ImageFileInfo info_of(const std::string& path, const Header& h, const ReadLimits& limits) {
   if (h.space == JCS_CMYK || h.space == JCS_YCCK || h.channels == 4) throw LeaveToModule{"CMYK JPEG"};
   ImageFileInfo info;
   info.format = "jpeg";
@@ -121,26 +121,26 @@ ImageFileInfo info_of(const std::string& path, const Header& h) {
   info.type = PixelType::u8;
   info.color_space_tag = "sRGB";
   info.level_sizes.emplace_back(h.width, h.height);
-  check_size(path, h.width, h.height, h.channels);
+  check_size(path, h.width, h.height, h.channels, limits);
   return info;
 }
 
 }  // namespace
 
-ImageFileInfo jpeg_probe(const std::string& path, const FileBytes& f) {
+ImageFileInfo jpeg_probe(const std::string& path, const FileBytes& f, const ReadLimits& limits) {
   Header h;
   char message[JMSG_LENGTH_MAX] = {};
-  if (!decode(f, h, nullptr, 0, true, message)) invalid(path, std::string("not a valid JPEG: ") + message);
-  return info_of(path, h);
+  if (!decode(f, h, nullptr, 0, true, limits.max_jpeg_scans, message)) invalid(path, std::string("not a valid JPEG: ") + message);
+  return info_of(path, h, limits);
 }
 
-Image jpeg_read(const std::string& path, const FileBytes& f, ImageFileInfo& info) {
-  info = jpeg_probe(path, f);
+Image jpeg_read(const std::string& path, const FileBytes& f, ImageFileInfo& info, const ReadLimits& limits) {
+  info = jpeg_probe(path, f, limits);
   Image img = Image::uninitialized(info.width, info.height, info.channels, PixelType::u8);
   Header h;
   char message[JMSG_LENGTH_MAX] = {};
   bool over_limit = false;
-  if (!decode(f, h, img.data(), img.row_stride(), false, message, &over_limit)) {
+  if (!decode(f, h, img.data(), img.row_stride(), false, limits.max_jpeg_scans, message, &over_limit)) {
     invalid(path, (over_limit ? std::string("JPEG with ") : std::string("cannot decode JPEG: ")) + message);
   }
   return img;

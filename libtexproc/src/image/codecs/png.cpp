@@ -19,6 +19,7 @@
 #include "image/codecs/codecs.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
+#include "texproc/tools.h"
 
 namespace texproc::codecs {
 namespace {
@@ -75,7 +76,7 @@ Spng open_png(const std::string& path, const FileBytes& f, PngLayout& L) {
   return ctx;
 }
 
-ImageFileInfo info_of(const std::string& path, spng_ctx* ctx, const PngLayout& L) {
+ImageFileInfo info_of(const std::string& path, spng_ctx* ctx, const PngLayout& L, const ReadLimits& limits) {
   ImageFileInfo info;
   info.format = "png";
   info.width = int(L.ihdr.width);
@@ -102,22 +103,22 @@ ImageFileInfo info_of(const std::string& path, spng_ctx* ctx, const PngLayout& L
     }
   }
   info.level_sizes.emplace_back(info.width, info.height);
-  check_size(path, info.width, info.height, info.channels);
+  check_size(path, info.width, info.height, info.channels, limits);
   return info;
 }
 
 }  // namespace
 
-ImageFileInfo png_probe(const std::string& path, const FileBytes& f) {
+ImageFileInfo png_probe(const std::string& path, const FileBytes& f, const ReadLimits& limits) {
   PngLayout L;
   Spng ctx = open_png(path, f, L);
-  return info_of(path, ctx.get(), L);
+  return info_of(path, ctx.get(), L, limits);
 }
 
-Image png_read(const std::string& path, const FileBytes& f, ImageFileInfo& info) {
+Image png_read(const std::string& path, const FileBytes& f, ImageFileInfo& info, const ReadLimits& limits) {
   PngLayout L;
   Spng ctx = open_png(path, f, L);
-  info = info_of(path, ctx.get(), L);
+  info = info_of(path, ctx.get(), L, limits);
   Image img = Image::uninitialized(info.width, info.height, info.channels, info.type);
   std::size_t need = 0;
   if (int rc = spng_decoded_image_size(ctx.get(), L.fmt, &need)) spng_failed(path, rc);

@@ -61,7 +61,7 @@ int channels_of(const TgaHeader& h) {
   }
 }
 
-ImageFileInfo info_of(const std::string& path, const TgaHeader& h) {
+ImageFileInfo info_of(const std::string& path, const TgaHeader& h, const ReadLimits& limits) {
   ImageFileInfo info;
   info.format = "targa";
   info.width = h.width;
@@ -70,7 +70,7 @@ ImageFileInfo info_of(const std::string& path, const TgaHeader& h) {
   info.file_type = "uint8";
   info.type = PixelType::u8;  // no colour-space tag: OpenImageIO gives TGA none
   info.level_sizes.emplace_back(h.width, h.height);
-  check_size(path, h.width, h.height, info.channels);
+  check_size(path, h.width, h.height, info.channels, limits);
   return info;
 }
 
@@ -95,11 +95,13 @@ inline void unpack(const std::uint8_t* p, int bits, int channels, bool alpha16, 
 
 }  // namespace
 
-ImageFileInfo tga_probe(const std::string& path, const FileBytes& f) { return info_of(path, parse(path, f)); }
+ImageFileInfo tga_probe(const std::string& path, const FileBytes& f, const ReadLimits& limits) {
+  return info_of(path, parse(path, f), limits);
+}
 
-Image tga_read(const std::string& path, const FileBytes& f, ImageFileInfo& info) {
+Image tga_read(const std::string& path, const FileBytes& f, ImageFileInfo& info, const ReadLimits& limits) {
   const TgaHeader h = parse(path, f);
-  info = info_of(path, h);
+  info = info_of(path, h, limits);
   const int C = info.channels;
   std::size_t pos = 18 + std::size_t(h.id_length);
   std::vector<std::uint8_t> palette;  // entries unpacked to C bytes

@@ -73,7 +73,7 @@ Tiff open_tiff(const std::string& path) {
   return tif;
 }
 
-Layout layout_of(const std::string& path, TIFF* t) {
+Layout layout_of(const std::string& path, TIFF* t, const ReadLimits& limits) {
   Layout L;
   TIFFGetField(t, TIFFTAG_IMAGEWIDTH, &L.width);
   TIFFGetField(t, TIFFTAG_IMAGELENGTH, &L.height);
@@ -93,15 +93,14 @@ Layout layout_of(const std::string& path, TIFF* t) {
     TIFFGetFieldDefaulted(t, TIFFTAG_ROWSPERSTRIP, &L.rows_per_strip);
     L.rows_per_strip = std::min(L.rows_per_strip, L.height);
   }
-  check_size(path, L.width, L.height, L.spp);
+  check_size(path, L.width, L.height, L.spp, limits);
   if (L.tiled) {
     // A tile is decoded whole: one far larger than the image (a few bytes of
     // file declaring gigabytes) is refused before anything is allocated.
     // Writers use tiles of 64 to 512 over small images and levels.
-    const ImageReadLimits limits = image_read_limits();
     const auto room = [](std::uint64_t side) { return std::max<std::uint64_t>((side + 15) / 16 * 16, kMaxSmallTile); };
     if (L.tile_w > room(L.width) || L.tile_h > room(L.height) ||
-        std::uint64_t(L.tile_w) * L.tile_h > std::uint64_t(limits.max_pixels)) {
+        std::uint64_t(L.tile_w) * L.tile_h > std::uint64_t(limits.max_image_pixels)) {
       invalid(path, "TIFF tile " + std::to_string(L.tile_w) + "x" + std::to_string(L.tile_h) +
                         " is larger than its image (" + std::to_string(L.width) + "x" + std::to_string(L.height) +
                         ") needs (a tile is decoded whole): refused before decoding");
@@ -223,9 +222,9 @@ struct DecompressorFree {
 
 }  // namespace
 
-ImageFileInfo tiff_probe(const std::string& path) {
+ImageFileInfo tiff_probe(const std::string& path, const ReadLimits& limits) {
   Tiff tif = open_tiff(path);
-  const Layout L = layout_of(path, tif.get());
+  const Layout L = layout_of(path, tif.get(), limits);
   ImageFileInfo info = info_of(L);
   info.level_sizes.emplace_back(info.width, info.height);
   const bool texture = is_texture(tif.get());
@@ -245,10 +244,10 @@ ImageFileInfo tiff_probe(const std::string& path) {
   return info;
 }
 
-Image tiff_read(const std::string& path, ImageFileInfo& info) {
+Image tiff_read(const std::string& path, ImageFileInfo& info, const ReadLimits& limits) {
   Tiff tif = open_tiff(path);
   TIFF* t = tif.get();
-  const Layout L = layout_of(path, t);
+  const Layout L = layout_of(path, t, limits);
   info = info_of(L);
   info.level_sizes.emplace_back(info.width, info.height);
   const int C = std::min<int>(L.spp, 4);

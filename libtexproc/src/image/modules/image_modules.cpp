@@ -57,7 +57,7 @@ PixelType from_tp(int t) { return t == TP_U8 ? PixelType::u8 : t == TP_U16 ? Pix
 
 bool loaded(Module m) { return slot(m).loaded; }
 
-ImageFileInfo probe(Module m, const std::string& path) {
+ImageFileInfo probe(Module m, const std::string& path, const ReadLimits& limits) {
   const TpImageModule& t = module_for(m, path);
   TpImageSpec spec{};
   char err[1024] = {};
@@ -77,12 +77,12 @@ ImageFileInfo probe(Module m, const std::string& path) {
     info.level_sizes.emplace_back(spec.level_width[l], spec.level_height[l]);
   }
   info.via_module = m == Module::oiio;
-  codecs::check_size(path, info.width, info.height, info.channels);
+  codecs::check_size(path, info.width, info.height, info.channels, limits);
   return info;
 }
 
-Image read(Module m, const std::string& path, ImageFileInfo& info) {
-  info = probe(m, path);
+Image read(Module m, const std::string& path, ImageFileInfo& info, const ReadLimits& limits) {
+  info = probe(m, path, limits);
   info.level_sizes.resize(1);  // read_image reports level 0 only, as the direct readers do
   info.mip_levels = 1;
   info.subimages = 1;

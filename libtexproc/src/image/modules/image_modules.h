@@ -18,10 +18,10 @@ enum class Module { oiio, exr };
 bool loaded(Module m);
 // Each throws Error: the module's own code and message, or Error{unsupported}
 // naming `path` and every place looked in when the module cannot be loaded.
-// probe checks the size against image_read_limits().
-ImageFileInfo probe(Module m, const std::string& path);
+// probe checks the size against `limits`.
+ImageFileInfo probe(Module m, const std::string& path, const ReadLimits& limits);
 // probe, then the pixels: at most 4 channels of the type probe gave.
-Image read(Module m, const std::string& path, ImageFileInfo& info);
+Image read(Module m, const std::string& path, ImageFileInfo& info, const ReadLimits& limits);
 void write(Module m, const std::string& file, const std::string& path, const std::vector<ImageView>& levels,
            bool mip_file, const WriteOptions& options);
 

@@ -1,18 +1,22 @@
-// texproc/file_io.h: atomic output files.
+// texproc/tools.h: helpers for programs built on libtexproc the way the
+// texproc tool is (atomic output files committed together, batches run in
+// order). The tool's own building blocks: they may change in any release,
+// outside the API stability promise of docs/library.md.
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace texproc {
 
-// Process-wide: what commit() does when the output exists with the same
-// bytes. replace (the default) renames anyway; keep_identical leaves the old
-// file, so build systems that check time stamps (Ninja's restat, Make) see no
-// change. Set it before work starts, not while files are being written.
+// What commit() does when the output exists. replace (the default) renames
+// over it. keep_identical leaves an old file that holds the same bytes, so
+// build systems that check time stamps (Ninja's restat, Make) see no change.
 // no_replace never replaces an existing file: commit() fails atomically if
-// path() exists at that moment (what the CLI does without --force).
+// path() exists at that moment (what the texproc tool does without --force).
 enum class CommitPolicy { replace, keep_identical, no_replace };
 // Write to temp_path(), then commit() puts it under `path` in one step, so a
 // reader (or a build system) never sees a half-written file. If the object is
@@ -27,8 +31,10 @@ class CommitGroup;
 
 class AtomicFile {
  public:
+  // Committed under the policy of the CommitGroup open on this thread, or
+  // replace outside any group.
   explicit AtomicFile(std::string path);
-  // The same, committed under `policy` whatever the process's policy is.
+  // The same, committed under `policy` whatever the group's policy is.
   AtomicFile(std::string path, CommitPolicy policy);
   ~AtomicFile();
   AtomicFile(const AtomicFile&) = delete;
@@ -57,7 +63,7 @@ class AtomicFile {
   void check_free() const;  // under no_replace: Error{io} if path() exists now
   std::string path_, temp_;
   int fd_ = -1;         // the unnamed temporary, or -1 for a named one
-  int policy_ = -1;     // a CommitPolicy of its own, or -1 for the process's
+  int policy_ = -1;     // a CommitPolicy of its own, or -1 for the group's (replace outside a group)
   bool committed_ = false;
 };
 
@@ -68,10 +74,11 @@ class AtomicFile {
 // were written; a group destroyed without commit() (an exception, a failure
 // after the first output) discards them all, so a build system never sees
 // half of a job's outputs. A group opened while another is open on the
-// same thread collects its own files until it is closed.
+// same thread collects its own files until it is closed. Files without a
+// policy of their own are committed under the group's `policy`.
 class CommitGroup {
  public:
-  CommitGroup();
+  explicit CommitGroup(CommitPolicy policy = CommitPolicy::replace);
   ~CommitGroup();
   CommitGroup(const CommitGroup&) = delete;
   CommitGroup& operator=(const CommitGroup&) = delete;
@@ -83,6 +90,7 @@ class CommitGroup {
   friend class AtomicFile;
   std::vector<std::unique_ptr<AtomicFile>> files_;
   CommitGroup* outer_ = nullptr;
+  CommitPolicy policy_ = CommitPolicy::replace;
 };
 
 // Removes every named temporary this process has open (hidden files beside
@@ -95,11 +103,18 @@ void remove_pending_temporaries();
 // Done once a folder by the first AtomicFile made there; returns how many.
 int remove_stale_temporaries(const std::string& folder);
 
-void set_commit_policy(CommitPolicy policy);
-CommitPolicy commit_policy();
-
-// Writes `bytes` to `path` atomically. Throws Error{io}.
+// Writes `bytes` to `path` atomically (an AtomicFile: the group's policy, or
+// `policy`). Throws Error{io}.
 void write_file_atomic(const std::string& path, const std::string& bytes);
 void write_file_atomic(const std::string& path, const std::string& bytes, CommitPolicy policy);
+
+// A batch of `count` items, `in_flight` at most at a time: work(i) runs in
+// parallel for i = 0, 1, ... (started in order of i), and done(i) runs for
+// each item one at a time in order of i, once it and every item before it
+// have finished work. done returning false stops the batch: no item starts
+// after that (those in flight finish and get done). Returns how many items
+// were started (the rest were not run).
+std::size_t for_each_in_order(std::size_t count, std::size_t in_flight, const std::function<void(std::size_t)>& work,
+                              const std::function<bool(std::size_t)>& done);
 
 }  // namespace texproc
