@@ -25,7 +25,7 @@ using Clock = std::chrono::steady_clock;
 std::size_t run_bc7(const texproc::Image& image) {
   std::vector<std::vector<texproc::Image>> chains(1);
   chains[0].push_back(image);  // the Python call copies its input likewise
-  const texproc::Texture t = texproc::compress_texture(chains, 1, 1, false, texproc::parse_texel_format("bc7_srgb"),
+  const texproc::Texture t = texproc::compress_texture(chains, {}, texproc::parse_texel_format("bc7_srgb"),
                                                        texproc::Quality::normal, texproc::TextureEncodeOptions{});
   return t.images.size();
 }

@@ -86,9 +86,11 @@ def main():
         print(f"{'call':<34}{'C++ ms':>10}{'Python ms':>11}{'Python / C++':>14}")
         for name, op, path in (("BC7 normal, 2048x2048", "bc7", src_2k), ("mip chain, 4096x4096", "mips", big)):
             cpp, py = [], []
-            for _ in range(args.rounds):
-                cpp += times([calls_exe, op, path, str(args.reps)], env)
-                py += times([args.python, "-c", PY_CALL, op, path, str(args.reps)], env)
+            for r in range(args.rounds):  # which goes first alternates
+                runs = [(cpp, [calls_exe, op, path, str(args.reps)]),
+                        (py, [args.python, "-c", PY_CALL, op, path, str(args.reps)])]
+                for into, cmd in runs if r % 2 == 0 else runs[::-1]:
+                    into += times(cmd, env)
             c, q = statistics.median(cpp), statistics.median(py)
             print(f"{name:<34}{c:>10.1f}{q:>11.1f}{q / c:>14.3f}")
     return 0

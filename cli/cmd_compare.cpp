@@ -121,8 +121,8 @@ bool above(double value, double limit) { return !(value <= limit); }
 int run_compare(const CompareArgs& a) {
   ThreadLimit threads(a.common.threads);
   const Loaded la = load(a.a, a.level), lb = load(a.b, a.level);
-  const ImageView& ia = la.shape;
-  const ImageView& ib = lb.shape;
+  const ConstImageView& ia = la.shape;
+  const ConstImageView& ib = lb.shape;
   if (ia.width != ib.width || ia.height != ib.height) {
     throw Error(ErrorCode::bad_arguments, a.a + " is " + std::to_string(ia.width) + "x" +
                                               std::to_string(ia.height) + ", " + a.b + " is " +

@@ -178,7 +178,7 @@ void validate(CompressArgs& a) {
     throw Error(ErrorCode::bad_arguments, "--alpha-coverage applies to the mip chain: add --mips");
   if (a.alpha_coverage >= 0.0f && !(a.alpha_coverage > 0.0f && a.alpha_coverage <= 1.0f))
     throw Error(ErrorCode::bad_arguments, "--alpha-coverage " + std::to_string(a.alpha_coverage) + " is not in (0, 1]");
-  a.mip.alpha_coverage_ref = a.alpha_coverage;
+  if (a.alpha_coverage >= 0.0f) a.mip.alpha_coverage_ref = a.alpha_coverage;
   if (a.no_premultiply && !a.mips) throw Error(ErrorCode::bad_arguments, "--no-premultiply applies to the mip chain: add --mips");
   a.mip.premultiplied_alpha = !a.no_premultiply;
 }
@@ -270,7 +270,7 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   const auto t0 = std::chrono::steady_clock::now();
   TextureEncodeOptions options;
   options.encode.bc1_black = a.bc1_black;
-  options.encode.astc_effort = a.astc_effort;
+  if (a.astc_effort >= 0.0f) options.encode.astc_effort = a.astc_effort;
   options.encode.progress = r.progress;
   options.normal_map = a.normal_map;
   options.transparent = a.transparent;
@@ -281,14 +281,14 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   if (a.mips) {
     MipOptions m = a.mip;
     m.color_space = format_info(format).srgb ? "srgb" : "linear";
-    t = compress_texture_mips(in.images, m, in.faces, in.layers, in.is_array, format, a.q, options);
+    t = compress_texture_mips(in.images, m, in.layout(), format, a.q, options);
   } else {
     std::vector<std::vector<Image>> chains;
     for (Image& img : in.images) {
       chains.emplace_back();
       chains.back().push_back(std::move(img));
     }
-    t = compress_texture(chains, in.faces, in.layers, in.is_array, format, a.q, options);
+    t = compress_texture(chains, in.layout(), format, a.q, options);
     for (std::size_t i = 0; i < chains.size(); ++i) in.images[i] = std::move(chains[i][0]);
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -227,7 +227,7 @@ Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r
       r.inputs.push_back(a.faces[f]);
     }
     phases.read_done();
-    std::array<ImageView, 6> views;
+    std::array<ConstImageView, 6> views;
     for (int f = 0; f < 6; ++f) views[f] = faces[f].view();
     s.cube = cubemap_from_faces(views);
     s.layout = "faces";
@@ -326,8 +326,8 @@ void write_cube(const CubemapArgs& a, const Source& s, const Cubemap& c, const s
                                     : from_linear_rgba(l.faces[f].view(), ColorSpace::linear(), 4, PixelType::f32));
     }
   write_texture(output,
-                texture_from_surfaces(std::move(chains), 6, 1, false, format == TexelFormat::rgba8_srgb,
-                                      format == TexelFormat::rgba16_float),
+                texture_from_surfaces(std::move(chains), {.faces = 6},
+                                      {.srgb = format == TexelFormat::rgba8_srgb, .half = format == TexelFormat::rgba16_float}),
                 a.header, zstd_level_for(a.zstd, output));
 }
 

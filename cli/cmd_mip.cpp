@@ -49,7 +49,7 @@ void validate(MipArgs& a) {
   o.output_color_space = a.out_color_space;
   o.max_levels = a.chain.levels;
   o.min_size = a.chain.min_size;
-  o.alpha_coverage_ref = a.alpha_coverage;
+  if (a.alpha_coverage >= 0.0f) o.alpha_coverage_ref = a.alpha_coverage;
   o.normal_map = a.normal_map;
   o.premultiplied_alpha = !a.no_premultiply;
   a.header = parse_dds_header(a.dds_header);
@@ -130,13 +130,13 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
     std::vector<std::vector<Image>> chains;
     chains.push_back(std::move(chain.levels));
     for (auto& c : more) chains.push_back(std::move(c));
-    write_texture(output, texture_from_surfaces(std::move(chains), in.faces, in.layers, in.is_array,
-                                                chain.color_space == "srgb", w.half),
+    write_texture(output, texture_from_surfaces(std::move(chains), in.layout(),
+                                                {.srgb = chain.color_space == "srgb", .half = w.half}),
                   a.header, zstd_level_for(a.zstd, output));
   } else if (container) {
     // Uncompressed GPU formats: r8/rg8/rgba8 (sRGB when the chain is), 16-bit, half or float;
     // the chain's pixel memory becomes the texture's.
-    write_texture(output, texture_from_levels(std::move(chain.levels), chain.color_space == "srgb", w.half), a.header, zstd_level_for(a.zstd, output));
+    write_texture(output, texture_from_levels(std::move(chain.levels), {.srgb = chain.color_space == "srgb", .half = w.half}), a.header, zstd_level_for(a.zstd, output));
   } else {
     write_levels(output, chain.levels, w);
   }

@@ -124,7 +124,7 @@ void run_normalmap(const NormalMapArgs& a, const std::string& input, const std::
   if (container) {
     // Uncompressed rg8/rgba8/16-bit/half/float (block compression in the same
     // call comes with `compress`); normals are data: linear formats.
-    write_texture(output, texture_from_levels(std::move(chain), false, w.half), a.header, zstd_level_for(a.zstd, output));
+    write_texture(output, texture_from_levels(std::move(chain), {.half = w.half}), a.header, zstd_level_for(a.zstd, output));
   } else if (a.mips) {
     write_levels(output, chain, w);
   } else {

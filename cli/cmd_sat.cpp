@@ -142,7 +142,7 @@ void run_blur(const SatArgs& a, const std::string& input, const std::string& out
   read_as_finite(input, img, r.warnings);
   phases.read_done();
   BoxBlurOptions o = a.blur;
-  const ImageView mv = a.map.view();
+  const ConstImageView mv = a.map.view();
   if (!a.map.empty()) o.radius_map = &mv;
   const Image out = box_blur(img.view(), o);
   phases.compute_done();

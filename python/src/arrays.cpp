@@ -52,7 +52,7 @@ InputImage::InputImage(const py::handle& object, const char* arg) {
   }
   if (!viewable(a)) a = py::array::ensure(a, py::array::c_style | py::array::forcecast);
   array_ = a;
-  view_.data = const_cast<void*>(array_.data());
+  view_.data = array_.data();
   view_.width = int(a.shape(1));
   view_.height = int(a.shape(0));
   view_.channels = int(channels);

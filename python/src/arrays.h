@@ -22,11 +22,11 @@ namespace py = pybind11;
 class InputImage {
  public:
   InputImage(const py::handle& object, const char* arg);
-  const ImageView& view() const { return view_; }
+  const ConstImageView& view() const { return view_; }
 
  private:
   py::array array_;  // keeps the memory alive while the view is used
-  ImageView view_;
+  ConstImageView view_;
 };
 
 // An Image handed to Python without a copy: the array owns it.

@@ -61,7 +61,7 @@ std::shared_ptr<Texture> to_texture(const Cubemap& c, const std::string& dtype) 
                                            : from_linear_rgba(l.faces[std::size_t(f)].view(), ColorSpace::linear(), 4, PixelType::f32));
     }
   }
-  return std::make_shared<Texture>(texture_from_surfaces(std::move(chains), 6, 1, false, eight_bit, dtype == "float16"));
+  return std::make_shared<Texture>(texture_from_surfaces(std::move(chains), {.faces = 6}, {.srgb = eight_bit, .half = dtype == "float16"}));
 }
 
 void bind_cubemap_class(py::module_& m) {

@@ -97,7 +97,7 @@ using SatPtr = std::shared_ptr<SummedAreaTable>;
 
 SatPtr build(const py::handle& image, const std::string& precision) {
   const InputImage in(image, "image");
-  const ImageView& v = in.view();
+  const ConstImageView& v = in.view();
   const SatPrecision p = precision.empty() ? default_sat_precision(v.type, v.width, v.height)
                                            : parse_sat_precision(precision);
   py::gil_scoped_release release;

@@ -125,7 +125,7 @@ std::vector<Image> copy_surfaces(const py::handle& surfaces) {
   std::vector<Image> out;
   auto add = [&out](const py::handle& a) {
     const InputImage in(a, "image");
-    const ImageView& v = in.view();
+    const ConstImageView& v = in.view();
     Image copy = Image::uninitialized(v.width, v.height, v.channels, v.type);
     for (int y = 0; y < v.height; ++y) std::memcpy(copy.row<std::uint8_t>(y), v.row<std::uint8_t>(y), copy.row_stride());
     out.push_back(std::move(copy));
@@ -147,17 +147,12 @@ Image decode_to_linear(const Image& img, const ColorSpace& from) {
   return out;
 }
 
-struct Layout {
-  std::uint32_t faces = 1, layers = 1;
-  bool is_array = false;
-};
-
-Layout layout_of(std::size_t surfaces, std::uint32_t faces, bool is_array) {
+SurfaceLayout layout_of(std::size_t surfaces, std::uint32_t faces, bool is_array) {
   if (faces != 1 && faces != 6) throw Error(ErrorCode::bad_arguments, "faces must be 1 or 6");
   if (surfaces % faces != 0) {
     throw Error(ErrorCode::bad_arguments, std::to_string(surfaces) + " images do not make whole cubes of 6 faces");
   }
-  Layout l;
+  SurfaceLayout l;
   l.faces = faces;
   l.layers = std::uint32_t(surfaces / faces);
   l.is_array = is_array || l.layers > 1;
@@ -183,7 +178,7 @@ TexturePtr compress(const py::handle& images, const std::string& format_name, co
   options.transparent = parse_transparent(transparent_color);
   const MipOptions mip = mip_options(filter, sigma, wrap, alpha_coverage, premultiplied_alpha, normal_map, max_levels, min_size);
   std::vector<Image> surfaces = copy_surfaces(images);
-  const Layout l = layout_of(surfaces.size(), faces, is_array);
+  const SurfaceLayout l = layout_of(surfaces.size(), faces, is_array);
   // HDR formats hold light: integer colour is decoded (from sRGB unless
   // color_space says otherwise) before the chain and the encoder see it.
   std::optional<ColorSpace> decode_from;
@@ -204,11 +199,11 @@ TexturePtr compress(const py::handle& images, const std::string& format_name, co
     if (mips) {
       MipOptions m = mip;
       m.color_space = info.srgb ? "srgb" : "linear";
-      t = compress_texture_mips(surfaces, m, l.faces, l.layers, l.is_array, format, q, options);
+      t = compress_texture_mips(surfaces, m, l, format, q, options);
     } else {
       std::vector<std::vector<Image>> chains;
       for (Image& s : surfaces) chains.emplace_back().push_back(std::move(s));
-      t = compress_texture(chains, l.faces, l.layers, l.is_array, format, q, options);
+      t = compress_texture(chains, l, format, q, options);
     }
   }
   if (non_finite) {
@@ -221,9 +216,9 @@ TexturePtr compress(const py::handle& images, const std::string& format_name, co
 TexturePtr from_surfaces(const py::list& chains, std::uint32_t faces, bool is_array, bool srgb, bool half) {
   std::vector<std::vector<Image>> owned;
   for (const py::handle& chain : chains) owned.push_back(copy_surfaces(chain));
-  const Layout l = layout_of(owned.size(), faces, is_array);
+  const SurfaceLayout l = layout_of(owned.size(), faces, is_array);
   py::gil_scoped_release release;
-  return std::make_shared<Texture>(texture_from_surfaces(std::move(owned), l.faces, l.layers, l.is_array, srgb, half));
+  return std::make_shared<Texture>(texture_from_surfaces(std::move(owned), l, {.srgb = srgb, .half = half}));
 }
 
 py::dict format_dict(const std::string& name) {

@@ -416,7 +416,7 @@ TEST(Astc, CubemapsKeepTheirFaces) {
     faces.emplace_back();
     faces.back().push_back(random_image(16, 16, 4, PixelType::u8, unsigned(40 + f)));
   }
-  write_texture(dir + "/cube.dds", texture_from_surfaces(std::move(faces), 6, 1, false, true));
+  write_texture(dir + "/cube.dds", texture_from_surfaces(std::move(faces), {.faces = 6}, {.srgb = true}));
   ASSERT_EQ(run_texproc("compress '" + dir + "/cube.dds' -o '" + dir + "/cube.ktx2' --format astc-8x8 --mips -q").exit_code, 0);
   const Texture t = read_texture(dir + "/cube.ktx2");
   EXPECT_EQ(t.format, TexelFormat::astc_8x8_srgb);

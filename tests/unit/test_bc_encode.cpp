@@ -47,7 +47,7 @@ TEST(CompressTexture, Bc3NormalMapsTakeTheDxt5nmLayout) {
   chains[0].push_back(half);
   TextureEncodeOptions o;
   o.normal_map = true;
-  const Texture t = compress_texture(chains, 1, 1, false, TexelFormat::bc3_unorm, Quality::normal, o);
+  const Texture t = compress_texture(chains, {}, TexelFormat::bc3_unorm, Quality::normal, o);
   EXPECT_EQ(t.levels, 2u);
   EXPECT_EQ(t.image(0), PixelBytes(compress_image(nm.view(), TexelFormat::bc3_unorm, Quality::normal)));
   EXPECT_EQ(chains[0][0].channels(), 4);  // handed back as stored
@@ -55,7 +55,7 @@ TEST(CompressTexture, Bc3NormalMapsTakeTheDxt5nmLayout) {
   std::vector<std::vector<Image>> bad(2);
   bad[0].push_back(n);
   bad[1].push_back(half);
-  EXPECT_THROW(compress_texture(bad, 2, 1, true, TexelFormat::bc1_rgb_unorm, Quality::fast), Error);
+  EXPECT_THROW(compress_texture(bad, {.faces = 2, .is_array = true}, TexelFormat::bc1_rgb_unorm, Quality::fast), Error);
 }
 
 TEST(Bc4Encode, FlatBlocksAreExact) {

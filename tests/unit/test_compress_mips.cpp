@@ -20,7 +20,7 @@ Texture whole(const std::vector<Image>& surfaces, const MipOptions& m, std::uint
               const TextureEncodeOptions& o) {
   std::vector<std::vector<Image>> chains;
   for (const Image& s : surfaces) chains.push_back(generate_mips(s.view(), m).levels);
-  return compress_texture(chains, faces, 1, false, f, q, o);
+  return compress_texture(chains, {.faces = faces}, f, q, o);
 }
 
 ::testing::AssertionResult same(const Texture& a, const Texture& b) {
@@ -53,7 +53,7 @@ TEST(CompressMips, SameBytesAsWholeChainsForEveryBlockFormat) {
       m.color_space = format_info(f).srgb ? "srgb" : "linear";
       m.wrap = WrapMode::repeat;
       std::vector<Image> s = copies(in);
-      const Texture streamed = compress_texture_mips(s, m, 1, 1, false, f, Quality::fast);
+      const Texture streamed = compress_texture_mips(s, m, {}, f, Quality::fast);
       EXPECT_TRUE(same(streamed, whole(in, m, 1, f, Quality::fast, {})));
     }
   }
@@ -65,7 +65,7 @@ TEST(CompressMips, SameBytesForHdrLayoutsSurfacesAndThreads) {
     const std::vector<Image> in{random_image(45, 19, 3, PixelType::f32, 2)};
     std::vector<Image> s = copies(in);
     MipOptions m;
-    EXPECT_TRUE(same(compress_texture_mips(s, m, 1, 1, false, TexelFormat::bc6h_ufloat, Quality::fast),
+    EXPECT_TRUE(same(compress_texture_mips(s, m, {}, TexelFormat::bc6h_ufloat, Quality::fast),
                      whole(in, m, 1, TexelFormat::bc6h_ufloat, Quality::fast, {})));
   }
   // DXT5nm normal maps, the transparent colour set to zero, six faces.
@@ -83,9 +83,9 @@ TEST(CompressMips, SameBytesForHdrLayoutsSurfacesAndThreads) {
   for (int threads : {1, 3}) {
     ThreadLimit limit(threads);
     std::vector<Image> a = copies(faces), b = copies(faces);
-    EXPECT_TRUE(same(compress_texture_mips(a, mn, 6, 1, false, TexelFormat::bc3_unorm, Quality::normal, nm),
+    EXPECT_TRUE(same(compress_texture_mips(a, mn, {.faces = 6}, TexelFormat::bc3_unorm, Quality::normal, nm),
                      whole(faces, mn, 6, TexelFormat::bc3_unorm, Quality::normal, nm)));
-    EXPECT_TRUE(same(compress_texture_mips(b, mz, 6, 1, false, TexelFormat::bc7_srgb, Quality::fast, zero),
+    EXPECT_TRUE(same(compress_texture_mips(b, mz, {.faces = 6}, TexelFormat::bc7_srgb, Quality::fast, zero),
                      whole(faces, mz, 6, TexelFormat::bc7_srgb, Quality::fast, zero)));
   }
 }
@@ -105,7 +105,7 @@ TEST(CompressMips, LeavesLevelZeroAsEncodedAndReportsProgress) {
   };
   MipOptions m;
   m.normal_map = true;
-  compress_texture_mips(s, m, 1, 1, false, TexelFormat::bc3_unorm, Quality::fast, o);
+  compress_texture_mips(s, m, {}, TexelFormat::bc3_unorm, Quality::fast, o);
   const Image expected = dxt5nm_layout(in[0].view());
   ASSERT_EQ(s[0].byte_size(), expected.byte_size());
   EXPECT_EQ(std::memcmp(s[0].data(), expected.data(), expected.byte_size()), 0);

@@ -496,7 +496,7 @@ TEST(Container, MipChainsThroughTheContainers) {
   const std::string dir = temp_dir("mip_containers");
   const Image img = random_image(40, 24, 4, PixelType::u8, 7);
   const MipChain c = generate_mips(img.view(), MipOptions{});
-  const Texture t = texture_from_levels(c.levels, true);
+  const Texture t = texture_from_levels(c.levels, {.srgb = true});
   EXPECT_EQ(t.format, TexelFormat::rgba8_srgb);
   for (const char* ext : {".dds", ".ktx2", ".ktx"}) {
     write_texture(dir + "/m" + ext, t);
@@ -509,11 +509,11 @@ TEST(Container, MipChainsThroughTheContainers) {
   }
   // RGB input gets alpha 255; float goes to half or float RGBA.
   const Image rgb = random_image(5, 3, 3, PixelType::u8, 1);
-  const Texture rt = texture_from_levels({rgb}, false);
+  const Texture rt = texture_from_levels({rgb});
   EXPECT_EQ(rt.format, TexelFormat::rgba8_unorm);
   EXPECT_EQ(image_from_texture(rt, 0).get(2, 1, 3), 1.0f);
   const Image f = random_image(5, 3, 1, PixelType::f32, 1);
-  const Image back = image_from_texture(texture_from_levels({f}, false, true), 0);
+  const Image back = image_from_texture(texture_from_levels({f}, {.half = true}), 0);
   EXPECT_NEAR(back.get(3, 2, 0), f.get(3, 2, 0), 1e-3);
   EXPECT_NEAR(back.get(3, 2, 2), f.get(3, 2, 0), 1e-3);
   fs::remove_all(dir);

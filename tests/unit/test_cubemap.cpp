@@ -163,7 +163,7 @@ TEST(CubeLayouts, EveryLayoutRoundTripsTheFacesExactly) {
 
 TEST(CubeFaces, MismatchedFacesAreNamed) {
   Image a(8, 8, 4, PixelType::f32), b(4, 4, 4, PixelType::f32);
-  std::array<ImageView, 6> faces = {a.view(), a.view(), a.view(), b.view(), a.view(), a.view()};
+  std::array<ConstImageView, 6> faces = {a.view(), a.view(), a.view(), b.view(), a.view(), a.view()};
   try {
     cubemap_from_faces(faces);
     FAIL();

@@ -367,7 +367,7 @@ TEST(ImageCodecs, CubemapInputsKeepTheirFaces) {
   for (std::uint32_t f = 0; f < 6; ++f) {
     MipOptions o;
     o.output_type = PixelType::f32;
-    const Texture alone = texture_from_levels(generate_mips(in.images[f].view(), o).levels, false, true);
+    const Texture alone = texture_from_levels(generate_mips(in.images[f].view(), o).levels, {.half = true});
     ASSERT_EQ(alone.levels, m.levels);
     for (std::uint32_t l = 0; l < m.levels; ++l) EXPECT_TRUE(m.image(l, 0, f) == alone.image(l)) << "face " << f << " level " << l;
   }

@@ -272,7 +272,7 @@ TEST(SatBlur, GammaCorrectAndRadiusMap) {
   // A radius map of zero leaves the image unchanged; of one, it is the full radius.
   Image zero(16, 16, 1, PixelType::u8), one(16, 16, 1, PixelType::u8);
   std::memset(one.data(), 255, one.byte_size());
-  const ImageView zv = zero.view(), ov = one.view();
+  const ConstImageView zv = zero.view(), ov = one.view();
   o.radius_map = &zv;
   EXPECT_EQ(0, std::memcmp(box_blur(cb.view(), o).data(), cb.data(), cb.byte_size()));
   o.radius_map = &ov;

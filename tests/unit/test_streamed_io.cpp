@@ -40,7 +40,7 @@ TEST(StreamedIo, DecodedRowsAreTheWholeLevelsRows) {
                                    one_level(TexelFormat::bc4_snorm, rgba),      one_level(TexelFormat::bc5_unorm, rgba),
                                    one_level(TexelFormat::bc7_srgb, rgba),       one_level(TexelFormat::etc2_rgba8_unorm, rgba),
                                    one_level(TexelFormat::eac_rg11_snorm, rgba), one_level(TexelFormat::bc6h_sfloat, hdr)};
-  textures.push_back(texture_from_levels({Image(rgba)}, true, false));  // uncompressed rgba8
+  textures.push_back(texture_from_levels({Image(rgba)}, {.srgb = true}));  // uncompressed rgba8
   for (const Texture& t : textures) {
     for (PixelType type : {PixelType::u8, PixelType::u16, PixelType::f32}) {
       SCOPED_TRACE(std::string(format_info(t.format).name) + " " + to_string(type));
@@ -72,7 +72,7 @@ TEST(StreamedIo, RowSourceWritesTheBytesOfTheWholeImage) {
         const std::string a = (dir / (std::string("a") + ext)).string(), b = (dir / (std::string("b") + ext)).string();
         write_image(a, img.view());
         std::atomic<long> asked{0};
-        ImageView shape = img.view();
+        ConstImageView shape = img.view();
         shape.data = nullptr;
         write_image(b, shape, [&](int y0, int y1, void* dst, std::size_t stride) {
           EXPECT_TRUE(y0 >= 0 && y0 < y1 && y1 <= img.height());

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string_view>
 
 #include "texproc/image.h"
@@ -55,7 +56,7 @@ double bc4_block_error(const std::uint8_t block[8], const float values[16], bool
 // EncodeOptions::astc_effort); its library is loaded on first use and
 // Error{unsupported} says so when it is missing.
 // Throws Error{unsupported} for formats that are not block formats.
-std::vector<std::uint8_t> compress_image(const ImageView& image, TexelFormat format, Quality q);
+std::vector<std::uint8_t> compress_image(const ConstImageView& image, TexelFormat format, Quality q);
 
 // Choices beyond the quality level.
 struct EncodeOptions {
@@ -72,15 +73,15 @@ struct EncodeOptions {
   std::function<void(double)> progress;
   // ASTC: astc-encoder's effort, 0-100 (its numeric quality: 0 -fastest,
   // 10 -fast, 60 -medium, 98 -thorough, 99 -verythorough, 100 -exhaustive),
-  // in place of the quality level's preset; negative: the preset.
-  float astc_effort = -1.0f;
+  // in place of the quality level's preset; unset: the preset.
+  std::optional<float> astc_effort;
   // ASTC LDR: the image is a tangent-space normal map (X in red, Y in
   // green): stored with X in RGB and Y in alpha (astc-encoder's rrrg) and
   // searched for angular error. Shaders read X from .r (or .g, .b), Y from
   // .a and rebuild Z = sqrt(1 - X^2 - Y^2) after mapping both to [-1, 1].
   bool normal_map = false;
 };
-std::vector<std::uint8_t> compress_image(const ImageView& image, TexelFormat format, Quality q, const EncodeOptions& options);
+std::vector<std::uint8_t> compress_image(const ConstImageView& image, TexelFormat format, Quality q, const EncodeOptions& options);
 
 // One block of any block format (BC1-BC5, ETC1, ETC2, EAC) from 16 RGBA8
 // texels, row by row, taken as compress_image takes an RGBA8 image (BC4/EAC
@@ -97,7 +98,7 @@ int encode_block(TexelFormat format, const std::uint8_t rgba[16][4], Quality q, 
 // so the colour endpoints spend their precision on Y. Shaders read (a, g)
 // and rebuild Z. Returns a 4-channel image of the input's type (a
 // one-channel input's Y is 0.5).
-Image dxt5nm_layout(const ImageView& normal_map);
+Image dxt5nm_layout(const ConstImageView& normal_map);
 
 // What compress_texture does beyond compress_image.
 struct TextureEncodeOptions {
@@ -111,13 +112,13 @@ struct TextureEncodeOptions {
   TransparentColor transparent = TransparentColor::keep;
 };
 
-// A texture of `format` from one mip chain per surface (index layer * faces
-// + face; every chain of the same sizes): each level of each surface
+// A texture of `format` from one mip chain per surface (`layout`: index
+// layer * faces + face; every chain of the same sizes): each level of each surface
 // through compress_image. On return the chains hold the levels as they were
 // encoded (DXT5nm layout, transparent colour), for measuring the error.
 // Bytes are identical for any thread count.
-Texture compress_texture(std::vector<std::vector<Image>>& chains, std::uint32_t faces, std::uint32_t layers,
-                         bool is_array, TexelFormat format, Quality q, const TextureEncodeOptions& options = {});
+Texture compress_texture(std::vector<std::vector<Image>>& chains, const SurfaceLayout& layout, TexelFormat format,
+                         Quality q, const TextureEncodeOptions& options = {});
 
 // compress_texture of the chains generate_mips(surface, mip) builds, one per
 // surface (index layer * faces + face, all of one size), without holding
@@ -128,8 +129,7 @@ Texture compress_texture(std::vector<std::vector<Image>>& chains, std::uint32_t 
 // Level 0 is each image as given (MipOptions::output_type and
 // output_color_space must be unset); on return `surfaces` hold level 0 as
 // it was encoded (DXT5nm layout, transparent colour).
-Texture compress_texture_mips(std::vector<Image>& surfaces, const MipOptions& mip, std::uint32_t faces,
-                              std::uint32_t layers, bool is_array, TexelFormat format, Quality q,
-                              const TextureEncodeOptions& options = {});
+Texture compress_texture_mips(std::vector<Image>& surfaces, const MipOptions& mip, const SurfaceLayout& layout,
+                              TexelFormat format, Quality q, const TextureEncodeOptions& options = {});
 
 }  // namespace texproc

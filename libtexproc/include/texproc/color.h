@@ -52,9 +52,8 @@ class ColorSpace {
   // `src` is used as scratch and may be modified.
   void encode_row(float* src, int channels, int width, void* dst, PixelType type) const;
 
-  struct Impl;
-
  private:
+  struct Impl;
   explicit ColorSpace(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
   std::shared_ptr<const Impl> impl_;
 };

@@ -83,9 +83,9 @@ struct Cubemap {
 // Decodes any image to linear RGBA f32 (missing alpha is 1, gray is
 // copied to RGB) with colour premultiplied by alpha; `color_space` is the
 // source space (ColorSpace::srgb() for 8/16-bit colour, linear for float).
-Image to_linear_rgba(const ImageView& image, const ColorSpace& color_space);
+Image to_linear_rgba(const ConstImageView& image, const ColorSpace& color_space);
 // The inverse: `channels` 3 or 4 of `type`, encoded to `color_space`.
-Image from_linear_rgba(const ImageView& rgba, const ColorSpace& color_space, int channels, PixelType type);
+Image from_linear_rgba(const ConstImageView& rgba, const ColorSpace& color_space, int channels, PixelType type);
 
 // The face size a panorama of this width gives by default: width / 4
 // rounded to the nearest power of two (at least 1).
@@ -98,13 +98,13 @@ int default_cube_size(int panorama_width);
 // faces does not alias; near the poles, where a texel's footprint spans
 // many columns, the taps follow the footprint exactly. Throws
 // Error{bad_arguments} for a size < 1 or an image that is not RGBA f32.
-Cubemap cubemap_from_equirect(const ImageView& panorama, int size, CubeFlip flip = CubeFlip::none);
+Cubemap cubemap_from_equirect(const ConstImageView& panorama, int size, CubeFlip flip = CubeFlip::none);
 // Level 0 from six square faces of one size (RGBA f32), in face order.
 // Throws Error{bad_arguments} naming the face whose size differs.
-Cubemap cubemap_from_faces(const std::array<ImageView, 6>& faces);
+Cubemap cubemap_from_faces(const std::array<ConstImageView, 6>& faces);
 // Level 0 from a cross or strip image (RGBA f32). Throws Error{bad_arguments}
 // if the size does not fit the layout.
-Cubemap cubemap_from_layout(const ImageView& image, CubeLayout layout);
+Cubemap cubemap_from_layout(const ConstImageView& image, CubeLayout layout);
 // Level 0 from a cube texture's six faces (read_image_array's images, RGBA f32).
 Cubemap cubemap_from_images(const std::vector<Image>& faces);
 // Mirrors a world axis of a cube map (faces swapped and flipped).

@@ -30,8 +30,28 @@ constexpr bool is_float(PixelType t) { return t == PixelType::f32; }
 // "u8", "u16", "f32".
 const char* to_string(PixelType t);
 
-// A view of interleaved pixels in caller memory. `row_stride` is in bytes and
-// may exceed width * channels * bytes_per_channel(type) (padding, sub-views).
+// A read-only view of interleaved pixels in caller memory: what a call reads
+// (its inputs). `row_stride` is in bytes and may exceed width * channels *
+// bytes_per_channel(type) (padding, sub-views).
+struct ConstImageView {
+  const void* data = nullptr;
+  int width = 0;
+  int height = 0;
+  int channels = 0;  // 1..4: gray, gray+alpha, RGB, RGBA
+  PixelType type = PixelType::u8;
+  std::size_t row_stride = 0;
+
+  std::size_t pixel_bytes() const { return channels * bytes_per_channel(type); }
+  template <typename T>
+  const T* row(int y) const {
+    assert(y >= 0 && y < height);
+    return reinterpret_cast<const T*>(static_cast<const std::uint8_t*>(data) + y * row_stride);
+  }
+};
+
+// A view of pixels a call writes (its outputs), laid out as ConstImageView;
+// it converts to one, so an output may also be read. A const Image gives
+// only a ConstImageView: it cannot be passed where a call writes.
 struct ImageView {
   void* data = nullptr;
   int width = 0;
@@ -46,6 +66,7 @@ struct ImageView {
     assert(y >= 0 && y < height);
     return reinterpret_cast<T*>(static_cast<std::uint8_t*>(data) + y * row_stride);
   }
+  operator ConstImageView() const { return {data, width, height, channels, type, row_stride}; }
 };
 
 namespace detail {
@@ -136,9 +157,7 @@ class Image {
   const T* row(int y) const { return reinterpret_cast<const T*>(data_.data() + y * row_stride()); }
 
   ImageView view() { return {data_.data(), width_, height_, channels_, type_, row_stride()}; }
-  ImageView view() const {
-    return {const_cast<std::uint8_t*>(data_.data()), width_, height_, channels_, type_, row_stride()};
-  }
+  ConstImageView view() const { return {data_.data(), width_, height_, channels_, type_, row_stride()}; }
 
   // Gives up the pixel bytes (rows tightly packed), leaving the image empty.
   PixelBytes release() && {

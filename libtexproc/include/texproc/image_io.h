@@ -16,6 +16,7 @@
 
 #include "texproc/image.h"
 #include "texproc/read_limits.h"
+#include "texproc/texture.h"
 
 namespace texproc {
 
@@ -69,6 +70,7 @@ struct ImageArray {
   std::vector<Image> images;
   std::uint32_t faces = 1, layers = 1;
   bool is_array = false;  // an array texture, even with one layer
+  SurfaceLayout layout() const { return {faces, layers, is_array}; }
 };
 ImageArray read_image_array(const std::string& path, ImageFileInfo* info = nullptr, const ReadOptions& options = {});
 
@@ -92,7 +94,7 @@ struct WriteOptions {
 
 // Writes one image atomically. The format follows the extension. Throws
 // Error{unsupported} for an unknown extension, Error{io} on write failure.
-void write_image(const std::string& path, const ImageView& image, const WriteOptions& options = {});
+void write_image(const std::string& path, const ConstImageView& image, const WriteOptions& options = {});
 
 // Rows [y0, y1) of an image, made on demand (decoded, converted) into `dst`,
 // rows `row_stride` bytes apart: called from several threads at once, for
@@ -103,7 +105,7 @@ using RowSource = std::function<void(int y0, int y1, void* dst, std::size_t row_
 // channels and type (its data is not read) and `source` its rows. PNG asks
 // for them strip by strip, so the image is never whole in memory; other
 // formats make it whole first.
-void write_image(const std::string& path, const ImageView& shape, const RowSource& source,
+void write_image(const std::string& path, const ConstImageView& shape, const RowSource& source,
                  const WriteOptions& options = {});
 
 // True if the extension names a format that holds a MIP chain in one file

@@ -50,20 +50,20 @@ double psnr_from_mse(double mse);
 // channel on the [0, 1] scale: an 11x11 Gaussian window of sigma 1.5 (edge
 // texels repeated), C1 = 0.01^2, C2 = 0.03^2. 1 for identical images.
 // Same size and channel count required (Error{bad_arguments}).
-std::vector<double> ssim_per_channel(const ImageView& a, const ImageView& b);
+std::vector<double> ssim_per_channel(const ConstImageView& a, const ConstImageView& b);
 
 // Compares two images of the same size and channel count, texel by texel,
 // on a [0, 1] scale (8-bit codes / 255, 16-bit / 65535, floats as they are;
 // the types may differ). Sums are in double over fixed row blocks: the
 // result is the same for any thread count. Throws Error{bad_arguments} when
 // the sizes or channel counts differ.
-ImageDifference compare_images(const ImageView& a, const ImageView& b);
+ImageDifference compare_images(const ConstImageView& a, const ConstImageView& b);
 
 // An image compared without being held whole: `shape` gives its width,
 // height, channels and type; `rows`, where set, makes its rows on demand
 // (a block of 32 at a time), else they are shape's.
 struct ImageRows {
-  ImageView shape;
+  ConstImageView shape;
   RowSource rows;
 };
 

@@ -29,9 +29,9 @@ struct MipOptions {
   // Filter color premultiplied by alpha (channels 2 and 4). Off only for data
   // whose fourth channel is not coverage.
   bool premultiplied_alpha = true;
-  // If >= 0: scale each level's alpha so that the fraction of texels with
-  // alpha >= ref equals level 0's (NVTT's scaleAlphaForCoverage).
-  float alpha_coverage_ref = -1.0f;
+  // Where set (in (0, 1]): scale each level's alpha so that the fraction of
+  // texels with alpha >= ref equals level 0's (NVTT's scaleAlphaForCoverage).
+  std::optional<float> alpha_coverage_ref;
   // The input is a tangent-space normal map (RGB = XYZ * 0.5 + 0.5): filter
   // the vectors and renormalize each level. Alpha, if any, is filtered as
   // plain data.
@@ -48,7 +48,7 @@ int mip_level_dim(int size, int level);
 struct MipChain {
   std::vector<Image> levels;         // level 0 first
   std::string color_space;           // of the stored levels
-  std::vector<float> alpha_coverage; // per level, when alpha_coverage_ref >= 0
+  std::vector<float> alpha_coverage; // per level, when alpha_coverage_ref is set
   std::vector<float> alpha_scale;    // per level, the factor applied to alpha
 };
 
@@ -56,7 +56,7 @@ struct MipChain {
 // color space (a byte copy when they match). Throws Error{bad_arguments} for
 // invalid options (normal maps need 3 or 4 channels, sigma out of range...).
 // Output bytes are identical for any thread count.
-MipChain generate_mips(const ImageView& image, const MipOptions& options);
+MipChain generate_mips(const ConstImageView& image, const MipOptions& options);
 // The same, taking ownership of `image`: when level 0 needs no conversion it
 // becomes levels[0] without a copy.
 MipChain generate_mips(Image&& image, const MipOptions& options);
@@ -84,16 +84,16 @@ class MipRowSink {
 // The chain generate_mips builds, levels 1.. only, streamed into `sink`
 // without holding it: a level's rows stay in float only until every row of
 // the next level that reads them is done, so beside the input the memory is
-// a few hundred rows (with alpha_coverage_ref >= 0, one whole level in
+// a few hundred rows (with alpha_coverage_ref set, one whole level in
 // float, as its coverage must be known before it is written). Level 0 is
 // the input converted as generate_mips converts it; the sink gets its rows
 // only if it wants them. Returns the chain with no levels: its color space
 // and coverage.
 // The rows' bytes are generate_mips's, for any thread count.
-MipChain generate_mips_rows(const ImageView& image, const MipOptions& options, MipRowSink& sink);
+MipChain generate_mips_rows(const ConstImageView& image, const MipOptions& options, MipRowSink& sink);
 
 // The fraction of texels whose alpha (last channel) times `scale` is >= ref.
 // Integer alpha is compared as value / max.
-float alpha_coverage(const ImageView& image, float ref, float scale = 1.0f);
+float alpha_coverage(const ConstImageView& image, float ref, float scale = 1.0f);
 
 }  // namespace texproc

@@ -57,14 +57,14 @@ int channel_count(NormalChannels c);
 // round((n * 0.5 + 0.5) * max); f32 holds n * 0.5 + 0.5 unquantized. The
 // bytes never depend on the thread count or SIMD target. Throws
 // Error{bad_arguments} for invalid options (naming the option).
-void compute_normal_map(const ImageView& heights, const ImageView& out, const NormalMapOptions& options);
+void compute_normal_map(const ConstImageView& heights, const ImageView& out, const NormalMapOptions& options);
 
 // The same into a new image of `type`.
-Image normal_map(const ImageView& heights, const NormalMapOptions& options, PixelType type);
+Image normal_map(const ConstImageView& heights, const NormalMapOptions& options, PixelType type);
 
 // The height as the kernels see it (after channel selection and --invert),
 // one float per texel, row after row.
-std::vector<float> extract_height(const ImageView& image, HeightChannel channel, bool invert);
+std::vector<float> extract_height(const ConstImageView& image, HeightChannel channel, bool invert);
 
 GradientKernel parse_gradient_kernel(std::string_view name);
 HeightChannel parse_height_channel(std::string_view name);

@@ -70,21 +70,23 @@ struct SummedAreaTable {
   double model(int x, int y, int c) const;
   // model(x, y, c) for every x and c of row y into out[width * channels].
   void model_row(int y, double* out) const;
-  // Derives the prefix arrays model() reads from block_means; build_sat and
-  // read_sat_file call it.
-  void prepare_model();
 
  private:
+  friend void build_sat(const ConstImageView& image, SatPrecision precision, SummedAreaTable& table);
+  friend SummedAreaTable read_sat_file(const std::string& path);
+  // Derives the prefix arrays model() reads from block_means.
+  void prepare_model();
+
   std::vector<double> full_, col_, row_;  // (BW + 1) * (BH + 1) * channels each
 };
 
 // Builds the table of every channel of `image`. Integer precisions need
 // integer input (Error{bad_arguments} otherwise). Bytes never depend on the
 // thread count.
-SummedAreaTable build_sat(const ImageView& image, SatPrecision precision);
+SummedAreaTable build_sat(const ConstImageView& image, SatPrecision precision);
 // The same into `table`, reusing its memory when the size allows (a batch,
 // or a table rebuilt every frame, then touches no fresh pages).
-void build_sat(const ImageView& image, SatPrecision precision, SummedAreaTable& table);
+void build_sat(const ConstImageView& image, SatPrecision precision, SummedAreaTable& table);
 
 // The .sat file (docs/sat.md): a 64-byte header, the offsets, the data.
 void write_sat_file(const std::string& path, const SummedAreaTable& table);
@@ -94,7 +96,7 @@ SummedAreaTable read_sat_file(const std::string& path);
 
 struct BoxBlurOptions {
   float radius = 4.0f;                  // half-width in texels: a box of 2r + 1 (fractional r blends)
-  const ImageView* radius_map = nullptr;  // optional: per texel r = radius * map (first channel, [0, 1])
+  const ConstImageView* radius_map = nullptr;  // optional: per texel r = radius * map (first channel, [0, 1])
   WrapMode wrap = WrapMode::clamp;
   std::string color_space;  // "" : srgb for 8/16-bit, linear for float input
 };
@@ -103,6 +105,6 @@ struct BoxBlurOptions {
 // the linear, alpha-premultiplied image padded by the largest radius with
 // `wrap`. A fractional radius r blends the boxes of floor(r) and floor(r)+1.
 // The result has the input's size, type and color space.
-Image box_blur(const ImageView& image, const BoxBlurOptions& options);
+Image box_blur(const ConstImageView& image, const BoxBlurOptions& options);
 
 }  // namespace texproc

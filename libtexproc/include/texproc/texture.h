@@ -43,9 +43,16 @@ enum class TexelFormat {
 
 // Everything the containers need to know about a format, from one table
 // (libtexproc/src/container/formats.cpp).
+// The codec a format's texels go through: compress_image and the decoders
+// pick the encoder and decoder by it. ETC2 with alpha (etc2_rgba8) carries an
+// EAC alpha block; its family is etc2.
+enum class CodecFamily : std::uint8_t { uncompressed, bc1, bc2, bc3, bc4, bc5, bc6h, bc7, etc1, etc2, eac, astc };
+const char* to_string(CodecFamily family);  // "uncompressed", "bc1", ... "astc"
+
 struct FormatInfo {
   TexelFormat format;
   const char* name;         // "rgba8_srgb", "bc1_rgba_unorm", ...
+  CodecFamily family;
   int block_width, block_height;
   int block_bytes;          // bytes per block (per texel for uncompressed formats)
   int channels;             // 1..4
@@ -95,19 +102,33 @@ struct Texture {
 // Throws Error{bad_arguments} naming the problem.
 void validate(const Texture& t);
 
+// How the images of a texture with several surfaces are laid out: one per
+// (layer, face), index layer * faces + face.
+struct SurfaceLayout {
+  std::uint32_t faces = 1;   // 1, or 6 for a cube map (+X, -X, +Y, -Y, +Z, -Z)
+  std::uint32_t layers = 1;  // array layers
+  bool is_array = false;     // an array texture even with one layer
+};
+
+// How texture_from_levels and texture_from_surfaces store pixels.
+struct UncompressedOptions {
+  bool srgb = false;  // 8-bit formats tagged sRGB (r8/rg8/rgba8 _srgb), else UNORM
+  bool half = false;  // f32 stored as rgba16_float, else rgba32_float
+};
+
 // A mip chain of images (u8 1, 2 or 4 channels; u8 3 channels get alpha 255;
 // u16; f32) as an uncompressed texture: r8/rg8/rgba8 (srgb or unorm), r16/
-// rg16/rgba16 unorm, rgba16_float (half = true) or rgba32_float. Gray+alpha
+// rg16/rgba16 unorm, rgba16_float (options.half) or rgba32_float. Gray+alpha
 // goes to rg8 (rg16); float with fewer than 4 channels is padded to RGBA.
-Texture texture_from_levels(const std::vector<Image>& levels, bool srgb, bool half = false);
+Texture texture_from_levels(const std::vector<Image>& levels, const UncompressedOptions& options = {});
 // The same, taking the levels' pixel memory where the layout is already the
 // texture's (no copy); `levels` is left empty.
-Texture texture_from_levels(std::vector<Image>&& levels, bool srgb, bool half = false);
+Texture texture_from_levels(std::vector<Image>&& levels, const UncompressedOptions& options = {});
 // Cubemaps and arrays: one mip chain per surface (index layer * faces +
 // face), each converted as texture_from_levels converts one chain; every
 // chain must have the same sizes and layout. The chains are left empty.
-Texture texture_from_surfaces(std::vector<std::vector<Image>>&& chains, std::uint32_t faces, std::uint32_t layers,
-                              bool is_array, bool srgb, bool half = false);
+Texture texture_from_surfaces(std::vector<std::vector<Image>>&& chains, const SurfaceLayout& layout,
+                              const UncompressedOptions& options = {});
 
 // One image of an uncompressed texture back as an Image (bgra swizzled to
 // rgba, half widened to f32). Throws Error{unsupported} for block formats.

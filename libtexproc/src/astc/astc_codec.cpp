@@ -170,7 +170,7 @@ struct Packed {
 };
 
 // Gray fills RGB, missing alpha is 1; a two-channel normal map is X, Y.
-Packed pack(const ImageView& img, bool hdr, bool normal_map) {
+Packed pack(const ConstImageView& img, bool hdr, bool normal_map) {
   Packed p;
   const std::size_t n = std::size_t(img.width) * img.height * 4;
   const int C = img.channels;
@@ -240,9 +240,9 @@ float effort_for(Quality q) {
   return ASTCENC_PRE_MEDIUM;
 }
 
-std::vector<std::uint8_t> encode(const ImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
+std::vector<std::uint8_t> encode(const ConstImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
   const FormatInfo& fi = format_info(format);
-  const float effort = options.astc_effort >= 0.0f ? options.astc_effort : effort_for(q);
+  const float effort = options.astc_effort ? *options.astc_effort : effort_for(q);
   if (!(effort >= 0.0f && effort <= 100.0f))
     throw Error(ErrorCode::bad_arguments, "astc effort " + std::to_string(effort) + " is not in [0, 100]");
   if (options.normal_map && fi.is_float)
@@ -255,7 +255,8 @@ std::vector<std::uint8_t> encode(const ImageView& img, TexelFormat format, Quali
                 (options.normal_map ? ASTCENC_FLG_MAP_NORMAL : 0u) | ASTCENC_FLG_SELF_DECOMPRESS_ONLY,
                 threads_now()};
   std::vector<std::uint8_t> out(image_bytes(format, std::uint32_t(img.width), std::uint32_t(img.height)));
-  void* slice = as_is ? img.data : packed.data();
+  // astc-encoder's image type holds non-const slices; compressing only reads them.
+  void* slice = as_is ? const_cast<void*>(img.data) : packed.data();
   astcenc_image image{unsigned(img.width), unsigned(img.height), 1, packed.type, &slice};
   // A normal map's X goes to RGB and Y to alpha (astc-encoder's rrrg, as its
   // CLI's -normal): the swizzle is the library's, which reads it per texel.

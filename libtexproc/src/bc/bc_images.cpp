@@ -34,7 +34,7 @@ bool two_colours_rgba(const std::uint8_t rgba[16][4]) {
 
 }  // namespace
 
-std::vector<std::uint8_t> compress_bc13(const ImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
+std::vector<std::uint8_t> compress_bc13(const ConstImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
   using F = TexelFormat;
   const bool bc1 = format == F::bc1_rgb_unorm || format == F::bc1_rgb_srgb;
   const bool bc1a = format == F::bc1_rgba_unorm || format == F::bc1_rgba_srgb;
@@ -130,7 +130,7 @@ std::vector<std::uint8_t> compress_bc13(const ImageView& img, TexelFormat format
   return out;
 }
 
-std::vector<std::uint8_t> compress_bc7(const ImageView& img, Quality q, const EncodeOptions& options) {
+std::vector<std::uint8_t> compress_bc7(const ConstImageView& img, Quality q, const EncodeOptions& options) {
   const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * 16);
   const Bc7Level& level = bc7_level(q);  // bc7_levels.h
@@ -160,7 +160,7 @@ std::vector<std::uint8_t> compress_bc7(const ImageView& img, Quality q, const En
 namespace {
 // Channel c (RGB) of texel (x, y) as a float: 8- and 16-bit as [0, 1], gray
 // in every channel.
-float texel_float(const ImageView& img, int x, int y, int c) {
+float texel_float(const ConstImageView& img, int x, int y, int c) {
   const int src = img.channels <= 2 ? 0 : c;
   const std::size_t at = std::size_t(x) * img.channels + src;
   switch (img.type) {
@@ -172,7 +172,7 @@ float texel_float(const ImageView& img, int x, int y, int c) {
 }
 }  // namespace
 
-std::vector<std::uint8_t> compress_bc6h(const ImageView& img, bool is_signed, Quality q, const EncodeOptions& options) {
+std::vector<std::uint8_t> compress_bc6h(const ConstImageView& img, bool is_signed, Quality q, const EncodeOptions& options) {
   const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * 16);
   const Bc6hLevel& level = bc6h_level(q);  // bc6h_levels.h
@@ -198,7 +198,7 @@ std::vector<std::uint8_t> compress_bc6h(const ImageView& img, bool is_signed, Qu
   return out;
 }
 
-std::vector<std::uint8_t> compress_bc45(const ImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
+std::vector<std::uint8_t> compress_bc45(const ConstImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
   const bool bc5 = format == TexelFormat::bc5_unorm || format == TexelFormat::bc5_snorm;
   const bool snorm = format == TexelFormat::bc4_snorm || format == TexelFormat::bc5_snorm;
   if (!bc5 && format != TexelFormat::bc4_unorm && format != TexelFormat::bc4_snorm) {

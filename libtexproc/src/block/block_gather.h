@@ -15,7 +15,7 @@ namespace texproc {
 
 // The stored value of channel c (0..3 of RGBA) as 8 bits: gray fills RGB, no
 // alpha is 255; 16-bit and float values are rounded.
-inline std::uint8_t texel8(const ImageView& img, int x, int y, int c) {
+inline std::uint8_t texel8(const ConstImageView& img, int x, int y, int c) {
   const int C = img.channels;
   int src = c;
   if (C <= 2 && c < 3) src = 0;
@@ -31,7 +31,7 @@ inline std::uint8_t texel8(const ImageView& img, int x, int y, int c) {
 }
 
 // Channel c of texel (x, y) as data in [0, 1] (0 for a channel the image lacks).
-inline float texel_unit(const ImageView& img, int x, int y, int c) {
+inline float texel_unit(const ConstImageView& img, int x, int y, int c) {
   if (c >= img.channels) return 0.0f;
   switch (img.type) {
     case PixelType::u8: return img.row<const std::uint8_t>(y)[x * img.channels + c] / 255.0f;
@@ -47,7 +47,7 @@ namespace texproc {
 
 // The 4x4 block at block coordinates (bx, by) as RGBA8 texels, row by row;
 // texels past the image's right and bottom edges repeat the edge texels.
-inline void gather_rgba8(const ImageView& img, int bx, int by, std::uint8_t rgba[16][4]) {
+inline void gather_rgba8(const ConstImageView& img, int bx, int by, std::uint8_t rgba[16][4]) {
   const int x0 = bx * 4, y0 = by * 4;
   if (img.type == PixelType::u8 && img.channels == 4 && x0 + 4 <= img.width && y0 + 4 <= img.height) {
     for (int y = 0; y < 4; ++y) std::memcpy(rgba[4 * y], img.row<const std::uint8_t>(y0 + y) + 4 * x0, 16);
@@ -106,7 +106,7 @@ inline std::uint32_t pack_texel(const std::uint8_t px[4]) {
 // The `count` blocks from (bx0, by) straight from the rows of an RGBA8
 // image. False, and nothing read, where that
 // does not apply: another layout, or a block past the image's edges.
-inline bool gather_rows_rgba8(const ImageView& img, int bx0, int by, int count, std::uint32_t texel[16][kBlockBatch]) {
+inline bool gather_rows_rgba8(const ConstImageView& img, int bx0, int by, int count, std::uint32_t texel[16][kBlockBatch]) {
   if (img.type != PixelType::u8 || img.channels != 4 || (bx0 + count) * 4 > img.width || by * 4 + 4 > img.height)
     return false;
   for (int y = 0; y < 4; ++y) {

@@ -21,89 +21,141 @@ constexpr std::uint32_t kGlUByte = 0x1401, kGlUShort = 0x1403, kGlHalf = 0x140B,
 
 using F = TexelFormat;
 // format, name, block w, h, bytes, channels, srgb, snorm, float, compressed, typeSize, vk, dxgi, gl internal, gl format, gl type
+using Family = CodecFamily;
 const FormatInfo kFormats[] = {
-    {F::r8_unorm, "r8_unorm", 1, 1, 1, 1, false, false, false, false, 1, 9, 61, 0x8229, kGlRed, kGlUByte},
-    {F::r8_srgb, "r8_srgb", 1, 1, 1, 1, true, false, false, false, 1, 15, 0, 0x8FBD, kGlRed, kGlUByte},
-    {F::rg8_unorm, "rg8_unorm", 1, 1, 2, 2, false, false, false, false, 1, 16, 49, 0x822B, kGlRg, kGlUByte},
-    {F::rg8_srgb, "rg8_srgb", 1, 1, 2, 2, true, false, false, false, 1, 22, 0, 0x8FBE, kGlRg, kGlUByte},
-    {F::rgba8_unorm, "rgba8_unorm", 1, 1, 4, 4, false, false, false, false, 1, 37, 28, 0x8058, kGlRgba, kGlUByte},
-    {F::rgba8_srgb, "rgba8_srgb", 1, 1, 4, 4, true, false, false, false, 1, 43, 29, 0x8C43, kGlRgba, kGlUByte},
-    {F::bgra8_unorm, "bgra8_unorm", 1, 1, 4, 4, false, false, false, false, 1, 44, 87, 0x93A1, kGlBgra, kGlUByte},
-    {F::bgra8_srgb, "bgra8_srgb", 1, 1, 4, 4, true, false, false, false, 1, 50, 91, 0, kGlBgra, kGlUByte},
-    {F::r16_unorm, "r16_unorm", 1, 1, 2, 1, false, false, false, false, 2, 70, 56, 0x822A, kGlRed, kGlUShort},
-    {F::rg16_unorm, "rg16_unorm", 1, 1, 4, 2, false, false, false, false, 2, 77, 35, 0x822C, kGlRg, kGlUShort},
-    {F::rgba16_unorm, "rgba16_unorm", 1, 1, 8, 4, false, false, false, false, 2, 91, 11, 0x805B, kGlRgba, kGlUShort},
-    {F::rgba16_float, "rgba16_float", 1, 1, 8, 4, false, false, true, false, 2, 97, 10, 0x881A, kGlRgba, kGlHalf},
-    {F::rgba32_float, "rgba32_float", 1, 1, 16, 4, false, false, true, false, 4, 109, 2, 0x8814, kGlRgba, kGlFloat},
-    {F::bc1_rgb_unorm, "bc1_rgb_unorm", 4, 4, 8, 3, false, false, false, true, 1, 131, 71, 0x83F0, 0, 0},
-    {F::bc1_rgb_srgb, "bc1_rgb_srgb", 4, 4, 8, 3, true, false, false, true, 1, 132, 72, 0x8C4C, 0, 0},
-    {F::bc1_rgba_unorm, "bc1_rgba_unorm", 4, 4, 8, 4, false, false, false, true, 1, 133, 71, 0x83F1, 0, 0},
-    {F::bc1_rgba_srgb, "bc1_rgba_srgb", 4, 4, 8, 4, true, false, false, true, 1, 134, 72, 0x8C4D, 0, 0},
-    {F::bc2_unorm, "bc2_unorm", 4, 4, 16, 4, false, false, false, true, 1, 135, 74, 0x83F2, 0, 0},
-    {F::bc2_srgb, "bc2_srgb", 4, 4, 16, 4, true, false, false, true, 1, 136, 75, 0x8C4E, 0, 0},
-    {F::bc3_unorm, "bc3_unorm", 4, 4, 16, 4, false, false, false, true, 1, 137, 77, 0x83F3, 0, 0},
-    {F::bc3_srgb, "bc3_srgb", 4, 4, 16, 4, true, false, false, true, 1, 138, 78, 0x8C4F, 0, 0},
-    {F::bc4_unorm, "bc4_unorm", 4, 4, 8, 1, false, false, false, true, 1, 139, 80, 0x8DBB, 0, 0},
-    {F::bc4_snorm, "bc4_snorm", 4, 4, 8, 1, false, true, false, true, 1, 140, 81, 0x8DBC, 0, 0},
-    {F::bc5_unorm, "bc5_unorm", 4, 4, 16, 2, false, false, false, true, 1, 141, 83, 0x8DBD, 0, 0},
-    {F::bc5_snorm, "bc5_snorm", 4, 4, 16, 2, false, true, false, true, 1, 142, 84, 0x8DBE, 0, 0},
-    {F::bc6h_ufloat, "bc6h_ufloat", 4, 4, 16, 3, false, false, true, true, 1, 143, 95, 0x8E8F, 0, 0},
-    {F::bc6h_sfloat, "bc6h_sfloat", 4, 4, 16, 3, false, false, true, true, 1, 144, 96, 0x8E8E, 0, 0},
-    {F::bc7_unorm, "bc7_unorm", 4, 4, 16, 4, false, false, false, true, 1, 145, 98, 0x8E8C, 0, 0},
-    {F::bc7_srgb, "bc7_srgb", 4, 4, 16, 4, true, false, false, true, 1, 146, 99, 0x8E8D, 0, 0},
-    {F::etc1_rgb, "etc1_rgb", 4, 4, 8, 3, false, false, false, true, 1, 147, 0, 0x8D64, 0, 0},
-    {F::etc2_rgb_unorm, "etc2_rgb_unorm", 4, 4, 8, 3, false, false, false, true, 1, 147, 0, 0x9274, 0, 0},
-    {F::etc2_rgb_srgb, "etc2_rgb_srgb", 4, 4, 8, 3, true, false, false, true, 1, 148, 0, 0x9275, 0, 0},
-    {F::etc2_rgba1_unorm, "etc2_rgba1_unorm", 4, 4, 8, 4, false, false, false, true, 1, 149, 0, 0x9276, 0, 0},
-    {F::etc2_rgba1_srgb, "etc2_rgba1_srgb", 4, 4, 8, 4, true, false, false, true, 1, 150, 0, 0x9277, 0, 0},
-    {F::etc2_rgba8_unorm, "etc2_rgba8_unorm", 4, 4, 16, 4, false, false, false, true, 1, 151, 0, 0x9278, 0, 0},
-    {F::etc2_rgba8_srgb, "etc2_rgba8_srgb", 4, 4, 16, 4, true, false, false, true, 1, 152, 0, 0x9279, 0, 0},
-    {F::eac_r11_unorm, "eac_r11_unorm", 4, 4, 8, 1, false, false, false, true, 1, 153, 0, 0x9270, 0, 0},
-    {F::eac_r11_snorm, "eac_r11_snorm", 4, 4, 8, 1, false, true, false, true, 1, 154, 0, 0x9271, 0, 0},
-    {F::eac_rg11_unorm, "eac_rg11_unorm", 4, 4, 16, 2, false, false, false, true, 1, 155, 0, 0x9272, 0, 0},
-    {F::eac_rg11_snorm, "eac_rg11_snorm", 4, 4, 16, 2, false, true, false, true, 1, 156, 0, 0x9273, 0, 0},
-    {F::astc_4x4_unorm, "astc_4x4_unorm", 4, 4, 16, 4, false, false, false, true, 1, 157, 0, 0x93B0, 0, 0},
-    {F::astc_4x4_srgb, "astc_4x4_srgb", 4, 4, 16, 4, true, false, false, true, 1, 158, 0, 0x93D0, 0, 0},
-    {F::astc_4x4_sfloat, "astc_4x4_sfloat", 4, 4, 16, 4, false, false, true, true, 1, 1000066000u, 0, 0x93B0, 0, 0},
-    {F::astc_5x4_unorm, "astc_5x4_unorm", 5, 4, 16, 4, false, false, false, true, 1, 159, 0, 0x93B1, 0, 0},
-    {F::astc_5x4_srgb, "astc_5x4_srgb", 5, 4, 16, 4, true, false, false, true, 1, 160, 0, 0x93D1, 0, 0},
-    {F::astc_5x4_sfloat, "astc_5x4_sfloat", 5, 4, 16, 4, false, false, true, true, 1, 1000066001u, 0, 0x93B1, 0, 0},
-    {F::astc_5x5_unorm, "astc_5x5_unorm", 5, 5, 16, 4, false, false, false, true, 1, 161, 0, 0x93B2, 0, 0},
-    {F::astc_5x5_srgb, "astc_5x5_srgb", 5, 5, 16, 4, true, false, false, true, 1, 162, 0, 0x93D2, 0, 0},
-    {F::astc_5x5_sfloat, "astc_5x5_sfloat", 5, 5, 16, 4, false, false, true, true, 1, 1000066002u, 0, 0x93B2, 0, 0},
-    {F::astc_6x5_unorm, "astc_6x5_unorm", 6, 5, 16, 4, false, false, false, true, 1, 163, 0, 0x93B3, 0, 0},
-    {F::astc_6x5_srgb, "astc_6x5_srgb", 6, 5, 16, 4, true, false, false, true, 1, 164, 0, 0x93D3, 0, 0},
-    {F::astc_6x5_sfloat, "astc_6x5_sfloat", 6, 5, 16, 4, false, false, true, true, 1, 1000066003u, 0, 0x93B3, 0, 0},
-    {F::astc_6x6_unorm, "astc_6x6_unorm", 6, 6, 16, 4, false, false, false, true, 1, 165, 0, 0x93B4, 0, 0},
-    {F::astc_6x6_srgb, "astc_6x6_srgb", 6, 6, 16, 4, true, false, false, true, 1, 166, 0, 0x93D4, 0, 0},
-    {F::astc_6x6_sfloat, "astc_6x6_sfloat", 6, 6, 16, 4, false, false, true, true, 1, 1000066004u, 0, 0x93B4, 0, 0},
-    {F::astc_8x5_unorm, "astc_8x5_unorm", 8, 5, 16, 4, false, false, false, true, 1, 167, 0, 0x93B5, 0, 0},
-    {F::astc_8x5_srgb, "astc_8x5_srgb", 8, 5, 16, 4, true, false, false, true, 1, 168, 0, 0x93D5, 0, 0},
-    {F::astc_8x5_sfloat, "astc_8x5_sfloat", 8, 5, 16, 4, false, false, true, true, 1, 1000066005u, 0, 0x93B5, 0, 0},
-    {F::astc_8x6_unorm, "astc_8x6_unorm", 8, 6, 16, 4, false, false, false, true, 1, 169, 0, 0x93B6, 0, 0},
-    {F::astc_8x6_srgb, "astc_8x6_srgb", 8, 6, 16, 4, true, false, false, true, 1, 170, 0, 0x93D6, 0, 0},
-    {F::astc_8x6_sfloat, "astc_8x6_sfloat", 8, 6, 16, 4, false, false, true, true, 1, 1000066006u, 0, 0x93B6, 0, 0},
-    {F::astc_8x8_unorm, "astc_8x8_unorm", 8, 8, 16, 4, false, false, false, true, 1, 171, 0, 0x93B7, 0, 0},
-    {F::astc_8x8_srgb, "astc_8x8_srgb", 8, 8, 16, 4, true, false, false, true, 1, 172, 0, 0x93D7, 0, 0},
-    {F::astc_8x8_sfloat, "astc_8x8_sfloat", 8, 8, 16, 4, false, false, true, true, 1, 1000066007u, 0, 0x93B7, 0, 0},
-    {F::astc_10x5_unorm, "astc_10x5_unorm", 10, 5, 16, 4, false, false, false, true, 1, 173, 0, 0x93B8, 0, 0},
-    {F::astc_10x5_srgb, "astc_10x5_srgb", 10, 5, 16, 4, true, false, false, true, 1, 174, 0, 0x93D8, 0, 0},
-    {F::astc_10x5_sfloat, "astc_10x5_sfloat", 10, 5, 16, 4, false, false, true, true, 1, 1000066008u, 0, 0x93B8, 0, 0},
-    {F::astc_10x6_unorm, "astc_10x6_unorm", 10, 6, 16, 4, false, false, false, true, 1, 175, 0, 0x93B9, 0, 0},
-    {F::astc_10x6_srgb, "astc_10x6_srgb", 10, 6, 16, 4, true, false, false, true, 1, 176, 0, 0x93D9, 0, 0},
-    {F::astc_10x6_sfloat, "astc_10x6_sfloat", 10, 6, 16, 4, false, false, true, true, 1, 1000066009u, 0, 0x93B9, 0, 0},
-    {F::astc_10x8_unorm, "astc_10x8_unorm", 10, 8, 16, 4, false, false, false, true, 1, 177, 0, 0x93BA, 0, 0},
-    {F::astc_10x8_srgb, "astc_10x8_srgb", 10, 8, 16, 4, true, false, false, true, 1, 178, 0, 0x93DA, 0, 0},
-    {F::astc_10x8_sfloat, "astc_10x8_sfloat", 10, 8, 16, 4, false, false, true, true, 1, 1000066010u, 0, 0x93BA, 0, 0},
-    {F::astc_10x10_unorm, "astc_10x10_unorm", 10, 10, 16, 4, false, false, false, true, 1, 179, 0, 0x93BB, 0, 0},
-    {F::astc_10x10_srgb, "astc_10x10_srgb", 10, 10, 16, 4, true, false, false, true, 1, 180, 0, 0x93DB, 0, 0},
-    {F::astc_10x10_sfloat, "astc_10x10_sfloat", 10, 10, 16, 4, false, false, true, true, 1, 1000066011u, 0, 0x93BB, 0, 0},
-    {F::astc_12x10_unorm, "astc_12x10_unorm", 12, 10, 16, 4, false, false, false, true, 1, 181, 0, 0x93BC, 0, 0},
-    {F::astc_12x10_srgb, "astc_12x10_srgb", 12, 10, 16, 4, true, false, false, true, 1, 182, 0, 0x93DC, 0, 0},
-    {F::astc_12x10_sfloat, "astc_12x10_sfloat", 12, 10, 16, 4, false, false, true, true, 1, 1000066012u, 0, 0x93BC, 0, 0},
-    {F::astc_12x12_unorm, "astc_12x12_unorm", 12, 12, 16, 4, false, false, false, true, 1, 183, 0, 0x93BD, 0, 0},
-    {F::astc_12x12_srgb, "astc_12x12_srgb", 12, 12, 16, 4, true, false, false, true, 1, 184, 0, 0x93DD, 0, 0},
-    {F::astc_12x12_sfloat, "astc_12x12_sfloat", 12, 12, 16, 4, false, false, true, true, 1, 1000066013u, 0, 0x93BD, 0, 0},
+    {F::r8_unorm, "r8_unorm", Family::uncompressed,
+     1, 1, 1, 1, false, false, false, false, 1, 9, 61, 0x8229, kGlRed, kGlUByte},
+    {F::r8_srgb, "r8_srgb", Family::uncompressed,
+     1, 1, 1, 1, true, false, false, false, 1, 15, 0, 0x8FBD, kGlRed, kGlUByte},
+    {F::rg8_unorm, "rg8_unorm", Family::uncompressed,
+     1, 1, 2, 2, false, false, false, false, 1, 16, 49, 0x822B, kGlRg, kGlUByte},
+    {F::rg8_srgb, "rg8_srgb", Family::uncompressed,
+     1, 1, 2, 2, true, false, false, false, 1, 22, 0, 0x8FBE, kGlRg, kGlUByte},
+    {F::rgba8_unorm, "rgba8_unorm", Family::uncompressed,
+     1, 1, 4, 4, false, false, false, false, 1, 37, 28, 0x8058, kGlRgba, kGlUByte},
+    {F::rgba8_srgb, "rgba8_srgb", Family::uncompressed,
+     1, 1, 4, 4, true, false, false, false, 1, 43, 29, 0x8C43, kGlRgba, kGlUByte},
+    {F::bgra8_unorm, "bgra8_unorm", Family::uncompressed,
+     1, 1, 4, 4, false, false, false, false, 1, 44, 87, 0x93A1, kGlBgra, kGlUByte},
+    {F::bgra8_srgb, "bgra8_srgb", Family::uncompressed,
+     1, 1, 4, 4, true, false, false, false, 1, 50, 91, 0, kGlBgra, kGlUByte},
+    {F::r16_unorm, "r16_unorm", Family::uncompressed,
+     1, 1, 2, 1, false, false, false, false, 2, 70, 56, 0x822A, kGlRed, kGlUShort},
+    {F::rg16_unorm, "rg16_unorm", Family::uncompressed,
+     1, 1, 4, 2, false, false, false, false, 2, 77, 35, 0x822C, kGlRg, kGlUShort},
+    {F::rgba16_unorm, "rgba16_unorm", Family::uncompressed,
+     1, 1, 8, 4, false, false, false, false, 2, 91, 11, 0x805B, kGlRgba, kGlUShort},
+    {F::rgba16_float, "rgba16_float", Family::uncompressed,
+     1, 1, 8, 4, false, false, true, false, 2, 97, 10, 0x881A, kGlRgba, kGlHalf},
+    {F::rgba32_float, "rgba32_float", Family::uncompressed,
+     1, 1, 16, 4, false, false, true, false, 4, 109, 2, 0x8814, kGlRgba, kGlFloat},
+    {F::bc1_rgb_unorm, "bc1_rgb_unorm", Family::bc1, 4, 4, 8, 3, false, false, false, true, 1, 131, 71, 0x83F0, 0, 0},
+    {F::bc1_rgb_srgb, "bc1_rgb_srgb", Family::bc1, 4, 4, 8, 3, true, false, false, true, 1, 132, 72, 0x8C4C, 0, 0},
+    {F::bc1_rgba_unorm, "bc1_rgba_unorm", Family::bc1, 4, 4, 8, 4, false, false, false, true, 1, 133, 71, 0x83F1, 0, 0},
+    {F::bc1_rgba_srgb, "bc1_rgba_srgb", Family::bc1, 4, 4, 8, 4, true, false, false, true, 1, 134, 72, 0x8C4D, 0, 0},
+    {F::bc2_unorm, "bc2_unorm", Family::bc2, 4, 4, 16, 4, false, false, false, true, 1, 135, 74, 0x83F2, 0, 0},
+    {F::bc2_srgb, "bc2_srgb", Family::bc2, 4, 4, 16, 4, true, false, false, true, 1, 136, 75, 0x8C4E, 0, 0},
+    {F::bc3_unorm, "bc3_unorm", Family::bc3, 4, 4, 16, 4, false, false, false, true, 1, 137, 77, 0x83F3, 0, 0},
+    {F::bc3_srgb, "bc3_srgb", Family::bc3, 4, 4, 16, 4, true, false, false, true, 1, 138, 78, 0x8C4F, 0, 0},
+    {F::bc4_unorm, "bc4_unorm", Family::bc4, 4, 4, 8, 1, false, false, false, true, 1, 139, 80, 0x8DBB, 0, 0},
+    {F::bc4_snorm, "bc4_snorm", Family::bc4, 4, 4, 8, 1, false, true, false, true, 1, 140, 81, 0x8DBC, 0, 0},
+    {F::bc5_unorm, "bc5_unorm", Family::bc5, 4, 4, 16, 2, false, false, false, true, 1, 141, 83, 0x8DBD, 0, 0},
+    {F::bc5_snorm, "bc5_snorm", Family::bc5, 4, 4, 16, 2, false, true, false, true, 1, 142, 84, 0x8DBE, 0, 0},
+    {F::bc6h_ufloat, "bc6h_ufloat", Family::bc6h, 4, 4, 16, 3, false, false, true, true, 1, 143, 95, 0x8E8F, 0, 0},
+    {F::bc6h_sfloat, "bc6h_sfloat", Family::bc6h, 4, 4, 16, 3, false, false, true, true, 1, 144, 96, 0x8E8E, 0, 0},
+    {F::bc7_unorm, "bc7_unorm", Family::bc7, 4, 4, 16, 4, false, false, false, true, 1, 145, 98, 0x8E8C, 0, 0},
+    {F::bc7_srgb, "bc7_srgb", Family::bc7, 4, 4, 16, 4, true, false, false, true, 1, 146, 99, 0x8E8D, 0, 0},
+    {F::etc1_rgb, "etc1_rgb", Family::etc1, 4, 4, 8, 3, false, false, false, true, 1, 147, 0, 0x8D64, 0, 0},
+    {F::etc2_rgb_unorm, "etc2_rgb_unorm", Family::etc2, 4, 4, 8, 3, false, false, false, true, 1, 147, 0, 0x9274, 0, 0},
+    {F::etc2_rgb_srgb, "etc2_rgb_srgb", Family::etc2, 4, 4, 8, 3, true, false, false, true, 1, 148, 0, 0x9275, 0, 0},
+    {F::etc2_rgba1_unorm, "etc2_rgba1_unorm", Family::etc2,
+     4, 4, 8, 4, false, false, false, true, 1, 149, 0, 0x9276, 0, 0},
+    {F::etc2_rgba1_srgb, "etc2_rgba1_srgb", Family::etc2,
+     4, 4, 8, 4, true, false, false, true, 1, 150, 0, 0x9277, 0, 0},
+    {F::etc2_rgba8_unorm, "etc2_rgba8_unorm", Family::etc2,
+     4, 4, 16, 4, false, false, false, true, 1, 151, 0, 0x9278, 0, 0},
+    {F::etc2_rgba8_srgb, "etc2_rgba8_srgb", Family::etc2,
+     4, 4, 16, 4, true, false, false, true, 1, 152, 0, 0x9279, 0, 0},
+    {F::eac_r11_unorm, "eac_r11_unorm", Family::eac, 4, 4, 8, 1, false, false, false, true, 1, 153, 0, 0x9270, 0, 0},
+    {F::eac_r11_snorm, "eac_r11_snorm", Family::eac, 4, 4, 8, 1, false, true, false, true, 1, 154, 0, 0x9271, 0, 0},
+    {F::eac_rg11_unorm, "eac_rg11_unorm", Family::eac, 4, 4, 16, 2, false, false, false, true, 1, 155, 0, 0x9272, 0, 0},
+    {F::eac_rg11_snorm, "eac_rg11_snorm", Family::eac, 4, 4, 16, 2, false, true, false, true, 1, 156, 0, 0x9273, 0, 0},
+    {F::astc_4x4_unorm, "astc_4x4_unorm", Family::astc,
+     4, 4, 16, 4, false, false, false, true, 1, 157, 0, 0x93B0, 0, 0},
+    {F::astc_4x4_srgb, "astc_4x4_srgb", Family::astc, 4, 4, 16, 4, true, false, false, true, 1, 158, 0, 0x93D0, 0, 0},
+    {F::astc_4x4_sfloat, "astc_4x4_sfloat", Family::astc,
+     4, 4, 16, 4, false, false, true, true, 1, 1000066000u, 0, 0x93B0, 0, 0},
+    {F::astc_5x4_unorm, "astc_5x4_unorm", Family::astc,
+     5, 4, 16, 4, false, false, false, true, 1, 159, 0, 0x93B1, 0, 0},
+    {F::astc_5x4_srgb, "astc_5x4_srgb", Family::astc, 5, 4, 16, 4, true, false, false, true, 1, 160, 0, 0x93D1, 0, 0},
+    {F::astc_5x4_sfloat, "astc_5x4_sfloat", Family::astc,
+     5, 4, 16, 4, false, false, true, true, 1, 1000066001u, 0, 0x93B1, 0, 0},
+    {F::astc_5x5_unorm, "astc_5x5_unorm", Family::astc,
+     5, 5, 16, 4, false, false, false, true, 1, 161, 0, 0x93B2, 0, 0},
+    {F::astc_5x5_srgb, "astc_5x5_srgb", Family::astc, 5, 5, 16, 4, true, false, false, true, 1, 162, 0, 0x93D2, 0, 0},
+    {F::astc_5x5_sfloat, "astc_5x5_sfloat", Family::astc,
+     5, 5, 16, 4, false, false, true, true, 1, 1000066002u, 0, 0x93B2, 0, 0},
+    {F::astc_6x5_unorm, "astc_6x5_unorm", Family::astc,
+     6, 5, 16, 4, false, false, false, true, 1, 163, 0, 0x93B3, 0, 0},
+    {F::astc_6x5_srgb, "astc_6x5_srgb", Family::astc, 6, 5, 16, 4, true, false, false, true, 1, 164, 0, 0x93D3, 0, 0},
+    {F::astc_6x5_sfloat, "astc_6x5_sfloat", Family::astc,
+     6, 5, 16, 4, false, false, true, true, 1, 1000066003u, 0, 0x93B3, 0, 0},
+    {F::astc_6x6_unorm, "astc_6x6_unorm", Family::astc,
+     6, 6, 16, 4, false, false, false, true, 1, 165, 0, 0x93B4, 0, 0},
+    {F::astc_6x6_srgb, "astc_6x6_srgb", Family::astc, 6, 6, 16, 4, true, false, false, true, 1, 166, 0, 0x93D4, 0, 0},
+    {F::astc_6x6_sfloat, "astc_6x6_sfloat", Family::astc,
+     6, 6, 16, 4, false, false, true, true, 1, 1000066004u, 0, 0x93B4, 0, 0},
+    {F::astc_8x5_unorm, "astc_8x5_unorm", Family::astc,
+     8, 5, 16, 4, false, false, false, true, 1, 167, 0, 0x93B5, 0, 0},
+    {F::astc_8x5_srgb, "astc_8x5_srgb", Family::astc, 8, 5, 16, 4, true, false, false, true, 1, 168, 0, 0x93D5, 0, 0},
+    {F::astc_8x5_sfloat, "astc_8x5_sfloat", Family::astc,
+     8, 5, 16, 4, false, false, true, true, 1, 1000066005u, 0, 0x93B5, 0, 0},
+    {F::astc_8x6_unorm, "astc_8x6_unorm", Family::astc,
+     8, 6, 16, 4, false, false, false, true, 1, 169, 0, 0x93B6, 0, 0},
+    {F::astc_8x6_srgb, "astc_8x6_srgb", Family::astc, 8, 6, 16, 4, true, false, false, true, 1, 170, 0, 0x93D6, 0, 0},
+    {F::astc_8x6_sfloat, "astc_8x6_sfloat", Family::astc,
+     8, 6, 16, 4, false, false, true, true, 1, 1000066006u, 0, 0x93B6, 0, 0},
+    {F::astc_8x8_unorm, "astc_8x8_unorm", Family::astc,
+     8, 8, 16, 4, false, false, false, true, 1, 171, 0, 0x93B7, 0, 0},
+    {F::astc_8x8_srgb, "astc_8x8_srgb", Family::astc, 8, 8, 16, 4, true, false, false, true, 1, 172, 0, 0x93D7, 0, 0},
+    {F::astc_8x8_sfloat, "astc_8x8_sfloat", Family::astc,
+     8, 8, 16, 4, false, false, true, true, 1, 1000066007u, 0, 0x93B7, 0, 0},
+    {F::astc_10x5_unorm, "astc_10x5_unorm", Family::astc,
+     10, 5, 16, 4, false, false, false, true, 1, 173, 0, 0x93B8, 0, 0},
+    {F::astc_10x5_srgb, "astc_10x5_srgb", Family::astc,
+     10, 5, 16, 4, true, false, false, true, 1, 174, 0, 0x93D8, 0, 0},
+    {F::astc_10x5_sfloat, "astc_10x5_sfloat", Family::astc,
+     10, 5, 16, 4, false, false, true, true, 1, 1000066008u, 0, 0x93B8, 0, 0},
+    {F::astc_10x6_unorm, "astc_10x6_unorm", Family::astc,
+     10, 6, 16, 4, false, false, false, true, 1, 175, 0, 0x93B9, 0, 0},
+    {F::astc_10x6_srgb, "astc_10x6_srgb", Family::astc,
+     10, 6, 16, 4, true, false, false, true, 1, 176, 0, 0x93D9, 0, 0},
+    {F::astc_10x6_sfloat, "astc_10x6_sfloat", Family::astc,
+     10, 6, 16, 4, false, false, true, true, 1, 1000066009u, 0, 0x93B9, 0, 0},
+    {F::astc_10x8_unorm, "astc_10x8_unorm", Family::astc,
+     10, 8, 16, 4, false, false, false, true, 1, 177, 0, 0x93BA, 0, 0},
+    {F::astc_10x8_srgb, "astc_10x8_srgb", Family::astc,
+     10, 8, 16, 4, true, false, false, true, 1, 178, 0, 0x93DA, 0, 0},
+    {F::astc_10x8_sfloat, "astc_10x8_sfloat", Family::astc,
+     10, 8, 16, 4, false, false, true, true, 1, 1000066010u, 0, 0x93BA, 0, 0},
+    {F::astc_10x10_unorm, "astc_10x10_unorm", Family::astc,
+     10, 10, 16, 4, false, false, false, true, 1, 179, 0, 0x93BB, 0, 0},
+    {F::astc_10x10_srgb, "astc_10x10_srgb", Family::astc,
+     10, 10, 16, 4, true, false, false, true, 1, 180, 0, 0x93DB, 0, 0},
+    {F::astc_10x10_sfloat, "astc_10x10_sfloat", Family::astc,
+     10, 10, 16, 4, false, false, true, true, 1, 1000066011u, 0, 0x93BB, 0, 0},
+    {F::astc_12x10_unorm, "astc_12x10_unorm", Family::astc,
+     12, 10, 16, 4, false, false, false, true, 1, 181, 0, 0x93BC, 0, 0},
+    {F::astc_12x10_srgb, "astc_12x10_srgb", Family::astc,
+     12, 10, 16, 4, true, false, false, true, 1, 182, 0, 0x93DC, 0, 0},
+    {F::astc_12x10_sfloat, "astc_12x10_sfloat", Family::astc,
+     12, 10, 16, 4, false, false, true, true, 1, 1000066012u, 0, 0x93BC, 0, 0},
+    {F::astc_12x12_unorm, "astc_12x12_unorm", Family::astc,
+     12, 12, 16, 4, false, false, false, true, 1, 183, 0, 0x93BD, 0, 0},
+    {F::astc_12x12_srgb, "astc_12x12_srgb", Family::astc,
+     12, 12, 16, 4, true, false, false, true, 1, 184, 0, 0x93DD, 0, 0},
+    {F::astc_12x12_sfloat, "astc_12x12_sfloat", Family::astc,
+     12, 12, 16, 4, false, false, true, true, 1, 1000066013u, 0, 0x93BD, 0, 0},
 };
 
 }  // namespace
@@ -116,7 +168,25 @@ const FormatInfo& format_info(TexelFormat f) {
   return kFormats[0];
 }
 
-bool is_astc(TexelFormat f) { return f >= F::astc_4x4_unorm && f <= F::astc_12x12_sfloat; }
+bool is_astc(TexelFormat f) { return format_info(f).family == CodecFamily::astc; }
+
+const char* to_string(CodecFamily family) {
+  switch (family) {
+    case CodecFamily::uncompressed: return "uncompressed";
+    case CodecFamily::bc1: return "bc1";
+    case CodecFamily::bc2: return "bc2";
+    case CodecFamily::bc3: return "bc3";
+    case CodecFamily::bc4: return "bc4";
+    case CodecFamily::bc5: return "bc5";
+    case CodecFamily::bc6h: return "bc6h";
+    case CodecFamily::bc7: return "bc7";
+    case CodecFamily::etc1: return "etc1";
+    case CodecFamily::etc2: return "etc2";
+    case CodecFamily::eac: return "eac";
+    case CodecFamily::astc: return "astc";
+  }
+  return "?";
+}
 
 TexelFormat astc_format(int block_width, int block_height, bool srgb, bool hdr) {
   for (const auto& i : kFormats) {
@@ -290,23 +360,24 @@ Texture from_levels(const std::vector<Image>& levels, std::vector<Image>* steal,
 }
 }  // namespace
 
-Texture texture_from_levels(const std::vector<Image>& levels, bool srgb, bool half) {
-  return from_levels(levels, nullptr, srgb, half);
+Texture texture_from_levels(const std::vector<Image>& levels, const UncompressedOptions& options) {
+  return from_levels(levels, nullptr, options.srgb, options.half);
 }
 
-Texture texture_from_surfaces(std::vector<std::vector<Image>>&& chains, std::uint32_t faces, std::uint32_t layers,
-                              bool is_array, bool srgb, bool half) {
+Texture texture_from_surfaces(std::vector<std::vector<Image>>&& chains, const SurfaceLayout& layout,
+                              const UncompressedOptions& options) {
+  const std::uint32_t faces = layout.faces, layers = layout.layers;
   if (chains.empty() || chains.size() != std::size_t(faces) * layers) {
     throw Error(ErrorCode::bad_arguments, "texture_from_surfaces: " + std::to_string(chains.size()) + " chains for " +
                                               std::to_string(faces) + " faces x " + std::to_string(layers) + " layers");
   }
   std::vector<Texture> each;
-  for (auto& c : chains) each.push_back(texture_from_levels(std::move(c), srgb, half));
+  for (auto& c : chains) each.push_back(texture_from_levels(std::move(c), options));
   Texture t = each[0];
   t.images.clear();
   t.faces = faces;
   t.layers = layers;
-  t.is_array = is_array;
+  t.is_array = layout.is_array;
   for (const Texture& e : each) {
     if (e.format != t.format || e.width != t.width || e.height != t.height || e.levels != t.levels) {
       throw Error(ErrorCode::bad_arguments, "texture_from_surfaces: the surfaces differ in size or format");
@@ -318,11 +389,11 @@ Texture texture_from_surfaces(std::vector<std::vector<Image>>&& chains, std::uin
   return t;
 }
 
-Texture texture_from_levels(std::vector<Image>&& levels, bool srgb, bool half) {
+Texture texture_from_levels(std::vector<Image>&& levels, const UncompressedOptions& options) {
   if (levels.empty()) throw Error(ErrorCode::bad_arguments, "no levels");
   // The fast path reads sizes from `levels` before taking each buffer.
   const std::vector<Image>& view = levels;
-  Texture t = from_levels(view, &levels, srgb, half);
+  Texture t = from_levels(view, &levels, options.srgb, options.half);
   levels.clear();
   return t;
 }

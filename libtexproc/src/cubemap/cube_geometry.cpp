@@ -120,7 +120,7 @@ int default_cube_size(int panorama_width) {
 
 // ---- Colour at the boundary --------------------------------------------------
 
-Image to_linear_rgba(const ImageView& image, const ColorSpace& cs) {
+Image to_linear_rgba(const ConstImageView& image, const ColorSpace& cs) {
   Image out = Image::uninitialized(image.width, image.height, 4, PixelType::f32);
   const int c = image.channels;
   for_each_row_block(image.height, cube::kRowBlock, [&](int y0, int y1) {
@@ -148,7 +148,7 @@ Image to_linear_rgba(const ImageView& image, const ColorSpace& cs) {
   return out;
 }
 
-Image from_linear_rgba(const ImageView& rgba, const ColorSpace& cs, int channels, PixelType type) {
+Image from_linear_rgba(const ConstImageView& rgba, const ColorSpace& cs, int channels, PixelType type) {
   if (rgba.channels != 4 || rgba.type != PixelType::f32 || (channels != 3 && channels != 4)) {
     throw Error(ErrorCode::bad_arguments, "from_linear_rgba needs RGBA f32 in and 3 or 4 channels out");
   }
@@ -212,7 +212,7 @@ TexelSet texel_set(const CubeLevel& level) {
 
 namespace {
 
-void check_rgba_f32(const ImageView& v, const char* what) {
+void check_rgba_f32(const ConstImageView& v, const char* what) {
   if (v.channels != 4 || v.type != PixelType::f32 || v.width < 1 || v.height < 1) {
     throw Error(ErrorCode::bad_arguments, std::string(what) + " needs a linear RGBA f32 image (to_linear_rgba)");
   }
@@ -249,7 +249,7 @@ void layout_grid(CubeLayout l, int& cols, int& rows) {
 
 }  // namespace
 
-Cubemap cubemap_from_faces(const std::array<ImageView, 6>& faces) {
+Cubemap cubemap_from_faces(const std::array<ConstImageView, 6>& faces) {
   static const char* kNames[6] = {"+X", "-X", "+Y", "-Y", "+Z", "-Z"};
   for (int f = 0; f < 6; ++f) {
     check_rgba_f32(faces[f], "cubemap_from_faces");
@@ -273,12 +273,12 @@ Cubemap cubemap_from_images(const std::vector<Image>& faces) {
     throw Error(ErrorCode::bad_arguments,
                 "a cube map has 6 faces; this texture has " + std::to_string(faces.size()) + " images");
   }
-  std::array<ImageView, 6> v;
+  std::array<ConstImageView, 6> v;
   for (int f = 0; f < 6; ++f) v[f] = faces[f].view();
   return cubemap_from_faces(v);
 }
 
-Cubemap cubemap_from_layout(const ImageView& image, CubeLayout layout) {
+Cubemap cubemap_from_layout(const ConstImageView& image, CubeLayout layout) {
   check_rgba_f32(image, "cubemap_from_layout");
   int cols, rows;
   layout_grid(layout, cols, rows);

@@ -105,7 +105,7 @@ struct PanoPyramid {
   std::vector<Image> owned;
   std::vector<PanoLevel> levels;
 
-  explicit PanoPyramid(const ImageView& v) {
+  explicit PanoPyramid(const ConstImageView& v) {
     levels.push_back({v.width, v.height, static_cast<const float*>(v.data), v.row_stride / 4});
     const Filter box{FilterKind::box};
     while (levels.back().w > 1 || levels.back().h > 1) {
@@ -197,7 +197,7 @@ constexpr int kMaxTaps = 64;  // per texel, past which a coarser level is read
 
 }  // namespace
 
-Cubemap cubemap_from_equirect(const ImageView& pano, int size, CubeFlip flip) {
+Cubemap cubemap_from_equirect(const ConstImageView& pano, int size, CubeFlip flip) {
   if (pano.channels != 4 || pano.type != PixelType::f32) {
     throw Error(ErrorCode::bad_arguments, "cubemap_from_equirect needs a linear RGBA f32 panorama (to_linear_rgba)");
   }

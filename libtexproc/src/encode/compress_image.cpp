@@ -31,7 +31,7 @@ const char* to_string(Quality q) {
   return "?";
 }
 
-std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat format, Quality q) {
+std::vector<std::uint8_t> compress_image(const ConstImageView& img, TexelFormat format, Quality q) {
   return compress_image(img, format, q, EncodeOptions{});
 }
 
@@ -49,14 +49,21 @@ int encode_block(TexelFormat format, const std::uint8_t rgba[16][4], Quality q, 
   return int(block.size());
 }
 
-std::vector<std::uint8_t> compress_image(const ImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
-  using F = TexelFormat;
-  if (is_astc(format)) return astc::encode(img, format, q, options);
-  if (format >= F::bc1_rgb_unorm && format <= F::bc3_srgb) return compress_bc13(img, format, q, options);
-  if (format >= F::bc4_unorm && format <= F::bc5_snorm) return compress_bc45(img, format, q, options);
-  if (format == F::bc7_unorm || format == F::bc7_srgb) return compress_bc7(img, q, options);
-  if (format == F::bc6h_ufloat || format == F::bc6h_sfloat) return compress_bc6h(img, format == F::bc6h_sfloat, q, options);
-  if (format >= F::etc1_rgb && format <= F::eac_rg11_snorm) return etc::compress_etc(img, format, q, options);
+std::vector<std::uint8_t> compress_image(const ConstImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
+  switch (format_info(format).family) {
+    case CodecFamily::bc1:
+    case CodecFamily::bc2:
+    case CodecFamily::bc3: return compress_bc13(img, format, q, options);
+    case CodecFamily::bc4:
+    case CodecFamily::bc5: return compress_bc45(img, format, q, options);
+    case CodecFamily::bc6h: return compress_bc6h(img, format == TexelFormat::bc6h_sfloat, q, options);
+    case CodecFamily::bc7: return compress_bc7(img, q, options);
+    case CodecFamily::etc1:
+    case CodecFamily::etc2:
+    case CodecFamily::eac: return etc::compress_etc(img, format, q, options);
+    case CodecFamily::astc: return astc::encode(img, format, q, options);
+    case CodecFamily::uncompressed: break;
+  }
   throw Error(ErrorCode::unsupported, std::string("encoding ") + format_info(format).name + " is not supported");
 }
 

@@ -108,9 +108,10 @@ class BlockRowSink final : public MipRowSink {
 
 }  // namespace
 
-Texture compress_texture_mips(std::vector<Image>& surfaces, const MipOptions& mip, std::uint32_t faces,
-                              std::uint32_t layers, bool is_array, TexelFormat format, Quality q,
-                              const TextureEncodeOptions& options) {
+Texture compress_texture_mips(std::vector<Image>& surfaces, const MipOptions& mip, const SurfaceLayout& layout,
+                              TexelFormat format, Quality q, const TextureEncodeOptions& options) {
+  const std::uint32_t faces = layout.faces, layers = layout.layers;
+  const bool is_array = layout.is_array;
   if (surfaces.empty() || surfaces.size() != std::size_t(faces) * layers) {
     throw Error(ErrorCode::bad_arguments, "compress_texture_mips needs faces * layers images");
   }
@@ -126,7 +127,7 @@ Texture compress_texture_mips(std::vector<Image>& surfaces, const MipOptions& mi
   if (is_astc(format) || (four && options.transparent == TransparentColor::bleed)) {
     std::vector<std::vector<Image>> chains;
     for (Image& s : surfaces) chains.push_back(generate_mips(std::move(s), mip).levels);
-    Texture t = compress_texture(chains, faces, layers, is_array, format, q, options);
+    Texture t = compress_texture(chains, layout, format, q, options);
     for (std::size_t s = 0; s < surfaces.size(); ++s) surfaces[s] = std::move(chains[s][0]);
     return t;
   }

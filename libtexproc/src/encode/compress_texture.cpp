@@ -8,7 +8,7 @@
 
 namespace texproc {
 
-Image dxt5nm_layout(const ImageView& v) {
+Image dxt5nm_layout(const ConstImageView& v) {
   Image nm = Image::uninitialized(v.width, v.height, 4, v.type);
   // Through an owning copy's get(): the same conversions as every other channel read.
   Image l(v.width, v.height, v.channels, v.type);
@@ -23,8 +23,10 @@ Image dxt5nm_layout(const ImageView& v) {
   return nm;
 }
 
-Texture compress_texture(std::vector<std::vector<Image>>& chains, std::uint32_t faces, std::uint32_t layers,
-                         bool is_array, TexelFormat format, Quality q, const TextureEncodeOptions& options) {
+Texture compress_texture(std::vector<std::vector<Image>>& chains, const SurfaceLayout& layout, TexelFormat format,
+                         Quality q, const TextureEncodeOptions& options) {
+  const std::uint32_t faces = layout.faces, layers = layout.layers;
+  const bool is_array = layout.is_array;
   if (chains.empty() || chains[0].empty() || chains.size() != std::size_t(faces) * layers) {
     throw Error(ErrorCode::bad_arguments, "compress_texture needs faces * layers chains of at least one level");
   }

@@ -339,12 +339,12 @@ long encode_color_block(const std::uint8_t rgba[16][4], EtcMode mode, Quality q,
   return best.err;
 }
 
-std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
+std::vector<std::uint8_t> compress_etc(const ConstImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
   using F = TexelFormat;
   const FormatInfo& info = format_info(format);
   const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * std::size_t(info.block_bytes));
-  const bool eac = format >= F::eac_r11_unorm;
+  const bool eac = format_info(format).family == CodecFamily::eac;
   const bool snorm = format == F::eac_r11_snorm || format == F::eac_rg11_snorm;
   const int eac_channels = format == F::eac_rg11_unorm || format == F::eac_rg11_snorm ? 2 : 1;
   const bool rgba8 = format == F::etc2_rgba8_unorm || format == F::etc2_rgba8_srgb;

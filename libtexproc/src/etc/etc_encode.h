@@ -28,6 +28,6 @@ enum class EacKind { alpha8, r11, r11_signed };
 double encode_eac_block(const float targets[16], EacKind kind, Quality q, std::uint8_t out[8]);
 
 // A whole image in an ETC or EAC format (compress_image's ETC half).
-std::vector<std::uint8_t> compress_etc(const ImageView& img, TexelFormat format, Quality q, const EncodeOptions& options);
+std::vector<std::uint8_t> compress_etc(const ConstImageView& img, TexelFormat format, Quality q, const EncodeOptions& options);
 
 }  // namespace texproc::etc

@@ -187,12 +187,12 @@ ImageArray read_image_array(const std::string& path, ImageFileInfo* info_out, co
   return out;
 }
 
-void write_image(const std::string& path, const ImageView& given, const WriteOptions& options) {
+void write_image(const std::string& path, const ConstImageView& given, const WriteOptions& options) {
   check_writable_extension(path);
   const std::string e = lower_ext(path);
   // Red-green data goes to formats without a red-green layout as RGB, blue 0.
   Image rgb;
-  ImageView image = given;
+  ConstImageView image = given;
   if (options.red_green && given.channels == 2 && (e != ".exr" || options.io_path == ImageIoPath::oiio)) {
     rgb = Image(given.width, given.height, 3, given.type);  // zero-filled: blue 0
     const std::size_t bpc = bytes_per_channel(given.type);
@@ -236,7 +236,7 @@ void write_image(const std::string& path, const ImageView& given, const WriteOpt
   file.commit();
 }
 
-void write_image(const std::string& path, const ImageView& shape, const RowSource& source,
+void write_image(const std::string& path, const ConstImageView& shape, const RowSource& source,
                  const WriteOptions& options) {
   check_writable_extension(path);
   const std::string e = lower_ext(path);
@@ -270,7 +270,7 @@ void write_mip_file(const std::string& path, const std::vector<Image>& levels, c
                   path + ": an OpenEXR MIP file holds every level down to 1x1; drop --levels/--min-size or write .tif");
     }
   }
-  std::vector<ImageView> views;
+  std::vector<ConstImageView> views;
   for (const Image& l : levels) views.push_back(l.view());
   AtomicFile file(path);
   if (options.io_path == ImageIoPath::oiio || (!exr && (options.half || !tiff_levels_supported(options.compression)))) {

@@ -43,7 +43,7 @@ void load_values(const void* row, PixelType type, std::size_t n, std::vector<dou
   }
 }
 
-void load_row(const ImageView& v, int y, std::vector<double>& out) {
+void load_row(const ConstImageView& v, int y, std::vector<double>& out) {
   load_values(v.row<const void>(y), v.type, std::size_t(v.width) * std::size_t(v.channels), out);
 }
 
@@ -68,7 +68,7 @@ class BlockRows {
   std::vector<std::uint8_t> made_;
 };
 
-void check_same_shape(const ImageView& a, const ImageView& b) {
+void check_same_shape(const ConstImageView& a, const ConstImageView& b) {
   if (a.width != b.width || a.height != b.height) {
     throw Error(ErrorCode::bad_arguments, "the images differ in size: " + std::to_string(a.width) + "x" +
                                               std::to_string(a.height) + " and " + std::to_string(b.width) + "x" +
@@ -102,14 +102,14 @@ double log_value(double v) { return std::copysign(std::log2(1.0 + std::fabs(v)),
 
 }  // namespace
 
-ImageDifference compare_images(const ImageView& a, const ImageView& b) {
+ImageDifference compare_images(const ConstImageView& a, const ConstImageView& b) {
   check_same_shape(a, b);
   return compare_image_rows(ImageRows{a, {}}, ImageRows{b, {}}, a.channels);
 }
 
 ImageDifference compare_image_rows(const ImageRows& ia, const ImageRows& ib, int channels) {
-  const ImageView& a = ia.shape;
-  const ImageView& b = ib.shape;
+  const ConstImageView& a = ia.shape;
+  const ConstImageView& b = ib.shape;
   if (a.width != b.width || a.height != b.height) check_same_shape(a, b);
   if (channels < 1 || channels > a.channels || channels > b.channels) {
     throw Error(ErrorCode::bad_arguments, "cannot compare " + std::to_string(channels) + " channels of images of " +
@@ -198,7 +198,7 @@ ImageDifference compare_image_rows(const ImageRows& ia, const ImageRows& ib, int
 namespace {
 
 // One channel as doubles, and the separable Gaussian blur SSIM uses.
-std::vector<double> channel_plane(const ImageView& v, int c) {
+std::vector<double> channel_plane(const ConstImageView& v, int c) {
   std::vector<double> out(std::size_t(v.width) * std::size_t(v.height));
   std::vector<double> row;
   for (int y = 0; y < v.height; ++y) {
@@ -236,7 +236,7 @@ std::vector<double> gaussian_blur(const std::vector<double>& in, int w, int h) {
 
 }  // namespace
 
-std::vector<double> ssim_per_channel(const ImageView& a, const ImageView& b) {
+std::vector<double> ssim_per_channel(const ConstImageView& a, const ConstImageView& b) {
   check_same_shape(a, b);
   const int w = a.width, h = a.height;
   const double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;

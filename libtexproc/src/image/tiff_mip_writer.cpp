@@ -62,7 +62,7 @@ int other_compression(const std::string& c) {
   return -1;
 }
 
-void set_level_fields(TIFF* tif, const ImageView& im, int level, bool mip_file, int compression_tag) {
+void set_level_fields(TIFF* tif, const ConstImageView& im, int level, bool mip_file, int compression_tag) {
   TIFFSetField(tif, TIFFTAG_SUBFILETYPE, level == 0 ? 0 : FILETYPE_REDUCEDIMAGE);
   TIFFSetField(tif, TIFFTAG_IMAGEWIDTH, std::uint32_t(im.width));
   TIFFSetField(tif, TIFFTAG_IMAGELENGTH, std::uint32_t(im.height));
@@ -103,7 +103,7 @@ bool tiff_levels_supported(const std::string& compression) {
   return other_compression(compression) >= 0 || deflate_level(compression) >= 0;
 }
 
-void write_tiff_levels(const std::string& file, const std::string& error_path, const std::vector<ImageView>& levels,
+void write_tiff_levels(const std::string& file, const std::string& error_path, const std::vector<ConstImageView>& levels,
                        bool mip_file, const std::string& compression) {
   const int other = other_compression(compression);
   const int level_of_deflate = other >= 0 ? -1 : deflate_level(compression);
@@ -114,7 +114,7 @@ void write_tiff_levels(const std::string& file, const std::string& error_path, c
   const int tag = other >= 0 ? other : level_of_deflate == 0 ? COMPRESSION_NONE : COMPRESSION_ADOBE_DEFLATE;
 
   for (std::size_t l = 0; l < levels.size(); ++l) {
-    const ImageView& im = levels[l];
+    const ConstImageView& im = levels[l];
     set_level_fields(tif.get(), im, int(l), mip_file, tag);
     const int tiles_x = (im.width + kTile - 1) / kTile, tiles_y = (im.height + kTile - 1) / kTile;
     const std::size_t px = std::size_t(im.channels) * bytes_per_channel(im.type);

@@ -88,7 +88,7 @@ struct CascadeLevel {
 
 // Computes `rows` of level k (>= 1) into `held` (when a next level reads
 // them) and the sink.
-void compute_rows(const ChainSetup& s, const ImageView& input, std::vector<CascadeLevel>& L,
+void compute_rows(const ChainSetup& s, const ConstImageView& input, std::vector<CascadeLevel>& L,
                   std::vector<std::unique_ptr<HeldRows>>& held, int k, const std::vector<int>& rows,
                   MipRowSink& sink) {
   const int C = s.channels;
@@ -155,7 +155,7 @@ void compute_rows(const ChainSetup& s, const ImageView& input, std::vector<Casca
 
 }  // namespace
 
-void cascade(const ChainSetup& s, const ImageView& input, int levels, const Filter& filter, MipRowSink& sink) {
+void cascade(const ChainSetup& s, const ConstImageView& input, int levels, const Filter& filter, MipRowSink& sink) {
   std::vector<CascadeLevel> L(levels);
   for (int k = 1; k < levels; ++k) {
     const int sw = k == 1 ? input.width : L[k - 1].width, sh = k == 1 ? input.height : L[k - 1].height;

@@ -37,7 +37,7 @@ struct ChainSetup {
 };
 
 // Input row y as the filter reads it: linear, premultiplied where set.
-void decode_input_row(const ChainSetup& s, const ImageView& in, int y, float* dst);
+void decode_input_row(const ChainSetup& s, const ConstImageView& in, int y, float* dst);
 // One level row from linear premultiplied float to the output encoding.
 void encode_level_row(const ChainSetup& s, const float* src, int w, float alpha_scale, void* dst);
 // Tangent-space normals stored as xyz * 0.5 + 0.5: back to unit length.
@@ -46,12 +46,12 @@ void renormalize_row(float* px, int channels, int width);
 // Levels 1 .. levels-1 filtered together in waves, each row of level k as
 // soon as the rows of level k-1 it reads exist, into `sink`; a float row is
 // freed once the next level has read it. Same bytes as whole levels.
-void cascade(const ChainSetup& s, const ImageView& input, int levels, const Filter& filter, MipRowSink& sink);
+void cascade(const ChainSetup& s, const ConstImageView& input, int levels, const Filter& filter, MipRowSink& sink);
 
 }  // namespace texproc::mip_rows
 
 namespace texproc::detail {
 // generate_mips by whole float levels, one after the other (the path alpha
 // coverage takes): the reference the cascade's bytes are tested against.
-MipChain generate_mips_whole_levels(const ImageView& image, const MipOptions& options);
+MipChain generate_mips_whole_levels(const ConstImageView& image, const MipOptions& options);
 }  // namespace texproc::detail

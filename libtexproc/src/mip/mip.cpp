@@ -95,7 +95,7 @@ void renormalize_row(float* px, int channels, int width) {
   }
 }
 
-void decode_input_row(const ChainSetup& s, const ImageView& in, int y, float* dst) {
+void decode_input_row(const ChainSetup& s, const ConstImageView& in, int y, float* dst) {
   if (s.rgba8_srgb_fast) return decode_srgb8_rgba_premultiplied(in.row<const std::uint8_t>(y), in.width, dst);
   s.in_cs.decode_row(in.row<const void>(y), in.type, s.channels, in.width, dst);
   if (s.premultiply) premultiply_row(dst, s.channels, in.width);
@@ -125,7 +125,7 @@ using namespace mip_rows;
 // A level as the filter sees it: rows of linear (premultiplied) floats.
 // Level 0 is decoded from the input on demand; later levels are stored.
 struct LevelRows {
-  const ImageView* input = nullptr;  // level 0
+  const ConstImageView* input = nullptr;  // level 0
   const float* stored = nullptr;     // levels >= 1
   int width = 0, height = 0;
 };
@@ -223,12 +223,12 @@ float coverage_scale(const float* px, std::size_t count, int channels, float ref
   return std::min(kMaxScale, ref / t);
 }
 
-bool level0_is_input(const ChainSetup& s, const ImageView& in) {
+bool level0_is_input(const ChainSetup& s, const ConstImageView& in) {
   return in.type == s.out_type && s.in_cs.name() == s.out_cs.name();
 }
 
 // Level 0 row by row: a byte copy of the input, or the input converted.
-void convert_level0_rows(const ChainSetup& s, const ImageView& in, MipRowSink& sink) {
+void convert_level0_rows(const ChainSetup& s, const ConstImageView& in, MipRowSink& sink) {
   const bool copy = level0_is_input(s, in);
   const std::size_t bytes = std::size_t(in.width) * s.channels * bytes_per_channel(s.out_type);
   for_each_row_block(in.height, copy ? 64 : kBlockRows, [&](int y0, int y1) {
@@ -247,7 +247,7 @@ void convert_level0_rows(const ChainSetup& s, const ImageView& in, MipRowSink& s
   });
 }
 
-Image convert_level0(const ChainSetup& s, const ImageView& in) {
+Image convert_level0(const ChainSetup& s, const ConstImageView& in) {
   Image out = Image::uninitialized(in.width, in.height, s.channels, s.out_type);
   struct Into final : MipRowSink {
     Image* out = nullptr;
@@ -260,7 +260,7 @@ Image convert_level0(const ChainSetup& s, const ImageView& in) {
 
 }  // namespace
 
-float alpha_coverage(const ImageView& image, float ref, float scale) {
+float alpha_coverage(const ConstImageView& image, float ref, float scale) {
   if (!has_alpha(image.channels)) return 1.0f;
   std::size_t n = 0;
   const int C = image.channels;
@@ -282,12 +282,12 @@ namespace {
 // Levels 1.. into the sink: in waves (cascade) or, where a whole level must
 // be known before it is written (alpha coverage) or asked for, whole float
 // levels one after the other.
-void stream_levels(const ChainSetup& s, const ImageView& image, int levels, const MipOptions& o, bool whole_levels,
+void stream_levels(const ChainSetup& s, const ConstImageView& image, int levels, const MipOptions& o, bool whole_levels,
                    MipRowSink& sink, MipChain& chain) {
-  const bool coverage = s.alpha && o.alpha_coverage_ref >= 0.0f && !o.normal_map;
+  const bool coverage = s.alpha && o.alpha_coverage_ref && !o.normal_map;
   float target = 0.0f;
   if (coverage) {
-    target = alpha_coverage(image, o.alpha_coverage_ref);
+    target = alpha_coverage(image, *o.alpha_coverage_ref);
     chain.alpha_coverage.push_back(target);
     chain.alpha_scale.push_back(1.0f);
   }
@@ -302,9 +302,9 @@ void stream_levels(const ChainSetup& s, const ImageView& image, int levels, cons
     FloatBuffer cur = downsample(s, src, dw, dh, o.filter, level, coverage ? nullptr : &sink);
     if (coverage) {
       // Coverage is judged on straight alpha, which premultiplication leaves alone.
-      const float scale = coverage_scale(cur.data(), std::size_t(dw) * dh, s.channels, o.alpha_coverage_ref, target);
+      const float scale = coverage_scale(cur.data(), std::size_t(dw) * dh, s.channels, *o.alpha_coverage_ref, target);
       chain.alpha_coverage.push_back(
-          coverage_of(cur.data(), std::size_t(dw) * dh, s.channels, o.alpha_coverage_ref, scale));
+          coverage_of(cur.data(), std::size_t(dw) * dh, s.channels, *o.alpha_coverage_ref, scale));
       chain.alpha_scale.push_back(scale);
       encode_level(s, cur.data(), level, dw, dh, scale, sink);
     }
@@ -313,7 +313,7 @@ void stream_levels(const ChainSetup& s, const ImageView& image, int levels, cons
   }
 }
 
-ChainSetup setup_chain(const ImageView& image, const MipOptions& o) {
+ChainSetup setup_chain(const ConstImageView& image, const MipOptions& o) {
   assert(image.data && image.width > 0 && image.height > 0);
   if (image.channels < 1 || image.channels > 4) {
     throw Error(ErrorCode::unsupported, "images with " + std::to_string(image.channels) +
@@ -328,8 +328,8 @@ ChainSetup setup_chain(const ImageView& image, const MipOptions& o) {
                 "MipOptions::normal_map needs an RGB or RGBA image, this one has " + std::to_string(image.channels) +
                     " channel(s)");
   }
-  if (o.alpha_coverage_ref >= 0.0f && !(o.alpha_coverage_ref > 0.0f && o.alpha_coverage_ref <= 1.0f)) {
-    throw Error(ErrorCode::bad_arguments, "MipOptions::alpha_coverage_ref " + std::to_string(o.alpha_coverage_ref) +
+  if (o.alpha_coverage_ref && !(*o.alpha_coverage_ref > 0.0f && *o.alpha_coverage_ref <= 1.0f)) {
+    throw Error(ErrorCode::bad_arguments, "MipOptions::alpha_coverage_ref " + std::to_string(*o.alpha_coverage_ref) +
                                               " is out of range (valid: 0 < ref <= 1)");
   }
   if (o.min_size < 1) throw Error(ErrorCode::bad_arguments, "MipOptions::min_size must be at least 1");
@@ -370,7 +370,7 @@ class ChainSink final : public MipRowSink {
   std::vector<Image>& levels_;
 };
 
-MipChain generate(const ImageView& image, Image* owned, const MipOptions& o, bool whole_levels) {
+MipChain generate(const ConstImageView& image, Image* owned, const MipOptions& o, bool whole_levels) {
   const ChainSetup s = setup_chain(image, o);
   MipChain chain;
   chain.color_space = s.out_cs.name();
@@ -394,14 +394,14 @@ MipChain generate(const ImageView& image, Image* owned, const MipOptions& o, boo
 
 }  // namespace
 
-MipChain generate_mips(const ImageView& image, const MipOptions& o) { return generate(image, nullptr, o, false); }
+MipChain generate_mips(const ConstImageView& image, const MipOptions& o) { return generate(image, nullptr, o, false); }
 
 MipChain generate_mips(Image&& image, const MipOptions& o) {
   const ImageView view = image.view();
   return generate(view, &image, o, false);
 }
 
-MipChain generate_mips_rows(const ImageView& image, const MipOptions& o, MipRowSink& sink) {
+MipChain generate_mips_rows(const ConstImageView& image, const MipOptions& o, MipRowSink& sink) {
   const ChainSetup s = setup_chain(image, o);
   MipChain chain;
   chain.color_space = s.out_cs.name();
@@ -413,7 +413,7 @@ MipChain generate_mips_rows(const ImageView& image, const MipOptions& o, MipRowS
 }
 
 namespace detail {
-MipChain generate_mips_whole_levels(const ImageView& image, const MipOptions& o) {
+MipChain generate_mips_whole_levels(const ConstImageView& image, const MipOptions& o) {
   return generate(image, nullptr, o, true);
 }
 }  // namespace detail

@@ -80,7 +80,7 @@ using FloatBuffer = std::vector<float, detail::DefaultInitAllocator<float>>;
 // Rec. 709 luma weights, applied to the stored values (heights are data).
 constexpr float kLuma[3] = {0.2126f, 0.7152f, 0.0722f};
 
-int height_source_channel(const ImageView& img, HeightChannel ch) {
+int height_source_channel(const ConstImageView& img, HeightChannel ch) {
   const int c = img.channels;
   auto need = [&](int index, const char* name) {
     if (index >= c) {
@@ -117,7 +117,7 @@ void extract_row_t(const T* s, int width, int channels, int source, bool invert,
   }
 }
 
-void extract_row(const ImageView& img, int y, int source, bool invert, float* dst) {
+void extract_row(const ConstImageView& img, int y, int source, bool invert, float* dst) {
   switch (img.type) {
     case PixelType::u8:
       extract_row_t(img.row<const std::uint8_t>(y), img.width, img.channels, source, invert, 1.0f / 255.0f, dst);
@@ -200,14 +200,14 @@ struct Scratch {
 
 }  // namespace
 
-std::vector<float> extract_height(const ImageView& image, HeightChannel channel, bool invert) {
+std::vector<float> extract_height(const ConstImageView& image, HeightChannel channel, bool invert) {
   const int source = height_source_channel(image, channel);
   std::vector<float> out(std::size_t(image.width) * image.height);
   for (int y = 0; y < image.height; ++y) extract_row(image, y, source, invert, out.data() + std::size_t(y) * image.width);
   return out;
 }
 
-void compute_normal_map(const ImageView& in, const ImageView& out, const NormalMapOptions& o) {
+void compute_normal_map(const ConstImageView& in, const ImageView& out, const NormalMapOptions& o) {
   assert(in.data && out.data && in.width == out.width && in.height == out.height);
   assert(out.channels == channel_count(o.channels));
   if (!(o.height_scale > 0.0f) || !std::isfinite(o.height_scale)) {
@@ -268,7 +268,7 @@ void compute_normal_map(const ImageView& in, const ImageView& out, const NormalM
   });
 }
 
-Image normal_map(const ImageView& heights, const NormalMapOptions& options, PixelType type) {
+Image normal_map(const ConstImageView& heights, const NormalMapOptions& options, PixelType type) {
   Image out = Image::uninitialized(heights.width, heights.height, channel_count(options.channels), type);
   compute_normal_map(heights, out.view(), options);
   return out;

@@ -15,7 +15,7 @@
 namespace texproc {
 namespace {
 
-float map_value(const ImageView& m, int x, int y) {
+float map_value(const ConstImageView& m, int x, int y) {
   switch (m.type) {
     case PixelType::u8: return m.row<const std::uint8_t>(y)[x * m.channels] / 255.0f;
     case PixelType::u16: return m.row<const std::uint16_t>(y)[x * m.channels] / 65535.0f;
@@ -26,7 +26,7 @@ float map_value(const ImageView& m, int x, int y) {
 
 }  // namespace
 
-Image box_blur(const ImageView& img, const BoxBlurOptions& o) {
+Image box_blur(const ConstImageView& img, const BoxBlurOptions& o) {
   if (!(o.radius >= 0.0f) || !std::isfinite(o.radius)) {
     throw Error(ErrorCode::bad_arguments, "BoxBlurOptions::radius must be a number >= 0");
   }

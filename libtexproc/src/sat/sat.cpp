@@ -261,7 +261,7 @@ void table_row_any(int channels, const In* in, int width, const Acc* prev, Acc* 
 // sums (Acc) goes: straight into the table when Acc is the element type,
 // else into scratch that `emit(y, row)` then converts.
 template <typename In, typename Acc, typename RowBuffer, typename Emit>
-void run_strips(const ImageView& img, RowBuffer row_buffer, Emit emit) {
+void run_strips(const ConstImageView& img, RowBuffer row_buffer, Emit emit) {
   const int W = img.width, H = img.height, C = img.channels;
   const std::size_t n = std::size_t(W) * C;
   const int strips = (H + kStripRows - 1) / kStripRows;
@@ -319,7 +319,7 @@ void run_strips(const ImageView& img, RowBuffer row_buffer, Emit emit) {
 
 // Integer tables: exact modulo 2^bits, written straight into the table.
 template <typename In, typename Out>
-void build_integer(const ImageView& img, SummedAreaTable& t) {
+void build_integer(const ConstImageView& img, SummedAreaTable& t) {
   const std::size_t n = std::size_t(img.width) * img.channels;
   Out* base = reinterpret_cast<Out*>(t.data.data());
   run_strips<In, Out>(
@@ -331,7 +331,7 @@ void build_integer(const ImageView& img, SummedAreaTable& t) {
 // rows of exact sums (this one and the one above). The largest |entry| and
 // |M| are kept per row and combined after (max is order-free).
 template <typename In, typename Acc, typename Out>
-void build_float(const ImageView& img, SummedAreaTable& t) {
+void build_float(const ConstImageView& img, SummedAreaTable& t) {
   const std::size_t n = std::size_t(img.width) * img.channels;
   std::vector<double> row_max(img.height, 0.0), model_max(img.height, 0.0);
   run_strips<In, Acc>(
@@ -365,7 +365,7 @@ void build_float(const ImageView& img, SummedAreaTable& t) {
 // Block means: exact sums (int64 for integer input, double in row order for
 // float input) divided by the block's texel count.
 template <typename In>
-std::vector<double> block_means(const ImageView& img, int B) {
+std::vector<double> block_means(const ConstImageView& img, int B) {
   const int C = img.channels, BW = (img.width + B - 1) / B, BH = (img.height + B - 1) / B;
   std::vector<double> means(std::size_t(BW) * BH * C, 0.0);
   for_each_row_block(BH, 1, [&](int b0, int b1) {
@@ -393,8 +393,8 @@ std::vector<double> block_means(const ImageView& img, int B) {
   return means;
 }
 
-template <typename In>
-void build_typed(const ImageView& img, SummedAreaTable& t) {
+template <typename In, typename PrepareModel>
+void build_typed(const ConstImageView& img, SummedAreaTable& t, PrepareModel&& prepare_model) {
   constexpr bool kInt = !std::is_same_v<In, float>;
   // Sums of 8- and 16-bit codes stay integers below 2^53 (65535 * 2^40
   // texels): double holds them exactly, and converts to float faster.
@@ -414,7 +414,7 @@ void build_typed(const ImageView& img, SummedAreaTable& t) {
     case SatPrecision::f32:
       t.block = SummedAreaTable::kBlock;
       t.block_means = block_means<In>(img, t.block);
-      t.prepare_model();
+      prepare_model();
       build_float<In, Exact, float>(img, t);
       break;
     case SatPrecision::f64: build_float<In, Exact, double>(img, t); break;
@@ -423,13 +423,13 @@ void build_typed(const ImageView& img, SummedAreaTable& t) {
 
 }  // namespace
 
-SummedAreaTable build_sat(const ImageView& img, SatPrecision p) {
+SummedAreaTable build_sat(const ConstImageView& img, SatPrecision p) {
   SummedAreaTable t;
   build_sat(img, p, t);
   return t;
 }
 
-void build_sat(const ImageView& img, SatPrecision p, SummedAreaTable& t) {
+void build_sat(const ConstImageView& img, SatPrecision p, SummedAreaTable& t) {
   assert(img.data && img.width > 0 && img.height > 0 && img.channels >= 1 && img.channels <= 4);
   if (img.type == PixelType::f32 && (p == SatPrecision::u32 || p == SatPrecision::u64)) {
     throw Error(ErrorCode::bad_arguments, std::string("SatPrecision ") + to_string(p) +
@@ -445,10 +445,11 @@ void build_sat(const ImageView& img, SatPrecision p, SummedAreaTable& t) {
   t.precision = p;
   t.source = img.type;
   t.data.resize(std::size_t(img.width) * img.height * img.channels * t.element_bytes());
+  const auto prepare = [&t] { t.prepare_model(); };
   switch (img.type) {
-    case PixelType::u8: build_typed<std::uint8_t>(img, t); break;
-    case PixelType::u16: build_typed<std::uint16_t>(img, t); break;
-    case PixelType::f32: build_typed<float>(img, t); break;
+    case PixelType::u8: build_typed<std::uint8_t>(img, t, prepare); break;
+    case PixelType::u16: build_typed<std::uint16_t>(img, t, prepare); break;
+    case PixelType::f32: build_typed<float>(img, t, prepare); break;
   }
 }
 

@@ -63,7 +63,7 @@ void check_size(const std::string& path, long long width, long long height, int 
 
 // Sample i of row y as 8 bits, for the formats that hold only 8 (JPEG, TGA):
 // 16-bit rounded, float clamped to [0, 1] (NaN as 0) and rounded.
-std::uint8_t sample_u8(const ImageView& v, int y, std::size_t i);
+std::uint8_t sample_u8(const ConstImageView& v, int y, std::size_t i);
 
 // [[noreturn]] helpers for the readers' messages: "PATH: what".
 [[noreturn]] void invalid(const std::string& path, const std::string& what);
@@ -73,21 +73,21 @@ std::uint8_t sample_u8(const ImageView& v, int y, std::size_t i);
 // in parallel with zlib).
 ImageFileInfo png_probe(const std::string& path, const FileBytes& f, const ReadLimits& limits);
 Image png_read(const std::string& path, const FileBytes& f, ImageFileInfo& info, const ReadLimits& limits);
-void png_write(const std::string& file, const std::string& path, const ImageView& v, const WriteOptions& o);
+void png_write(const std::string& file, const std::string& path, const ConstImageView& v, const WriteOptions& o);
 // The same for rows made on demand: `shape` gives the size, channels and
 // type (no pixels); each strip asks `source` for its rows.
-void png_write(const std::string& file, const std::string& path, const ImageView& shape, const RowSource& source,
+void png_write(const std::string& file, const std::string& path, const ConstImageView& shape, const RowSource& source,
                const WriteOptions& o);
 
 // JPEG (libjpeg-turbo).
 ImageFileInfo jpeg_probe(const std::string& path, const FileBytes& f, const ReadLimits& limits);
 Image jpeg_read(const std::string& path, const FileBytes& f, ImageFileInfo& info, const ReadLimits& limits);
-void jpeg_write(const std::string& file, const std::string& path, const ImageView& v, const WriteOptions& o);
+void jpeg_write(const std::string& file, const std::string& path, const ConstImageView& v, const WriteOptions& o);
 
 // Truevision TGA (texproc's own: the format is a header and rows).
 ImageFileInfo tga_probe(const std::string& path, const FileBytes& f, const ReadLimits& limits);
 Image tga_read(const std::string& path, const FileBytes& f, ImageFileInfo& info, const ReadLimits& limits);
-void tga_write(const std::string& file, const std::string& path, const ImageView& v, const WriteOptions& o);
+void tga_write(const std::string& file, const std::string& path, const ConstImageView& v, const WriteOptions& o);
 
 // OpenEXR: the texproc_exr module (image/modules/), loaded on first use.
 

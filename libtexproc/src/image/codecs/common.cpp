@@ -170,7 +170,7 @@ void FileBytes::check_intact(const std::string& path) const {
   if (truncated()) invalid(path, "the file was truncated while it was read (rewritten by another program?)");
 }
 
-std::uint8_t sample_u8(const ImageView& v, int y, std::size_t i) {
+std::uint8_t sample_u8(const ConstImageView& v, int y, std::size_t i) {
   if (v.type == PixelType::u8) return v.row<const std::uint8_t>(y)[i];
   if (v.type == PixelType::u16) return std::uint8_t((unsigned(v.row<const std::uint16_t>(y)[i]) * 255u + 32767u) / 65535u);
   float f = v.row<const float>(y)[i];

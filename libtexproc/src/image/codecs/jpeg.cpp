@@ -180,7 +180,7 @@ bool encode(const std::uint8_t* rows, std::size_t stride, int width, int height,
 
 }  // namespace
 
-void jpeg_write(const std::string& file, const std::string& path, const ImageView& v, const WriteOptions& o) {
+void jpeg_write(const std::string& file, const std::string& path, const ConstImageView& v, const WriteOptions& o) {
   // JPEG holds gray or RGB in 8 bits: alpha is dropped, 16-bit and float
   // are rounded to 8 bits (clamped to [0, 1]), as OpenImageIO writes them.
   const int channels = v.channels >= 3 ? 3 : 1;

@@ -228,11 +228,11 @@ Deflate png_level(const std::string& path, const std::string& c) {
 
 }  // namespace
 
-void png_write(const std::string& file, const std::string& path, const ImageView& v, const WriteOptions& o) {
+void png_write(const std::string& file, const std::string& path, const ConstImageView& v, const WriteOptions& o) {
   png_write(file, path, v, RowSource{}, o);
 }
 
-void png_write(const std::string& file, const std::string& path, const ImageView& v, const RowSource& source,
+void png_write(const std::string& file, const std::string& path, const ConstImageView& v, const RowSource& source,
                const WriteOptions& o) {
   const Deflate level = png_level(path, o.compression);
   const bool sixteen = v.type != PixelType::u8;

@@ -184,7 +184,7 @@ Image tga_read(const std::string& path, const FileBytes& f, ImageFileInfo& info,
   return img;
 }
 
-void tga_write(const std::string& file, const std::string& path, const ImageView& v, const WriteOptions&) {
+void tga_write(const std::string& file, const std::string& path, const ConstImageView& v, const WriteOptions&) {
   if (v.width > 65535 || v.height > 65535) write_error(path, "TGA holds at most 65535 pixels a side");
   // Grey (8 bits), grey + alpha (16), BGR (24), BGRA (32); top-left origin;
   // 16-bit and float are rounded to 8 bits (float clamped to [0, 1]).

@@ -292,6 +292,7 @@ void read(const std::string& path, int C, void* data, size_t row_stride) {
 
 using texproc::Error;
 using texproc::ErrorCode;
+using texproc::ConstImageView;
 using texproc::ImageView;
 using texproc::PixelType;
 using texproc::WriteOptions;
@@ -336,11 +337,11 @@ struct Stored {
   Imf::PixelType type = Imf::FLOAT;
 };
 
-std::vector<float> as_float(const ImageView& v);
+std::vector<float> as_float(const ConstImageView& v);
 
 // Float images are converted row by row (no whole float copy of a level
 // beside its half copy).
-Stored stored(const ImageView& v, bool as_half) {
+Stored stored(const ConstImageView& v, bool as_half) {
   Stored s;
   const std::size_t n = std::size_t(v.width) * v.channels;
   if (v.type == PixelType::f32) {
@@ -367,7 +368,7 @@ Stored stored(const ImageView& v, bool as_half) {
   return s;
 }
 
-std::vector<float> as_float(const ImageView& v) {
+std::vector<float> as_float(const ConstImageView& v) {
   std::vector<float> out(std::size_t(v.width) * v.height * v.channels);
   for (int y = 0; y < v.height; ++y) {
     float* d = out.data() + std::size_t(y) * v.width * v.channels;
@@ -382,7 +383,7 @@ std::vector<float> as_float(const ImageView& v) {
   return out;
 }
 
-Imf::Header header_for(const ImageView& v, const WriteOptions& o, Imf::Compression comp) {
+Imf::Header header_for(const ConstImageView& v, const WriteOptions& o, Imf::Compression comp) {
   Imf::Header h(v.width, v.height);
   h.compression() = comp;
   const char* const* names = names_for(v.channels, o.red_green);
@@ -391,7 +392,7 @@ Imf::Header header_for(const ImageView& v, const WriteOptions& o, Imf::Compressi
   return h;
 }
 
-void fill_frame_buffer(Imf::FrameBuffer& fb, const ImageView& v, const Stored& s, bool red_green) {
+void fill_frame_buffer(Imf::FrameBuffer& fb, const ConstImageView& v, const Stored& s, bool red_green) {
   const char* const* names = names_for(v.channels, red_green);
   const std::size_t sample = s.type == Imf::HALF ? sizeof(half) : sizeof(float);
   for (int c = 0; c < v.channels; ++c) {
@@ -403,13 +404,13 @@ void fill_frame_buffer(Imf::FrameBuffer& fb, const ImageView& v, const Stored& s
 // addresses a frame buffer (by the image's row, from the slice's base).
 struct Band {
   Stored stored;
-  ImageView rows;
+  ConstImageView rows;
 };
-Band band_of(const ImageView& v, int y0, int y1, bool as_half) {
+Band band_of(const ConstImageView& v, int y0, int y1, bool as_half) {
   Band b;
   b.rows = v;
   b.rows.height = y1 - y0;
-  b.rows.data = static_cast<char*>(v.data) + std::size_t(y0) * v.row_stride;
+  b.rows.data = static_cast<const char*>(v.data) + std::size_t(y0) * v.row_stride;
   b.stored = stored(b.rows, as_half);
   b.stored.data -= std::ptrdiff_t(y0) * std::ptrdiff_t(b.stored.stride);  // row y at base + y * stride
   return b;
@@ -419,7 +420,7 @@ Band band_of(const ImageView& v, int y0, int y1, bool as_half) {
 
 namespace {
 
-void write(const std::string& file, const std::string& path, const std::vector<ImageView>& levels, bool mip_file,
+void write(const std::string& file, const std::string& path, const std::vector<ConstImageView>& levels, bool mip_file,
            const WriteOptions& o) {
   start_threads();
   const Imf::Compression comp = compression_of(path, o.compression);
@@ -428,7 +429,7 @@ void write(const std::string& file, const std::string& path, const std::vector<I
     // a whole level, beside the image.
     constexpr int kBandRows = 64;
     if (!mip_file) {
-      const ImageView& v = levels[0];
+      const ConstImageView& v = levels[0];
       Imf::OutputFile out(file.c_str(), header_for(v, o, comp));
       for (int y0 = 0; y0 < v.height; y0 += kBandRows) {
         const int y1 = std::min(v.height, y0 + kBandRows);
@@ -448,7 +449,7 @@ void write(const std::string& file, const std::string& path, const std::vector<I
                                                 " levels, given " + std::to_string(levels.size()));
     }
     for (int l = 0; l < out.numLevels(); ++l) {
-      const ImageView& v = levels[std::size_t(l)];
+      const ConstImageView& v = levels[std::size_t(l)];
       const int tile_rows = out.numYTiles(l);
       for (int ty = 0; ty < tile_rows; ++ty) {  // a band of one row of 64x64 tiles
         const int y0 = ty * 64, y1 = std::min(v.height, y0 + 64);
@@ -486,7 +487,7 @@ MipWriter* mip_open(const std::string& file, const std::string& path, int width,
   w->options = o;
   w->channels = channels;
   try {
-    ImageView shape{nullptr, width, height, channels, PixelType::f32, 0};
+    const ConstImageView shape{nullptr, width, height, channels, PixelType::f32, 0};
     Imf::Header h = header_for(shape, o, compression_of(path, o.compression));
     h.setTileDescription(Imf::TileDescription(64, 64, Imf::MIPMAP_LEVELS, Imf::ROUND_DOWN));
     w->out = std::make_unique<Imf::TiledOutputFile>(file.c_str(), h);
@@ -508,7 +509,7 @@ void mip_band(MipWriter& w, int level, int band, const void* rows, std::size_t r
     const int height = out.levelHeight(level);
     const int y0 = band * 64, y1 = std::min(height, y0 + 64);
     // The band's rows, addressed as the level's rows y0 .. y1-1.
-    const ImageView v{const_cast<char*>(static_cast<const char*>(rows)) - std::ptrdiff_t(y0) * std::ptrdiff_t(row_stride),
+    const ConstImageView v{static_cast<const char*>(rows) - std::ptrdiff_t(y0) * std::ptrdiff_t(row_stride),
                       out.levelWidth(level), height, w.channels, PixelType::f32, row_stride};
     const Band b = band_of(v, y0, y1, w.options.half);
     Imf::FrameBuffer fb;
@@ -563,9 +564,9 @@ WriteOptions options_of(const TpWriteOptions* o) {
 int write_c(const char* file, const char* path, const TpImageLevel* levels, int count, int mip_file,
             const TpWriteOptions* o, char* err, size_t err_size) {
   return guarded(path, "cannot write", err, err_size, [&] {
-    std::vector<ImageView> views;
+    std::vector<ConstImageView> views;
     for (int i = 0; i < count; ++i) {
-      views.push_back({const_cast<void*>(levels[i].data), levels[i].width, levels[i].height, levels[i].channels,
+      views.push_back({levels[i].data, levels[i].width, levels[i].height, levels[i].channels,
                        PixelType(levels[i].type), levels[i].row_stride});
     }
     write(file, path, views, mip_file != 0, options_of(o));

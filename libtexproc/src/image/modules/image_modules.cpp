@@ -95,11 +95,11 @@ Image read(Module m, const std::string& path, ImageFileInfo& info, const ReadLim
   return img;
 }
 
-void write(Module m, const std::string& file, const std::string& path, const std::vector<ImageView>& levels,
+void write(Module m, const std::string& file, const std::string& path, const std::vector<ConstImageView>& levels,
            bool mip_file, const WriteOptions& options) {
   const TpImageModule& t = module_for(m, path);
   std::vector<TpImageLevel> tl;
-  for (const ImageView& v : levels) tl.push_back({v.data, v.width, v.height, v.channels, to_tp(v.type), v.row_stride});
+  for (const ConstImageView& v : levels) tl.push_back({v.data, v.width, v.height, v.channels, to_tp(v.type), v.row_stride});
   const TpWriteOptions o{options.half ? 1 : 0, options.compression.c_str(), options.color_space.c_str(),
                          options.quality, options.red_green ? 1 : 0};
   char err[1024] = {};

@@ -22,7 +22,7 @@ bool loaded(Module m);
 ImageFileInfo probe(Module m, const std::string& path, const ReadLimits& limits);
 // probe, then the pixels: at most 4 channels of the type probe gave.
 Image read(Module m, const std::string& path, ImageFileInfo& info, const ReadLimits& limits);
-void write(Module m, const std::string& file, const std::string& path, const std::vector<ImageView>& levels,
+void write(Module m, const std::string& file, const std::string& path, const std::vector<ConstImageView>& levels,
            bool mip_file, const WriteOptions& options);
 
 // A module's band-by-band MIP file (image_module.h: mip_open, mip_band,
