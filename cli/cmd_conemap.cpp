@@ -85,7 +85,7 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
   const int width = img.width(), height = img.height();
   const PixelType out_type = a.type_choice ? *a.type_choice : (img.type() == PixelType::u8 ? PixelType::u8 : PixelType::u16);
   img = Image();  // the heights are all that is read from here on
-  detail::release_cached_pixels();
+  release_cached_pixel_memory();
   const std::string preview = r.outputs.size() > 1 ? r.outputs[1] : "";
   // The map's rows made as the writer takes them: never the whole image.
   ImageView shape;

@@ -260,7 +260,7 @@ Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r
       }
       Image rgba = to_linear_rgba(in.images[0].view(), s.space);
       in.images.clear();  // the floats are all that is read from here on
-      detail::release_cached_pixels();
+      release_cached_pixel_memory();
       if (layout == CubeLayout::equirect) {
         const int size = a.size > 0 ? a.size : default_cube_size(width);
         s.cube = cubemap_from_equirect(rgba.view(), size, a.flip_axis);
@@ -268,7 +268,7 @@ Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r
         s.cube = cubemap_from_layout(rgba.view(), layout);
       }
       rgba = Image();
-      detail::release_cached_pixels();
+      release_cached_pixel_memory();
       s.layout = std::string(to_string(layout)) + " " + std::to_string(width) + "x" + std::to_string(height);
     }
   }

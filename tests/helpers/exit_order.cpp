@@ -3,24 +3,16 @@
 // when a busy process exits. It must exit 0: the block cache that pixel
 // memory returns to outlives every destructor that can reach it.
 #include <cstddef>
-#include <vector>
 
 #include "texproc/image.h"
 
-namespace {
-using Pixels = std::vector<float, texproc::detail::DefaultInitAllocator<float>>;
-struct Holder {
-  Pixels pixels;
-};
-}  // namespace
-
 int main() {
-  static Holder held;  // constructed before the library's cache: destroyed after it
-  held.pixels.resize(std::size_t(4) << 20);  // 16 MiB: a large block
+  static texproc::PixelBytes held;  // constructed before the library's cache: destroyed after it
+  held.resize(std::size_t(16) << 20);  // 16 MiB: a large block
   {
-    Pixels freed(std::size_t(4) << 20);  // freed into the cache, which now holds one block
-    freed[0] = 1.0f;
+    texproc::PixelBytes freed(std::size_t(16) << 20);  // freed into the cache, which now holds one block
+    freed[0] = 1;
   }
-  held.pixels[0] = 2.0f;
-  return held.pixels[0] == 2.0f ? 0 : 1;
+  held[0] = 2;
+  return held[0] == 2 ? 0 : 1;
 }

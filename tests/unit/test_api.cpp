@@ -92,3 +92,39 @@ TEST(Api, SurfaceLayoutAndStorage) {
   EXPECT_TRUE(arr.is_array);
   EXPECT_EQ(texture_from_levels({Image(2, 2, 4, PixelType::f32)}, {.half = true}).format, TexelFormat::rgba16_float);
 }
+
+// PixelBytes owns its block: copies are deep, moves leave the source empty,
+// resize keeps the leading bytes, and Image and Texture pass blocks without
+// a copy.
+TEST(Api, PixelBytesOwnsItsBlock) {
+  PixelBytes a(std::vector<std::uint8_t>{1, 2, 3, 4});
+  PixelBytes b = a;
+  b[0] = 9;
+  EXPECT_EQ(a[0], 1);
+  EXPECT_EQ(b, (std::vector<std::uint8_t>{9, 2, 3, 4}));
+  const std::uint8_t* block = b.data();
+  PixelBytes c = std::move(b);
+  EXPECT_EQ(c.data(), block);
+  EXPECT_TRUE(b.empty());  // NOLINT(bugprone-use-after-move): a moved-from block is empty
+  c.resize(6);
+  EXPECT_EQ(c.size(), 6u);
+  EXPECT_TRUE(std::equal(c.begin(), c.begin() + 4, std::vector<std::uint8_t>{9, 2, 3, 4}.begin()));
+  c.resize(2);
+  EXPECT_EQ(std::vector<std::uint8_t>(c), (std::vector<std::uint8_t>{9, 2}));
+  const std::uint8_t raw[3] = {7, 7, 7};
+  c.assign(raw, raw + 3);
+  EXPECT_EQ(c, PixelBytes(3, 7));
+  c.clear();
+  EXPECT_EQ(c.data(), nullptr);
+
+  // A large block (16 MiB) goes from an image to a texture and back unmoved.
+  Image img(2048, 2048, 4, PixelType::u8);
+  const std::uint8_t* pixels = img.data();
+  std::vector<Image> levels;
+  levels.push_back(std::move(img));
+  Texture t = texture_from_levels(std::move(levels));
+  EXPECT_EQ(t.image(0).data(), pixels);
+  EXPECT_EQ(t.image(0).size(), std::size_t(2048) * 2048 * 4);
+  EXPECT_EQ(t.image(0)[12345], 0);  // Image(...) zero-fills
+  release_cached_pixel_memory();
+}

@@ -1,5 +1,5 @@
-// texproc/block_encode.h: block compression: BC1-BC5, ETC1, ETC2, EAC, and
-// ASTC through ARM's astc-encoder
+// texproc/block_encode.h: block compression: BC1-BC5, BC6H, BC7, ETC1, ETC2,
+// EAC, and ASTC through ARM's astc-encoder
 // (docs/compression.md describes the encoders and their quality levels).
 #pragma once
 
@@ -49,7 +49,9 @@ double bc4_block_error(const std::uint8_t block[8], const float values[16], bool
 // data: integers scaled to [0, 1], SNORM formats map [0, 1] to [-1, 1] (so a
 // normal map's stored x * 0.5 + 0.5 becomes x). Partial blocks replicate the
 // edge texels. Bytes are identical for any thread count and SIMD target.
-// ASTC formats take RGBA as BC1-BC3 do (8-bit stays 8-bit, 16-bit and
+// BC7 takes RGBA8 as BC1-BC3 do. BC6H takes RGB as values (float as it is,
+// rounded to half, NaN as 0; integers scaled to [0, 1]); UFLOAT stores
+// negatives as 0. ASTC formats take RGBA as BC1-BC3 do (8-bit stays 8-bit, 16-bit and
 // float in [0, 1] keep their precision); SFLOAT takes the values as they
 // are (above 1 kept, negative clamped by the format). ASTC is searched by
 // astc-encoder at the preset the quality names (docs/compression.md, or

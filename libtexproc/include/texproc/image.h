@@ -1,4 +1,5 @@
-// texproc/image.h: pixel types, a non-owning image view and an owning image.
+// texproc/image.h: pixel types, read-only and writable image views, pixel
+// memory and an owning image.
 #pragma once
 
 #include <algorithm>
@@ -69,58 +70,49 @@ struct ImageView {
   operator ConstImageView() const { return {data, width, height, channels, type, row_stride}; }
 };
 
-namespace detail {
-// Pixel memory: large blocks are 2 MiB aligned and marked for transparent
-// huge pages, so that filling a fresh 64 MiB level costs 32 page faults
-// rather than 16384.
-void* allocate_pixels(std::size_t bytes);
-void free_pixels(void* p, std::size_t bytes) noexcept;
-// Freed large blocks are kept (up to 512 MiB) for the next image of their
-// size; this gives them back to the system (after freeing an image that
-// nothing of its size will follow).
-void release_cached_pixels() noexcept;
-
-// An allocator whose resize() leaves new elements uninitialized: buffers that
-// are about to be overwritten are not zero-filled first (at 4096x4096 the
-// memset alone costs milliseconds).
-template <typename T>
-struct DefaultInitAllocator {
-  using value_type = T;
-  template <typename U>
-  struct rebind {
-    using other = DefaultInitAllocator<U>;
-  };
-  DefaultInitAllocator() = default;
-  template <typename U>
-  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept {}
-  T* allocate(std::size_t n) { return static_cast<T*>(allocate_pixels(n * sizeof(T))); }
-  void deallocate(T* p, std::size_t n) noexcept { free_pixels(p, n * sizeof(T)); }
-  template <typename U>
-  bool operator==(const DefaultInitAllocator<U>&) const noexcept {
-    return true;
-  }
-  template <typename U>
-  void construct(U* p) noexcept {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
-}  // namespace detail
-
-// Pixel or texel bytes in pixel memory (see allocate_pixels): what Image
-// holds and what Texture's images are, so one can become the other without
-// a copy.
-// Converts to and from std::vector<std::uint8_t> (with a copy) for callers
-// that hold bytes that way.
-struct PixelBytes : std::vector<std::uint8_t, detail::DefaultInitAllocator<std::uint8_t>> {
-  using Base = std::vector<std::uint8_t, detail::DefaultInitAllocator<std::uint8_t>>;
-  using Base::Base;
+// Pixel or texel bytes: what Image holds and what Texture's images are, so
+// one becomes the other without a copy. Large blocks come from texproc's
+// pixel memory: 2 MiB aligned and marked for transparent huge pages (filling
+// a fresh 64 MiB level costs 32 page faults rather than 16384), and kept
+// for the next block of their size when freed (see
+// release_cached_pixel_memory). New bytes are left uninitialized unless a
+// value is given: buffers about to be overwritten are not zero-filled first.
+class PixelBytes {
+ public:
   PixelBytes() = default;
-  PixelBytes(Base&& b) noexcept : Base(std::move(b)) {}
-  PixelBytes(const std::vector<std::uint8_t>& v) : Base(v.begin(), v.end()) {}
+  explicit PixelBytes(std::size_t size);  // uninitialized
+  PixelBytes(std::size_t size, std::uint8_t value);
+  PixelBytes(const std::uint8_t* first, const std::uint8_t* last);
+  PixelBytes(const std::vector<std::uint8_t>& bytes);  // a copy
+  PixelBytes(const PixelBytes& other);
+  PixelBytes(PixelBytes&& other) noexcept;
+  PixelBytes& operator=(const PixelBytes& other);
+  PixelBytes& operator=(PixelBytes&& other) noexcept;
+  ~PixelBytes();
+
+  std::uint8_t* data() { return data_; }
+  const std::uint8_t* data() const { return data_; }
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  std::uint8_t* begin() { return data_; }
+  std::uint8_t* end() { return data_ + size_; }
+  const std::uint8_t* begin() const { return data_; }
+  const std::uint8_t* end() const { return data_ + size_; }
+  std::uint8_t& operator[](std::size_t i) {
+    assert(i < size_);
+    return data_[i];
+  }
+  const std::uint8_t& operator[](std::size_t i) const {
+    assert(i < size_);
+    return data_[i];
+  }
+  // Keeps the first min(size, size()) bytes; bytes past them are uninitialized.
+  void resize(std::size_t size);
+  // Holds a copy of [first, last) instead.
+  void assign(const std::uint8_t* first, const std::uint8_t* last) { *this = PixelBytes(first, last); }
+  void clear() noexcept;
+
+  // A copy, for callers that hold bytes in a std::vector.
   operator std::vector<std::uint8_t>() const { return std::vector<std::uint8_t>(begin(), end()); }
   friend bool operator==(const PixelBytes& a, const PixelBytes& b) {
     return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin());
@@ -128,7 +120,16 @@ struct PixelBytes : std::vector<std::uint8_t, detail::DefaultInitAllocator<std::
   friend bool operator==(const PixelBytes& a, const std::vector<std::uint8_t>& b) {
     return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin());
   }
+
+ private:
+  std::uint8_t* data_ = nullptr;
+  std::size_t size_ = 0;
 };
+
+// Gives the freed large blocks that pixel memory keeps for reuse (up to
+// 512 MiB) back to the system: after freeing an image that nothing of its
+// size will follow.
+void release_cached_pixel_memory() noexcept;
 
 // An owning image with tightly packed rows.
 class Image {
@@ -173,7 +174,7 @@ class Image {
  private:
   int width_ = 0, height_ = 0, channels_ = 0;
   PixelType type_ = PixelType::u8;
-  PixelBytes::Base data_;
+  PixelBytes data_;
 };
 
 // Sets every NaN and infinity of an f32 image to `value` and returns how

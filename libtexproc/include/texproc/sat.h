@@ -53,7 +53,7 @@ struct SummedAreaTable {
   // The largest |entry| and the largest |M|, which bound the rounding error.
   double max_abs_entry = 0.0;
   double max_abs_model = 0.0;
-  std::vector<std::uint8_t, detail::DefaultInitAllocator<std::uint8_t>> data;
+  PixelBytes data;
 
   std::size_t element_bytes() const;
   // The sum over [x0, x1) x [y0, y1) for each channel into out[channels]

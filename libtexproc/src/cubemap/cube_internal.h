@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/pixel_memory.h"
 #include "texproc/cubemap.h"
 
 namespace texproc::cube {

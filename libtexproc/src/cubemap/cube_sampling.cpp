@@ -205,7 +205,7 @@ Cubemap cubemap_from_equirect(const ConstImageView& pano, int size, CubeFlip fli
   const PanoPyramid pyr(pano);
   // The pyramid's row-filtered temporaries are cached for images of their
   // sizes, which the faces are not: back to the system before the faces grow.
-  detail::release_cached_pixels();
+  release_cached_pixel_memory();
   const int W = pano.width, H = pano.height;
   const int top = int(pyr.levels.size()) - 1;
   Cubemap c;

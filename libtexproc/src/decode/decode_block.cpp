@@ -381,7 +381,7 @@ Image decompress_image(std::vector<std::uint8_t> blocks, int width, int height, 
   t.format = format;
   t.width = std::uint32_t(width);
   t.height = std::uint32_t(height);
-  t.images.emplace_back(blocks.begin(), blocks.end());
+  t.images.emplace_back(blocks);
   return decode_texture_image(t, 0, 0, 0, type);
 }
 

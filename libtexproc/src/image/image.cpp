@@ -1,5 +1,8 @@
 #include "texproc/image.h"
 
+#include "core/pixel_memory.h"
+
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <cstdlib>
@@ -80,14 +83,64 @@ void free_pixels(void* p, std::size_t bytes) noexcept {
   std::free(p);
 }
 
-void release_cached_pixels() noexcept {
-  BlockCache& c = cache();
+}  // namespace detail
+
+void release_cached_pixel_memory() noexcept {
+  detail::BlockCache& c = detail::cache();
   std::lock_guard<std::mutex> lock(c.mutex);
   for (const auto& b : c.blocks) std::free(b.first);
   c.blocks.clear();
   c.bytes = 0;
 }
-}  // namespace detail
+
+PixelBytes::PixelBytes(std::size_t size) : size_(size) {
+  if (size) data_ = static_cast<std::uint8_t*>(detail::allocate_pixels(size));
+}
+
+PixelBytes::PixelBytes(std::size_t size, std::uint8_t value) : PixelBytes(size) {
+  if (size) std::memset(data_, value, size);
+}
+
+PixelBytes::PixelBytes(const std::uint8_t* first, const std::uint8_t* last) : PixelBytes(std::size_t(last - first)) {
+  if (size_) std::memcpy(data_, first, size_);
+}
+
+PixelBytes::PixelBytes(const std::vector<std::uint8_t>& bytes)
+    : PixelBytes(bytes.data(), bytes.data() + bytes.size()) {}
+
+PixelBytes::PixelBytes(const PixelBytes& other) : PixelBytes(other.begin(), other.end()) {}
+
+PixelBytes::PixelBytes(PixelBytes&& other) noexcept
+    : data_(std::exchange(other.data_, nullptr)), size_(std::exchange(other.size_, 0)) {}
+
+PixelBytes& PixelBytes::operator=(const PixelBytes& other) {
+  if (this != &other) *this = PixelBytes(other);
+  return *this;
+}
+
+PixelBytes& PixelBytes::operator=(PixelBytes&& other) noexcept {
+  if (this != &other) {
+    clear();
+    data_ = std::exchange(other.data_, nullptr);
+    size_ = std::exchange(other.size_, 0);
+  }
+  return *this;
+}
+
+PixelBytes::~PixelBytes() { clear(); }
+
+void PixelBytes::resize(std::size_t size) {
+  if (size == size_) return;
+  PixelBytes bigger(size);
+  if (size && size_) std::memcpy(bigger.data_, data_, std::min(size, size_));
+  *this = std::move(bigger);
+}
+
+void PixelBytes::clear() noexcept {
+  if (data_) detail::free_pixels(data_, size_);
+  data_ = nullptr;
+  size_ = 0;
+}
 
 const char* to_string(PixelType t) {
   switch (t) {
@@ -101,7 +154,7 @@ const char* to_string(PixelType t) {
 Image::Image(int width, int height, int channels, PixelType type)
     : width_(width), height_(height), channels_(channels), type_(type) {
   assert(width > 0 && height > 0 && channels >= 1 && channels <= 4);
-  data_.assign(std::size_t(width) * height * channels * bytes_per_channel(type), 0);
+  data_ = PixelBytes(std::size_t(width) * height * channels * bytes_per_channel(type), 0);
 }
 
 Image Image::uninitialized(int width, int height, int channels, PixelType type) {
@@ -111,7 +164,7 @@ Image Image::uninitialized(int width, int height, int channels, PixelType type) 
   img.height_ = height;
   img.channels_ = channels;
   img.type_ = type;
-  img.data_.resize(std::size_t(width) * height * channels * bytes_per_channel(type));
+  img.data_ = PixelBytes(std::size_t(width) * height * channels * bytes_per_channel(type));
   return img;
 }
 

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "core/pixel_memory.h"
 #include "texproc/color.h"
 #include "texproc/filters.h"
 #include "texproc/image.h"

@@ -1,5 +1,6 @@
 // Normal maps from heightmaps: separable gradient kernels over rows of
 // heights, then unit normals, then the requested channels.
+#include "core/pixel_memory.h"
 #include "texproc/normalmap.h"
 
 #include <algorithm>

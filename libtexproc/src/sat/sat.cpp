@@ -10,6 +10,7 @@
 // input), the mean's share (x + 1)(y + 1) * mean subtracted (Hensley et al.,
 // "Fast Summed-Area Table Generation and its Applications", 2005), and
 // rounded once to float.
+#include "core/pixel_memory.h"
 #include "texproc/sat.h"
 
 #include <algorithm>
