@@ -9,6 +9,7 @@
 #include <memory>
 #include <utility>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace texproc {
@@ -31,11 +32,20 @@ constexpr bool is_float(PixelType t) { return t == PixelType::f32; }
 // "u8", "u16", "f32".
 const char* to_string(PixelType t);
 
-// A read-only view of interleaved pixels in caller memory: what a call reads
-// (its inputs). `row_stride` is in bytes and may exceed width * channels *
-// bytes_per_channel(type) (padding, sub-views).
-struct ConstImageView {
-  const void* data = nullptr;
+// A view of interleaved pixels in caller memory. `row_stride` is in bytes
+// and may exceed width * channels * bytes_per_channel(type) (padding,
+// sub-views). Two kinds, told apart by type:
+//   ConstImageView (Void = const void): read-only, what a call reads (its inputs);
+//   ImageView (Void = void): what a call writes (its outputs). It converts
+//   to a ConstImageView, so an output may also be read; a const Image gives
+//   only a ConstImageView, which cannot be passed where a call writes.
+template <typename Void>
+struct BasicImageView {
+  using Byte = std::conditional_t<std::is_const_v<Void>, const std::uint8_t, std::uint8_t>;
+  template <typename T>
+  using Ptr = std::conditional_t<std::is_const_v<Void>, const T*, T*>;
+
+  Void* data = nullptr;
   int width = 0;
   int height = 0;
   int channels = 0;  // 1..4: gray, gray+alpha, RGB, RGBA
@@ -44,31 +54,18 @@ struct ConstImageView {
 
   std::size_t pixel_bytes() const { return channels * bytes_per_channel(type); }
   template <typename T>
-  const T* row(int y) const {
+  Ptr<T> row(int y) const {
     assert(y >= 0 && y < height);
-    return reinterpret_cast<const T*>(static_cast<const std::uint8_t*>(data) + y * row_stride);
+    return reinterpret_cast<Ptr<T>>(static_cast<Byte*>(data) + y * row_stride);
+  }
+  operator BasicImageView<const void>() const
+    requires(!std::is_const_v<Void>)
+  {
+    return {data, width, height, channels, type, row_stride};
   }
 };
-
-// A view of pixels a call writes (its outputs), laid out as ConstImageView;
-// it converts to one, so an output may also be read. A const Image gives
-// only a ConstImageView: it cannot be passed where a call writes.
-struct ImageView {
-  void* data = nullptr;
-  int width = 0;
-  int height = 0;
-  int channels = 0;  // 1..4: gray, gray+alpha, RGB, RGBA
-  PixelType type = PixelType::u8;
-  std::size_t row_stride = 0;
-
-  std::size_t pixel_bytes() const { return channels * bytes_per_channel(type); }
-  template <typename T>
-  T* row(int y) const {
-    assert(y >= 0 && y < height);
-    return reinterpret_cast<T*>(static_cast<std::uint8_t*>(data) + y * row_stride);
-  }
-  operator ConstImageView() const { return {data, width, height, channels, type, row_stride}; }
-};
+using ConstImageView = BasicImageView<const void>;
+using ImageView = BasicImageView<void>;
 
 // Pixel or texel bytes: what Image holds and what Texture's images are, so
 // one becomes the other without a copy. Large blocks come from texproc's
