@@ -39,7 +39,7 @@ struct ConeArgs {
   ConeMapOptions options;
   HeightChannel channel = HeightChannel::automatic;
   std::optional<PixelType> type_choice;
-  WriteOptions write;
+  WriteOptions write = cli_write_options();
 };
 
 void validate(ConeArgs& a) {
@@ -74,8 +74,7 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
   // The progress line: the map, and with a preview the other kind of map as the second half.
   const double share = r.outputs.size() > 1 ? 0.5 : 1.0;
   if (r.progress) o.progress = [&r, share](double done) { r.progress(done * share); };
-  WriteOptions w = a.write;
-  w.io_path = cli_write_options().io_path;
+  const WriteOptions& w = a.write;
   PhaseTimer phases(r);
   ImageFileInfo info;
   Image img = read_image(input, &info, cli_read_options());

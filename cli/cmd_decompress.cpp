@@ -26,7 +26,7 @@ struct DecompressArgs {
   bool all_levels = false;
   // From the options, once (validate):
   std::optional<PixelType> type_choice;
-  WriteOptions write;
+  WriteOptions write = cli_write_options();
 };
 
 void check_index(const std::string& input, const char* what, int value, std::uint32_t count) {
@@ -55,7 +55,6 @@ void run_decompress(const DecompressArgs& a, const std::string& input, const std
   // plan() may have chosen another name (.exr for HDR into a folder).
   const std::string output = r.outputs.size() == 1 ? r.outputs[0] : requested;
   WriteOptions w = a.write;
-  w.io_path = cli_write_options().io_path;
   const bool exr = fs::path(output).extension() == ".exr";
   std::optional<PixelType> type = a.type_choice;
   if (!type) {

@@ -36,7 +36,7 @@ struct MipArgs {
   bool report = false;
   // From the options, once (validate):
   MipOptions mip;
-  WriteOptions write;
+  WriteOptions write = cli_write_options();
   DdsHeader header = DdsHeader::automatic;
 };
 
@@ -75,7 +75,6 @@ void report_mip(const MipArgs& a, const std::string& input, const std::string& o
 void run_mip(const MipArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   MipOptions o = a.mip;
   WriteOptions w = a.write;
-  w.io_path = cli_write_options().io_path;
   const bool container = is_container_path(output);
   if (!o.output_type && fs::path(output).extension() == ".exr") {
     o.output_type = PixelType::f32;  // OpenEXR holds floats: write half

@@ -38,7 +38,7 @@ struct NormalMapArgs {
   // From the options, once (validate):
   NormalMapOptions options;
   std::optional<PixelType> type_choice;  // --type (empty: from the input)
-  WriteOptions write;                    // half, compression, linear
+  WriteOptions write = cli_write_options();  // half, compression, linear
   DdsHeader header = DdsHeader::automatic;
   FilterKind filter = FilterKind::gaussian;
 };
@@ -73,7 +73,6 @@ std::vector<std::string> plan(const NormalMapArgs& a, const std::string& input, 
 void run_normalmap(const NormalMapArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   const NormalMapOptions& o = a.options;
   WriteOptions w = a.write;
-  w.io_path = cli_write_options().io_path;
   check_dds_header_fits(a.dds_header, output);
   zstd_level_for(a.zstd, output);  // checked before any work
   PhaseTimer phases(r);
