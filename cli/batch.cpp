@@ -212,6 +212,13 @@ std::vector<FileReport> plan_files(const BatchCommand& c, const std::vector<Inpu
     r.inputs.insert(r.inputs.end(), shared_inputs.begin(), shared_inputs.end());
     try {
       if (!fs::is_regular_file(r.input, ec)) {
+        // --dry-run of a recipe: made by an earlier job first.
+        const auto made = session_options().pending.find(absolute_path(r.input));
+        if (made != session_options().pending.end()) {
+          r.outputs = {outputs[i]};
+          r.details["reason"] = "input made by job " + made->second;
+          continue;
+        }
         throw Error(ErrorCode::io, r.input + (fs::exists(r.input, ec) ? ": not a file" : ": no such file"));
       }
       r.outputs = c.plan(files[i], outputs[i]);
@@ -295,6 +302,17 @@ bool up_to_date(const FileReport& r, const SessionOptions& s) {
          });
 }
 
+// --dry-run of a recipe: "input X rebuilt by job Y" when an earlier job
+// would rewrite one of the file's inputs.
+std::string rebuilt_input(const FileReport& r, const SessionOptions& s) {
+  if (s.pending.empty()) return "";
+  for (const std::string& in : r.inputs) {
+    const auto it = s.pending.find(absolute_path(in));
+    if (it != s.pending.end()) return "input " + in + " rebuilt by job " + it->second;
+  }
+  return "";
+}
+
 // The files to run: not failed, not skipped (--incremental, --skip-existing),
 // their outputs free to write.
 std::vector<std::size_t> select_work(std::vector<FileReport>& reports, const SessionOptions& s, const CommonOptions& common) {
@@ -303,9 +321,22 @@ std::vector<std::size_t> select_work(std::vector<FileReport>& reports, const Ses
   for (std::size_t i = 0; i < reports.size(); ++i) {
     FileReport& r = reports[i];
     if (r.status == "failed") continue;
-    if (s.incremental && !common.force && up_to_date(r, s)) {
-      r.status = "skipped";
-      continue;
+    if (r.details.isMember("reason")) {
+      // decided while planning
+    } else if (const std::string by = rebuilt_input(r, s); !by.empty()) {
+      r.details["reason"] = by;
+    } else if (s.incremental && !common.force) {
+      if (s.why_rebuild) {
+        const std::string why = s.why_rebuild(r);
+        if (why.empty()) {
+          r.status = "skipped";
+          continue;
+        }
+        r.details["reason"] = why;
+      } else if (up_to_date(r, s)) {
+        r.status = "skipped";
+        continue;
+      }
     }
     if (s.skip_existing && std::all_of(r.outputs.begin(), r.outputs.end(),
                                        [&](const std::string& f) { return fs::exists(f, ec); })) {
@@ -419,15 +450,33 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
   const std::size_t recorded_before = recorded_inputs().size();
   if (c.validate) c.validate();
   const std::vector<std::string> all_recorded = recorded_inputs();
-  const std::vector<std::string> shared_inputs(all_recorded.begin() + std::ptrdiff_t(recorded_before),
-                                               all_recorded.end());
-  const std::vector<InputFile> files = expand_inputs(b, c.input_extensions);
+  std::vector<std::string> shared_inputs(all_recorded.begin() + std::ptrdiff_t(recorded_before), all_recorded.end());
+  if (!s.ocio_config.empty() &&
+      std::find(shared_inputs.begin(), shared_inputs.end(), s.ocio_config) == shared_inputs.end()) {
+    shared_inputs.push_back(s.ocio_config);
+    record_input(s.ocio_config);
+  }
+  std::vector<InputFile> files = expand_inputs(b, c.input_extensions);
+  SessionOptions& session = session_options();
+  if (session.select) {
+    files.erase(std::remove_if(files.begin(), files.end(), [&](const InputFile& f) { return !session.select(f.path); }),
+                files.end());
+  }
+  if (session.shard_count > 0 && !s.check_only) {
+    std::vector<InputFile> mine;
+    for (const InputFile& f : files) {
+      if (int(session.shard_counter++ % std::size_t(session.shard_count)) == session.shard_index) mine.push_back(f);
+    }
+    files = std::move(mine);
+  }
+  if (files.empty() && (session.select || session.shard_count > 0)) return 0;  // none of them is this run's
   const std::vector<std::string> outputs = name_outputs(c, b, files);
   if (s.check_only) {
     if (s.plans) {
       const std::vector<FileReport> planned = plan_files(c, files, outputs, shared_inputs);
       for (std::size_t i = 0; i < planned.size(); ++i) {
-        s.plans->push_back({planned[i].inputs, claimed_outputs(planned[i], outputs[i])});
+        s.plans->push_back({files[i].path, outputs[i], planned[i].inputs, claimed_outputs(planned[i], outputs[i]),
+                            planned[i].status != "failed" && !planned[i].outputs.empty()});
       }
     }
     return 0;
@@ -456,8 +505,12 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
     for (const auto& r : reports) {
       if (r.status == "failed") {
         print_error(c.name, r.error);
+      } else if (r.status == "skipped") {
+        continue;  // up to date: --dry-run lists what would be written
       } else if (!s.json) {
-        for (const auto& o : r.outputs) std::cout << o << "\n";
+        // With change tracking (a recipe), why each file would be rebuilt.
+        const std::string why = r.details.isMember("reason") ? " (" + r.details["reason"].asString() + ")" : "";
+        for (const auto& o : r.outputs) std::cout << o << why << "\n";
       }
     }
     return finish();
@@ -506,6 +559,12 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
   return finish();
 }
 
+std::string absolute_path(const std::string& path) {
+  std::error_code ec;
+  const fs::path a = fs::absolute(path, ec);
+  return (ec ? fs::path(path) : a).lexically_normal().string();
+}
+
 std::string output_key(const std::string& path) {
   std::error_code ec;
   const fs::path abs = fs::absolute(path, ec);
@@ -513,78 +572,6 @@ std::string output_key(const std::string& path) {
   const fs::path dir = fs::weakly_canonical(abs.parent_path(), ec);
   if (ec) return abs.lexically_normal().string();
   return (dir / abs.filename()).lexically_normal().string();
-}
-
-std::string to_json(const Json::Value& v) {
-  Json::StreamWriterBuilder w;
-  w["indentation"] = "  ";
-  w["precision"] = 6;
-  w["emitUTF8"] = true;
-  return Json::writeString(w, v);
-}
-
-void print_json_summary(const std::string& command, int exit_code, const std::string& error) {
-  Json::Value root(Json::objectValue);
-  root["command"] = command;
-  root["exit_code"] = exit_code;
-  if (!error.empty()) root["error"] = error;
-  Json::Value files(Json::arrayValue);
-  int ok = 0, failed = 0, skipped = 0, not_run = 0;
-  for (const auto& r : session_reports()) {
-    Json::Value f(Json::objectValue);
-    f["input"] = r.input;
-    Json::Value ins(Json::arrayValue);
-    for (const auto& in : r.inputs) ins.append(in);
-    f["inputs"] = ins;
-    Json::Value outs(Json::arrayValue);
-    for (const auto& o : r.outputs) outs.append(o);
-    f["outputs"] = outs;
-    f["status"] = r.status;
-    if (r.status == "failed") {
-      f["error"] = r.error;
-      f["exit_code"] = int(r.code);
-    }
-    if (r.status == "ok") {
-      std::error_code ec;
-      const auto in_bytes = fs::file_size(r.input, ec);
-      if (!ec) f["input_bytes"] = Json::UInt64(in_bytes);
-      Json::UInt64 out_bytes = 0;
-      for (const auto& o : r.outputs) {
-        const auto n = fs::file_size(o, ec);
-        if (!ec) out_bytes += n;
-      }
-      if (!dry_run()) {
-        f["output_bytes"] = out_bytes;
-        f["seconds"] = r.seconds;
-      }
-      for (const auto& key : r.details.getMemberNames()) f[key] = r.details[key];
-    }
-    (r.status == "ok" ? ok : r.status == "failed" ? failed : r.status == "skipped" ? skipped : not_run)++;
-    files.append(f);
-  }
-  root["files"] = files;
-  root["ok"] = ok;
-  root["failed"] = failed;
-  root["skipped"] = skipped;
-  root["not_run"] = not_run;
-  root["dry_run"] = dry_run();
-  std::cout << to_json(root) << "\n";
-}
-
-void print_failure_summary(const std::string& command) {
-  const auto& reports = session_reports();
-  std::vector<const FileReport*> failed;
-  std::size_t not_run = 0;
-  for (const auto& r : reports) {
-    if (r.status == "failed") failed.push_back(&r);
-    if (r.status == "not_run") ++not_run;
-  }
-  if (reports.size() < 2 || failed.empty()) return;
-  std::string head = "texproc " + command + ": " + std::to_string(failed.size()) + " of " +
-                     std::to_string(reports.size()) + " files failed";
-  if (not_run) head += ", " + std::to_string(not_run) + " not run (--fail-fast)";
-  print_note(head + ":");
-  for (const FileReport* r : failed) print_note("  " + about(r->input, r->error));
 }
 
 }  // namespace texproc::cli

@@ -15,6 +15,7 @@
 
 #include <chrono>
 #include <functional>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -124,6 +125,7 @@ struct SessionOptions {
   bool fail_fast = false;
   bool skip_existing = false;
   bool json = false;
+  bool timings = false;   // --timings: --json reports seconds and phases (without: the summary is reproducible)
   bool progress = false;  // --progress: draw progress even when stderr is not a terminal
   // Set by `build` for a first pass over its jobs: run_batch checks the
   // options, inputs and output names, and returns before planning files.
@@ -141,14 +143,36 @@ struct SessionOptions {
   // and outputs here, so that every output can be checked against every
   // input of every job before the first job runs.
   struct PlannedFile {
+    std::string input, output;  // the file and its -o (for one action a file)
     std::vector<std::string> inputs, outputs;
+    bool outputs_known = false;  // false: `outputs` is the -o name; the real ones depend on the input
   };
   std::vector<PlannedFile>* plans = nullptr;
+  // Set by `build`: which of a job's files this run takes (its excludes,
+  // the files of one override); null: all.
+  std::function<bool(const std::string& input)> select;
+  // --shard I/N: of the files selected (counted over the whole process, in
+  // order), only those whose number is I modulo N are run. count 0: all.
+  int shard_index = 0, shard_count = 0;
+  std::size_t shard_counter = 0;
+  // Set by `build` unless --force: per-file change tracking. Returns "" when
+  // the file's outputs are up to date, else why it is to be rebuilt; used
+  // instead of time stamps when set.
+  std::function<std::string(const FileReport&)> why_rebuild;
+  // Set by `build --dry-run`: the files earlier jobs would write (absolute,
+  // normalized) and the job writing each. A file reading one of them is
+  // listed as rebuilt, even while that input does not exist yet.
+  std::map<std::string, std::string> pending;
+  // --ocio-config FILE: the OpenColorIO config (set as $OCIO for this process).
+  std::string ocio_config;
 };
 // The key a file is known by in owned_outputs: its absolute, normalized
 // path with symlinks in its folders resolved.
 std::string output_key(const std::string& path);
 SessionOptions& session_options();
+// `path` made absolute (from the working folder) and normalized (no "." or
+// ".."; symlinks kept): how a recipe compares the paths its jobs name.
+std::string absolute_path(const std::string& path);
 
 // Every FileReport of this process, in order (a `build` recipe adds several
 // batches).

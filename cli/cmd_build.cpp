@@ -13,8 +13,12 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <functional>
 
 #include "batch.h"
+#include "build_state.h"
+#include "tool_info.h"
+#include "texproc/version.h"
 #include "report.h"
 #include "commands.h"
 #include "common.h"
@@ -31,6 +35,7 @@ struct BuildArgs {
   CommonOptions common;
   std::string recipe, out_dir;
   std::vector<std::string> only;
+  bool emit_actions = false;
 };
 
 // Options that belong to the run, not to a job: given on the build command
@@ -40,7 +45,7 @@ bool run_level_option(const std::string& key) {
                                "q",       "verbose",  "v",         "depfile",       "dry-run",     "n",
                                "json",    "progress", "fail-fast", "skip-existing", "write-if-changed",
                                "output",  "o",        "recursive", "r",             "file-list",   "help",
-                               "h"};
+                               "h",       "shard",    "timings",   "ocio-config"};
   return std::any_of(std::begin(keys), std::end(keys), [&](const char* k) { return key == k; });
 }
 
@@ -60,39 +65,60 @@ std::string locate(const Recipe& r, const RecipeJob& j, const std::string& messa
   return where(r, j, 0);
 }
 
+// One run of a job's command: the job's own options for the files no
+// override names, or one override's options for the files it names.
+struct Unit {
+  const RecipeJob* job = nullptr;
+  int override_index = -1;  // -1: the job's own options
+  std::vector<RecipeOption> options;
+  std::string signature;  // what change tracking compares: command, output, recursion, options
+};
+
+std::vector<Unit> units_of(const RecipeJob& j) {
+  std::vector<Unit> out;
+  auto add = [&](int k, std::vector<RecipeOption> options) {
+    Unit u;
+    u.job = &j;
+    u.override_index = k;
+    u.options = std::move(options);
+    std::string text = j.command + "\n" + j.output + "\n" + (j.recursive ? "r" : "") + "\n";
+    for (const RecipeOption& o : u.options) {
+      text += o.key + (o.flag ? "!" : "=");
+      for (const std::string& v : o.values) text += v + '\x1f';
+      text += '\n';
+    }
+    u.signature = hash_bytes(text);
+    out.push_back(std::move(u));
+  };
+  add(-1, j.options);
+  for (std::size_t k = 0; k < j.overrides.size(); ++k) add(int(k), merge_options(j.options, j.overrides[k].options));
+  return out;
+}
+
+std::string job_name(const RecipeJob& j) { return j.name.empty() ? "jobs[" + std::to_string(j.index) + "]" : j.name; }
+
 struct PreparedJob {
   const RecipeJob* job = nullptr;
   std::unique_ptr<CLI::App> app;
   CLI::App* command = nullptr;
 };
 
-PreparedJob prepare(const Recipe& r, const RecipeJob& j, const CommonOptions& common) {
-  PreparedJob p;
-  p.job = &j;
-  p.app = std::make_unique<CLI::App>();
-  add_all_commands(*p.app);
-  const std::vector<std::string> valid = {"mip", "compress", "normalmap", "conemap", "sat", "sat blur", "decompress", "cubemap"};
-  if (std::find(valid.begin(), valid.end(), j.command) == valid.end()) {
-    throw Error(ErrorCode::bad_arguments, where(r, j, j.command_line) + ": command: unknown command '" + j.command +
-                                              "' (valid: " + join(valid) + ")");
-  }
+const std::vector<std::string>& command_names() {
+  static const std::vector<std::string> valid = {"mip",     "compress",   "normalmap", "conemap",
+                                                 "sat",     "sat blur",   "decompress", "cubemap"};
+  return valid;
+}
+
+// The command words and options of a unit, as on the command line.
+std::vector<std::string> option_args(const Recipe& r, const Unit& u, const CLI::App* command) {
+  const RecipeJob& j = *u.job;
   std::vector<std::string> args;
-  if (j.command == "sat blur") {
-    p.command = p.app->get_subcommand("sat")->get_subcommand("blur");
-    args = {"sat", "blur"};
-  } else {
-    p.command = p.app->get_subcommand(j.command);
-    args = {j.command};
-  }
-  args.insert(args.end(), j.inputs.begin(), j.inputs.end());
-  args.insert(args.end(), {"-o", j.output});
-  if (j.recursive) args.push_back("-r");
-  for (const RecipeOption& o : j.options) {
+  for (const RecipeOption& o : u.options) {
     const std::string at = where(r, j, o.line) + ": options." + o.key;
     if (run_level_option(o.key)) {
       throw Error(ErrorCode::bad_arguments, at + ": belongs to the whole run: give it to `texproc build` instead");
     }
-    const CLI::Option* opt = p.command->get_option_no_throw("--" + o.key);
+    const CLI::Option* opt = command->get_option_no_throw("--" + o.key);
     if (!opt) {
       throw Error(ErrorCode::bad_arguments,
                   at + ": unknown option for " + j.command + " (see `texproc " + j.command + " --help`)");
@@ -103,6 +129,33 @@ PreparedJob prepare(const Recipe& r, const RecipeJob& j, const CommonOptions& co
     args.push_back("--" + o.key);
     args.insert(args.end(), o.values.begin(), o.values.end());
   }
+  return args;
+}
+
+std::vector<std::string> command_words(const RecipeJob& j) {
+  return j.command == "sat blur" ? std::vector<std::string>{"sat", "blur"} : std::vector<std::string>{j.command};
+}
+
+PreparedJob prepare(const Recipe& r, const Unit& u, const std::vector<std::string>& inputs,
+                    const CommonOptions& common) {
+  const RecipeJob& j = *u.job;
+  PreparedJob p;
+  p.job = &j;
+  p.app = std::make_unique<CLI::App>();
+  add_all_commands(*p.app);
+  const auto& valid = command_names();
+  if (std::find(valid.begin(), valid.end(), j.command) == valid.end()) {
+    throw Error(ErrorCode::bad_arguments, where(r, j, j.command_line) + ": command: unknown command '" + j.command +
+                                              "' (valid: " + join(valid) + ")");
+  }
+  p.command = j.command == "sat blur" ? p.app->get_subcommand("sat")->get_subcommand("blur")
+                                      : p.app->get_subcommand(j.command);
+  std::vector<std::string> args = command_words(j);
+  args.insert(args.end(), inputs.begin(), inputs.end());
+  args.insert(args.end(), {"-o", j.output});
+  if (j.recursive) args.push_back("-r");
+  const std::vector<std::string> opts = option_args(r, u, p.command);
+  args.insert(args.end(), opts.begin(), opts.end());
   // The run-level options each job's own parser holds.
   if (common.threads > 0) args.insert(args.end(), {"--threads", std::to_string(common.threads)});
   if (common.force) args.push_back("--force");
@@ -117,6 +170,19 @@ PreparedJob prepare(const Recipe& r, const RecipeJob& j, const CommonOptions& co
   return p;
 }
 
+// The files of a job a unit takes: not excluded, and named by its override
+// (or by none, for the job's own options). Null when the job has neither.
+std::function<bool(const std::string&)> selector(const Unit& u) {
+  const RecipeJob& j = *u.job;
+  if (j.excludes.empty() && j.overrides.empty()) return nullptr;
+  return [&j, k = u.override_index](const std::string& f) { return !excluded(j, f) && override_of(j, f) == k; };
+}
+
+// The command whose runner runs the job (`sat` for `sat blur`).
+CLI::App* top_command(const PreparedJob& p) {
+  return p.command->get_parent() == p.app.get() ? p.command : p.command->get_parent();
+}
+
 // The outputs a recipe has written, kept beside them in
 // ".RECIPE_FILE_NAME.outputs" (one path a line, relative to the folder the
 // outputs are taken from), so that an incremental build replaces only files
@@ -126,9 +192,7 @@ struct OwnedOutputs {
   std::set<std::string> keys;  // output_key of each
   std::vector<std::string> lines;
 
-  OwnedOutputs(const std::string& recipe, const std::string& out_dir) {
-    root = out_dir.empty() ? fs::path(recipe).parent_path() : fs::path(out_dir);
-    if (root.empty()) root = ".";
+  OwnedOutputs(const fs::path& root_folder, const std::string& recipe) : root(root_folder) {
     file = root / ("." + fs::path(recipe).filename().string() + ".outputs");
     std::ifstream in(file);
     for (std::string line; std::getline(in, line);) {
@@ -152,39 +216,235 @@ struct OwnedOutputs {
   }
 };
 
-// Before any job runs: no output of one job may be a file that another job
-// reads, unless this recipe made it (an intermediate).
-void check_outputs_against_inputs(const Recipe& r, const std::vector<PreparedJob>& jobs,
-                                  const std::vector<std::vector<SessionOptions::PlannedFile>>& plans,
-                                  const OwnedOutputs& owned) {
-  std::map<std::pair<dev_t, ino_t>, std::size_t> reader;  // an input file -> the job that reads it
-  for (std::size_t j = 0; j < plans.size(); ++j) {
-    for (const auto& f : plans[j]) {
-      for (const std::string& in : f.inputs) {
-        struct stat st {};
-        if (::stat(in.c_str(), &st) == 0) reader.emplace(std::pair{st.st_dev, st.st_ino}, j);
+// Every job's files, planned before any job runs.
+struct JobPlan {
+  std::vector<std::string> inputs;  // the job's inputs as arguments, globs expanded
+  std::vector<const InputSpec*> unmatched;
+  std::vector<std::vector<SessionOptions::PlannedFile>> units;  // per unit
+  std::set<std::string> outputs;  // absolute
+};
+
+struct Plan {
+  std::vector<std::vector<Unit>> units;  // per job
+  std::vector<JobPlan> jobs;
+  std::vector<std::string> planned;  // every output, absolute, sorted
+  std::vector<std::size_t> order;    // the jobs, producers before consumers
+};
+
+// Checks the units' options, inputs and output names and plans their files
+// (SessionOptions::check_only), with globs expanded against the files on
+// disk and `planned`.
+std::vector<JobPlan> plan_pass(const Recipe& r, const std::vector<std::vector<Unit>>& units,
+                               const std::vector<std::string>& planned, const CommonOptions& common) {
+  SessionOptions& s = session_options();
+  std::vector<JobPlan> out(units.size());
+  for (std::size_t j = 0; j < units.size(); ++j) {
+    const RecipeJob& job = *units[j].front().job;
+    JobPlan& jp = out[j];
+    jp.inputs = expand_job_inputs(job, planned, &jp.unmatched);
+    jp.units.resize(units[j].size());
+    if (jp.inputs.empty()) continue;
+    for (std::size_t k = 0; k < units[j].size(); ++k) {
+      PreparedJob p = prepare(r, units[j][k], jp.inputs, common);
+      s.check_only = true;
+      s.plans = &jp.units[k];
+      s.select = selector(units[j][k]);
+      try {
+        (*runner_of(*top_command(p)))();
+      } catch (const Error& e) {
+        s.check_only = false;
+        s.plans = nullptr;
+        s.select = nullptr;
+        throw Error(e.code(), locate(r, job, e.what()) + ": " + e.what());
+      }
+      s.check_only = false;
+      s.plans = nullptr;
+      s.select = nullptr;
+      for (const auto& f : jp.units[k]) {
+        for (const std::string& o : f.outputs) jp.outputs.insert(absolute_path(o));
       }
     }
   }
-  for (std::size_t j = 0; j < plans.size(); ++j) {
-    for (const auto& f : plans[j]) {
-      for (const std::string& out : f.outputs) {
-        struct stat st {};
-        if (::stat(out.c_str(), &st) != 0 || owned.keys.count(output_key(out))) continue;
-        const auto it = reader.find({st.st_dev, st.st_ino});
-        if (it == reader.end()) continue;
-        throw Error(ErrorCode::bad_arguments,
-                    where(r, *jobs[j].job, jobs[j].job->output_line) + ": output " + out + " is an input of " +
-                        where(r, *jobs[it->second].job, 0) +
-                        " and was not made by this recipe; outputs never overwrite sources: choose another name");
+  return out;
+}
+
+// Whether job `consumer` reads what job `producer` writes: one of its files'
+// inputs is a planned output, or an output lies under a folder it reads.
+bool reads_from(const RecipeJob& consumer, const JobPlan& c, const JobPlan& producer) {
+  for (const auto& unit : c.units) {
+    for (const auto& f : unit) {
+      for (const std::string& in : f.inputs) {
+        if (producer.outputs.count(absolute_path(in))) return true;
       }
+    }
+  }
+  for (const InputSpec& in : consumer.inputs) {
+    if (in.glob) continue;
+    std::string folder = absolute_path(in.path);
+    if (folder.empty() || folder.back() != '/') folder += '/';
+    for (const std::string& o : producer.outputs) {
+      if (o.compare(0, folder.size(), folder) == 0) return true;
+    }
+  }
+  return false;
+}
+
+// Plans the recipe: globs are expanded against the disk and the other jobs'
+// outputs until nothing new appears, the jobs are ordered producers first
+// (recipe order among independent jobs), and cycles and patterns that match
+// nothing are refused.
+Plan plan_recipe(const Recipe& r, const CommonOptions& common) {
+  Plan plan;
+  for (const RecipeJob& j : r.jobs) plan.units.push_back(units_of(j));
+  const std::size_t n = r.jobs.size();
+  for (std::size_t pass = 0; pass <= n + 1; ++pass) {
+    plan.jobs = plan_pass(r, plan.units, plan.planned, common);
+    std::set<std::string> all;
+    for (const JobPlan& jp : plan.jobs) all.insert(jp.outputs.begin(), jp.outputs.end());
+    std::vector<std::string> next(all.begin(), all.end());
+    if (next == plan.planned) break;
+    plan.planned = std::move(next);
+  }
+  // reads[a]: the jobs a reads from.
+  std::vector<std::vector<std::size_t>> reads(n);
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t b = 0; b < n; ++b) {
+      if (!reads_from(r.jobs[a], plan.jobs[a], plan.jobs[b])) continue;
+      if (a == b) {
+        throw Error(ErrorCode::bad_arguments,
+                    where(r, r.jobs[a], r.jobs[a].output_line) +
+                        ": reads its own outputs (its inputs match what it writes): write them elsewhere or exclude them");
+      }
+      reads[a].push_back(b);
+    }
+  }
+  // Producers first; among jobs that are ready, the one first in the recipe.
+  std::vector<std::size_t> waiting(n);
+  std::vector<std::vector<std::size_t>> readers(n);
+  for (std::size_t a = 0; a < n; ++a) {
+    waiting[a] = reads[a].size();
+    for (std::size_t b : reads[a]) readers[b].push_back(a);
+  }
+  std::set<std::size_t> ready;
+  for (std::size_t a = 0; a < n; ++a)
+    if (waiting[a] == 0) ready.insert(a);
+  while (!ready.empty()) {
+    const std::size_t a = *ready.begin();
+    ready.erase(ready.begin());
+    plan.order.push_back(a);
+    for (std::size_t c : readers[a])
+      if (--waiting[c] == 0) ready.insert(c);
+  }
+  if (plan.order.size() < n) {
+    // Walk back along "reads from" among the jobs left until one repeats.
+    std::size_t a = 0;
+    while (waiting[a] == 0) ++a;
+    std::vector<std::size_t> path;
+    while (std::find(path.begin(), path.end(), a) == path.end()) {
+      path.push_back(a);
+      a = *std::find_if(reads[a].begin(), reads[a].end(), [&](std::size_t b) { return waiting[b] > 0; });
+    }
+    path.erase(path.begin(), std::find(path.begin(), path.end(), a));
+    std::string chain = "job '" + job_name(r.jobs[path[0]]) + "'";
+    for (std::size_t k = 1; k <= path.size(); ++k) {
+      chain += " reads outputs of job '" + job_name(r.jobs[path[k % path.size()]]) + "'";
+      if (k < path.size()) chain += ", which";
+    }
+    throw Error(ErrorCode::bad_arguments, where(r, r.jobs[path[0]], 0) + ": jobs form a cycle: " + chain);
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    for (const InputSpec* in : plan.jobs[j].unmatched) {
+      throw Error(ErrorCode::bad_arguments, where(r, r.jobs[j], in->line) + ": inputs: '" + in->text +
+                                                "' matches no file (on disk or written by another job)");
+    }
+  }
+  return plan;
+}
+
+// Before any job runs: no output of one job may be a file that another job
+// reads, unless this recipe made it (an intermediate).
+void check_outputs_against_inputs(const Recipe& r, const Plan& plan, const OwnedOutputs& owned) {
+  std::map<std::pair<dev_t, ino_t>, std::size_t> reader;  // an input file -> the job that reads it
+  for (std::size_t j = 0; j < plan.jobs.size(); ++j) {
+    for (const auto& unit : plan.jobs[j].units) {
+      for (const auto& f : unit) {
+        for (const std::string& in : f.inputs) {
+          struct stat st {};
+          if (::stat(in.c_str(), &st) == 0) reader.emplace(std::pair{st.st_dev, st.st_ino}, j);
+        }
+      }
+    }
+  }
+  for (std::size_t j = 0; j < plan.jobs.size(); ++j) {
+    for (const std::string& out : plan.jobs[j].outputs) {
+      struct stat st {};
+      if (::stat(out.c_str(), &st) != 0 || owned.keys.count(output_key(out))) continue;
+      const auto it = reader.find({st.st_dev, st.st_ino});
+      if (it == reader.end()) continue;
+      throw Error(ErrorCode::bad_arguments,
+                  where(r, r.jobs[j], r.jobs[j].output_line) + ": output " + out + " is an input of " +
+                      where(r, r.jobs[it->second], 0) +
+                      " and was not made by this recipe; outputs never overwrite sources: choose another name");
     }
   }
 }
 
-// The command whose runner runs the job (`sat` for `sat blur`).
-CLI::App* top_command(const PreparedJob& p) {
-  return p.command->get_parent() == p.app.get() ? p.command : p.command->get_parent();
+// A path as an action names it: relative to the recipe's folder when under
+// it, else absolute.
+std::string action_path(const fs::path& base, const std::string& p) {
+  const fs::path abs = fs::path(absolute_path(p));
+  const fs::path rel = abs.lexically_relative(base);
+  if (rel.empty() || *rel.begin() == "..") return abs.string();
+  return rel.string();
+}
+
+// --emit-actions: one action a file, in the order the build runs them.
+Json::Value emit_actions(const Recipe& r, const Plan& plan, const std::vector<std::string>& only) {
+  const fs::path base = fs::path(absolute_path(fs::path(r.path).parent_path().string().empty()
+                                                   ? "."
+                                                   : fs::path(r.path).parent_path().string()));
+  const std::string ocio = session_options().ocio_config;
+  Json::Value actions(Json::arrayValue);
+  for (std::size_t j : plan.order) {
+    const RecipeJob& job = r.jobs[j];
+    if (!only.empty() && std::find(only.begin(), only.end(), job.name) == only.end()) continue;
+    for (std::size_t k = 0; k < plan.units[j].size(); ++k) {
+      const Unit& u = plan.units[j][k];
+      for (const auto& f : plan.jobs[j].units[k]) {
+        Json::Value argv(Json::arrayValue);
+        argv.append("texproc");
+        for (const std::string& w : command_words(job)) argv.append(w);
+        argv.append(action_path(base, f.input));
+        argv.append("-o");
+        argv.append(action_path(base, f.output));
+        for (const RecipeOption& o : u.options) {
+          argv.append("--" + o.key);
+          const bool path = o.key == "radius-map" || o.key == "preview";
+          for (const std::string& v : o.values) argv.append(path ? action_path(base, v) : v);
+        }
+        if (!ocio.empty()) {
+          argv.append("--ocio-config");
+          argv.append(action_path(base, ocio));
+        }
+        Json::Value a(Json::objectValue), ins(Json::arrayValue), outs(Json::arrayValue);
+        for (const std::string& in : f.inputs) ins.append(action_path(base, in));
+        for (const std::string& o : f.outputs) outs.append(action_path(base, o));
+        a["job"] = job_name(job);
+        a["argv"] = argv;
+        a["inputs"] = ins;
+        a["outputs"] = outs;
+        a["outputs_known"] = f.outputs_known;
+        actions.append(a);
+      }
+    }
+  }
+  Json::Value root(Json::objectValue), tool(Json::objectValue);
+  tool["version"] = version_string();
+  tool["digest"] = tool_digest();
+  root["tool"] = tool;
+  root["recipe"] = fs::path(r.path).filename().string();
+  root["actions"] = actions;
+  return root;
 }
 
 int run_build(const BuildArgs& a) {
@@ -195,53 +455,62 @@ int run_build(const BuildArgs& a) {
       throw Error(ErrorCode::bad_arguments, a.recipe + ": --job " + name + ": no job has that name");
     }
   }
-  // Every job is parsed before any runs: a mistake anywhere stops the build
-  // before it writes anything.
-  std::vector<PreparedJob> jobs;
-  for (const RecipeJob& j : recipe.jobs) {
-    if (!a.only.empty() && std::find(a.only.begin(), a.only.end(), j.name) == a.only.end()) continue;
-    jobs.push_back(prepare(recipe, j, a.common));
+  // Every job is parsed and planned before any runs: a mistake anywhere
+  // stops the build before it writes anything.
+  const Plan plan = plan_recipe(recipe, a.common);
+  if (a.emit_actions) {
+    std::cout << to_json(emit_actions(recipe, plan, a.only));
+    return 0;
   }
-  // Incremental unless --force: up-to-date files are skipped, changed ones
-  // rebuilt, and only outputs this recipe made may be replaced.
-  OwnedOutputs owned(a.recipe, a.out_dir);
+  fs::path root = a.out_dir.empty() ? fs::path(a.recipe).parent_path() : fs::path(a.out_dir);
+  if (root.empty()) root = ".";
+  OwnedOutputs owned(root, a.recipe);
+  check_outputs_against_inputs(recipe, plan, owned);
+  BuildState state(root, fs::path(a.recipe).filename().string());
+  // Incremental unless --force: a file is rebuilt when its job's settings,
+  // its inputs' bytes or texproc changed; only outputs this recipe made may
+  // be replaced.
   SessionOptions& s = session_options();
   s.incremental = !a.common.force;
-  s.run_inputs = {a.recipe};
   s.owned_outputs = owned.keys;
-  // A first pass checks each job's option values, inputs and output names,
-  // and plans every file, so that no output overwrites any job's input.
-  std::vector<std::vector<SessionOptions::PlannedFile>> plans(jobs.size());
-  s.check_only = true;
-  for (std::size_t j = 0; j < jobs.size(); ++j) {
-    s.plans = &plans[j];
-    try {
-      (*runner_of(*top_command(jobs[j])))();
-    } catch (const Error& e) {
-      s.check_only = false;
-      s.plans = nullptr;
-      throw Error(e.code(), locate(recipe, *jobs[j].job, e.what()) + ": " + e.what());
-    }
-  }
-  s.check_only = false;
-  s.plans = nullptr;
-  check_outputs_against_inputs(recipe, jobs, plans, owned);
+  const Unit* current = nullptr;
+  s.why_rebuild = [&](const FileReport& r) { return state.why_rebuild(r, current->signature); };
   int rc = 0;
-  for (PreparedJob& p : jobs) {
+  for (std::size_t j : plan.order) {
+    const RecipeJob& job = recipe.jobs[j];
+    if (!a.only.empty() && std::find(a.only.begin(), a.only.end(), job.name) == a.only.end()) continue;
+    const std::vector<std::string> inputs = expand_job_inputs(job, plan.planned);
     const std::size_t first = session_reports().size();
     int job_rc = 0;
-    try {
-      job_rc = (*runner_of(*top_command(p)))();
-    } catch (const Error& e) {
-      print_error("build", locate(recipe, *p.job, e.what()) + ": " + in_cli_terms(e.what()));
-      job_rc = int(e.code());
+    for (const Unit& u : plan.units[j]) {
+      current = &u;
+      const std::size_t unit_first = session_reports().size();
+      try {
+        PreparedJob p = prepare(recipe, u, inputs, a.common);
+        s.select = selector(u);
+        const int unit_rc = (*runner_of(*top_command(p)))();
+        if (unit_rc != 0 && job_rc == 0) job_rc = unit_rc;
+      } catch (const Error& e) {
+        print_error("build", locate(recipe, job, e.what()) + ": " + in_cli_terms(e.what()));
+        if (job_rc == 0) job_rc = int(e.code());
+      }
+      s.select = nullptr;
+      if (dry_run()) continue;
+      for (std::size_t i = unit_first; i < session_reports().size(); ++i) {
+        const FileReport& fr = session_reports()[i];
+        if (fr.status == "ok") state.record(fr, u.signature);
+      }
+      if (job_rc != 0 && s.fail_fast) break;
     }
-    const std::string name = p.job->name.empty() ? "jobs[" + std::to_string(p.job->index) + "]" : p.job->name;
     bool wrote = false;
     for (std::size_t i = first; i < session_reports().size(); ++i) {
       FileReport& fr = session_reports()[i];
-      fr.details["job"] = name;
-      if (fr.status != "ok" || dry_run()) continue;
+      fr.details["job"] = job_name(job);
+      if (fr.status != "ok") continue;
+      if (dry_run()) {
+        for (const std::string& o : fr.outputs) s.pending[absolute_path(o)] = "'" + job_name(job) + "'";
+        continue;
+      }
       for (const std::string& o : fr.outputs) owned.add(o);
       wrote = true;
     }
@@ -249,9 +518,11 @@ int run_build(const BuildArgs& a) {
       owned.save();
       s.owned_outputs = owned.keys;
     }
+    if (!dry_run()) state.save();
     if (job_rc != 0 && rc == 0) rc = job_rc;
-    if (job_rc != 0 && session_options().fail_fast) break;
+    if (job_rc != 0 && s.fail_fast) break;
   }
+  s.why_rebuild = nullptr;
   return rc;
 }
 
@@ -269,6 +540,9 @@ void add_build_command(CLI::App& app) {
   cmd->add_option("--out-dir", args->out_dir,
                   "Take relative outputs from this folder instead of the recipe's (out-of-source builds)");
   cmd->add_option("--job", args->only, "Run only the jobs with these names (repeatable)");
+  cmd->add_flag("--emit-actions", args->emit_actions,
+                "Print the recipe's actions as JSON and run nothing: per file, the argv, inputs and outputs (paths "
+                "relative to the recipe's folder) and the tool digest, for build systems (docs/scale-out.md)");
   add_common_options(*cmd, args->common);
   set_runner(*cmd, [args] { return run_build(*args); });
 }

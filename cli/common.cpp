@@ -64,6 +64,37 @@ void add_common_options(CLI::App& cmd, CommonOptions& o) {
   cmd.add_flag("--skip-existing", s.skip_existing, "Skip inputs whose outputs all exist already")->group("Common");
   cmd.add_flag("--json", s.json, "Print one JSON summary on stdout (schema in docs/cli.md) instead of lines")
       ->group("Common");
+  cmd.add_flag("--timings", s.timings, "With --json: report each file's seconds and phases (left out by default, so "
+                                      "that the summary is the same bytes on every run)")
+      ->group("Common");
+  cmd.add_option_function<std::string>(
+         "--shard",
+         [&s](const std::string& v) {
+           int i = -1, n = 0;
+           char extra = 0;
+           if (std::sscanf(v.c_str(), "%d/%d%c", &i, &n, &extra) != 2 || n < 1 || i < 0 || i >= n) {
+             throw CLI::ValidationError("--shard", "'" + v + "': expected I/N with 0 <= I < N (e.g. 3/8)");
+           }
+           s.shard_index = i;
+           s.shard_count = n;
+         },
+         "Run only share I of N (I/N, 0 <= I < N): the files whose number in the run is I modulo N, for job arrays "
+         "and CI matrices; the N shares together are the whole run")
+      ->group("Common");
+  cmd.add_option_function<std::string>(
+         "--ocio-config",
+         [&s](const std::string& v) {
+           std::error_code ec;
+           if (!std::filesystem::is_regular_file(v, ec)) {
+             throw CLI::ValidationError("--ocio-config", v + ": no such file");
+           }
+           // The runtime module reads $OCIO when it loads, after parsing.
+           s.ocio_config = v;
+           ::setenv("OCIO", v.c_str(), 1);
+         },
+         "OpenColorIO config for --colorspace names, instead of $OCIO; an input of every output (depfiles, "
+         "manifests, actions), so that builds that clear the environment see it")
+      ->group("Common");
   cmd.add_flag("--progress", s.progress, "Draw progress on stderr even when it is not a terminal")->group("Common");
   cmd.add_flag("-f,--force", o.force, "Overwrite outputs that already exist")->group("Common");
   cmd.add_flag("-q,--quiet", o.quiet, "Print nothing but errors")->group("Common");

@@ -8,10 +8,13 @@
 #include <iostream>
 #include <thread>
 
+#include "batch.h"
 #include "commands.h"
 #include "common.h"
 #include "exit_codes.h"
+#include "texproc/error.h"
 #include "texproc/tools.h"
+#include "tool_info.h"
 #include "texproc/version.h"
 
 namespace {
@@ -41,8 +44,16 @@ int main(int argc, char** argv) {
   remove_temporaries_on_signals();
   CLI::App app{"texproc: texture asset processing for asset pipelines.\n" +
                std::string(texproc::cli::kExitCodeHelp)};
-  app.set_version_flag("--version", std::string("texproc ") + texproc::version_string());
-  app.require_subcommand(1, 1);
+  // --version, --version --json (version, tool digest, runtime files,
+  // libraries: what a build cache keys on) and --runtime-files (what a
+  // remote action ships beside the binary) stand alone, without a command.
+  bool version = false, version_json = false, runtime_files = false;
+  app.add_flag("--version", version, "Print the version and exit (with --json: version, digest of the tool and its "
+                                     "modules, runtime files and library versions, as JSON)");
+  app.add_flag("--runtime-files", runtime_files,
+               "Print the files texproc runs with (the binary, its runtime modules), one a line, and exit");
+  CLI::Option* json_flag = app.add_flag("--json", version_json, "With --version: print JSON");
+  app.require_subcommand(0, 1);
   // The runtime modules (OpenEXR, OpenImageIO, OpenColorIO) are loaded on
   // first use; this is read then, so setting it while parsing is in time.
   app.add_option_function<std::string>(
@@ -63,6 +74,32 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     return texproc::cli::report_usage_error(app, e, argc, argv);
+  }
+  const bool command = !app.get_subcommands().empty();
+  if (version || runtime_files) {
+    if (command) {
+      std::cerr << "texproc: error: --version and --runtime-files take no command\n";
+      return int(texproc::cli::ExitCode::bad_arguments);
+    }
+    try {
+      if (version && version_json) std::cout << texproc::cli::to_json(texproc::cli::version_json());
+      else if (version) std::cout << "texproc " << texproc::version_string() << "\n";
+      if (runtime_files) {
+        for (const std::string& f : texproc::runtime_files()) std::cout << f << "\n";
+      }
+    } catch (const texproc::Error& e) {
+      std::cerr << "texproc: error: " << e.what() << "\n";
+      return int(e.code());
+    }
+    return 0;
+  }
+  if (json_flag->count() > 0 && !command) {
+    std::cerr << "texproc: error: --json needs --version or a command\n";
+    return int(texproc::cli::ExitCode::bad_arguments);
+  }
+  if (!command) {
+    std::cerr << "texproc: error: a command is required\n" << app.help();
+    return int(texproc::cli::ExitCode::bad_arguments);
   }
   return texproc::cli::run_selected(app);
 }

@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
   libtiff-dev libdeflate-dev libspng-dev libjpeg62-turbo-dev zlib1g-dev libzstd-dev libcli11-dev googletest libgtest-dev libbenchmark-dev libtbb-dev libhwy-dev
-  libjsoncpp-dev libtomlplusplus-dev
+  libjsoncpp-dev libtomlplusplus-dev libxxhash-dev
   # the Python package (pybind11, NumPy), its tests (pytest) and its offline pip build
   python3-dev python3-pybind11 pybind11-dev python3-numpy python3-pytest python3-pip python3-setuptools python3-wheel
   # ASTC: ARM's astc-encoder library (dlopen'd on first use) and its CLI, the tests' independent check

@@ -2,6 +2,7 @@
 // stand for, with mistakes named by line and key before any work.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -89,7 +90,7 @@ TEST(Recipe, RunsItsJobsAsTheCommandLineWould) {
   // --job picks jobs; --dry-run lists and writes nothing.
   r = run_texproc("build r.toml --out-dir dry --job normals --dry-run", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.out, "dry/out/rock_h_n.png\n");
+  EXPECT_EQ(r.out, "dry/out/rock_h_n.png (new)\n");
   EXPECT_FALSE(fs::exists(dir + "/dry"));
   // A second run is incremental: nothing to redo, exit 0 (Recipe.SecondRunIsIncremental); --skip-existing passes.
   r = run_texproc("build r.toml -q", dir);
@@ -126,10 +127,11 @@ TEST(Recipe, MistakesAreNamedByLineAndKey) {
        "e.toml:7: job 'albedo': options.threads: belongs to the whole run"},
       {"f.toml", replace(toml, "mips = true", "mips = \"yes\""), "f.toml:7: job 'albedo': options.mips: is a switch"},
       {"g.toml", replace(toml, "src/albedo/*.png", "src/albedo/*.tga"),
-       "g.toml:5: jobs[0].inputs[0]: 'src/albedo/*.tga' matches no file"},
+       "g.toml:5: job 'albedo': inputs: 'src/albedo/*.tga' matches no file"},
       {"h.toml", replace(toml, "version = 1", "version = 2"), "h.toml:1: version: this texproc reads version 1"},
       {"i.toml", replace(toml, "name = \"normals\"", "name = \"normals\"\noutptu = \"x\""),
-       "i.toml:11: jobs[1].outptu: unknown key (valid: name, command, inputs, output, recursive, options)"},
+       "i.toml:11: jobs[1].outptu: unknown key (valid: name, command, inputs, exclude, output, recursive, options, "
+       "overrides)"},
       {"j.toml", replace(toml, "output = \"out/{stem}_n.png\"\n", ""), "j.toml:9: jobs[1].output: missing"},
       {"k.toml", replace(toml, "format = \"bc1\"", "format = \"bc9\""),
        "k.toml:7: job 'albedo': options.format: unknown --format 'bc9'"},
@@ -168,32 +170,62 @@ TEST(Recipe, SampleRecipeCooksTheSamples) {
   fs::remove_all(dir);
 }
 
-// A build is incremental: a second run skips every up-to-date file and
-// exits 0; a changed input rebuilds its outputs only; a changed recipe
-// rebuilds every job; --force rebuilds everything.
+// A build is incremental, file by file: a second run skips every file; a
+// touched input whose bytes did not change rebuilds nothing; changed bytes
+// rebuild that file only; editing one job's options reruns only that job's
+// files; a comment or another job's line reruns nothing; --force reruns all.
 TEST(Recipe, SecondRunIsIncremental) {
   const std::string dir = make_project("recipe_incremental");
   write_text(dir + "/r.toml", kToml);
-  auto statuses = [&](const std::string& extra) {
+  // The files run (status ok) by a build, by output name.
+  auto rebuilt = [&](const std::string& extra) {
     const RunResult r = run_texproc("build '" + dir + "/r.toml' --json" + extra);
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    int ok = 0, skipped = 0;
-    for (std::size_t p = 0; (p = r.out.find("\"status\" : \"", p)) != std::string::npos; ++p) {
-      ok += r.out.compare(p + 12, 2, "ok") == 0;
-      skipped += r.out.compare(p + 12, 7, "skipped") == 0;
+    std::vector<std::string> ok;
+    for (std::size_t p = 0; (p = r.out.find("\"outputs\" : ", p)) != std::string::npos; ++p) {
+      const std::size_t name = r.out.find('"', r.out.find('[', p)) + 1;
+      const std::size_t status = r.out.find("\"status\" : \"", p) + 12;
+      if (r.out.compare(status, 2, "ok") == 0) {
+        ok.push_back(fs::path(r.out.substr(name, r.out.find('"', name) - name)).filename().string());
+      }
     }
-    return std::pair{ok, skipped};
+    std::sort(ok.begin(), ok.end());
+    return ok;
   };
-  const auto first = statuses("");
-  EXPECT_GT(first.first, 0);
-  EXPECT_EQ(first.second, 0);
-  const int files = first.first;
-  EXPECT_EQ(statuses(""), std::make_pair(0, files));
+  using Names = std::vector<std::string>;
+  const Names all = {"moss.dds", "rock.dds", "rock_h_n.png"};
+  EXPECT_EQ(rebuilt(""), all);
+  EXPECT_TRUE(fs::exists(dir + "/.r.toml.state"));
+  EXPECT_EQ(rebuilt(""), Names{});
+  // Touched, same bytes: nothing (and the new time stamp is remembered).
   const auto later = fs::file_time_type::clock::now() + std::chrono::seconds(5);
   fs::last_write_time(dir + "/src/albedo/rock.png", later);
-  EXPECT_EQ(statuses(""), std::make_pair(1, files - 1));
-  fs::last_write_time(dir + "/r.toml", later + std::chrono::seconds(5));
-  EXPECT_EQ(statuses("").first, files);
-  EXPECT_EQ(statuses(" --force").first, files);
+  EXPECT_EQ(rebuilt(""), Names{});
+  EXPECT_EQ(rebuilt(""), Names{});
+  // New bytes: that file only.
+  write_image(dir + "/src/albedo/rock.png", random_image(20, 12, 3, PixelType::u8, 9).view());
+  EXPECT_EQ(rebuilt(""), Names{"rock.dds"});
+  // A comment and a reordered table: nothing.
+  std::string text = kToml;
+  write_text(dir + "/r.toml", "# the project's textures\n" + text);
+  EXPECT_EQ(rebuilt(""), Names{});
+  // One option of one job: that job's files only.
+  text.replace(text.find("height-scale = 4"), 16, "height-scale = 5");
+  write_text(dir + "/r.toml", text);
+  EXPECT_EQ(rebuilt(""), Names{"rock_h_n.png"});
+  // An output deleted or changed by hand is made again.
+  fs::remove(dir + "/out/moss.dds");
+  EXPECT_EQ(rebuilt(""), Names{"moss.dds"});
+  write_text(dir + "/out/rock.dds", "scribbled over");
+  EXPECT_EQ(rebuilt(""), Names{"rock.dds"});
+  EXPECT_EQ(rebuilt(" --force"), all);
+  // --dry-run says why, and lists nothing that is up to date.
+  text.replace(text.find("quality = \"high\""), 16, "quality = \"fast\"");
+  write_text(dir + "/r.toml", text);
+  const RunResult dry = run_texproc("build '" + dir + "/r.toml' --dry-run");
+  EXPECT_EQ(dry.exit_code, 0) << dry.err;
+  EXPECT_NE(dry.out.find("out/moss.dds (job settings changed)"), std::string::npos) << dry.out;
+  EXPECT_NE(dry.out.find("out/rock.dds (job settings changed)"), std::string::npos) << dry.out;
+  EXPECT_EQ(dry.out.find("rock_h_n.png"), std::string::npos) << dry.out;
   fs::remove_all(dir);
 }

@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace texproc {
@@ -102,6 +103,20 @@ void remove_pending_temporaries();
 // longer running left in `folder` (killed with SIGKILL, or a power loss).
 // Done once a folder by the first AtomicFile made there; returns how many.
 int remove_stale_temporaries(const std::string& folder);
+
+// The files a process using libtexproc needs beside the system's
+// libraries: first the executable or shared library that holds libtexproc,
+// then each runtime module (OpenEXR, OpenImageIO, OpenColorIO) found where
+// it would be loaded from (absent ones are left out). Canonical paths.
+// What a remote-execution action ships with the tool, and what a cache key
+// for the tool hashes.
+std::vector<std::string> runtime_files();
+
+// The libraries texproc uses and their versions ({"libtiff", "4.5.0"},
+// ...): the ones linked as the running process reports them, the runtime
+// modules' (OpenEXR, OpenImageIO, OpenColorIO) and astc-encoder's as built
+// against. For cache keys and bug reports.
+std::vector<std::pair<std::string, std::string>> linked_libraries();
 
 // Writes `bytes` to `path` atomically (an AtomicFile: the group's policy, or
 // `policy`). Throws Error{io}.

@@ -42,6 +42,16 @@ std::vector<std::string> candidates(const ModuleSpec& spec) {
 
 }  // namespace
 
+std::string find_module(const ModuleSpec& spec) {
+  for (const std::string& file : candidates(spec)) {
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) continue;
+    const fs::path real = fs::canonical(file, ec);
+    return ec ? file : real.string();
+  }
+  return "";
+}
+
 const void* load_module(const ModuleSpec& spec, std::string& why) {
   std::string tried;
   auto note = [&](const std::string& file, const std::string& what) {

@@ -28,4 +28,8 @@ struct ModuleSpec {
 // saying every place tried and what failed. Never unloads.
 const void* load_module(const ModuleSpec& spec, std::string& why);
 
+// The file load_module() would try first that exists (canonical path), or
+// "" when there is none. Loads nothing.
+std::string find_module(const ModuleSpec& spec);
+
 }  // namespace texproc
