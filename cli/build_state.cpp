@@ -2,11 +2,18 @@
 
 #include <json/reader.h>
 #include <json/value.h>
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <fstream>
 #include <sstream>
 
+#include "texproc/error.h"
 #include "texproc/tools.h"
 #include "tool_info.h"
 
@@ -33,6 +40,21 @@ std::vector<std::string> unique_inputs(const FileReport& r) {
 }
 
 }  // namespace
+
+FileLock::FileLock(const std::string& path) {
+  fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw Error(ErrorCode::io, path + ": cannot open lock file: " + std::strerror(errno));
+  while (::flock(fd_, LOCK_EX) != 0) {
+    if (errno == EINTR) continue;
+    const int e = errno;
+    ::close(fd_);
+    throw Error(ErrorCode::io, path + ": cannot lock: " + std::strerror(e));
+  }
+}
+
+FileLock::~FileLock() {
+  if (fd_ >= 0) ::close(fd_);  // releases the lock
+}
 
 BuildState::BuildState(const fs::path& root, const std::string& recipe_file_name)
     : root_(fs::absolute(root).lexically_normal()), file_(root / ("." + recipe_file_name + ".state")) {

@@ -18,6 +18,20 @@
 
 namespace texproc::cli {
 
+// An exclusive lock (flock) on `path`, created if missing, held while the
+// object lives: builds that share an output folder (the shares of a job
+// array) update its records one at a time. Throws Error{io}.
+class FileLock {
+ public:
+  explicit FileLock(const std::string& path);
+  ~FileLock();
+  FileLock(const FileLock&) = delete;
+  FileLock& operator=(const FileLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
 class BuildState {
  public:
   // Loads `root`/.NAME.state if present (a damaged file counts as empty:
@@ -33,10 +47,12 @@ class BuildState {
   // Records a file cooked with `signature` (its inputs hashed now).
   void record(const FileReport& r, const std::string& signature);
   // Writes the state (atomically), merged over what another process that
-  // shares the folder may have written since this one loaded it.
+  // shares the folder may have written since this one loaded it (hold a
+  // FileLock on the folder's lock file around it).
   void save();
 
   const std::filesystem::path& file() const { return file_; }
+  bool dirty() const { return !changed_.empty(); }
 
  private:
   struct Stamp {

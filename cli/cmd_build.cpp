@@ -207,11 +207,15 @@ struct OwnedOutputs {
     const fs::path rel = fs::relative(fs::absolute(output, ec), fs::absolute(root, ec), ec);
     add_relative(ec || rel.empty() ? fs::absolute(output).lexically_normal().string() : rel.string());
   }
-  void save() const {
+  // Writes the list, merged with what another build sharing the folder
+  // recorded since this one read it (under the folder's lock).
+  void save() {
+    std::ifstream in(file);
+    for (std::string line; std::getline(in, line);) {
+      if (!line.empty()) add_relative(line);
+    }
     std::string text;
     for (const std::string& l : lines) text += l + "\n";
-    std::error_code ec;
-    fs::create_directories(root, ec);
     write_file_atomic(file.string(), text, CommitPolicy::replace);
   }
 };
@@ -514,11 +518,14 @@ int run_build(const BuildArgs& a) {
       for (const std::string& o : fr.outputs) owned.add(o);
       wrote = true;
     }
-    if (wrote) {
-      owned.save();
+    if (!dry_run() && (wrote || state.dirty())) {
+      std::error_code ec;
+      fs::create_directories(root, ec);
+      FileLock lock((root / ("." + fs::path(a.recipe).filename().string() + ".lock")).string());
+      if (wrote) owned.save();
+      state.save();
       s.owned_outputs = owned.keys;
     }
-    if (!dry_run()) state.save();
     if (job_rc != 0 && rc == 0) rc = job_rc;
     if (job_rc != 0 && s.fail_fast) break;
   }

@@ -14,6 +14,8 @@ packages=(
   libastcenc-dev astcenc
   # independent checks and peers used by tests and benchmarks
   libnvtt-bin libsquish-dev android-libetc1-dev python3-pil
+  # the Bazel rules' test: Debian's Bazel, nginx (WebDAV remote cache), Bazel's RemoteWorker sources and a JDK
+  bazel-bootstrap bazel-bootstrap-source nginx default-jdk-headless
   # the libFuzzer harnesses (scripts/fuzz.sh)
   clang libclang-rt-14-dev
 )

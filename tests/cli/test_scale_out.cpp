@@ -308,3 +308,31 @@ colorspaces:
   EXPECT_NE(m.err.find("missing.ocio: no such file"), std::string::npos) << m.err;
   fs::remove_all(dir);
 }
+
+// Shares that run at once into one output folder (a job array on a shared
+// disk) keep every record: afterwards nothing is out of date, and every
+// output is known as the recipe's.
+TEST(ScaleOut, ConcurrentSharesKeepEveryRecord) {
+  const std::string dir = temp_dir("shards_concurrent");
+  fs::create_directories(dir + "/src");
+  for (int i = 0; i < 12; ++i) {
+    write_image(dir + "/src/h" + std::to_string(i) + ".png", random_image(8, 8, 1, PixelType::u8, 20 + i).view());
+  }
+  write_text(dir + "/r.toml", "version = 1\n[[jobs]]\ncommand = \"normalmap\"\ninputs = \"src/*.png\"\n"
+                              "output = \"out/{stem}_n.png\"\n");
+  std::string cmd = "cd '" + dir + "' && (";
+  for (int i = 0; i < 4; ++i) {
+    cmd += std::string(TEXPROC_CLI_PATH) + " build r.toml -q --threads 1 --shard " + std::to_string(i) + "/4 & ";
+  }
+  cmd += "wait)";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_EQ(sorted_files(dir + "/out").size(), 12u);
+  RunResult r = run_texproc("build r.toml --dry-run", dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  std::size_t lines = 0;
+  const std::string owned = slurp(dir + "/.r.toml.outputs");
+  for (char c : owned) lines += c == '\n';
+  EXPECT_EQ(lines, 12u) << owned;
+  fs::remove_all(dir);
+}
