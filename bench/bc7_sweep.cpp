@@ -50,7 +50,8 @@ Crop gather(const Image& img) {
 
 std::vector<std::uint8_t> encode(const Crop& c, const Bc7Level& level) {
   std::vector<std::uint8_t> out(std::size_t(c.blocks) * 16);
-  bc7_encode_lanes(reinterpret_cast<const Bc7Texels*>(c.texel.data()), c.blocks, level, reinterpret_cast<std::uint8_t(*)[16]>(out.data()));
+  bc7_encode_lanes(reinterpret_cast<const Bc7Texels*>(c.texel.data()), c.blocks, level,
+                   reinterpret_cast<std::uint8_t(*)[16]>(out.data()));
   return out;
 }
 
@@ -59,15 +60,17 @@ bool parse(const std::string& s, Bc7Level& l) {
   std::stringstream in(s);
   for (std::string f; std::getline(in, f, ',');) v.push_back(std::atoi(f.c_str()));
   if (v.size() != 18) return false;
-  l = Bc7Level{v[0], v[1] != 0, v[2], v[3], v[4], v[5] != 0, v[6] != 0, v[7] != 0, v[8], v[9] != 0, v[10], v[11], v[12] != 0, v[13] != 0, v[14] != 0, v[15] != 0, v[16], v[17]};
+  l = Bc7Level{v[0],      v[1] != 0, v[2],  v[3],       v[4],       v[5] != 0,  v[6] != 0,  v[7] != 0, v[8],
+               v[9] != 0, v[10],     v[11], v[12] != 0, v[13] != 0, v[14] != 0, v[15] != 0, v[16],     v[17]};
   return true;
 }
 
 std::string row(const Bc7Level& l) {
   char b[96];
-  std::snprintf(b, sizeof b, "%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d", l.partitions2, l.mode3, l.estimated2, l.partitions3, l.rotations,
-                l.index_selection, l.mode7, l.opaque_rotated, l.refine, l.exact_indices, l.perturb, l.winner_steps, l.pair_steps,
-                l.pbit_search, l.exact_winner, l.joint, l.seeds, l.winner_seeds);
+  std::snprintf(b, sizeof b, "%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d,%d", l.partitions2, l.mode3,
+                l.estimated2, l.partitions3, l.rotations, l.index_selection, l.mode7, l.opaque_rotated, l.refine,
+                l.exact_indices, l.perturb, l.winner_steps, l.pair_steps, l.pbit_search, l.exact_winner, l.joint,
+                l.seeds, l.winner_seeds);
   return b;
 }
 
@@ -82,7 +85,8 @@ std::string row(const Bc7Level& l) {
 // two rounds of winner steps).
 std::vector<Bc7Level> grid(const std::string& name) {
   std::vector<Bc7Level> g;
-  auto level = [](int p2, bool m3, int p3, int rot, bool isel, bool orot, int refine, bool exact, int winner, bool pairs, bool pbits, bool ew) {
+  auto level = [](int p2, bool m3, int p3, int rot, bool isel, bool orot, int refine, bool exact, int winner,
+                  bool pairs, bool pbits, bool ew) {
     return Bc7Level{p2, m3, 64, p3, rot, isel, true, orot, refine, exact, 0, winner, pairs, pbits, ew, false, 1, 1};
   };
   if (name == "normal") {
@@ -93,7 +97,8 @@ std::vector<Bc7Level> grid(const std::string& name) {
             for (int winner : {0, 1, 2})
               for (bool ew : {false, true})
                 for (bool orot : {false, true})
-                  if (winner > 0 || !ew) g.push_back(level(p2, m3, p3, orot ? 4 : 1, false, orot, refine, false, winner, false, false, ew));
+                  if (winner > 0 || !ew)
+                    g.push_back(level(p2, m3, p3, orot ? 4 : 1, false, orot, refine, false, winner, false, false, ew));
   } else if (name == "seeds-normal") {  // the fit's knobs around `normal`
     for (int p2 : {1, 2, 4})
       for (int winner : {0, 1})
@@ -124,7 +129,8 @@ std::vector<Bc7Level> grid(const std::string& name) {
           for (bool pairs : {false, true})
             for (bool pbits : {false, true})
               for (bool exact : {false, true})
-                for (bool m3 : {false, true}) g.push_back(level(p2, m3, p3, 4, true, true, refine, exact, 2, pairs, pbits, true));
+                for (bool m3 : {false, true})
+                  g.push_back(level(p2, m3, p3, 4, true, true, refine, exact, 2, pairs, pbits, true));
   }
   return g;
 }
@@ -149,15 +155,18 @@ int main(int argc, char** argv) {
     } else if (parse(s, l)) {
       rows.push_back(l);
     } else {
-      std::fprintf(stderr, "bc7_sweep: '%s' is not a row of 18 comma-separated knobs (bc7_levels.h's order), --grid=NAME or --reps=N\n",
-                   s.c_str());
+      std::fprintf(
+          stderr,
+          "bc7_sweep: '%s' is not a row of 18 comma-separated knobs (bc7_levels.h's order), --grid=NAME or --reps=N\n",
+          s.c_str());
       return 2;
     }
   }
   if (rows.empty()) rows.assign(std::begin(kBc7Levels), std::end(kBc7Levels) - 1);  // max: too slow to repeat
   std::vector<Crop> crops;
   double pixels = 0;
-  for (const Image& img : bench::centred_crops()) crops.push_back(gather(img)), pixels += double(img.width()) * img.height();
+  for (const Image& img : bench::centred_crops())
+    crops.push_back(gather(img)), pixels += double(img.width()) * img.height();
   std::vector<std::vector<double>> seconds(rows.size());
   std::vector<double> se(rows.size(), 0);
   for (int r = 0; r < reps; ++r)

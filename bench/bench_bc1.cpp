@@ -32,7 +32,8 @@ void run_threads(benchmark::State& state, int squish_flags, Quality q, int threa
       std::vector<std::uint8_t> blocks;
       if (squish_flags) {
         blocks.resize(squish::GetStorageRequirements(img.width(), img.height(), squish::kDxt1));
-        squish::CompressImage(img.data(), img.width(), img.height(), blocks.data(), squish::kDxt1 | squish_flags);  // metric 0: uniform weights
+        squish::CompressImage(img.data(), img.width(), img.height(), blocks.data(),
+                              squish::kDxt1 | squish_flags);  // metric 0: uniform weights
       } else {
         blocks = compress_image(img.view(), TexelFormat::bc1_rgb_unorm, q);
       }
@@ -116,24 +117,50 @@ void process(benchmark::State& state, const std::string& tool) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(process, nvcompress_process, std::string("nvcompress"))->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(3);
-BENCHMARK_CAPTURE(process, texproc_process, std::string("texproc"))->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(3);
-BENCHMARK_CAPTURE(run, libsquish_range_fit, squish::kColourRangeFit, Quality::fast)->Unit(benchmark::kMillisecond)->MinTime(1.0);
-BENCHMARK_CAPTURE(run, libsquish_cluster_fit, squish::kColourClusterFit, Quality::fast)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(process, nvcompress_process, std::string("nvcompress"))
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime()
+    ->Iterations(3);
+BENCHMARK_CAPTURE(process, texproc_process, std::string("texproc"))
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime()
+    ->Iterations(3);
+BENCHMARK_CAPTURE(run, libsquish_range_fit, squish::kColourRangeFit, Quality::fast)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+BENCHMARK_CAPTURE(run, libsquish_cluster_fit, squish::kColourClusterFit, Quality::fast)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 BENCHMARK_CAPTURE(run, libsquish_iterative_cluster_fit, squish::kColourIterativeClusterFit, Quality::fast)
-    ->Unit(benchmark::kMillisecond)->Iterations(1);
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 BENCHMARK_CAPTURE(run, texproc_fast, 0, Quality::fast)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(run, texproc_normal, 0, Quality::normal)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(run, texproc_high, 0, Quality::high)->Unit(benchmark::kMillisecond)->Iterations(1);
 // Thread scaling (wall-clock time): the textures above on two threads (each
 // image is small: a fast encode takes well under a millisecond, so waking
 // the second thread shows), and a 2048x2048 mosaic of them on one and two.
-BENCHMARK_CAPTURE(run_threads, texproc_fast_2_threads, 0, Quality::fast, 2)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
-BENCHMARK_CAPTURE(run_threads, texproc_normal_2_threads, 0, Quality::normal, 2)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
-BENCHMARK_CAPTURE(run_threads, texproc_high_2_threads, 0, Quality::high, 2)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+BENCHMARK_CAPTURE(run_threads, texproc_fast_2_threads, 0, Quality::fast, 2)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(run_threads, texproc_normal_2_threads, 0, Quality::normal, 2)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(run_threads, texproc_high_2_threads, 0, Quality::high, 2)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(mosaic, fast_1_thread, Quality::fast, 1)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
 BENCHMARK_CAPTURE(mosaic, fast_2_threads, Quality::fast, 2)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
-BENCHMARK_CAPTURE(mosaic, normal_1_thread, Quality::normal, 1)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
-BENCHMARK_CAPTURE(mosaic, normal_2_threads, Quality::normal, 2)->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+BENCHMARK_CAPTURE(mosaic, normal_1_thread, Quality::normal, 1)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(mosaic, normal_2_threads, Quality::normal, 2)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0)
+    ->UseRealTime();
 
 BENCHMARK_MAIN();

@@ -25,10 +25,10 @@ namespace {
 const std::vector<Image>& alpha_textures() {
   static const std::vector<Image> t = [] {
     std::vector<Image> out;
-    for (const char* f : {"alpha/trigger_palm_tree2_1000.png", "alpha/ufoai_fence_512x256.png", "alpha/wz2100_page113_atlas_614x614.png",
-                          "alpha/qt3d_earth_clouds_1229x615.png", "alpha/openarena_gargoyle_wings_stone.tga",
-                          "alpha/openarena_player_models_ports_504.tga", "alpha/trigger_tree_shape1_gray_alpha.png",
-                          "alpha/openarena_frame1_l_ui.tga"}) {
+    for (const char* f : {"alpha/trigger_palm_tree2_1000.png", "alpha/ufoai_fence_512x256.png",
+                          "alpha/wz2100_page113_atlas_614x614.png", "alpha/qt3d_earth_clouds_1229x615.png",
+                          "alpha/openarena_gargoyle_wings_stone.tga", "alpha/openarena_player_models_ports_504.tga",
+                          "alpha/trigger_tree_shape1_gray_alpha.png", "alpha/openarena_frame1_l_ui.tga"}) {
       const Image src = read_image(std::string(TEXPROC_CORPUS_DIR) + "/" + f);
       const int w = src.width() / 4 * 4, h = src.height() / 4 * 4, n = src.channels();
       Image img(w, h, 4, PixelType::u8);
@@ -84,14 +84,21 @@ void run(benchmark::State& state, bool bc2, int squish_fit, Quality q) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(run, bc3_libsquish_range_fit, false, squish::kColourRangeFit, Quality::fast)->Unit(benchmark::kMillisecond)->MinTime(1.0);
-BENCHMARK_CAPTURE(run, bc3_libsquish_cluster_fit, false, squish::kColourClusterFit, Quality::fast)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(run, bc3_libsquish_range_fit, false, squish::kColourRangeFit, Quality::fast)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+BENCHMARK_CAPTURE(run, bc3_libsquish_cluster_fit, false, squish::kColourClusterFit, Quality::fast)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 BENCHMARK_CAPTURE(run, bc3_libsquish_iterative_cluster_fit, false, squish::kColourIterativeClusterFit, Quality::fast)
-    ->Unit(benchmark::kMillisecond)->Iterations(1);
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 BENCHMARK_CAPTURE(run, bc3_texproc_fast, false, 0, Quality::fast)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(run, bc3_texproc_normal, false, 0, Quality::normal)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 BENCHMARK_CAPTURE(run, bc3_texproc_high, false, 0, Quality::high)->Unit(benchmark::kMillisecond)->MinTime(1.0);
-BENCHMARK_CAPTURE(run, bc2_libsquish_cluster_fit, true, squish::kColourClusterFit, Quality::fast)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(run, bc2_libsquish_cluster_fit, true, squish::kColourClusterFit, Quality::fast)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 BENCHMARK_CAPTURE(run, bc2_texproc_normal, true, 0, Quality::normal)->Unit(benchmark::kMillisecond)->MinTime(1.0);
 
 BENCHMARK_MAIN();

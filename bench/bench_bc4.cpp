@@ -62,9 +62,10 @@ double psnr(const Image& src, const std::vector<std::uint8_t>& blocks) {
 const std::vector<Image>& normal_maps() {
   static const std::vector<Image> n = [] {
     std::vector<Image> out;
-    for (const char* f : {"normal_ts/qt3d_copper_brushed_normal.png", "normal_ts/qt3d_water_normal_512.jpg",
-                          "normal_ts/ufoai_door061_nm_alphaheight_512x602.png", "normal_ts/stellarium_stein_mauerwerk_bump_256.png",
-                          "normal_ts/qt3d_moonnormal_1638x819.jpg", "normal_ts/ufoai_rock017_nm_alphaheight.png"})
+    for (const char* f :
+         {"normal_ts/qt3d_copper_brushed_normal.png", "normal_ts/qt3d_water_normal_512.jpg",
+          "normal_ts/ufoai_door061_nm_alphaheight_512x602.png", "normal_ts/stellarium_stein_mauerwerk_bump_256.png",
+          "normal_ts/qt3d_moonnormal_1638x819.jpg", "normal_ts/ufoai_rock017_nm_alphaheight.png"})
       out.push_back(bench::color_crop(f));
     return out;
   }();
@@ -80,7 +81,8 @@ void psnr_xy(const Image& src, const std::vector<std::uint8_t>& blocks, double p
   double se[2] = {};
   for (int c = 0; c < 2; ++c)
     for (int y = 0; y < src.height(); ++y)
-      for (int x = 0; x < src.width(); ++x) se[c] += std::pow(d.get(x, y, c) * 255.0 - src.row<std::uint8_t>(y)[4 * x + c], 2);
+      for (int x = 0; x < src.width(); ++x)
+        se[c] += std::pow(d.get(x, y, c) * 255.0 - src.row<std::uint8_t>(y)[4 * x + c], 2);
   for (int c = 0; c < 2; ++c) psnr[c] = 10 * std::log10(255.0 * 255.0 / (se[c] / n));
   psnr[2] = 10 * std::log10(255.0 * 255.0 / ((se[0] + se[1]) / (2 * n)));
 }
@@ -184,9 +186,10 @@ void process(benchmark::State& state, const std::string& tool, bool bc5) {
     psnr_sum = 0;
     for (std::size_t i = 0; i < tga_files(bc5).size(); ++i) {
       const std::string in = tga_files(bc5)[i], out = in + "." + tool + ".dds";
-      const std::string cmd = tool == "nvcompress" ? "nvcompress -" + std::string(f) + " -nomips -nocuda " + in + " " + out
-                                                   : std::string(TEXPROC_CLI_PATH) + " compress " + in + " -o " + out +
-                                                         " --format " + f + " --threads 1 -f -q";
+      const std::string cmd = tool == "nvcompress"
+                                  ? "nvcompress -" + std::string(f) + " -nomips -nocuda " + in + " " + out
+                                  : std::string(TEXPROC_CLI_PATH) + " compress " + in + " -o " + out + " --format " +
+                                        f + " --threads 1 -f -q";
       const double took = bench::timed_command(cmd);
       if (took < 0) {
         state.SkipWithError(("failed: " + cmd).c_str());
@@ -215,23 +218,55 @@ void process(benchmark::State& state, const std::string& tool, bool bc5) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(process, bc4_nvcompress_process, std::string("nvcompress"), false)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(3);
-BENCHMARK_CAPTURE(process, bc4_texproc_process, std::string("texproc"), false)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(3);
-BENCHMARK_CAPTURE(process, bc5_nvcompress_process, std::string("nvcompress"), true)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(3);
-BENCHMARK_CAPTURE(process, bc5_texproc_process, std::string("texproc"), true)->Unit(benchmark::kMillisecond)->UseManualTime()->Iterations(3);
-BENCHMARK_CAPTURE(run, libsquish_bc4, std::string("libsquish"), Quality::normal)->Unit(benchmark::kMillisecond)->MinTime(1.0);
-BENCHMARK_CAPTURE(run, texproc_fast, std::string("texproc"), Quality::fast)->Unit(benchmark::kMillisecond)->MinTime(1.0);
-BENCHMARK_CAPTURE(run, texproc_normal, std::string("texproc"), Quality::normal)->Unit(benchmark::kMillisecond)->MinTime(1.0);
-BENCHMARK_CAPTURE(run, texproc_high, std::string("texproc"), Quality::high)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK_CAPTURE(process, bc4_nvcompress_process, std::string("nvcompress"), false)
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime()
+    ->Iterations(3);
+BENCHMARK_CAPTURE(process, bc4_texproc_process, std::string("texproc"), false)
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime()
+    ->Iterations(3);
+BENCHMARK_CAPTURE(process, bc5_nvcompress_process, std::string("nvcompress"), true)
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime()
+    ->Iterations(3);
+BENCHMARK_CAPTURE(process, bc5_texproc_process, std::string("texproc"), true)
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime()
+    ->Iterations(3);
+BENCHMARK_CAPTURE(run, libsquish_bc4, std::string("libsquish"), Quality::normal)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+BENCHMARK_CAPTURE(run, texproc_fast, std::string("texproc"), Quality::fast)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+BENCHMARK_CAPTURE(run, texproc_normal, std::string("texproc"), Quality::normal)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+BENCHMARK_CAPTURE(run, texproc_high, std::string("texproc"), Quality::high)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
 // Thread scaling (wall-clock time): the heightmaps above on two threads.
 BENCHMARK_CAPTURE(run_threads, texproc_normal_2_threads, std::string("texproc"), Quality::normal, 2)
-    ->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(run_threads, texproc_high_2_threads, std::string("texproc"), Quality::high, 2)
-    ->Unit(benchmark::kMillisecond)->MinTime(1.0)->UseRealTime();
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0)
+    ->UseRealTime();
 // BC5 on normal maps' X and Y.
-BENCHMARK_CAPTURE(run_bc5, bc5_libsquish, std::string("libsquish"), Quality::normal)->Unit(benchmark::kMillisecond)->MinTime(1.0);
-BENCHMARK_CAPTURE(run_bc5, bc5_texproc_fast, std::string("texproc"), Quality::fast)->Unit(benchmark::kMillisecond)->MinTime(1.0);
-BENCHMARK_CAPTURE(run_bc5, bc5_texproc_normal, std::string("texproc"), Quality::normal)->Unit(benchmark::kMillisecond)->MinTime(1.0);
-BENCHMARK_CAPTURE(run_bc5, bc5_texproc_high, std::string("texproc"), Quality::high)->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK_CAPTURE(run_bc5, bc5_libsquish, std::string("libsquish"), Quality::normal)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+BENCHMARK_CAPTURE(run_bc5, bc5_texproc_fast, std::string("texproc"), Quality::fast)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+BENCHMARK_CAPTURE(run_bc5, bc5_texproc_normal, std::string("texproc"), Quality::normal)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
+BENCHMARK_CAPTURE(run_bc5, bc5_texproc_high, std::string("texproc"), Quality::high)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
 
 BENCHMARK_MAIN();

@@ -38,8 +38,9 @@ using namespace texproc;
 namespace {
 
 const char* const kHdrFiles[] = {
-    "hdr/blender_world_forest.exr", "hdr/blender_world_city.exr", "hdr/blender_world_courtyard.exr",
-    "hdr/blender_world_night.exr", "hdr/blender_matcap_check_normal+y.exr", "hdr/blender_matcap_metal_carpaint.exr",
+    "hdr/blender_world_forest.exr",          "hdr/blender_world_city.exr",
+    "hdr/blender_world_courtyard.exr",       "hdr/blender_world_night.exr",
+    "hdr/blender_matcap_check_normal+y.exr", "hdr/blender_matcap_metal_carpaint.exr",
 };
 
 // Each crop as f32 RGB with its values rounded to halves (what every
@@ -55,7 +56,9 @@ const std::vector<Crop>& crops() {
     for (const char* f : kHdrFiles) {
       const Image src = read_image(std::string(TEXPROC_CORPUS_DIR) + "/" + f);
       const int w = std::min(256, src.width() / 4 * 4), h = std::min(256, src.height() / 4 * 4);
-      const int origins[2][2] = {{(src.width() - w) / 2, (src.height() - h) / 2}, {src.width() / 4 - w / 2 > 0 ? src.width() / 4 - w / 2 : 0, src.height() / 4 - h / 2 > 0 ? src.height() / 4 - h / 2 : 0}};
+      const int origins[2][2] = {{(src.width() - w) / 2, (src.height() - h) / 2},
+                                 {src.width() / 4 - w / 2 > 0 ? src.width() / 4 - w / 2 : 0,
+                                  src.height() / 4 - h / 2 > 0 ? src.height() / 4 - h / 2 : 0}};
       for (const auto& o : origins) {
         Crop cr{Image(w, h, 3, PixelType::f32), {}};
         for (int y = 0; y < h; ++y)
@@ -111,8 +114,8 @@ std::vector<std::uint8_t> cmp_image(const Crop& c, float quality) {
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * 16);
   for (int by = 0; by < bh; ++by)
     for (int bx = 0; bx < bw; ++bx)
-      CompressBlockBC6(&c.half[(std::size_t(4 * by) * w + 4 * bx) * 3], unsigned(3 * w), out.data() + (std::size_t(by) * bw + bx) * 16,
-                       options);
+      CompressBlockBC6(&c.half[(std::size_t(4 * by) * w + 4 * bx) * 3], unsigned(3 * w),
+                       out.data() + (std::size_t(by) * bw + bx) * 16, options);
   DestroyOptionsBC6(options);
   return out;
 }
@@ -135,12 +138,14 @@ std::vector<std::uint8_t> cvtt_image(const Crop& c, bool fast) {
       const int b = std::min(b0 + k, n - 1), bx = b % bw, by = b / bw;
       for (int i = 0; i < 16; ++i) {
         for (int ch = 0; ch < 3; ++ch)
-          blocks[k].m_pixels[i][ch] = std::int16_t(c.half[(std::size_t(4 * by + i / 4) * w + 4 * bx + i % 4) * 3 + std::size_t(ch)]);
+          blocks[k].m_pixels[i][ch] =
+              std::int16_t(c.half[(std::size_t(4 * by + i / 4) * w + 4 * bx + i % 4) * 3 + std::size_t(ch)]);
         blocks[k].m_pixels[i][3] = 0x3C00;  // 1.0
       }
     }
     cvtt::Kernels::EncodeBC6HU(packed, blocks, options);
-    for (int k = 0; k < int(cvtt::NumParallelBlocks) && b0 + k < n; ++k) std::memcpy(&out[std::size_t(b0 + k) * 16], packed + 16 * k, 16);
+    for (int k = 0; k < int(cvtt::NumParallelBlocks) && b0 + k < n; ++k)
+      std::memcpy(&out[std::size_t(b0 + k) * 16], packed + 16 * k, 16);
   }
   return out;
 }
@@ -184,12 +189,14 @@ void register_all() {
         ->UseRealTime()
         ->MinTime(q == Quality::max ? 0.1 : 1.0);
   for (Quality q : {Quality::fast, Quality::normal})
-    benchmark::RegisterBenchmark((std::string("bc6h/texproc/") + to_string(q) + "/threads:2").c_str(), run, "texproc", q, 2, 0.0f)
+    benchmark::RegisterBenchmark((std::string("bc6h/texproc/") + to_string(q) + "/threads:2").c_str(), run, "texproc",
+                                 q, 2, 0.0f)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
 #ifdef TEXPROC_HAVE_CMP_CORE
   for (float cq : {0.1f, 1.0f})
-    benchmark::RegisterBenchmark((std::string("bc6h/cmp_core/q") + (cq < 1.0f ? "0.1" : "1.0")).c_str(), run, "cmp", Quality::normal, 1, cq)
+    benchmark::RegisterBenchmark((std::string("bc6h/cmp_core/q") + (cq < 1.0f ? "0.1" : "1.0")).c_str(), run, "cmp",
+                                 Quality::normal, 1, cq)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime()
         ->MinTime(0.1);

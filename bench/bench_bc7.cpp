@@ -80,17 +80,20 @@ std::vector<std::uint8_t> cvtt_image(const Image& img, int quality) {
     for (int k = 0; k < int(cvtt::NumParallelBlocks); ++k) {
       const int b = std::min(b0 + k, n - 1), bx = b % bw, by = b / bw;
       for (int i = 0; i < 16; ++i)
-        for (int c = 0; c < 4; ++c) blocks[k].m_pixels[i][c] = img.row<const std::uint8_t>(4 * by + i / 4)[4 * (4 * bx + i % 4) + c];
+        for (int c = 0; c < 4; ++c)
+          blocks[k].m_pixels[i][c] = img.row<const std::uint8_t>(4 * by + i / 4)[4 * (4 * bx + i % 4) + c];
     }
     cvtt::Kernels::EncodeBC7(packed, blocks, options, plan);
-    for (int k = 0; k < int(cvtt::NumParallelBlocks) && b0 + k < n; ++k) std::memcpy(&out[std::size_t(b0 + k) * 16], packed + 16 * k, 16);
+    for (int k = 0; k < int(cvtt::NumParallelBlocks) && b0 + k < n; ++k)
+      std::memcpy(&out[std::size_t(b0 + k) * 16], packed + 16 * k, 16);
   }
   return out;
 }
 #endif
 
 // who: "texproc" (format, quality, threads), "bc7enc" (uber, partitions) or "cvtt" (quality in `uber`).
-void run(benchmark::State& state, const std::string& who, TexelFormat format, Quality q, int threads, int uber, int partitions) {
+void run(benchmark::State& state, const std::string& who, TexelFormat format, Quality q, int threads, int uber,
+         int partitions) {
   ThreadLimit limit(threads);
   // Each crop's blocks kept and scored after the timed loop: pausing the
   // clock around every crop's scoring (as an earlier version did) timed
@@ -130,13 +133,14 @@ void run(benchmark::State& state, const std::string& who, TexelFormat format, Qu
 void register_all() {
   using F = TexelFormat;
   for (Quality q : {Quality::fast, Quality::normal, Quality::high, Quality::max})
-    benchmark::RegisterBenchmark((std::string("bc7/texproc/") + to_string(q)).c_str(), run, "texproc", F::bc7_unorm, q, 1, 0, 0)
+    benchmark::RegisterBenchmark((std::string("bc7/texproc/") + to_string(q)).c_str(), run, "texproc", F::bc7_unorm, q,
+                                 1, 0, 0)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime()
         ->MinTime(q == Quality::max ? 0.1 : 1.0);
   for (Quality q : {Quality::fast, Quality::normal})
-    benchmark::RegisterBenchmark((std::string("bc7/texproc/") + to_string(q) + "/threads:2").c_str(), run, "texproc", F::bc7_unorm, q,
-                                 2, 0, 0)
+    benchmark::RegisterBenchmark((std::string("bc7/texproc/") + to_string(q) + "/threads:2").c_str(), run, "texproc",
+                                 F::bc7_unorm, q, 2, 0, 0)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
   benchmark::RegisterBenchmark("bc1/texproc/high", run, "texproc", F::bc1_rgb_unorm, Quality::high, 1, 0, 0)
@@ -153,7 +157,8 @@ void register_all() {
 #endif
 #ifdef TEXPROC_HAVE_CVTT
   for (int q : {1, 10, 50})
-    benchmark::RegisterBenchmark(("bc7/cvtt/quality" + std::to_string(q)).c_str(), run, "cvtt", F::bc7_unorm, Quality::normal, 1, q, 0)
+    benchmark::RegisterBenchmark(("bc7/cvtt/quality" + std::to_string(q)).c_str(), run, "cvtt", F::bc7_unorm,
+                                 Quality::normal, 1, q, 0)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime()
         ->MinTime(0.1);

@@ -37,9 +37,10 @@ inline Image color_crop(const std::string& corpus_path) {
 inline const std::vector<Image>& color_textures() {
   static const std::vector<Image> t = [] {
     std::vector<Image> out;
-    for (const char* f : {"albedo_srgb/colobot_desert4.png", "albedo_srgb/ufoai_rock017.png", "photo/skimage_astronaut_512.png",
-                          "albedo_srgb/wz2100_terrain_tile10_128_palette.png", "photo/skimage_coffee_600x400.png",
-                          "albedo_srgb/stellarium_stein_mauerwerk_512_rgba_opaque.png"})
+    for (const char* f :
+         {"albedo_srgb/colobot_desert4.png", "albedo_srgb/ufoai_rock017.png", "photo/skimage_astronaut_512.png",
+          "albedo_srgb/wz2100_terrain_tile10_128_palette.png", "photo/skimage_coffee_600x400.png",
+          "albedo_srgb/stellarium_stein_mauerwerk_512_rgba_opaque.png"})
       out.push_back(color_crop(f));
     return out;
   }();

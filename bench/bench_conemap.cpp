@@ -54,7 +54,8 @@ std::vector<float> hard_case(const std::string& kind, int n) {
           const float fx = float(x) / cell, fy = float(y) / cell;
           const int ix = int(fx), iy = int(fy);
           const float tx = fx - ix, ty = fy - iy;
-          const float a = grid[iy * g + ix], b = grid[iy * g + ix + 1], c = grid[(iy + 1) * g + ix], d = grid[(iy + 1) * g + ix + 1];
+          const float a = grid[iy * g + ix], b = grid[iy * g + ix + 1], c = grid[(iy + 1) * g + ix],
+                      d = grid[(iy + 1) * g + ix + 1];
           acc[std::size_t(y) * n + x] += amp * ((a * (1 - tx) + b * tx) * (1 - ty) + (c * (1 - tx) + d * tx) * ty);
         }
     }
@@ -133,10 +134,13 @@ void register_all() {
       if (n == 4096 && (std::string(kind) == "white" || std::string(kind) == "ramp")) continue;
       for (int reach : {1, 2, 4}) {
         if (n == 4096 && reach == 4) continue;
-        benchmark::RegisterBenchmark((std::string("fast/") + kind + "/" + std::to_string(n) + "/reach:" +
-                                      std::to_string(reach) + "/threads:2").c_str(),
-                                     [kind, n, reach](benchmark::State& s) { fast_cones(s, kind, n, 2, reach); })
-            ->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+        benchmark::RegisterBenchmark(
+            (std::string("fast/") + kind + "/" + std::to_string(n) + "/reach:" + std::to_string(reach) + "/threads:2")
+                .c_str(),
+            [kind, n, reach](benchmark::State& s) { fast_cones(s, kind, n, 2, reach); })
+            ->Unit(benchmark::kMillisecond)
+            ->Iterations(1)
+            ->UseRealTime();
       }
     }
   }
@@ -145,19 +149,25 @@ void register_all() {
       if (n == 4096 && t == 1) continue;
       benchmark::RegisterBenchmark(("conemap/terrain/" + std::to_string(n) + "/threads:" + std::to_string(t)).c_str(),
                                    [n, t](benchmark::State& s) { cones(s, "terrain", n, t, false); })
-          ->Unit(benchmark::kMillisecond)->Iterations(n >= 2048 ? 1 : 3)->UseRealTime();
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(n >= 2048 ? 1 : 3)
+          ->UseRealTime();
     }
   }
   for (const char* kind : {"hemisphere", "fractal", "spikes", "white", "ramp"}) {
     for (int t : {1, 2}) {
       benchmark::RegisterBenchmark((std::string("conemap/") + kind + "/1024/threads:" + std::to_string(t)).c_str(),
                                    [kind, t](benchmark::State& s) { cones(s, kind, 1024, t, false); })
-          ->Unit(benchmark::kMillisecond)->Iterations(2)->UseRealTime();
+          ->Unit(benchmark::kMillisecond)
+          ->Iterations(2)
+          ->UseRealTime();
     }
     if (std::string(kind) == "white" || std::string(kind) == "ramp") continue;
     benchmark::RegisterBenchmark((std::string("conemap/") + kind + "/4096/threads:2").c_str(),
                                  [kind](benchmark::State& s) { cones(s, kind, 4096, 2, false); })
-        ->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1)
+        ->UseRealTime();
   }
   for (const char* kind : {"terrain", "hemisphere", "fractal", "spikes"}) {
     benchmark::RegisterBenchmark((std::string("bilinear/") + kind + "/1024/threads:2").c_str(),
@@ -166,7 +176,9 @@ void register_all() {
                                    o.bilinear_safe = true;
                                    variant_cones(s, kind, 1024, 2, o, "mean_safe_over_classic");
                                  })
-        ->Unit(benchmark::kMillisecond)->Iterations(2)->UseRealTime();
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(2)
+        ->UseRealTime();
   }
   for (const char* kind : {"terrain", "hemisphere", "fractal", "spikes"}) {
     benchmark::RegisterBenchmark((std::string("relaxed/") + kind + "/1024/threads:2").c_str(),
@@ -175,12 +187,16 @@ void register_all() {
                                    o.mode = ConeMode::relaxed;
                                    variant_cones(s, kind, 1024, 2, o, "mean_relaxed_over_conservative");
                                  })
-        ->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1)
+        ->UseRealTime();
   }
   for (int n : {128, 256}) {
     benchmark::RegisterBenchmark(("brute_force/terrain/" + std::to_string(n) + "/threads:2").c_str(),
                                  [n](benchmark::State& s) { cones(s, "terrain", n, 2, true); })
-        ->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1)
+        ->UseRealTime();
   }
 }
 

@@ -92,8 +92,8 @@ void report_seams() {
       for (int f = 0; f < 6; ++f) g.faces[f] = gauss[f].levels[k], b.faces[f] = box[f].levels[k];
       const SeamStats s = measure_seams(c.levels[k]), sg = measure_seams(g), sb = measure_seams(b);
       const SeamStats sd = measure_seams(cubemap_from_equirect(p.view(), c.levels[k].size).levels[0]);
-      std::printf("%-17s %5zu %5d | %.4f %.4f %.4f %s | %.4f (%4.2fx) | %.4f (%4.2fx) | %.4f (%4.2fx)\n",
-                  path + 17, k, c.levels[k].size, s.edge_step, s.near_edge_step, s.interior_step,
+      std::printf("%-17s %5zu %5d | %.4f %.4f %.4f %s | %.4f (%4.2fx) | %.4f (%4.2fx) | %.4f (%4.2fx)\n", path + 17, k,
+                  c.levels[k].size, s.edge_step, s.near_edge_step, s.interior_step,
                   s.edge_step <= s.interior_step ? " " : "*", sg.edge_step, sg.edge_step / s.edge_step, sb.edge_step,
                   sb.edge_step / s.edge_step, sd.edge_step, sd.edge_step / s.edge_step);
       ++levels;
@@ -106,11 +106,11 @@ void report_seams() {
       worst_gauss = std::max(worst_gauss, sg.edge_step / s.edge_step);
     }
   }
-  std::printf("levels: %d; seamless edge <= inner: %d (direct sampling: %d; both above inner: %d); seamless edge <= "
-              "per-face gaussian's: %d (gaussian up to %.2fx); seamless edge within 5%% of direct sampling's: %d (at most "
-              "%.2fx)  (* marks edge > inner)\n",
-              levels, below_inner, direct_below_inner, both_fail, below_gauss, worst_gauss, within_direct,
-              worst_vs_direct);
+  std::printf(
+      "levels: %d; seamless edge <= inner: %d (direct sampling: %d; both above inner: %d); seamless edge <= "
+      "per-face gaussian's: %d (gaussian up to %.2fx); seamless edge within 5%% of direct sampling's: %d (at most "
+      "%.2fx)  (* marks edge > inner)\n",
+      levels, below_inner, direct_below_inner, both_fail, below_gauss, worst_gauss, within_direct, worst_vs_direct);
 }
 
 void report_ibl_accuracy() {
@@ -152,7 +152,8 @@ void report_ibl_accuracy() {
     every.min_size = 1;
     const Cubemap s256 = prefilter_specular(src256, every);
     const int levels256 = int(s256.levels.size());
-    std::printf("GGX prefilter of a 256 cube (forest), importance-sampled levels, 600 texels each against brute force:\n");
+    std::printf(
+        "GGX prefilter of a 256 cube (forest), importance-sampled levels, 600 texels each against brute force:\n");
     for (int m = 1; m <= 3; ++m) {
       const double a2 = std::pow(specular_roughness(m, levels256), 4.0);
       const int n = s256.levels[m].size;
@@ -167,7 +168,8 @@ void report_ibl_accuracy() {
           ref2 += r * r;
         }
       }
-      std::printf("  level %d roughness %.3f: %.4f%%\n", m, specular_roughness(m, levels256), 100 * std::sqrt(e / ref2));
+      std::printf("  level %d roughness %.3f: %.4f%%\n", m, specular_roughness(m, levels256),
+                  100 * std::sqrt(e / ref2));
     }
   }
   // Spherical harmonics: project_sh9 (from the level with <= 128 faces)
@@ -192,9 +194,10 @@ void report_ibl_accuracy() {
     for (int ch = 0; ch < 3; ++ch) norm = std::max(norm, std::fabs(ref[k][ch]));
   for (int k = 0; k < 9; ++k)
     for (int ch = 0; ch < 3; ++ch) worst = std::max(worst, std::fabs(sh.radiance[k][ch] - ref[k][ch]) / norm);
-  std::printf("\nSH9 of a 1024 cube (forest): largest coefficient error against every texel's integral: %.4f%% of "
-              "the largest coefficient (L00 %.5f vs %.5f)\n",
-              100 * worst, sh.radiance[0][0], ref[0][0]);
+  std::printf(
+      "\nSH9 of a 1024 cube (forest): largest coefficient error against every texel's integral: %.4f%% of "
+      "the largest coefficient (L00 %.5f vs %.5f)\n",
+      100 * worst, sh.radiance[0][0], ref[0][0]);
 }
 
 void panorama_phases(benchmark::State& state, int threads) {
@@ -217,7 +220,8 @@ void panorama_to_cube(benchmark::State& state, int threads) {
     generate_cube_mips(c);
     benchmark::DoNotOptimize(c.levels.back().faces[0].data());
   }
-  state.counters["MPix_out_per_s"] = benchmark::Counter(6.0 * 1024 * 1024 * 4 / 3, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["MPix_out_per_s"] =
+      benchmark::Counter(6.0 * 1024 * 1024 * 4 / 3, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void specular_256(benchmark::State& state, int threads) {
@@ -260,16 +264,30 @@ int main(int argc, char** argv) {
   for (int t : {1, 2}) {
     benchmark::RegisterBenchmark(("phases/threads:" + std::to_string(t)).c_str(),
                                  [t](benchmark::State& s) { panorama_phases(s, t); })
-        ->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1)
+        ->UseRealTime();
     benchmark::RegisterBenchmark(("panorama_4096x2048_to_cube_1024_mips/threads:" + std::to_string(t)).c_str(),
                                  [t](benchmark::State& s) { panorama_to_cube(s, t); })
-        ->Unit(benchmark::kMillisecond)->Iterations(3)->Repetitions(3)->ReportAggregatesOnly(true)->UseRealTime();
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(3)
+        ->Repetitions(3)
+        ->ReportAggregatesOnly(true)
+        ->UseRealTime();
     benchmark::RegisterBenchmark(("ggx_specular_256_all_levels/threads:" + std::to_string(t)).c_str(),
                                  [t](benchmark::State& s) { specular_256(s, t); })
-        ->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3)->ReportAggregatesOnly(true)->UseRealTime();
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1)
+        ->Repetitions(3)
+        ->ReportAggregatesOnly(true)
+        ->UseRealTime();
     benchmark::RegisterBenchmark(("irradiance_32_and_sh9_from_256/threads:" + std::to_string(t)).c_str(),
                                  [t](benchmark::State& s) { irradiance_32(s, t); })
-        ->Unit(benchmark::kMillisecond)->Iterations(3)->Repetitions(3)->ReportAggregatesOnly(true)->UseRealTime();
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(3)
+        ->Repetitions(3)
+        ->ReportAggregatesOnly(true)
+        ->UseRealTime();
   }
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -63,7 +63,8 @@ const std::vector<Encoded>& encoded(TexelFormat f) {
   if (it != cache.end()) return it->second;
   std::vector<Encoded> out;
   for (const Image& img : bench::color_textures()) {
-    out.push_back({img.width(), img.height(), compress_image(img.view(), f, Quality::fast)});  // BC6H: the 8-bit colour as [0, 1]
+    out.push_back(
+        {img.width(), img.height(), compress_image(img.view(), f, Quality::fast)});  // BC6H: the 8-bit colour as [0, 1]
   }
   return cache.emplace(f, std::move(out)).first->second;
 }
@@ -148,8 +149,8 @@ void bcdec_bc6h_halves(TexelFormat, const Encoded& x, std::vector<std::uint8_t>&
   const int pitch = x.width * 6, bw = x.width / 4;
   for (int by = 0; by < x.height / 4; ++by)
     for (int bx = 0; bx < bw; ++bx)
-      bcdec_bc6h_half(x.blocks.data() + (std::size_t(by) * bw + bx) * 16, img.data() + std::size_t(4 * by) * pitch + std::size_t(24 * bx),
-                      pitch / 2, 0);
+      bcdec_bc6h_half(x.blocks.data() + (std::size_t(by) * bw + bx) * 16,
+                      img.data() + std::size_t(4 * by) * pitch + std::size_t(24 * bx), pitch / 2, 0);
 }
 
 void bcdec_image(TexelFormat f, const Encoded& x, std::vector<std::uint8_t>& img) {
@@ -161,13 +162,27 @@ void bcdec_image(TexelFormat f, const Encoded& x, std::vector<std::uint8_t>& img
       const std::uint8_t* src = x.blocks.data() + (std::size_t(by) * bw + bx) * block;
       std::uint8_t* dst = img.data() + std::size_t(4 * by) * pitch + std::size_t(4 * bx) * bytes;
       switch (f) {
-        case F::bc1_rgb_unorm: bcdec_bc1(src, dst, pitch); break;
-        case F::bc2_unorm: bcdec_bc2(src, dst, pitch); break;
-        case F::bc3_unorm: bcdec_bc3(src, dst, pitch); break;
-        case F::bc4_unorm: bcdec_bc4(src, dst, pitch); break;
-        case F::bc5_unorm: bcdec_bc5(src, dst, pitch); break;
-        case F::bc6h_ufloat: bcdec_bc6h_float(src, dst, pitch / 4, 0); break;
-        default: bcdec_bc7(src, dst, pitch); break;
+        case F::bc1_rgb_unorm:
+          bcdec_bc1(src, dst, pitch);
+          break;
+        case F::bc2_unorm:
+          bcdec_bc2(src, dst, pitch);
+          break;
+        case F::bc3_unorm:
+          bcdec_bc3(src, dst, pitch);
+          break;
+        case F::bc4_unorm:
+          bcdec_bc4(src, dst, pitch);
+          break;
+        case F::bc5_unorm:
+          bcdec_bc5(src, dst, pitch);
+          break;
+        case F::bc6h_ufloat:
+          bcdec_bc6h_float(src, dst, pitch / 4, 0);
+          break;
+        default:
+          bcdec_bc7(src, dst, pitch);
+          break;
       }
     }
 }
@@ -181,7 +196,8 @@ void rg_etc1_image(TexelFormat, const Encoded& x, std::vector<std::uint8_t>& img
   for (int by = 0; by < x.height / 4; ++by)
     for (int bx = 0; bx < bw; ++bx) {
       rg_etc1::unpack_etc1_block(x.blocks.data() + (std::size_t(by) * bw + bx) * 8, px);
-      for (int r = 0; r < 4; ++r) std::memcpy(img.data() + std::size_t(4 * by + r) * pitch + std::size_t(16 * bx), px + 4 * r, 16);
+      for (int r = 0; r < 4; ++r)
+        std::memcpy(img.data() + std::size_t(4 * by + r) * pitch + std::size_t(16 * bx), px + 4 * r, 16);
     }
 }
 #endif
@@ -195,23 +211,41 @@ void etcpak_image(TexelFormat f, const Encoded& x, std::vector<std::uint8_t>& by
   const auto* src = reinterpret_cast<const std::uint64_t*>(x.blocks.data());
   auto* img = reinterpret_cast<std::uint32_t*>(bytes.data());
   switch (f) {
-    case F::bc1_rgb_unorm: DecodeBc1(src, img, x.width, x.height); break;
-    case F::bc3_unorm: DecodeBc3(src, img, x.width, x.height); break;
-    case F::bc4_unorm: DecodeBc4(src, img, x.width, x.height); break;
-    case F::bc5_unorm: DecodeBc5(src, img, x.width, x.height); break;
-    case F::bc7_unorm: DecodeBc7(src, img, x.width, x.height); break;
-    case F::etc2_rgba8_unorm: DecodeRGBA(src, img, x.width, x.height); break;
-    case F::eac_r11_unorm: DecodeR(src, img, x.width, x.height); break;
-    case F::eac_rg11_unorm: DecodeRG(src, img, x.width, x.height); break;
-    default: DecodeRGB(src, img, x.width, x.height); break;  // ETC1 and ETC2 RGB
+    case F::bc1_rgb_unorm:
+      DecodeBc1(src, img, x.width, x.height);
+      break;
+    case F::bc3_unorm:
+      DecodeBc3(src, img, x.width, x.height);
+      break;
+    case F::bc4_unorm:
+      DecodeBc4(src, img, x.width, x.height);
+      break;
+    case F::bc5_unorm:
+      DecodeBc5(src, img, x.width, x.height);
+      break;
+    case F::bc7_unorm:
+      DecodeBc7(src, img, x.width, x.height);
+      break;
+    case F::etc2_rgba8_unorm:
+      DecodeRGBA(src, img, x.width, x.height);
+      break;
+    case F::eac_r11_unorm:
+      DecodeR(src, img, x.width, x.height);
+      break;
+    case F::eac_rg11_unorm:
+      DecodeRG(src, img, x.width, x.height);
+      break;
+    default:
+      DecodeRGB(src, img, x.width, x.height);
+      break;  // ETC1 and ETC2 RGB
   }
 }
 #endif
 
 void register_all() {
   using F = TexelFormat;
-  for (F f : {F::bc1_rgb_unorm, F::bc2_unorm, F::bc3_unorm, F::bc4_unorm, F::bc5_unorm, F::bc6h_ufloat, F::bc7_unorm, F::etc1_rgb, F::etc2_rgb_unorm,
-              F::etc2_rgba8_unorm, F::eac_r11_unorm, F::eac_rg11_unorm}) {
+  for (F f : {F::bc1_rgb_unorm, F::bc2_unorm, F::bc3_unorm, F::bc4_unorm, F::bc5_unorm, F::bc6h_ufloat, F::bc7_unorm,
+              F::etc1_rgb, F::etc2_rgb_unorm, F::etc2_rgba8_unorm, F::eac_r11_unorm, F::eac_rg11_unorm}) {
     benchmark::RegisterBenchmark((std::string("decode/texproc/") + format_info(f).name).c_str(), run_texproc, f)
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime();
@@ -223,14 +257,15 @@ void register_all() {
 #endif
 #ifdef TEXPROC_HAVE_ETCPAK
     if (etcpak_decodes(f))
-      benchmark::RegisterBenchmark((std::string("decode/etcpak/") + format_info(f).name).c_str(), run_peer, f, etcpak_image, 4)
+      benchmark::RegisterBenchmark((std::string("decode/etcpak/") + format_info(f).name).c_str(), run_peer, f,
+                                   etcpak_image, 4)
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime();
 #endif
 #ifdef TEXPROC_HAVE_BCDEC
     if (f <= F::bc7_unorm && f != F::etc1_rgb)
-      benchmark::RegisterBenchmark((std::string("decode/bcdec/") + format_info(f).name).c_str(), run_peer, f, bcdec_image,
-                                   bcdec_bytes(f))
+      benchmark::RegisterBenchmark((std::string("decode/bcdec/") + format_info(f).name).c_str(), run_peer, f,
+                                   bcdec_image, bcdec_bytes(f))
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime();
     if (f == F::bc6h_ufloat)

@@ -28,7 +28,8 @@ void color(benchmark::State& state, bool use_libetc1, TexelFormat f, Quality q) 
   for (auto _ : state) {
     psnr_sum = 0;
     for (const Image& img : bench::color_textures()) {
-      const std::vector<std::uint8_t> blocks = use_libetc1 ? bench::libetc1_encode(img) : compress_image(img.view(), f, q);
+      const std::vector<std::uint8_t> blocks =
+          use_libetc1 ? bench::libetc1_encode(img) : compress_image(img.view(), f, q);
       state.PauseTiming();
       psnr_sum += bench::psnr_rgb(img, f, blocks);
       state.ResumeTiming();
@@ -78,18 +79,44 @@ void height(benchmark::State& state, TexelFormat f, Quality q) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(color, libetc1, true, TexelFormat::etc1_rgb, Quality::fast)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK_CAPTURE(color, etc1_fast, false, TexelFormat::etc1_rgb, Quality::fast)->Unit(benchmark::kMillisecond)->MinTime(0.5);
-BENCHMARK_CAPTURE(color, etc1_normal, false, TexelFormat::etc1_rgb, Quality::normal)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK_CAPTURE(color, etc1_high, false, TexelFormat::etc1_rgb, Quality::high)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK_CAPTURE(color, etc2_fast, false, TexelFormat::etc2_rgb_unorm, Quality::fast)->Unit(benchmark::kMillisecond)->MinTime(0.5);
-BENCHMARK_CAPTURE(color, etc2_normal, false, TexelFormat::etc2_rgb_unorm, Quality::normal)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK_CAPTURE(color, etc2_high, false, TexelFormat::etc2_rgb_unorm, Quality::high)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK_CAPTURE(color, bc1_normal, false, TexelFormat::bc1_rgb_unorm, Quality::normal)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK_CAPTURE(color, bc1_high, false, TexelFormat::bc1_rgb_unorm, Quality::high)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK_CAPTURE(height, eac_r11_normal, TexelFormat::eac_r11_unorm, Quality::normal)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK_CAPTURE(height, eac_r11_high, TexelFormat::eac_r11_unorm, Quality::high)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK_CAPTURE(height, bc4_normal, TexelFormat::bc4_unorm, Quality::normal)->Unit(benchmark::kMillisecond)->Iterations(1);
-BENCHMARK_CAPTURE(height, bc4_high, TexelFormat::bc4_unorm, Quality::high)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_CAPTURE(color, libetc1, true, TexelFormat::etc1_rgb, Quality::fast)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(color, etc1_fast, false, TexelFormat::etc1_rgb, Quality::fast)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(0.5);
+BENCHMARK_CAPTURE(color, etc1_normal, false, TexelFormat::etc1_rgb, Quality::normal)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(color, etc1_high, false, TexelFormat::etc1_rgb, Quality::high)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(color, etc2_fast, false, TexelFormat::etc2_rgb_unorm, Quality::fast)
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(0.5);
+BENCHMARK_CAPTURE(color, etc2_normal, false, TexelFormat::etc2_rgb_unorm, Quality::normal)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(color, etc2_high, false, TexelFormat::etc2_rgb_unorm, Quality::high)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(color, bc1_normal, false, TexelFormat::bc1_rgb_unorm, Quality::normal)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(color, bc1_high, false, TexelFormat::bc1_rgb_unorm, Quality::high)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(height, eac_r11_normal, TexelFormat::eac_r11_unorm, Quality::normal)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(height, eac_r11_high, TexelFormat::eac_r11_unorm, Quality::high)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(height, bc4_normal, TexelFormat::bc4_unorm, Quality::normal)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+BENCHMARK_CAPTURE(height, bc4_high, TexelFormat::bc4_unorm, Quality::high)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 BENCHMARK_MAIN();

@@ -72,8 +72,7 @@ void mip_stage(benchmark::State& state, FilterKind kind, int threads) {
     c = MipChain{};  // freeing is not timed either
     state.ResumeTiming();
   }
-  state.counters["MPix/s"] =
-      benchmark::Counter(4096.0 * 4096.0 / 1e6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["MPix/s"] = benchmark::Counter(4096.0 * 4096.0 / 1e6, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void run_command(benchmark::State& state, const std::string& cmd) {
@@ -94,8 +93,8 @@ void BM_MipStage_Box_1thread(benchmark::State& s) { mip_stage(s, FilterKind::box
 void BM_MipStage_Lanczos3(benchmark::State& s) { mip_stage(s, FilterKind::lanczos3, 0); }
 
 void BM_Command_texproc(benchmark::State& s) {
-  run_command(s, std::string(TEXPROC_CLI_PATH) + " mip " + input_file(".tif") + " -o " + kDir +
-                     "/out_texproc.tif --force -q");
+  run_command(
+      s, std::string(TEXPROC_CLI_PATH) + " mip " + input_file(".tif") + " -o " + kDir + "/out_texproc.tif --force -q");
 }
 void BM_Command_maketx(benchmark::State& s) {
   run_command(s, "maketx --filter gaussian " + input_file(".tif") + " -o " + kDir + "/out_maketx.tif >/dev/null");

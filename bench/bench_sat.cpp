@@ -48,15 +48,15 @@ void table(benchmark::State& state, const Image& img, SatPrecision p) {
     build_sat(img.view(), p, t);
     benchmark::DoNotOptimize(t.data.data());
   }
-  state.counters["MPix/s"] = benchmark::Counter(double(img.width()) * img.height() / 1e6,
-                                                benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["MPix/s"] =
+      benchmark::Counter(double(img.width()) * img.height() / 1e6, benchmark::Counter::kIsIterationInvariantRate);
 }
 
 // Reads every input byte and writes a 4-byte element for it, on the same
 // threads and row blocks: what building a u32 table must at least cost.
 void floor_pass(benchmark::State& state, const Image& img) {
   const std::size_t n = std::size_t(img.width()) * img.channels();
-  PixelBytes bytes(n * img.height() * 4);  // pixel memory, as the tables'
+  PixelBytes bytes(n * img.height() * 4);      // pixel memory, as the tables'
   std::memset(bytes.data(), 0, bytes.size());  // first touch outside the timing, as for the tables
   auto* const out = reinterpret_cast<std::uint32_t*>(bytes.data());
   for (auto _ : state) {

@@ -81,7 +81,8 @@ long best_half(const int px[16][3], int h, int bits) {
   const int top = (1 << bits) - 1;
   int lo[3] = {255, 255, 255}, hi[3] = {0, 0, 0};
   for (int i = 0; i < 8; ++i)
-    for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], px[kHalf[h][i]][c]), hi[c] = std::max(hi[c], px[kHalf[h][i]][c]);
+    for (int c = 0; c < 3; ++c)
+      lo[c] = std::min(lo[c], px[kHalf[h][i]][c]), hi[c] = std::max(hi[c], px[kHalf[h][i]][c]);
   long best = kHuge;
   for (int t = 0; t < 8; ++t) {
     const int far = etc::kModifiers[t][1];
@@ -107,7 +108,8 @@ std::vector<long> half_by_base(const int px[16][3], int h) {
   std::vector<long> e(32768, kHuge);
   for (int q = 0; q < 32768; ++q) {
     const int base[3] = {etc::extend5(q >> 10), etc::extend5(q >> 5 & 31), etc::extend5(q & 31)};
-    for (int t = 0; t < 8; ++t) e[std::size_t(q)] = std::min(e[std::size_t(q)], half_error(px, h, base, t, e[std::size_t(q)]));
+    for (int t = 0; t < 8; ++t)
+      e[std::size_t(q)] = std::min(e[std::size_t(q)], half_error(px, h, base, t, e[std::size_t(q)]));
   }
   return e;
 }
@@ -120,7 +122,8 @@ std::vector<long> within_delta(std::vector<long> e) {
     for (int q = 0; q < 32768; ++q) {
       const int v = q >> shift & 31, rest = q & ~(31 << shift);
       long m = kHuge;
-      for (int w = std::max(0, v - 4); w <= std::min(31, v + 3); ++w) m = std::min(m, e[std::size_t(rest | w << shift)]);
+      for (int w = std::max(0, v - 4); w <= std::min(31, v + 3); ++w)
+        m = std::min(m, e[std::size_t(rest | w << shift)]);
       next[std::size_t(q)] = m;
     }
     e.swap(next);
@@ -155,7 +158,8 @@ int expand(int channel, int v) { return channel == 1 ? (v << 2 | v >> 4) : (v <<
 long box_bound(const int px[16][3], const EndpointBox& b, bool four, bool black) {
   int lo[4][3], hi[4][3];
   for (int c = 0; c < 3; ++c) {
-    const int l0 = expand(c, b.lo[c]), h0 = expand(c, b.hi[c]), l1 = expand(c, b.lo[3 + c]), h1 = expand(c, b.hi[3 + c]);
+    const int l0 = expand(c, b.lo[c]), h0 = expand(c, b.hi[c]), l1 = expand(c, b.lo[3 + c]),
+              h1 = expand(c, b.hi[3 + c]);
     lo[0][c] = l0, hi[0][c] = h0, lo[1][c] = l1, hi[1][c] = h1;
     if (four) {
       lo[2][c] = (2 * l0 + l1 + 1) / 3, hi[2][c] = (2 * h0 + h1 + 1) / 3;
@@ -258,7 +262,8 @@ void bc1_bounds(int stride, const std::vector<Image>& textures) {
     tbb::parallel_for(std::size_t(0), ids.size(), [&](std::size_t j) {
       int px[16][3];
       for (int i = 0; i < 16; ++i)
-        for (int c = 0; c < 3; ++c) px[i][c] = img.row<std::uint8_t>(ids[j] / bw * 4 + i / 4)[4 * (ids[j] % bw * 4 + i % 4) + c];
+        for (int c = 0; c < 3; ++c)
+          px[i][c] = img.row<std::uint8_t>(ids[j] / bw * 4 + i / 4)[4 * (ids[j] % bw * 4 + i % 4) + c];
       err[7][j] = best_bc1(px, err[6][j] + 1, false);
       err[8][j] = best_bc1(px, err[7][j] + 1, true);
     });
@@ -275,10 +280,11 @@ void bc1_bounds(int stride, const std::vector<Image>& textures) {
   const double n = double(textures.size());
   std::printf("%-7s", "mean");
   for (double v : sum) std::printf(" %9.3f", v / n);
-  std::printf("\nagainst iterative cluster fit: high %+.3f, max %+.3f, optimum %+.3f, with black %+.3f dB; "
-              "against cluster fit: normal %+.3f, optimum %+.3f dB\n\n",
-              (sum[5] - sum[2]) / n, (sum[6] - sum[2]) / n, (sum[7] - sum[2]) / n, (sum[8] - sum[2]) / n, (sum[4] - sum[1]) / n,
-              (sum[7] - sum[1]) / n);
+  std::printf(
+      "\nagainst iterative cluster fit: high %+.3f, max %+.3f, optimum %+.3f, with black %+.3f dB; "
+      "against cluster fit: normal %+.3f, optimum %+.3f dB\n\n",
+      (sum[5] - sum[2]) / n, (sum[6] - sum[2]) / n, (sum[7] - sum[2]) / n, (sum[8] - sum[2]) / n, (sum[4] - sum[1]) / n,
+      (sum[7] - sum[1]) / n);
 }
 
 void etc1_bounds(int stride) {
@@ -294,14 +300,16 @@ void etc1_bounds(int stride) {
     tbb::parallel_for(std::size_t(0), ids.size(), [&](std::size_t j) {
       int px[16][3];
       for (int i = 0; i < 16; ++i)
-        for (int c = 0; c < 3; ++c) px[i][c] = img.row<std::uint8_t>(ids[j] / bw * 4 + i / 4)[4 * (ids[j] % bw * 4 + i % 4) + c];
+        for (int c = 0; c < 3; ++c)
+          px[i][c] = img.row<std::uint8_t>(ids[j] / bw * 4 + i / 4)[4 * (ids[j] % bw * 4 + i % 4) + c];
       best[j] = best_etc1(px);
     });
     const double n = 48.0 * double(ids.size());
     auto psnr = [&](double se) { return 10 * std::log10(255.0 * 255.0 / (se / n)); };
     auto of = [&](const std::vector<std::uint8_t>& blocks) {
       double se = 0;
-      for (long e : block_errors(img, decompress_image(blocks, img.width(), img.height(), TexelFormat::etc1_rgb, PixelType::u8), ids))
+      for (long e : block_errors(
+               img, decompress_image(blocks, img.width(), img.height(), TexelFormat::etc1_rgb, PixelType::u8), ids))
         se += double(e);
       return psnr(se);
     };
@@ -314,7 +322,8 @@ void etc1_bounds(int stride) {
     for (int k = 0; k < 5; ++k) sum[k] += p[k];
   }
   const double n = double(bench::color_textures().size());
-  std::printf("%-8s %9.3f %9.3f %9.3f %9.3f %9.3f\n", "mean", sum[0] / n, sum[1] / n, sum[2] / n, sum[3] / n, sum[4] / n);
+  std::printf("%-8s %9.3f %9.3f %9.3f %9.3f %9.3f\n", "mean", sum[0] / n, sum[1] / n, sum[2] / n, sum[3] / n,
+              sum[4] / n);
   std::printf("against libetc1: fast %+.3f, normal %+.3f, high %+.3f, optimum %+.3f dB\n\n", (sum[1] - sum[0]) / n,
               (sum[2] - sum[0]) / n, (sum[3] - sum[0]) / n, (sum[4] - sum[0]) / n);
 }
@@ -354,13 +363,13 @@ void eac_bounds(int stride) {
     int channel;
   };
   std::vector<Job> jobs;
-  for (const char* f : {"height/povray_mount1_250.png", "height/irrlicht_terrain_heightmap_256.bmp", "height/scorched3d_denali_256.bmp",
-                        "height/stellarium_stein_mauerwerk_height_256.png", "height/mpl_jacksboro_fault_dem_403x344_u16.png",
-                        "height/trigger_swiss_h_1024.png"})
+  for (const char* f : {"height/povray_mount1_250.png", "height/irrlicht_terrain_heightmap_256.bmp",
+                        "height/scorched3d_denali_256.bmp", "height/stellarium_stein_mauerwerk_height_256.png",
+                        "height/mpl_jacksboro_fault_dem_403x344_u16.png", "height/trigger_swiss_h_1024.png"})
     jobs.push_back({f, 0});
   for (const char* f : {"normal_ts/qt3d_copper_brushed_normal.png", "normal_ts/qt3d_water_normal_512.jpg",
-                        "normal_ts/ufoai_door061_nm_alphaheight_512x602.png", "normal_ts/stellarium_stein_mauerwerk_bump_256.png",
-                        "normal_ts/qt3d_moonnormal_1638x819.jpg"})
+                        "normal_ts/ufoai_door061_nm_alphaheight_512x602.png",
+                        "normal_ts/stellarium_stein_mauerwerk_bump_256.png", "normal_ts/qt3d_moonnormal_1638x819.jpg"})
     for (int c = 0; c < 2; ++c) jobs.push_back({f, c});
   for (const Job& job : jobs) {
     const Image src = read_image(std::string(TEXPROC_CORPUS_DIR) + "/" + job.file);
@@ -391,8 +400,8 @@ void eac_bounds(int stride) {
     double se = 0;
     for (double e : best) se += e;
     const std::string name = job.file + (job.file.rfind("normal_ts", 0) == 0 ? (job.channel ? " (Y)" : " (X)") : "");
-    std::printf("%-56s %9.3f %9.3f %9.3f %9.3f\n", name.c_str(), of(TexelFormat::eac_r11_unorm, Quality::high), psnr(se),
-                of(TexelFormat::bc4_unorm, Quality::normal), of(TexelFormat::bc4_unorm, Quality::high));
+    std::printf("%-56s %9.3f %9.3f %9.3f %9.3f\n", name.c_str(), of(TexelFormat::eac_r11_unorm, Quality::high),
+                psnr(se), of(TexelFormat::bc4_unorm, Quality::normal), of(TexelFormat::bc4_unorm, Quality::high));
   }
 }
 
@@ -416,8 +425,9 @@ int main(int argc, char** argv) {
   const int bc1_stride = argc > 1 ? std::atoi(argv[1]) : 32, etc1_stride = argc > 2 ? std::atoi(argv[2]) : 64,
             eac_stride = argc > 3 ? std::atoi(argv[3]) : 4;
   if (bc1_stride < 1 || etc1_stride < 1 || eac_stride < 1) {
-    std::fprintf(stderr, "usage: format_bounds [BC1_STRIDE [ETC1_STRIDE [EAC_STRIDE]]] (positive block strides)\n"
-                         "       format_bounds --bc1-corpus [STRIDE] (BC1 alone, on every corpus albedo and photo)\n");
+    std::fprintf(stderr,
+                 "usage: format_bounds [BC1_STRIDE [ETC1_STRIDE [EAC_STRIDE]]] (positive block strides)\n"
+                 "       format_bounds --bc1-corpus [STRIDE] (BC1 alone, on every corpus albedo and photo)\n");
     return 2;
   }
   bc1_bounds(bc1_stride, bench::color_textures());

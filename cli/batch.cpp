@@ -35,12 +35,10 @@ std::vector<FileReport>& session_reports() {
   return r;
 }
 
-void add_batch_inputs(CLI::App& cmd, BatchInputs& b, const char* what, const char* output_help,
-                      bool output_required) {
+void add_batch_inputs(CLI::App& cmd, BatchInputs& b, const char* what, const char* output_help, bool output_required) {
   cmd.add_option("inputs", b.inputs, std::string(what) + ": files, or folders (their files; with -r, recursively)");
   cmd.add_option("-o,--output", b.output, output_help)->required(output_required);
-  cmd.add_flag("-r,--recursive", b.recursive, "Folder inputs: take the files of their subfolders too")
-      ->group("Batch");
+  cmd.add_flag("-r,--recursive", b.recursive, "Folder inputs: take the files of their subfolders too")->group("Batch");
   cmd.add_option("--file-list", b.file_list, "Read more inputs from FILE, one a line ('#' starts a comment)")
       ->group("Batch");
 }
@@ -71,11 +69,16 @@ std::string expand_template(const std::string& pattern, const InputFile& in) {
       throw Error(ErrorCode::bad_arguments, "-o '" + pattern + "': '{' without '}' (write {{ for a literal brace)");
     }
     const std::string key = pattern.substr(i + 1, close - i - 1);
-    if (key == "stem") out += p.stem().string();
-    else if (key == "name") out += p.filename().string();
-    else if (key == "ext") out += ext;
-    else if (key == "dir") out += dir;
-    else if (key == "reldir") out += reldir;
+    if (key == "stem")
+      out += p.stem().string();
+    else if (key == "name")
+      out += p.filename().string();
+    else if (key == "ext")
+      out += ext;
+    else if (key == "dir")
+      out += dir;
+    else if (key == "reldir")
+      out += reldir;
     else {
       throw Error(ErrorCode::bad_arguments, "-o '" + pattern + "': unknown placeholder {" + key +
                                                 "} (valid: {stem}, {name}, {ext}, {dir}, {reldir})");
@@ -134,16 +137,18 @@ void add_folder(const std::string& folder, bool recursive, const std::vector<std
 // The output for each input: -o names one file (one input only), a folder
 // (-o DIR/, an existing folder, or several inputs and no extension), or a
 // template.
-std::vector<std::string> name_outputs(const BatchCommand& c, const BatchInputs& b, const std::vector<InputFile>& files) {
+std::vector<std::string> name_outputs(const BatchCommand& c, const BatchInputs& b,
+                                      const std::vector<InputFile>& files) {
   std::vector<std::string> outs;
   std::error_code ec;
   const std::string& o = b.output;
   const bool folder = !is_template(o) && (o.back() == '/' || fs::is_directory(o, ec) ||
-                                           (files.size() > 1 && fs::path(o).extension().empty()));
+                                          (files.size() > 1 && fs::path(o).extension().empty()));
   if (!is_template(o) && !folder && files.size() > 1) {
-    throw Error(ErrorCode::bad_arguments, "-o " + o + " names one file, but there are " +
-                                              std::to_string(files.size()) + " inputs; use -o DIR/ or a template "
-                                              "such as -o 'out/{stem}" + c.default_extension + "'");
+    throw Error(ErrorCode::bad_arguments, "-o " + o + " names one file, but there are " + std::to_string(files.size()) +
+                                              " inputs; use -o DIR/ or a template "
+                                              "such as -o 'out/{stem}" +
+                                              c.default_extension + "'");
   }
   for (const auto& f : files) {
     if (is_template(o)) {
@@ -151,9 +156,7 @@ std::vector<std::string> name_outputs(const BatchCommand& c, const BatchInputs& 
     } else if (folder) {
       // The folder mirrors the inputs' subfolders under a folder argument.
       const std::string ext = c.default_extension.empty() ? fs::path(f.path).extension().string() : c.default_extension;
-      outs.push_back((fs::path(o) / f.reldir / (fs::path(f.path).stem().string() + ext))
-                         .lexically_normal()
-                         .string());
+      outs.push_back((fs::path(o) / f.reldir / (fs::path(f.path).stem().string() + ext)).lexically_normal().string());
     } else {
       outs.push_back(o);
     }
@@ -202,7 +205,8 @@ namespace {
 // Every file planned (names, existence, overwrites) before any work; a
 // file that cannot be planned is failed with its reason.
 std::vector<FileReport> plan_files(const BatchCommand& c, const std::vector<InputFile>& files,
-                                   const std::vector<std::string>& outputs, const std::vector<std::string>& shared_inputs) {
+                                   const std::vector<std::string>& outputs,
+                                   const std::vector<std::string>& shared_inputs) {
   std::vector<FileReport> reports(files.size());
   std::error_code ec;
   for (std::size_t i = 0; i < files.size(); ++i) {
@@ -292,8 +296,10 @@ bool up_to_date(const FileReport& r, const SessionOptions& s) {
   deps.insert(deps.end(), s.run_inputs.begin(), s.run_inputs.end());
   for (const std::string& in : deps) {
     const auto t = fs::last_write_time(in, ec);
-    if (ec) inputs_known = false;
-    else newest_input = std::max(newest_input, t);
+    if (ec)
+      inputs_known = false;
+    else
+      newest_input = std::max(newest_input, t);
   }
   return inputs_known && !r.outputs.empty() &&
          std::all_of(r.outputs.begin(), r.outputs.end(), [&](const std::string& f) {
@@ -315,7 +321,8 @@ std::string rebuilt_input(const FileReport& r, const SessionOptions& s) {
 
 // The files to run: not failed, not skipped (--incremental, --skip-existing),
 // their outputs free to write.
-std::vector<std::size_t> select_work(std::vector<FileReport>& reports, const SessionOptions& s, const CommonOptions& common) {
+std::vector<std::size_t> select_work(std::vector<FileReport>& reports, const SessionOptions& s,
+                                     const CommonOptions& common) {
   std::error_code ec;
   std::vector<std::size_t> todo;
   for (std::size_t i = 0; i < reports.size(); ++i) {
@@ -338,8 +345,8 @@ std::vector<std::size_t> select_work(std::vector<FileReport>& reports, const Ses
         continue;
       }
     }
-    if (s.skip_existing && std::all_of(r.outputs.begin(), r.outputs.end(),
-                                       [&](const std::string& f) { return fs::exists(f, ec); })) {
+    if (s.skip_existing &&
+        std::all_of(r.outputs.begin(), r.outputs.end(), [&](const std::string& f) { return fs::exists(f, ec); })) {
       r.status = "skipped";
       continue;
     }
@@ -348,8 +355,9 @@ std::vector<std::size_t> select_work(std::vector<FileReport>& reports, const Ses
         // An incremental build replaces only what it made itself.
         const bool replace = common.force || (s.incremental && s.owned_outputs.count(output_key(out)));
         if (s.incremental && !replace && fs::exists(out, ec)) {
-          throw Error(ErrorCode::bad_arguments, out + ": output exists and was not written by this recipe; --force "
-                                                     "replaces it");
+          throw Error(ErrorCode::bad_arguments, out +
+                                                    ": output exists and was not written by this recipe; --force "
+                                                    "replaces it");
         }
         check_output(out, {r.input}, replace);
       }
@@ -485,7 +493,7 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
   // Without --force (or --write-if-changed), an output that appears between
   // the check below and the end of the work is not replaced either: the
   // final rename refuses it atomically (two processes, one output).
-  const CommitPolicy policy = write_if_changed()             ? CommitPolicy::keep_identical
+  const CommitPolicy policy = write_if_changed()              ? CommitPolicy::keep_identical
                               : common.force || s.incremental ? CommitPolicy::replace
                                                               : CommitPolicy::no_replace;
   std::vector<FileReport> reports = plan_files(c, files, outputs, shared_inputs);

@@ -62,8 +62,8 @@ struct FileReport {
   std::string status = "ok";         // ok, failed, skipped (--skip-existing), not_run (--fail-fast)
   std::string error;                 // the message, when failed
   ErrorCode code = ErrorCode::success;
-  std::string line;                  // the human summary ("a.png -> a.dds: ..."), printed unless --quiet
-  std::vector<std::string> warnings;  // "FILE: what", printed on stderr unless --quiet, in --json too
+  std::string line;                        // the human summary ("a.png -> a.dds: ..."), printed unless --quiet
+  std::vector<std::string> warnings;       // "FILE: what", printed on stderr unless --quiet, in --json too
   Json::Value details{Json::objectValue};  // format, sizes, levels, quality figures (--report)
   double seconds = 0;
   // Wall time of the file's phases in milliseconds, set by the command
@@ -101,8 +101,8 @@ class PhaseTimer {
 
 // A command that maps each input file to output files.
 struct BatchCommand {
-  std::string name;               // "mip"
-  std::string default_extension;  // for -o DIR: ".dds"
+  std::string name;                           // "mip"
+  std::string default_extension;              // for -o DIR: ".dds"
   std::vector<std::string> input_extensions;  // files picked from folders (lower case, with the dot)
   // Once, before any file: checks the options; throws Error (the whole run fails).
   std::function<void()> validate;

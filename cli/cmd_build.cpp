@@ -41,11 +41,33 @@ struct BuildArgs {
 // Options that belong to the run, not to a job: given on the build command
 // line, they apply to every job.
 bool run_level_option(const std::string& key) {
-  static const char* keys[] = {"threads", "jobs",     "j",         "force",         "f",           "quiet",
-                               "q",       "verbose",  "v",         "depfile",       "dry-run",     "n",
-                               "json",    "progress", "fail-fast", "skip-existing", "write-if-changed",
-                               "output",  "o",        "recursive", "r",             "file-list",   "help",
-                               "h",       "shard",    "timings",   "ocio-config"};
+  static const char* keys[] = {"threads",
+                               "jobs",
+                               "j",
+                               "force",
+                               "f",
+                               "quiet",
+                               "q",
+                               "verbose",
+                               "v",
+                               "depfile",
+                               "dry-run",
+                               "n",
+                               "json",
+                               "progress",
+                               "fail-fast",
+                               "skip-existing",
+                               "write-if-changed",
+                               "output",
+                               "o",
+                               "recursive",
+                               "r",
+                               "file-list",
+                               "help",
+                               "h",
+                               "shard",
+                               "timings",
+                               "ocio-config"};
   return std::any_of(std::begin(keys), std::end(keys), [&](const char* k) { return key == k; });
 }
 
@@ -104,8 +126,8 @@ struct PreparedJob {
 };
 
 const std::vector<std::string>& command_names() {
-  static const std::vector<std::string> valid = {"mip",     "compress",   "normalmap", "conemap",
-                                                 "sat",     "sat blur",   "decompress", "cubemap"};
+  static const std::vector<std::string> valid = {"mip", "compress", "normalmap",  "conemap",
+                                                 "sat", "sat blur", "decompress", "cubemap"};
   return valid;
 }
 
@@ -148,8 +170,8 @@ PreparedJob prepare(const Recipe& r, const Unit& u, const std::vector<std::strin
     throw Error(ErrorCode::bad_arguments, where(r, j, j.command_line) + ": command: unknown command '" + j.command +
                                               "' (valid: " + join(valid) + ")");
   }
-  p.command = j.command == "sat blur" ? p.app->get_subcommand("sat")->get_subcommand("blur")
-                                      : p.app->get_subcommand(j.command);
+  p.command =
+      j.command == "sat blur" ? p.app->get_subcommand("sat")->get_subcommand("blur") : p.app->get_subcommand(j.command);
   std::vector<std::string> args = command_words(j);
   args.insert(args.end(), inputs.begin(), inputs.end());
   args.insert(args.end(), {"-o", j.output});
@@ -225,7 +247,7 @@ struct JobPlan {
   std::vector<std::string> inputs;  // the job's inputs as arguments, globs expanded
   std::vector<const InputSpec*> unmatched;
   std::vector<std::vector<SessionOptions::PlannedFile>> units;  // per unit
-  std::set<std::string> outputs;  // absolute
+  std::set<std::string> outputs;                                // absolute
 };
 
 struct Plan {
@@ -315,9 +337,10 @@ Plan plan_recipe(const Recipe& r, const CommonOptions& common) {
     for (std::size_t b = 0; b < n; ++b) {
       if (!reads_from(r.jobs[a], plan.jobs[a], plan.jobs[b])) continue;
       if (a == b) {
-        throw Error(ErrorCode::bad_arguments,
-                    where(r, r.jobs[a], r.jobs[a].output_line) +
-                        ": reads its own outputs (its inputs match what it writes): write them elsewhere or exclude them");
+        throw Error(
+            ErrorCode::bad_arguments,
+            where(r, r.jobs[a], r.jobs[a].output_line) +
+                ": reads its own outputs (its inputs match what it writes): write them elsewhere or exclude them");
       }
       reads[a].push_back(b);
     }
@@ -404,9 +427,8 @@ std::string action_path(const fs::path& base, const std::string& p) {
 
 // --emit-actions: one action a file, in the order the build runs them.
 Json::Value emit_actions(const Recipe& r, const Plan& plan, const std::vector<std::string>& only) {
-  const fs::path base = fs::path(absolute_path(fs::path(r.path).parent_path().string().empty()
-                                                   ? "."
-                                                   : fs::path(r.path).parent_path().string()));
+  const fs::path base = fs::path(
+      absolute_path(fs::path(r.path).parent_path().string().empty() ? "." : fs::path(r.path).parent_path().string()));
   const std::string ocio = session_options().ocio_config;
   Json::Value actions(Json::arrayValue);
   for (std::size_t j : plan.order) {

@@ -124,9 +124,9 @@ int run_compare(const CompareArgs& a) {
   const ConstImageView& ia = la.shape;
   const ConstImageView& ib = lb.shape;
   if (ia.width != ib.width || ia.height != ib.height) {
-    throw Error(ErrorCode::bad_arguments, a.a + " is " + std::to_string(ia.width) + "x" +
-                                              std::to_string(ia.height) + ", " + a.b + " is " +
-                                              std::to_string(ib.width) + "x" + std::to_string(ib.height) +
+    throw Error(ErrorCode::bad_arguments, a.a + " is " + std::to_string(ia.width) + "x" + std::to_string(ia.height) +
+                                              ", " + a.b + " is " + std::to_string(ib.width) + "x" +
+                                              std::to_string(ib.height) +
                                               ": images of different sizes cannot be compared");
   }
   // The log2 RMSE is computed for float images only: a limit on two 8/16-bit
@@ -153,7 +153,8 @@ int run_compare(const CompareArgs& a) {
   // NaN and infinities are differences whatever the limits: the figures
   // describe the finite texels only.
   if (d.nonfinite_texels > 0) failed.push_back(std::to_string(d.nonfinite_texels) + " texels hold NaN or infinity");
-  if (a.min_psnr >= 0 && below(d.psnr(), a.min_psnr)) failed.push_back("PSNR " + db(d.psnr()) + " dB < " + db(a.min_psnr));
+  if (a.min_psnr >= 0 && below(d.psnr(), a.min_psnr))
+    failed.push_back("PSNR " + db(d.psnr()) + " dB < " + db(a.min_psnr));
   if (a.max_error >= 0 && above(d.max_abs, a.max_error)) {
     failed.push_back("max error " + number(d.max_abs) + " > " + number(a.max_error));
   }
@@ -231,14 +232,18 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("a", args->a, "First image or texture")->required();
   cmd->add_option("b", args->b, "Second image or texture")->required();
   cmd->add_option("--level", args->level, "Mip level of textures to compare (default 0)")->check(in_range(0, 31));
-  cmd->add_option("--min-psnr", args->min_psnr, "Exit 7 when the PSNR (all channels) is below this, in dB")->check(in_range(0, 1000));
-  cmd->add_option("--max-error", args->max_error, "Exit 7 when any value differs by more than this (0..1; 1/255 = 0.0039)")->check(in_range(0, 3.4e38));
+  cmd->add_option("--min-psnr", args->min_psnr, "Exit 7 when the PSNR (all channels) is below this, in dB")
+      ->check(in_range(0, 1000));
+  cmd->add_option("--max-error", args->max_error,
+                  "Exit 7 when any value differs by more than this (0..1; 1/255 = 0.0039)")
+      ->check(in_range(0, 3.4e38));
   cmd->add_option("--max-log-rmse", args->max_log_rmse,
-                  "Exit 7 when the log2 RMSE over RGB (the HDR metric, float images) is above this")->check(in_range(0, 1000));
-  cmd->add_option("--min-ssim", args->min_ssim, "Exit 7 when the mean SSIM is below this (0..1)")->check(in_range(-1, 1));
+                  "Exit 7 when the log2 RMSE over RGB (the HDR metric, float images) is above this")
+      ->check(in_range(0, 1000));
+  cmd->add_option("--min-ssim", args->min_ssim, "Exit 7 when the mean SSIM is below this (0..1)")
+      ->check(in_range(-1, 1));
   cmd->add_flag("--ssim", args->ssim, "Also compute SSIM (11x11 Gaussian window)");
-  cmd->add_option("--threads", args->common.threads, "Worker threads (default 0: all cores)")
-      ->check(in_range(0, 4096));
+  cmd->add_option("--threads", args->common.threads, "Worker threads (default 0: all cores)")->check(in_range(0, 4096));
   cmd->add_flag("-q,--quiet", args->common.quiet, "Print nothing; the exit code tells");
   cmd->add_flag("--json", args->json, "Print the figures as one JSON object");
   set_runner(*cmd, [args] { return run_compare(*args); });

@@ -38,7 +38,7 @@ struct CompressArgs {
   float astc_effort = -1.0f;  // astc-encoder's numeric quality, in place of --quality's preset
   std::string transparent_color = "keep";
   bool mips = false, normal_map = false, linear = false, srgb = false, report = false, bc1_black = false;
-  bool clip = false;  // float input outside [0, 1] to an LDR format: meant, no warning
+  bool clip = false;             // float input outside [0, 1] to an LDR format: meant, no warning
   float alpha_coverage = -1.0f;  // with --mips: the alpha reference whose coverage each level keeps
   bool no_premultiply = false;   // with --mips: alpha is data, not coverage
   // From the options, once (validate):
@@ -64,25 +64,32 @@ std::optional<TexelFormat> explicit_format(const std::string& f) {
 TexelFormat format_for(const std::string& f, bool srgb) {
   if (const auto t = explicit_format(f)) return *t;
   using F = TexelFormat;
-  static const std::map<std::string, std::pair<F, F>> k = {
-      {"bc1", {F::bc1_rgb_unorm, F::bc1_rgb_srgb}},   {"bc1a", {F::bc1_rgba_unorm, F::bc1_rgba_srgb}},
-      {"bc2", {F::bc2_unorm, F::bc2_srgb}},           {"bc3", {F::bc3_unorm, F::bc3_srgb}},
-      {"bc4", {F::bc4_unorm, F::bc4_unorm}},          {"bc4s", {F::bc4_snorm, F::bc4_snorm}},
-      {"bc5", {F::bc5_unorm, F::bc5_unorm}},          {"bc5s", {F::bc5_snorm, F::bc5_snorm}},
-      {"bc7", {F::bc7_unorm, F::bc7_srgb}},
-      {"bc6h", {F::bc6h_ufloat, F::bc6h_ufloat}},     {"bc6hs", {F::bc6h_sfloat, F::bc6h_sfloat}},
-      {"etc1", {F::etc1_rgb, F::etc1_rgb}},           {"etc2", {F::etc2_rgb_unorm, F::etc2_rgb_srgb}},
-      {"etc2a1", {F::etc2_rgba1_unorm, F::etc2_rgba1_srgb}},
-      {"etc2a", {F::etc2_rgba8_unorm, F::etc2_rgba8_srgb}},
-      {"eac-r11", {F::eac_r11_unorm, F::eac_r11_unorm}}, {"eac-r11s", {F::eac_r11_snorm, F::eac_r11_snorm}},
-      {"eac-rg11", {F::eac_rg11_unorm, F::eac_rg11_unorm}},
-      {"eac-rg11s", {F::eac_rg11_snorm, F::eac_rg11_snorm}}};
+  static const std::map<std::string, std::pair<F, F>> k = {{"bc1", {F::bc1_rgb_unorm, F::bc1_rgb_srgb}},
+                                                           {"bc1a", {F::bc1_rgba_unorm, F::bc1_rgba_srgb}},
+                                                           {"bc2", {F::bc2_unorm, F::bc2_srgb}},
+                                                           {"bc3", {F::bc3_unorm, F::bc3_srgb}},
+                                                           {"bc4", {F::bc4_unorm, F::bc4_unorm}},
+                                                           {"bc4s", {F::bc4_snorm, F::bc4_snorm}},
+                                                           {"bc5", {F::bc5_unorm, F::bc5_unorm}},
+                                                           {"bc5s", {F::bc5_snorm, F::bc5_snorm}},
+                                                           {"bc7", {F::bc7_unorm, F::bc7_srgb}},
+                                                           {"bc6h", {F::bc6h_ufloat, F::bc6h_ufloat}},
+                                                           {"bc6hs", {F::bc6h_sfloat, F::bc6h_sfloat}},
+                                                           {"etc1", {F::etc1_rgb, F::etc1_rgb}},
+                                                           {"etc2", {F::etc2_rgb_unorm, F::etc2_rgb_srgb}},
+                                                           {"etc2a1", {F::etc2_rgba1_unorm, F::etc2_rgba1_srgb}},
+                                                           {"etc2a", {F::etc2_rgba8_unorm, F::etc2_rgba8_srgb}},
+                                                           {"eac-r11", {F::eac_r11_unorm, F::eac_r11_unorm}},
+                                                           {"eac-r11s", {F::eac_r11_snorm, F::eac_r11_snorm}},
+                                                           {"eac-rg11", {F::eac_rg11_unorm, F::eac_rg11_unorm}},
+                                                           {"eac-rg11s", {F::eac_rg11_snorm, F::eac_rg11_snorm}}};
   // The names other tools use (texconv, nvcompress, Compressonator), in any case.
   static const std::map<std::string, std::string> aliases = {
-      {"dxt1", "bc1"}, {"dxt1a", "bc1a"}, {"dxt3", "bc2"}, {"dxt5", "bc3"}, {"ati1", "bc4"}, {"bc4u", "bc4"},
-      {"ati2", "bc5"}, {"bc5u", "bc5"}, {"3dc", "bc5"}, {"bc7u", "bc7"}, {"bc6hu", "bc6h"},
-      {"bc6h_uf16", "bc6h"}, {"bc6h-uf16", "bc6h"}, {"bc6h_sf16", "bc6hs"}, {"bc6h-sf16", "bc6hs"}, {"bc6h_sf", "bc6hs"}, {"etc2a8", "etc2a"}, {"etc2-rgba", "etc2a"},
-      {"r11", "eac-r11"}, {"rg11", "eac-rg11"}};
+      {"dxt1", "bc1"},       {"dxt1a", "bc1a"},      {"dxt3", "bc2"},        {"dxt5", "bc3"},
+      {"ati1", "bc4"},       {"bc4u", "bc4"},        {"ati2", "bc5"},        {"bc5u", "bc5"},
+      {"3dc", "bc5"},        {"bc7u", "bc7"},        {"bc6hu", "bc6h"},      {"bc6h_uf16", "bc6h"},
+      {"bc6h-uf16", "bc6h"}, {"bc6h_sf16", "bc6hs"}, {"bc6h-sf16", "bc6hs"}, {"bc6h_sf", "bc6hs"},
+      {"etc2a8", "etc2a"},   {"etc2-rgba", "etc2a"}, {"r11", "eac-r11"},     {"rg11", "eac-rg11"}};
   std::string name = f;
   for (auto& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (auto al = aliases.find(name); al != aliases.end()) name = al->second;
@@ -109,12 +116,13 @@ TexelFormat format_for(const std::string& f, bool srgb) {
       }
     }
   }
-  throw Error(ErrorCode::bad_arguments, "unknown --format '" + f +
-                                            "' (valid: bc1, bc1a, bc2, bc3, bc4, bc4s, bc5, bc5s, bc7, bc6h, bc6hs, etc1, etc2, etc2a1, "
-                                            "etc2a, eac-r11, eac-r11s, eac-rg11, eac-rg11s, astc-WxH and astc-WxH-hdr "
-                                            "for the footprints 4x4, 5x4, 5x5, 6x5, 6x6, 8x5, 8x6, 8x8, 10x5, 10x6, "
-                                            "10x8, 10x10, 12x10, 12x12; or a full name as info prints it, DXGI's or "
-                                            "Vulkan's: bc7_srgb, BC7_UNORM_SRGB, VK_FORMAT_BC7_SRGB_BLOCK)");
+  throw Error(ErrorCode::bad_arguments,
+              "unknown --format '" + f +
+                  "' (valid: bc1, bc1a, bc2, bc3, bc4, bc4s, bc5, bc5s, bc7, bc6h, bc6hs, etc1, etc2, etc2a1, "
+                  "etc2a, eac-r11, eac-r11s, eac-rg11, eac-rg11s, astc-WxH and astc-WxH-hdr "
+                  "for the footprints 4x4, 5x4, 5x5, 6x5, 6x6, 8x5, 8x6, 8x8, 10x5, 10x6, "
+                  "10x8, 10x10, 12x10, 12x12; or a full name as info prints it, DXGI's or "
+                  "Vulkan's: bc7_srgb, BC7_UNORM_SRGB, VK_FORMAT_BC7_SRGB_BLOCK)");
 }
 
 // A DXT name asks for what DX9-era tools read; sRGB colour in DDS needs the
@@ -128,7 +136,8 @@ void warn_if_dx10_for_dxt(const CompressArgs& a, TexelFormat format, const std::
   if (fs::path(output).extension() != ".dds") return;
   warnings.push_back(output + ": --format " + a.format + " on sRGB colour writes " + format_info(format).name +
                      ", which needs a DX10 header that DX9-era readers (NVTT 2) cannot read; --linear writes a "
-                     "legacy DXT" + f.substr(3, 1) + " header (UNORM)");
+                     "legacy DXT" +
+                     f.substr(3, 1) + " header (UNORM)");
 }
 
 void validate(CompressArgs& a) {
@@ -146,17 +155,17 @@ void validate(CompressArgs& a) {
     throw Error(ErrorCode::bad_arguments, "--srgb: --format " + a.format + " is HDR (linear floats); drop --srgb");
   }
   if (a.srgb && !format_info(format_for(a.format, true)).srgb) {
-    throw Error(ErrorCode::bad_arguments, "--srgb: --format " + a.format +
-                                              " has no sRGB variant (it holds data); drop --srgb");
+    throw Error(ErrorCode::bad_arguments,
+                "--srgb: --format " + a.format + " has no sRGB variant (it holds data); drop --srgb");
   }
   // Options of the mip chain mean nothing without one.
   if (!a.mips) {
     const ChainArgs defaults;
-    const char* given = a.chain.levels != defaults.levels         ? "--levels"
-                        : a.chain.min_size != defaults.min_size   ? "--min-size"
-                        : a.chain.filter != defaults.filter       ? "--filter"
-                        : a.chain.sigma != defaults.sigma         ? "--sigma"
-                                                                  : nullptr;
+    const char* given = a.chain.levels != defaults.levels       ? "--levels"
+                        : a.chain.min_size != defaults.min_size ? "--min-size"
+                        : a.chain.filter != defaults.filter     ? "--filter"
+                        : a.chain.sigma != defaults.sigma       ? "--sigma"
+                                                                : nullptr;
     if (given) throw Error(ErrorCode::bad_arguments, std::string(given) + " shapes the mip chain: add --mips");
   }
   const TexelFormat linear_format = format_for(a.format, false);
@@ -165,9 +174,11 @@ void validate(CompressArgs& a) {
   if (a.astc_effort >= 0.0f && a.astc_effort > 100.0f)
     throw Error(ErrorCode::bad_arguments, "--astc-effort " + std::to_string(a.astc_effort) + " is not in [0, 100]");
   if (a.normal_map && format_info(linear_format).is_float)
-    throw Error(ErrorCode::bad_arguments, "--normal-map: a normal map is LDR data; use astc-WxH, not '" + a.format + "'");
+    throw Error(ErrorCode::bad_arguments,
+                "--normal-map: a normal map is LDR data; use astc-WxH, not '" + a.format + "'");
   if (a.bc1_black && linear_format != TexelFormat::bc1_rgb_unorm)
-    throw Error(ErrorCode::bad_arguments, "--bc1-black applies to --format bc1 only (opaque BC1), not '" + a.format + "'");
+    throw Error(ErrorCode::bad_arguments,
+                "--bc1-black applies to --format bc1 only (opaque BC1), not '" + a.format + "'");
   a.mip.filter.kind = parse_filter_kind(a.chain.filter);
   a.mip.filter.sigma = a.chain.sigma;
   a.mip.wrap = parse_wrap_mode(a.wrap);
@@ -179,13 +190,15 @@ void validate(CompressArgs& a) {
   if (a.alpha_coverage >= 0.0f && !(a.alpha_coverage > 0.0f && a.alpha_coverage <= 1.0f))
     throw Error(ErrorCode::bad_arguments, "--alpha-coverage " + std::to_string(a.alpha_coverage) + " is not in (0, 1]");
   if (a.alpha_coverage >= 0.0f) a.mip.alpha_coverage_ref = a.alpha_coverage;
-  if (a.no_premultiply && !a.mips) throw Error(ErrorCode::bad_arguments, "--no-premultiply applies to the mip chain: add --mips");
+  if (a.no_premultiply && !a.mips)
+    throw Error(ErrorCode::bad_arguments, "--no-premultiply applies to the mip chain: add --mips");
   a.mip.premultiplied_alpha = !a.no_premultiply;
 }
 
 // LDR formats hold [0, 1]: float input outside it is clipped, which an HDR
 // source rarely means. One warning per file, with the range and the way out.
-void warn_if_clipped(const std::string& input, const ImageArray& in, TexelFormat format, std::vector<std::string>& warnings) {
+void warn_if_clipped(const std::string& input, const ImageArray& in, TexelFormat format,
+                     std::vector<std::string>& warnings) {
   if (format_info(format).is_float || in.images.empty() || in.images[0].type() != PixelType::f32) return;
   float lo = 0.0f, hi = 1.0f;
   for (const Image& img : in.images) {
@@ -334,32 +347,38 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
 
 void add_compress_command(CLI::App& app) {
   auto args = std::make_shared<CompressArgs>();
-  CLI::App* cmd = app.add_subcommand("compress", "Block-compress images (BC1-BC7, ETC1, ETC2, EAC, ASTC) into DDS, KTX2, KTX1, PKM or .astc.");
+  CLI::App* cmd = app.add_subcommand(
+      "compress", "Block-compress images (BC1-BC7, ETC1, ETC2, EAC, ASTC) into DDS, KTX2, KTX1, PKM or .astc.");
   cmd->footer(
       "BC4 and EAC R11 store one channel, BC5 and EAC RG11 two (the red and green of the input; for a normal\n"
       "map its X and Y, the shader rebuilds Z). SNORM variants map the stored [0, 1] to [-1, 1]. Values are\n"
       "data: no transfer function. BC6H holds HDR RGB as half floats (bc6h: UF16, negatives stored as 0;\n"
-      "bc6hs: SF16); alpha is dropped; 8/16-bit colour is decoded from sRGB first. ETC and EAC go to .ktx2 (the default for -o DIR/), .ktx, or .pkm (ETC1 and\n"
+      "bc6hs: SF16); alpha is dropped; 8/16-bit colour is decoded from sRGB first. ETC and EAC go to .ktx2 (the "
+      "default for -o DIR/), .ktx, or .pkm (ETC1 and\n"
       "ETC2 RGB, one level). ASTC (astc-WxH: LDR, sRGB for colour; astc-WxH-hdr: HDR, linear) is searched by\n"
       "ARM's astc-encoder at the preset --quality names (fast: -fast, normal: -medium, high: -thorough,\n"
       "max: -exhaustive) and goes to .ktx2 (the default), .ktx or .astc (one level). See docs/compression.md.");
-  add_batch_inputs(*cmd, args->io, "Input images",
-                   "Output texture (.dds, .ktx2, .ktx, .pkm, .astc), folder (DIR/: {stem}.dds each; .ktx2 for ETC/EAC/ASTC) or "
-                   "template ('out/{stem}.ktx2')");
+  add_batch_inputs(
+      *cmd, args->io, "Input images",
+      "Output texture (.dds, .ktx2, .ktx, .pkm, .astc), folder (DIR/: {stem}.dds each; .ktx2 for ETC/EAC/ASTC) or "
+      "template ('out/{stem}.ktx2')");
   cmd->add_option("--format", args->format,
-                 "bc1, bc1a (1-bit alpha), bc2, bc3, bc4, bc4s, bc5, bc5s, bc7, bc6h (HDR RGB, UF16), bc6hs (HDR, signed: SF16); etc1, etc2, etc2a1 (punch-through alpha), "
-                 "etc2a (EAC alpha), eac-r11, eac-r11s, eac-rg11, eac-rg11s; astc-4x4, astc-5x4, astc-5x5, astc-6x5, "
-                 "astc-6x6, astc-8x5, astc-8x6, astc-8x8, astc-10x5, astc-10x6, astc-10x8, astc-10x10, astc-12x10, "
-                 "astc-12x12, each also -hdr (astc-6x6-hdr)")
+                  "bc1, bc1a (1-bit alpha), bc2, bc3, bc4, bc4s, bc5, bc5s, bc7, bc6h (HDR RGB, UF16), bc6hs (HDR, "
+                  "signed: SF16); etc1, etc2, etc2a1 (punch-through alpha), "
+                  "etc2a (EAC alpha), eac-r11, eac-r11s, eac-rg11, eac-rg11s; astc-4x4, astc-5x4, astc-5x5, astc-6x5, "
+                  "astc-6x6, astc-8x5, astc-8x6, astc-8x8, astc-10x5, astc-10x6, astc-10x8, astc-10x10, astc-12x10, "
+                  "astc-12x12, each also -hdr (astc-6x6-hdr)")
       ->required();
   cmd->add_flag("--srgb", args->srgb, "BC1-BC3, BC7: write the sRGB format (the default for 8/16-bit colour input)");
   cmd->add_flag("--linear", args->linear, "The input is data: UNORM formats, linear mip filtering");
   cmd->add_option("--quality", args->quality, "fast, normal, high, max (widest search; slow)")->capture_default_str();
-  cmd->add_flag("--clip", args->clip,
-                "Float input to an LDR format: clip values outside [0, 1] without the warning (an HDR format keeps them)");
+  cmd->add_flag(
+      "--clip", args->clip,
+      "Float input to an LDR format: clip values outside [0, 1] without the warning (an HDR format keeps them)");
   cmd->add_option("--astc-effort", args->astc_effort,
                   "ASTC: astc-encoder's numeric quality 0-100 in place of --quality's preset (0 -fastest, 10 -fast, "
-                  "60 -medium, 98 -thorough, 99 -verythorough, 100 -exhaustive)")->check(in_range(0, 100));
+                  "60 -medium, 98 -thorough, 99 -verythorough, 100 -exhaustive)")
+      ->check(in_range(0, 100));
   cmd->add_flag("--mips,!--no-mips", args->mips,
                 "Compress a whole mip chain (mip options below); --no-mips: level 0 only (the default)");
   cmd->add_flag("--normal-map", args->normal_map,
@@ -369,16 +388,19 @@ void add_compress_command(CLI::App& app) {
   cmd->add_option("--wrap", args->wrap, "Mip filter taps past the edges: clamp, repeat, mirror")->capture_default_str();
   cmd->add_option("--alpha-coverage", args->alpha_coverage,
                   "With --mips: keep the fraction of texels with alpha >= REF equal to level 0's in every level "
-                  "(cutouts; 0.5 for bc1a and etc2a1, whose alpha is cut at 128), 0 < REF <= 1")->check(in_range(0, 1, true));
+                  "(cutouts; 0.5 for bc1a and etc2a1, whose alpha is cut at 128), 0 < REF <= 1")
+      ->check(in_range(0, 1, true));
   cmd->add_flag("--no-premultiply", args->no_premultiply,
                 "With --mips: filter colour without weighting it by alpha (an alpha channel that holds data)");
   add_chain_options(*cmd, args->chain);
   cmd->add_option("--dds-header", args->dds_header, "auto, dx9, dx10")->capture_default_str();
-  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")->check(in_range(1, 22))
+  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")
+      ->check(in_range(1, 22))
       ->group("Container");
-  cmd->add_option("--transparent-color", args->transparent_color,
-                  "Colour under alpha 0 (formats with alpha: bc1a, bc2, bc3, bc7, etc2a1, etc2a, astc): keep, bleed (from the "
-                  "visible texels), zero")
+  cmd->add_option(
+         "--transparent-color", args->transparent_color,
+         "Colour under alpha 0 (formats with alpha: bc1a, bc2, bc3, bc7, etc2a1, etc2a, astc): keep, bleed (from the "
+         "visible texels), zero")
       ->capture_default_str();
   cmd->add_flag("--bc1-black", args->bc1_black,
                 "bc1: dark texels may take the three-colour mode's black where that lowers the error (Direct3D "

@@ -59,9 +59,11 @@ void validate(ConeArgs& a) {
     throw Error(ErrorCode::bad_arguments, "unknown --channels '" + a.channels + "' (valid: rg, rgb, rgba)");
   }
   if (a.bilinear_safe && o.mode == ConeMode::relaxed) {
-    throw Error(ErrorCode::bad_arguments, "--bilinear-safe makes conservative cones; it does not combine with --mode relaxed");
+    throw Error(ErrorCode::bad_arguments,
+                "--bilinear-safe makes conservative cones; it does not combine with --mode relaxed");
   }
-  if (a.preview_size < 8 || a.preview_size > 4096) throw Error(ErrorCode::bad_arguments, "--preview-size must be 8 to 4096");
+  if (a.preview_size < 8 || a.preview_size > 4096)
+    throw Error(ErrorCode::bad_arguments, "--preview-size must be 8 to 4096");
   if (!(a.view_angle >= 0.0f && a.view_angle < 89.0f)) {
     throw Error(ErrorCode::bad_arguments, "--view-angle must be in [0, 89) degrees from the normal");
   }
@@ -82,7 +84,8 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
   phases.read_done();
   const std::vector<float> h = extract_height(img.view(), a.channel, a.invert);
   const int width = img.width(), height = img.height();
-  const PixelType out_type = a.type_choice ? *a.type_choice : (img.type() == PixelType::u8 ? PixelType::u8 : PixelType::u16);
+  const PixelType out_type =
+      a.type_choice ? *a.type_choice : (img.type() == PixelType::u8 ? PixelType::u8 : PixelType::u16);
   img = Image();  // the heights are all that is read from here on
   release_cached_pixel_memory();
   const std::string preview = r.outputs.size() > 1 ? r.outputs[1] : "";
@@ -99,9 +102,12 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
     // Ratios a band at a time, as the writer takes the rows: the search's
     // time is counted as it happens, inside the write.
     const ConeRatioSearch search(h, width, height, o);
-    write_image(output, shape, [&](int y0, int y1, void* dst, std::size_t stride) {
-      search.map_rows(out_type, shape.channels, y0, y1, dst, stride, &ratio_sum);
-    }, w);
+    write_image(
+        output, shape,
+        [&](int y0, int y1, void* dst, std::size_t stride) {
+          search.map_rows(out_type, shape.channels, y0, y1, dst, stride, &ratio_sum);
+        },
+        w);
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     phases.compute_done();
     phases.write_done();
@@ -109,9 +115,12 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
     ratios = a.brute_force ? cone_ratios_brute_force(h, width, height, o) : cone_ratios(h, width, height, o);
     seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     phases.compute_done();
-    write_image(output, shape, [&](int y0, int y1, void* dst, std::size_t stride) {
-      cone_map_rows(h, ratios, width, height, o, out_type, shape.channels, y0, y1, dst, stride);
-    }, w);
+    write_image(
+        output, shape,
+        [&](int y0, int y1, void* dst, std::size_t stride) {
+          cone_map_rows(h, ratios, width, height, o, out_type, shape.channels, y0, y1, dst, stride);
+        },
+        w);
     phases.write_done();
   }
   if (!preview.empty()) {
@@ -122,8 +131,8 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
     if (r.progress) other.progress = [&r](double done) { r.progress(0.5 + 0.5 * done); };
     const std::vector<float> second = cone_ratios(h, width, height, other);
     const bool relaxed = o.mode == ConeMode::relaxed;
-    const Image shown = render_preview(h, relaxed ? second : ratios, width, height, o, a.preview_size,
-                                       a.view_angle, relaxed ? ratios : second);
+    const Image shown = render_preview(h, relaxed ? second : ratios, width, height, o, a.preview_size, a.view_angle,
+                                       relaxed ? ratios : second);
     phases.compute_done();
     write_image(preview, shown.view(), cli_write_options());
     phases.write_done();
@@ -157,34 +166,47 @@ void add_conemap_command(CLI::App& app) {
       "sqrt(ratio / max-ratio), rounded down. See docs/conemap.md.");
   add_batch_inputs(*cmd, args->io, "Heightmaps (8, 16-bit or float; height 1 is the top)",
                    "Output cone map (RGB: height, sqrt ratio, 0), folder (DIR/: {stem}.png each) or template");
-  cmd->add_option("--height-channel", args->height_channel, "Height from: auto, r, g, b, a, luma")->capture_default_str();
+  cmd->add_option("--height-channel", args->height_channel, "Height from: auto, r, g, b, a, luma")
+      ->capture_default_str();
   cmd->add_flag("--invert", args->invert, "Depth map: use 1 - h");
-  cmd->add_option("--depth", args->depth, "Relief depth in texture widths (> 0)")->check(in_range(0, 1e6, true))->capture_default_str();
-  cmd->add_option("--max-ratio", args->max_ratio, "Cap on the cone ratio (> 0)")->check(in_range(0, 1e6, true))->capture_default_str();
+  cmd->add_option("--depth", args->depth, "Relief depth in texture widths (> 0)")
+      ->check(in_range(0, 1e6, true))
+      ->capture_default_str();
+  cmd->add_option("--max-ratio", args->max_ratio, "Cap on the cone ratio (> 0)")
+      ->check(in_range(0, 1e6, true))
+      ->capture_default_str();
   cmd->add_option("--wrap", args->wrap, "repeat (tiling reliefs see across edges) or clamp")->capture_default_str();
   cmd->add_option("--mode", args->mode,
-                 "conservative (no relief inside a cone) or relaxed (a ray entering the relief inside a cone does not "
-                 "leave it there: wider cones, then a binary search)")
+                  "conservative (no relief inside a cone) or relaxed (a ray entering the relief inside a cone does not "
+                  "leave it there: wider cones, then a binary search)")
       ->capture_default_str();
   cmd->add_option("--channels", args->channels,
                   "rgb (B = 0), rg (two channels, for BC5 / EAC RG11 / RG8 textures) or rgba (B = 0, A = 1)")
       ->capture_default_str();
-  cmd->add_option("--type", args->type, "Output element type: u8, u16, f16, f32 (default: u8 for 8-bit input, else u16)");
+  cmd->add_option("--type", args->type,
+                  "Output element type: u8, u16, f16, f32 (default: u8 for 8-bit input, else u16)");
   cmd->add_flag("--bilinear-safe", args->bilinear_safe,
                 "Conservative cones that stay safe when the renderer samples height and ratio with bilinear filtering "
                 "(narrower than the texel-centre cones; see docs/conemap.md)");
-  cmd->add_flag("--fast", args->fast,
-                "Faster, never wider cones: a pyramid block at least --fast-reach of its own sizes from a texel's 8x8 cell "
-                "counts as one obstacle (its highest texel at its nearest point)");
-  cmd->add_option("--fast-reach", args->fast_reach, "With --fast: how many of its own sizes a block must be away to count as one obstacle (>= 1)")
+  cmd->add_flag(
+      "--fast", args->fast,
+      "Faster, never wider cones: a pyramid block at least --fast-reach of its own sizes from a texel's 8x8 cell "
+      "counts as one obstacle (its highest texel at its nearest point)");
+  cmd->add_option("--fast-reach", args->fast_reach,
+                  "With --fast: how many of its own sizes a block must be away to count as one obstacle (>= 1)")
       ->capture_default_str()
       ->check(CLI::Range(1, 64));
   cmd->add_flag("--brute-force", args->brute_force, "Use the O(N^2)-per-texel definition (slow; for checking)");
   cmd->add_option("--preview", args->preview,
-                  "Also render a preview PNG: linear search, cone stepping and relaxed cone stepping, with lookups-per-pixel heat maps "
+                  "Also render a preview PNG: linear search, cone stepping and relaxed cone stepping, with "
+                  "lookups-per-pixel heat maps "
                   "(a template such as 'previews/{stem}.png' for several inputs)");
-  cmd->add_option("--preview-size", args->preview_size, "Preview panel size in pixels")->check(in_range(16, 8192))->capture_default_str();
-  cmd->add_option("--view-angle", args->view_angle, "Preview view angle from the normal, degrees")->check(in_range(0, 89))->capture_default_str();
+  cmd->add_option("--preview-size", args->preview_size, "Preview panel size in pixels")
+      ->check(in_range(16, 8192))
+      ->capture_default_str();
+  cmd->add_option("--view-angle", args->view_angle, "Preview view angle from the normal, degrees")
+      ->check(in_range(0, 89))
+      ->capture_default_str();
   add_common_options(*cmd, args->common);
   set_runner(*cmd, [args] {
     BatchCommand c;

@@ -22,8 +22,8 @@ struct ConvertArgs {
 };
 
 std::string shape_of(const Texture& t) {
-  std::string s = std::to_string(t.width) + "x" + std::to_string(t.height) + ", " + std::to_string(t.levels) +
-                  " level(s)";
+  std::string s =
+      std::to_string(t.width) + "x" + std::to_string(t.height) + ", " + std::to_string(t.levels) + " level(s)";
   if (t.faces > 1) s += ", " + std::to_string(t.faces) + " faces";
   if (t.layers > 1 || t.is_array) s += ", " + std::to_string(t.layers) + " layer(s)";
   return s;

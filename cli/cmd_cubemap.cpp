@@ -46,10 +46,9 @@ struct CubemapArgs {
 
 Target parse_target(const std::string& s) {
   static const std::pair<const char*, Target> kNames[] = {
-      {"auto", Target::automatic}, {"cube", Target::cube},         {"cross", Target::cross},
-      {"hcross", Target::cross},   {"vcross", Target::vcross},     {"strip", Target::strip},
-      {"hstrip", Target::strip},   {"vstrip", Target::vstrip},     {"equirect", Target::equirect},
-      {"faces", Target::faces}};
+      {"auto", Target::automatic},    {"cube", Target::cube},   {"cross", Target::cross},  {"hcross", Target::cross},
+      {"vcross", Target::vcross},     {"strip", Target::strip}, {"hstrip", Target::strip}, {"vstrip", Target::vstrip},
+      {"equirect", Target::equirect}, {"faces", Target::faces}};
   for (const auto& [name, t] : kNames)
     if (s == name) return t;
   throw Error(ErrorCode::bad_arguments,
@@ -81,8 +80,8 @@ void validate(CubemapArgs& a) {
   if (!(a.exposure > 0.0f)) throw Error(ErrorCode::bad_arguments, "--exposure must be positive");
   if (!a.faces.empty()) {
     if (a.faces.size() != 6) {
-      throw Error(ErrorCode::bad_arguments, "--faces takes six images, +X -X +Y -Y +Z -Z; got " +
-                                                std::to_string(a.faces.size()));
+      throw Error(ErrorCode::bad_arguments,
+                  "--faces takes six images, +X -X +Y -Y +Z -Z; got " + std::to_string(a.faces.size()));
     }
     if (!a.io.inputs.empty() || !a.io.file_list.empty()) {
       throw Error(ErrorCode::bad_arguments, "--faces replaces the input: give either IN or --faces");
@@ -90,14 +89,17 @@ void validate(CubemapArgs& a) {
     a.io.inputs = {a.faces[0]};
   }
   if (a.io.inputs.empty() && a.io.file_list.empty()) {
-    throw Error(ErrorCode::bad_arguments, "cubemap needs an input (a panorama, cross, strip or cube texture) or --faces");
+    throw Error(ErrorCode::bad_arguments,
+                "cubemap needs an input (a panorama, cross, strip or cube texture) or --faces");
   }
   if (a.io.output.empty()) throw Error(ErrorCode::bad_arguments, "cubemap: -o OUT.ktx2|.dds|.exr|DIR/ is required");
   a.output_is_folder = a.io.output.back() == '/' || fs::is_directory(a.io.output);
   if (a.target == Target::automatic && a.output_is_folder) a.target = Target::faces;
-  if (a.mode == Ibl::irradiance && a.mips) throw Error(ErrorCode::bad_arguments, "--mips has no meaning with --ibl irradiance");
+  if (a.mode == Ibl::irradiance && a.mips)
+    throw Error(ErrorCode::bad_arguments, "--mips has no meaning with --ibl irradiance");
   if (!a.irradiance_path.empty() && a.mode != Ibl::both) {
-    throw Error(ErrorCode::bad_arguments, "--irradiance FILE goes with --ibl both (with --ibl irradiance, -o is the map)");
+    throw Error(ErrorCode::bad_arguments,
+                "--irradiance FILE goes with --ibl both (with --ibl irradiance, -o is the map)");
   }
   if (!a.sh_path.empty() && fs::path(a.sh_path).extension() != ".json") {
     throw Error(ErrorCode::bad_arguments, "--sh " + a.sh_path + ": the coefficients are written as .json");
@@ -161,8 +163,9 @@ std::vector<std::string> files_for(const CubemapArgs& a, const std::string& inpu
   const std::string ext = image_extension_for(input, output);
   if (chain && ext != ".exr" && ext != ".tif" && ext != ".tiff") {
     throw Error(ErrorCode::bad_arguments,
-                output + ": a chain of levels (--mips, --ibl specular) in an image file needs .exr or .tif (one "
-                         "MIP-mapped file a face or layout), or a cube texture (.ktx2, .dds, .ktx)");
+                output +
+                    ": a chain of levels (--mips, --ibl specular) in an image file needs .exr or .tif (one "
+                    "MIP-mapped file a face or layout), or a cube texture (.ktx2, .dds, .ktx)");
   }
   if (t != Target::faces) return {with_suffix(output, suffix, ext)};
   std::vector<std::string> names;
@@ -185,12 +188,12 @@ Plan make_plan(const CubemapArgs& a, const std::string& input, const std::string
 // ---- Reading ------------------------------------------------------------------
 
 struct Source {
-  std::string input;    // the file (the +X face for --faces), for messages
+  std::string input;  // the file (the +X face for --faces), for messages
   Cubemap cube;
-  std::string layout;   // what the input was: "equirect 4096x2048", "hcross", "cube", "faces"
-  bool hdr = false;     // float input (kept linear, no clipping)
-  bool srgb = true;     // the colour space is sRGB (rgba8 outputs say so)
-  bool alpha = false;   // the input had an alpha channel
+  std::string layout;  // what the input was: "equirect 4096x2048", "hcross", "cube", "faces"
+  bool hdr = false;    // float input (kept linear, no clipping)
+  bool srgb = true;    // the colour space is sRGB (rgba8 outputs say so)
+  bool alpha = false;  // the input had an alpha channel
   ColorSpace space = ColorSpace::srgb();
 };
 
@@ -213,10 +216,10 @@ Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r
                                                   std::to_string(img.width()) + "x" + std::to_string(img.height()));
       }
       if (f > 0 && img.width() != faces[0].width()) {
-        throw Error(ErrorCode::bad_arguments, a.faces[f] + ": " + std::to_string(img.width()) + "x" +
-                                                  std::to_string(img.height()) + ", but " + a.faces[0] + " (+X) is " +
-                                                  std::to_string(faces[0].width()) + "x" +
-                                                  std::to_string(faces[0].height()) + ": the six faces must be one size");
+        throw Error(ErrorCode::bad_arguments,
+                    a.faces[f] + ": " + std::to_string(img.width()) + "x" + std::to_string(img.height()) + ", but " +
+                        a.faces[0] + " (+X) is " + std::to_string(faces[0].width()) + "x" +
+                        std::to_string(faces[0].height()) + ": the six faces must be one size");
       }
       if (f == 0) {
         s.hdr = img.type() == PixelType::f32;
@@ -252,11 +255,10 @@ Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r
         throw Error(ErrorCode::unsupported, input + ": an array texture is not a cube map (6 faces, one layer)");
       }
       const int width = in.images[0].width(), height = in.images[0].height();
-      const CubeLayout layout =
-          a.layout == "auto" ? detect_cube_layout(width, height) : parse_cube_layout(a.layout);
+      const CubeLayout layout = a.layout == "auto" ? detect_cube_layout(width, height) : parse_cube_layout(a.layout);
       if (layout == CubeLayout::equirect && width != 2 * height) {
-        throw Error(ErrorCode::bad_arguments, std::to_string(width) + "x" + std::to_string(height) +
-                                                  " is not a 2:1 panorama");
+        throw Error(ErrorCode::bad_arguments,
+                    std::to_string(width) + "x" + std::to_string(height) + " is not a 2:1 panorama");
       }
       Image rgba = to_linear_rgba(in.images[0].view(), s.space);
       in.images.clear();  // the floats are all that is read from here on
@@ -303,7 +305,8 @@ float peak_value(const Cubemap& c) {
   return peak;
 }
 
-void warn_if_clipped(const std::string& input, const std::string& output, const Cubemap& c, std::vector<std::string>& w) {
+void warn_if_clipped(const std::string& input, const std::string& output, const Cubemap& c,
+                     std::vector<std::string>& w) {
   const float peak = peak_value(c);
   if (peak > 1.0f) {
     std::ostringstream m;
@@ -325,10 +328,11 @@ void write_cube(const CubemapArgs& a, const Source& s, const Cubemap& c, const s
       chains[f].push_back(eight_bit ? from_linear_rgba(l.faces[f].view(), out_space, 4, PixelType::u8)
                                     : from_linear_rgba(l.faces[f].view(), ColorSpace::linear(), 4, PixelType::f32));
     }
-  write_texture(output,
-                texture_from_surfaces(std::move(chains), {.faces = 6},
-                                      {.srgb = format == TexelFormat::rgba8_srgb, .half = format == TexelFormat::rgba16_float}),
-                a.header, zstd_level_for(a.zstd, output));
+  write_texture(
+      output,
+      texture_from_surfaces(std::move(chains), {.faces = 6},
+                            {.srgb = format == TexelFormat::rgba8_srgb, .half = format == TexelFormat::rgba16_float}),
+      a.header, zstd_level_for(a.zstd, output));
 }
 
 bool any_above_one(const std::vector<Image>& levels) {
@@ -351,7 +355,8 @@ void write_images(const Source& s, const std::vector<Image>& levels, const std::
   std::vector<Image> out;
   WriteOptions w = cli_write_options();
   if (keeps_float) {
-    for (const Image& l : levels) out.push_back(from_linear_rgba(l.view(), ColorSpace::linear(), channels, PixelType::f32));
+    for (const Image& l : levels)
+      out.push_back(from_linear_rgba(l.view(), ColorSpace::linear(), channels, PixelType::f32));
     w.half = ext == ".exr";
     w.color_space = "linear";
   } else {
@@ -390,10 +395,18 @@ void write_environment(const CubemapArgs& a, const Source& s, const Cubemap& c, 
         images.push_back(cubemap_to_equirect(c, std::max(2, w >> l), l));
         break;
       }
-      case Target::vcross: images.push_back(cubemap_to_layout(c, CubeLayout::cross_vertical, l)); break;
-      case Target::strip: images.push_back(cubemap_to_layout(c, CubeLayout::strip_horizontal, l)); break;
-      case Target::vstrip: images.push_back(cubemap_to_layout(c, CubeLayout::strip_vertical, l)); break;
-      default: images.push_back(cubemap_to_layout(c, CubeLayout::cross_horizontal, l)); break;
+      case Target::vcross:
+        images.push_back(cubemap_to_layout(c, CubeLayout::cross_vertical, l));
+        break;
+      case Target::strip:
+        images.push_back(cubemap_to_layout(c, CubeLayout::strip_horizontal, l));
+        break;
+      case Target::vstrip:
+        images.push_back(cubemap_to_layout(c, CubeLayout::strip_vertical, l));
+        break;
+      default:
+        images.push_back(cubemap_to_layout(c, CubeLayout::cross_horizontal, l));
+        break;
     }
   }
   write_images(s, images, files[0], warnings);
@@ -443,8 +456,8 @@ void run_cubemap(const CubemapArgs& a, const std::string& input, const std::stri
     if (a.mode == Ibl::irradiance || a.mode == Ibl::both) irradiance = irradiance_cubemap(env, a.irradiance_size);
     phases.compute_done();
     const Cubemap& main = a.mode == Ibl::specular || a.mode == Ibl::both ? specular
-                          : a.mode == Ibl::irradiance                     ? irradiance
-                                                                          : env;
+                          : a.mode == Ibl::irradiance                    ? irradiance
+                                                                         : env;
     write_environment(a, s, main, plan.main, a.mode != Ibl::none, r.warnings);
     if (!plan.irradiance.empty()) write_environment(a, s, irradiance, plan.irradiance, true, r.warnings);
     if (!plan.sh.empty()) write_sh(plan.sh, project_sh9(env));
@@ -464,7 +477,8 @@ void run_cubemap(const CubemapArgs& a, const std::string& input, const std::stri
     r.details["source"] = s.layout;
     r.details["size"] = main.size();
     r.details["levels"] = Json::UInt(main.levels.size());
-    if (target_for(a, output) == Target::cube) r.details["format"] = format_info(cube_format(a, s, a.mode != Ibl::none)).name;
+    if (target_for(a, output) == Target::cube)
+      r.details["format"] = format_info(cube_format(a, s, a.mode != Ibl::none)).name;
     if (a.report) {
       Json::Value seams(Json::arrayValue);
       for (const CubeLevel& l : main.levels) {
@@ -505,35 +519,56 @@ void add_cubemap_command(CLI::App& app) {
   add_batch_inputs(*cmd, args->io, "Input panoramas, crosses, strips or cube textures",
                    "Output file, folder (DIR/: six faces each) or template ('env/{stem}.ktx2')", false);
   cmd->add_option("--faces", args->faces, "Six face images instead of IN: +X -X +Y -Y +Z -Z")->expected(6);
-  cmd->add_option("--layout", args->layout, "Input layout: auto (by aspect ratio), equirect, hcross, vcross, hstrip, vstrip")
+  cmd->add_option("--layout", args->layout,
+                  "Input layout: auto (by aspect ratio), equirect, hcross, vcross, hstrip, vstrip")
       ->capture_default_str();
   cmd->add_option("--to", args->to,
                   "What OUT holds: auto (a cube texture for .ktx2/.dds/.ktx, six faces for DIR/, a cross otherwise), "
                   "cube, cross, vcross, strip, vstrip, equirect, faces")
       ->capture_default_str();
-  cmd->add_option("--size", args->size, "Face size (default: a panorama's width / 4 as a power of two; a cross's face)")->check(in_range(1, 16384));
+  cmd->add_option("--size", args->size, "Face size (default: a panorama's width / 4 as a power of two; a cross's face)")
+      ->check(in_range(1, 16384));
   cmd->add_flag("--mips", args->mips, "A seamless mip chain down to 1x1");
-  cmd->add_option("--levels", args->levels, "At most this many levels (with --mips or --ibl specular)")->check(in_range(0, 32));
+  cmd->add_option("--levels", args->levels, "At most this many levels (with --mips or --ibl specular)")
+      ->check(in_range(0, 32));
   cmd->add_option("--flip", args->flip, "Mirror a world axis of the source: none, x, y, z (z: left-handed engines)")
       ->capture_default_str();
   cmd->add_option("--format", args->format,
                   "Cube texture format: rgba8 (sRGB for sRGB input), rgba16f, rgba32f (default: rgba16f for float "
                   "input and IBL, rgba8 otherwise)");
-  cmd->add_option("--colorspace", args->color_space, "Source color space (default: srgb for 8/16-bit, linear for float)");
+  cmd->add_option("--colorspace", args->color_space,
+                  "Source color space (default: srgb for 8/16-bit, linear for float)");
   cmd->add_flag("--linear", args->linear, "The input is data: no transfer function");
-  cmd->add_option("--equirect-width", args->equirect_width, "--to equirect: the panorama's width (default 4 x size)")->check(in_range(4, 16384));
+  cmd->add_option("--equirect-width", args->equirect_width, "--to equirect: the panorama's width (default 4 x size)")
+      ->check(in_range(4, 16384));
   CLI::App& g = *cmd;
-  g.add_option("--ibl", args->ibl, "Image-based lighting: none, specular, irradiance, both")->capture_default_str()->group("Lighting");
-  g.add_option("--irradiance", args->irradiance_path, "--ibl both: the irradiance map's file (default {stem}_irradiance{ext})")
+  g.add_option("--ibl", args->ibl, "Image-based lighting: none, specular, irradiance, both")
+      ->capture_default_str()
       ->group("Lighting");
-  g.add_option("--irradiance-size", args->irradiance_size, "Irradiance map face size")->check(in_range(1, 4096))->capture_default_str()->group("Lighting");
-  g.add_option("--samples", args->samples, "Importance samples per texel where the GGX lobe is sampled")->check(in_range(1, 1 << 20))
-      ->capture_default_str()->group("Lighting");
-  g.add_option("--sh", args->sh_path, "Write the 9 spherical-harmonic coefficients of the radiance (JSON)")->group("Lighting");
+  g.add_option("--irradiance", args->irradiance_path,
+               "--ibl both: the irradiance map's file (default {stem}_irradiance{ext})")
+      ->group("Lighting");
+  g.add_option("--irradiance-size", args->irradiance_size, "Irradiance map face size")
+      ->check(in_range(1, 4096))
+      ->capture_default_str()
+      ->group("Lighting");
+  g.add_option("--samples", args->samples, "Importance samples per texel where the GGX lobe is sampled")
+      ->check(in_range(1, 1 << 20))
+      ->capture_default_str()
+      ->group("Lighting");
+  g.add_option("--sh", args->sh_path, "Write the 9 spherical-harmonic coefficients of the radiance (JSON)")
+      ->group("Lighting");
   g.add_option("--preview", args->preview_path, "Write a PNG: every level's cross and lit spheres")->group("Lighting");
-  g.add_option("--exposure", args->exposure, "Preview exposure (a multiplier)")->check(in_range(0, 1e9, true))->capture_default_str()->group("Lighting");
-  cmd->add_option("--dds-header", args->dds_header, "DDS header: auto, dx9, dx10")->capture_default_str()->group("Container");
-  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level (1-22)")->check(in_range(1, 22))->group("Container");
+  g.add_option("--exposure", args->exposure, "Preview exposure (a multiplier)")
+      ->check(in_range(0, 1e9, true))
+      ->capture_default_str()
+      ->group("Lighting");
+  cmd->add_option("--dds-header", args->dds_header, "DDS header: auto, dx9, dx10")
+      ->capture_default_str()
+      ->group("Container");
+  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level (1-22)")
+      ->check(in_range(1, 22))
+      ->group("Container");
   cmd->add_flag("--report", args->report, "With --json: seam figures per level (steps across edges and inside)");
   add_common_options(*cmd, args->common);
   set_runner(*cmd, [args] {

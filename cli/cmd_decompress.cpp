@@ -31,8 +31,8 @@ struct DecompressArgs {
 
 void check_index(const std::string& input, const char* what, int value, std::uint32_t count) {
   if (value < 0 || std::uint32_t(value) >= count) {
-    throw Error(ErrorCode::bad_arguments, input + ": " + what + " " + std::to_string(value) + " (valid: 0 to " +
-                                              std::to_string(count - 1) + ")");
+    throw Error(ErrorCode::bad_arguments,
+                input + ": " + what + " " + std::to_string(value) + " (valid: 0 to " + std::to_string(count - 1) + ")");
   }
 }
 

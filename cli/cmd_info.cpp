@@ -77,9 +77,9 @@ void describe(const std::string& path, std::ostringstream& json, std::ostringstr
     }
     const std::string container = to_string(kind);
     json << "{\"file\": " << quoted(path) << ", \"container\": \"" << container << "\", \"format\": \"" << f.name
-         << "\", \"vk_format\": " << f.vk_format << ", \"dxgi_format\": " << f.dxgi_format
-         << ", \"color_space\": \"" << (f.srgb ? "srgb" : "linear") << "\", \"width\": " << t.width
-         << ", \"height\": " << t.height << ", \"faces\": " << t.faces << ", \"layers\": " << t.layers
+         << "\", \"vk_format\": " << f.vk_format << ", \"dxgi_format\": " << f.dxgi_format << ", \"color_space\": \""
+         << (f.srgb ? "srgb" : "linear") << "\", \"width\": " << t.width << ", \"height\": " << t.height
+         << ", \"faces\": " << t.faces << ", \"layers\": " << t.layers
          << ", \"is_array\": " << (t.is_array ? "true" : "false") << ", \"levels\": [";
     std::uint64_t total = 0;
     for (std::uint32_t l = 0; l < t.levels; ++l) {
@@ -110,7 +110,8 @@ void describe(const std::string& path, std::ostringstream& json, std::ostringstr
       for (std::uint64_t b : storage.stored_bytes) stored += b;
       char share[32];
       std::snprintf(share, sizeof share, "%.1f%%", 100.0 * double(stored) / double(std::max<std::uint64_t>(1, total)));
-      text << ", " << ktx2_scheme_name(storage.scheme) << "-supercompressed to " << stored << " bytes (" << share << ")";
+      text << ", " << ktx2_scheme_name(storage.scheme) << "-supercompressed to " << stored << " bytes (" << share
+           << ")";
     }
     text << "\n";
     for (std::uint32_t l = 0; l < t.levels; ++l) {
@@ -125,8 +126,8 @@ void describe(const std::string& path, std::ostringstream& json, std::ostringstr
   json << "{\"file\": " << quoted(path) << ", \"container\": " << quoted(i.format) << ", \"width\": " << i.width
        << ", \"height\": " << i.height << ", \"channels\": " << i.channels << ", \"type\": " << quoted(i.file_type)
        << ", \"color_space_tag\": " << quoted(i.color_space_tag)
-       << ", \"color_space_tagged\": " << (i.color_space_tagged ? "true" : "false") << ", \"subimages\": " << i.subimages
-       << ", \"levels\": [";
+       << ", \"color_space_tagged\": " << (i.color_space_tagged ? "true" : "false")
+       << ", \"subimages\": " << i.subimages << ", \"levels\": [";
   for (std::size_t l = 0; l < i.level_sizes.size(); ++l) {
     json << (l ? ", " : "") << "{\"width\": " << i.level_sizes[l].first << ", \"height\": " << i.level_sizes[l].second
          << "}";
@@ -161,8 +162,8 @@ int run_info(const InfoArgs& args) {
       json << (k && json.str().size() > 1 ? ", " : "") << j.str();
     } catch (const Error& e) {
       print_error("info", about(files[k], e.what()));
-      json << (json.str().size() > 1 ? ", " : "") << "{\"file\": " << quoted(files[k]) << ", \"error\": "
-           << quoted(about(files[k], e.what())) << ", \"exit_code\": " << int(e.code()) << "}";
+      json << (json.str().size() > 1 ? ", " : "") << "{\"file\": " << quoted(files[k])
+           << ", \"error\": " << quoted(about(files[k], e.what())) << ", \"exit_code\": " << int(e.code()) << "}";
       ++failures;
       last = e.code();
     }
@@ -176,7 +177,8 @@ int run_info(const InfoArgs& args) {
 
 void add_info_command(CLI::App& app) {
   auto args = std::make_shared<InfoArgs>();
-  CLI::App* cmd = app.add_subcommand("info", "Describe images, MIP chains, DDS/KTX2/KTX1/PKM/.astc textures and .sat tables.");
+  CLI::App* cmd =
+      app.add_subcommand("info", "Describe images, MIP chains, DDS/KTX2/KTX1/PKM/.astc textures and .sat tables.");
   cmd->add_option("files", args->io.inputs, "Files to describe, or folders (their images, textures and tables)")
       ->required();
   cmd->add_flag("-r,--recursive", args->io.recursive, "Folders: their subfolders too");

@@ -94,8 +94,10 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
   // container linear (r16/rg16/rgba16_unorm say linear), not sRGB values
   // labelled linear.
   const PixelType out_type = o.output_type ? *o.output_type : in.images[0].type();
-  const bool srgb_in = o.color_space.empty() ? in.images[0].type() != PixelType::f32 : ColorSpace::from_name(o.color_space).is_srgb();
-  if (container && out_type == PixelType::u16 && srgb_in && o.output_color_space.empty()) o.output_color_space = "linear";
+  const bool srgb_in =
+      o.color_space.empty() ? in.images[0].type() != PixelType::f32 : ColorSpace::from_name(o.color_space).is_srgb();
+  if (container && out_type == PixelType::u16 && srgb_in && o.output_color_space.empty())
+    o.output_color_space = "linear";
   const int width = in.images[0].width(), height = in.images[0].height();
   const std::size_t level_count = std::size_t(mip_level_count(width, height, o.max_levels, o.min_size));
   const PixelType level_type = out_type;
@@ -129,13 +131,16 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
     std::vector<std::vector<Image>> chains;
     chains.push_back(std::move(chain.levels));
     for (auto& c : more) chains.push_back(std::move(c));
-    write_texture(output, texture_from_surfaces(std::move(chains), in.layout(),
-                                                {.srgb = chain.color_space == "srgb", .half = w.half}),
-                  a.header, zstd_level_for(a.zstd, output));
+    write_texture(
+        output,
+        texture_from_surfaces(std::move(chains), in.layout(), {.srgb = chain.color_space == "srgb", .half = w.half}),
+        a.header, zstd_level_for(a.zstd, output));
   } else if (container) {
     // Uncompressed GPU formats: r8/rg8/rgba8 (sRGB when the chain is), 16-bit, half or float;
     // the chain's pixel memory becomes the texture's.
-    write_texture(output, texture_from_levels(std::move(chain.levels), {.srgb = chain.color_space == "srgb", .half = w.half}), a.header, zstd_level_for(a.zstd, output));
+    write_texture(output,
+                  texture_from_levels(std::move(chain.levels), {.srgb = chain.color_space == "srgb", .half = w.half}),
+                  a.header, zstd_level_for(a.zstd, output));
   } else {
     write_levels(output, chain.levels, w);
   }
@@ -147,8 +152,8 @@ void report_mip(const MipArgs& a, const std::string& input, const std::string& o
                 std::size_t level_count, PixelType level_type, const MipChain& chain, FileReport& r) {
   std::ostringstream line;
   line << input << " -> " << (r.outputs.size() == 1 ? output : r.outputs[0] + " ...") << ": " << level_count
-       << " levels, " << info.width << "x" << info.height << " " << to_string(level_type) << " "
-       << chain.color_space << ", filter " << a.chain.filter << ", wrap " << a.wrap;
+       << " levels, " << info.width << "x" << info.height << " " << to_string(level_type) << " " << chain.color_space
+       << ", filter " << a.chain.filter << ", wrap " << a.wrap;
   if (a.common.verbose) {
     for (std::size_t l = 0; l < chain.alpha_coverage.size(); ++l) {
       line << "\n  level " << l << ": alpha coverage " << chain.alpha_coverage[l] << " (alpha x "
@@ -179,7 +184,8 @@ void add_mip_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("mip", "Build gamma-correct mip chains from images.");
   cmd->footer(
       "Outputs: .dds/.ktx2/.ktx write the chain as an uncompressed GPU texture (rgba8 sRGB or unorm,\n"
-      "r8, rg8, 16-bit, half or float); .tif/.tiff/.exr write one MIP-mapped file (OpenImageIO reads the levels back, as from\n"
+      "r8, rg8, 16-bit, half or float); .tif/.tiff/.exr write one MIP-mapped file (OpenImageIO reads the levels back, "
+      "as from\n"
       "maketx); .png/.tga/.jpg/.bmp write one file per level, named {stem}_mip{L}.{ext}.\n"
       "Levels are max(1, floor(n/2)) per axis down to 1x1, each filtered from the previous level in\n"
       "linear premultiplied float. See docs/mip.md.");
@@ -195,15 +201,18 @@ void add_mip_command(CLI::App& app) {
                   "Color space of the written levels (default: the source's; linear for float output)");
   cmd->add_option("--type", args->type, "Output element type: u8, u16, f16, f32 (default: the input's; f16 for .exr)");
   cmd->add_option("--alpha-coverage", args->alpha_coverage,
-                  "Keep the fraction of texels with alpha >= REF equal to level 0's (cutouts), 0 < REF <= 1")->check(in_range(0, 1, true));
+                  "Keep the fraction of texels with alpha >= REF equal to level 0's (cutouts), 0 < REF <= 1")
+      ->check(in_range(0, 1, true));
   cmd->add_flag("--normal-map", args->normal_map, "Input is a tangent-space normal map: renormalize each level");
   cmd->add_flag("--no-premultiply", args->no_premultiply, "Filter color without weighting it by alpha");
   cmd->add_option("--compression", args->compression,
-                  "Output compression: TIFF zip:N (deflate level 1-12, default zip:1), none, lzw; EXR zip, piz, dwaa... (OpenImageIO's names)");
+                  "Output compression: TIFF zip:N (deflate level 1-12, default zip:1), none, lzw; EXR zip, piz, "
+                  "dwaa... (OpenImageIO's names)");
   cmd->add_option("--dds-header", args->dds_header,
                   "DDS header: auto (legacy when a FourCC or masks can say the format, else DX10), dx9, dx10")
       ->capture_default_str();
-  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")->check(in_range(1, 22))
+  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")
+      ->check(in_range(1, 22))
       ->group("Container");
   cmd->add_flag("--report", args->report, "With --json: alpha coverage and its scale per level (--alpha-coverage)");
   add_common_options(*cmd, args->common);

@@ -37,7 +37,7 @@ struct NormalMapArgs {
   int zstd = 0;
   // From the options, once (validate):
   NormalMapOptions options;
-  std::optional<PixelType> type_choice;  // --type (empty: from the input)
+  std::optional<PixelType> type_choice;      // --type (empty: from the input)
   WriteOptions write = cli_write_options();  // half, compression, linear
   DdsHeader header = DdsHeader::automatic;
   FilterKind filter = FilterKind::gaussian;
@@ -123,7 +123,8 @@ void run_normalmap(const NormalMapArgs& a, const std::string& input, const std::
   if (container) {
     // Uncompressed rg8/rgba8/16-bit/half/float (block compression in the same
     // call comes with `compress`); normals are data: linear formats.
-    write_texture(output, texture_from_levels(std::move(chain), {.half = w.half}), a.header, zstd_level_for(a.zstd, output));
+    write_texture(output, texture_from_levels(std::move(chain), {.half = w.half}), a.header,
+                  zstd_level_for(a.zstd, output));
   } else if (a.mips) {
     write_levels(output, chain, w);
   } else {
@@ -157,11 +158,16 @@ void add_normalmap_command(CLI::App& app) {
   cmd->add_option("--kernel", args->kernel,
                   "Gradient kernel: gather2x2, central, sobel3, sobel5, prewitt3, prewitt5, scharr3, multiscale")
       ->capture_default_str();
-  cmd->add_option("--height-channel", args->height_channel, "Height from: auto (gray, or luma of RGB), r, g, b, a, luma")
+  cmd->add_option("--height-channel", args->height_channel,
+                  "Height from: auto (gray, or luma of RGB), r, g, b, a, luma")
       ->capture_default_str();
   cmd->add_flag("--invert", args->invert, "Depth map: use 1 - h");
-  cmd->add_option("--height-scale", args->height_scale, "Texels spanned by a height of 1.0 (> 0)")->check(in_range(0, 1e9, true))->capture_default_str();
-  cmd->add_option("--strength", args->strength, "Slope multiplier for artists (> 0)")->check(in_range(0, 1e9, true))->capture_default_str();
+  cmd->add_option("--height-scale", args->height_scale, "Texels spanned by a height of 1.0 (> 0)")
+      ->check(in_range(0, 1e9, true))
+      ->capture_default_str();
+  cmd->add_option("--strength", args->strength, "Slope multiplier for artists (> 0)")
+      ->check(in_range(0, 1e9, true))
+      ->capture_default_str();
   cmd->add_option("--wrap", args->wrap, "Texels past the edges: clamp, repeat (tiling), mirror")->capture_default_str();
   cmd->add_option("--y", args->y, "Green channel: up (OpenGL, default) or down (DirectX)")->capture_default_str();
   cmd->add_option("--channels", args->channels, "Output channels: xyz, xy, xyzh")->capture_default_str();
@@ -170,13 +176,15 @@ void add_normalmap_command(CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str()
       ->check(in_range(0, 1e6));
-  cmd->add_option("--type", args->type, "Output element type: u8, u16, f16, f32 (default: u8 for 8-bit input, else u16)");
+  cmd->add_option("--type", args->type,
+                  "Output element type: u8, u16, f16, f32 (default: u8 for 8-bit input, else u16)");
   cmd->add_flag("--mips", args->mips, "Write a mip chain, renormalized each level");
   add_chain_options(*cmd, args->chain);
   cmd->add_option("--compression", args->compression, "Output compression, as for `texproc mip`");
   cmd->add_option("--dds-header", args->dds_header, "DDS header for .dds output: auto, dx9, dx10")
       ->capture_default_str();
-  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")->check(in_range(1, 22))
+  cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")
+      ->check(in_range(1, 22))
       ->group("Container");
   add_common_options(*cmd, args->common);
   set_runner(*cmd, [args] {

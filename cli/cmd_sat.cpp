@@ -128,7 +128,8 @@ int run_query(const SatArgs& a) {
 void validate_blur(SatArgs& a) {
   a.blur.radius = a.radius;
   a.blur.wrap = parse_wrap_mode(a.wrap);
-  if (a.blur.wrap == WrapMode::mirror) throw Error(ErrorCode::bad_arguments, "--wrap for sat blur: valid: clamp, repeat");
+  if (a.blur.wrap == WrapMode::mirror)
+    throw Error(ErrorCode::bad_arguments, "--wrap for sat blur: valid: clamp, repeat");
   a.blur.color_space = a.linear ? "linear" : a.color_space;
   if (!a.radius_map.empty()) {
     a.map = read_image(a.radius_map, nullptr, cli_read_options());
@@ -185,7 +186,8 @@ void add_sat_command(CLI::App& app) {
   CLI::App* b = cmd->add_subcommand("blur", "Box blur of any radius at constant cost per texel, gamma-correct.");
   add_batch_inputs(*b, args->blur_io, "Input images",
                    "Output image, folder (DIR/: same name each) or template ('blurred/{name}')");
-  b->add_option("--radius", args->radius, "Half-width in texels: a box of 2R+1; fractional radii blend")->check(in_range(0, 1e6))
+  b->add_option("--radius", args->radius, "Half-width in texels: a box of 2R+1; fractional radii blend")
+      ->check(in_range(0, 1e6))
       ->capture_default_str();
   b->add_option("--radius-map", args->radius_map, "Per-texel radius: R times the map's first channel in [0, 1]");
   b->add_option("--wrap", args->wrap, "Texels past the edges: clamp, repeat")->capture_default_str();
@@ -209,7 +211,8 @@ void add_sat_command(CLI::App& app) {
       return run_batch(c, args->blur_io, args->common);
     }
     if (args->io.inputs.empty() && args->io.file_list.empty()) {
-      throw Error(ErrorCode::bad_arguments, "sat needs input images and -o OUT.sat|OUT.exr|DIR/ (or: sat query, sat blur)");
+      throw Error(ErrorCode::bad_arguments,
+                  "sat needs input images and -o OUT.sat|OUT.exr|DIR/ (or: sat query, sat blur)");
     }
     if (args->io.output.empty()) throw Error(ErrorCode::bad_arguments, "sat: -o OUT.sat|OUT.exr|DIR/ is required");
     c.name = "sat";

@@ -21,10 +21,10 @@ namespace {
 // (`--quality High`, `--format BC7_UNORM_SRGB`). Colour-space names are not
 // among them: OpenColorIO's names are case-sensitive.
 void lower_case_enumerations(CLI::App& app) {
-  static const char* const kEnumerated[] = {"--format", "--quality", "--wrap", "--filter", "--dds-header",
-                                            "--transparent-color", "--precision", "--mode", "--kernel",
-                                            "--height-channel", "--channels", "--y", "--type", "--to", "--ibl",
-                                            "--layout", "--flip", "--compression"};
+  static const char* const kEnumerated[] = {
+      "--format",    "--quality", "--wrap",   "--filter",         "--dds-header", "--transparent-color",
+      "--precision", "--mode",    "--kernel", "--height-channel", "--channels",   "--y",
+      "--type",      "--to",      "--ibl",    "--layout",         "--flip",       "--compression"};
   const CLI::Validator lower(
       [](std::string& value) {
         for (char& c : value) c = char(std::tolower(static_cast<unsigned char>(c)));

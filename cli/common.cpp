@@ -64,8 +64,9 @@ void add_common_options(CLI::App& cmd, CommonOptions& o) {
   cmd.add_flag("--skip-existing", s.skip_existing, "Skip inputs whose outputs all exist already")->group("Common");
   cmd.add_flag("--json", s.json, "Print one JSON summary on stdout (schema in docs/cli.md) instead of lines")
       ->group("Common");
-  cmd.add_flag("--timings", s.timings, "With --json: report each file's seconds and phases (left out by default, so "
-                                      "that the summary is the same bytes on every run)")
+  cmd.add_flag("--timings", s.timings,
+               "With --json: report each file's seconds and phases (left out by default, so "
+               "that the summary is the same bytes on every run)")
       ->group("Common");
   cmd.add_option_function<std::string>(
          "--shard",
@@ -194,7 +195,8 @@ void write_depfile_if_requested() {
   std::error_code ec;
   const fs::path parent = fs::path(d.path).parent_path();
   if (!parent.empty()) fs::create_directories(parent, ec);  // a failure is reported by the write
-  write_file_atomic(d.path, make_rule(d.outputs, d.inputs), CommitPolicy::replace);  // the rule of this run replaces the last
+  write_file_atomic(d.path, make_rule(d.outputs, d.inputs),
+                    CommitPolicy::replace);  // the rule of this run replaces the last
 }
 
 namespace {
@@ -228,7 +230,8 @@ void check_output(const std::string& output, const std::vector<std::string>& inp
   if (fs::exists(output, ec)) {
     if (fs::is_directory(output, ec)) throw Error(ErrorCode::bad_arguments, output + ": output is a directory");
     if (!force && !d.write_if_changed) {
-      throw Error(ErrorCode::bad_arguments, output + ": output exists (use --force or --write-if-changed to replace it)");
+      throw Error(ErrorCode::bad_arguments,
+                  output + ": output exists (use --force or --write-if-changed to replace it)");
     }
   }
   const fs::path parent = fs::path(output).parent_path();
@@ -293,7 +296,8 @@ std::vector<std::string> level_outputs(const std::string& output, int levels) {
   const fs::path p(output);
   std::vector<std::string> names;
   for (int l = 0; l < levels; ++l) {
-    names.push_back((p.parent_path() / (p.stem().string() + "_mip" + std::to_string(l) + p.extension().string())).string());
+    names.push_back(
+        (p.parent_path() / (p.stem().string() + "_mip" + std::to_string(l) + p.extension().string())).string());
   }
   return names;
 }
@@ -342,23 +346,28 @@ void check_dds_header_fits(const std::string& dds_header, const std::string& out
 int zstd_level_for(int zstd, const std::string& output) {
   const std::string e = lower_extension(output);
   if (zstd != 0 && e != ".ktx2") {
-    throw Error(ErrorCode::bad_arguments, output + ": --zstd " + std::to_string(zstd) + " applies to .ktx2 outputs only");
+    throw Error(ErrorCode::bad_arguments,
+                output + ": --zstd " + std::to_string(zstd) + " applies to .ktx2 outputs only");
   }
-  if (zstd < 0 || zstd > 22) throw Error(ErrorCode::bad_arguments, "--zstd " + std::to_string(zstd) + " (valid: 1 to 22)");
+  if (zstd < 0 || zstd > 22)
+    throw Error(ErrorCode::bad_arguments, "--zstd " + std::to_string(zstd) + " (valid: 1 to 22)");
   return zstd;
 }
 
 void check_surfaces_fit(const std::string& input, const ImageArray& in, const std::string& output) {
   if (in.images.size() <= 1 || is_container_path(output)) return;
-  const std::string what = in.faces == 6 ? (in.layers > 1 ? std::to_string(in.layers) + " cubemaps" : std::string("a cubemap"))
-                                         : std::to_string(in.layers) + " array layers";
-  throw Error(ErrorCode::unsupported, input + ": holds " + what + "; write it to .dds, .ktx2 or .ktx, which keep them (" +
-                                          output + " holds one image)");
+  const std::string what = in.faces == 6
+                               ? (in.layers > 1 ? std::to_string(in.layers) + " cubemaps" : std::string("a cubemap"))
+                               : std::to_string(in.layers) + " array layers";
+  throw Error(ErrorCode::unsupported, input + ": holds " + what +
+                                          "; write it to .dds, .ktx2 or .ktx, which keep them (" + output +
+                                          " holds one image)");
 }
 
 const std::vector<std::string>& image_extensions() {
-  static const std::vector<std::string> e = {".png", ".jpg", ".jpeg", ".tga", ".tif", ".tiff", ".exr", ".hdr",
-                                             ".bmp", ".psd", ".webp", ".gif", ".ppm", ".pgm", ".pnm", ".dds", ".ktx2", ".ktx", ".pkm", ".astc"};
+  static const std::vector<std::string> e = {".png", ".jpg", ".jpeg", ".tga",  ".tif", ".tiff", ".exr",
+                                             ".hdr", ".bmp", ".psd",  ".webp", ".gif", ".ppm",  ".pgm",
+                                             ".pnm", ".dds", ".ktx2", ".ktx",  ".pkm", ".astc"};
   return e;
 }
 const std::vector<std::string>& texture_extensions() {

@@ -42,14 +42,14 @@ void remove_temporaries_on_signals() {
 
 int main(int argc, char** argv) {
   remove_temporaries_on_signals();
-  CLI::App app{"texproc: texture asset processing for asset pipelines.\n" +
-               std::string(texproc::cli::kExitCodeHelp)};
+  CLI::App app{"texproc: texture asset processing for asset pipelines.\n" + std::string(texproc::cli::kExitCodeHelp)};
   // --version, --version --json (version, tool digest, runtime files,
   // libraries: what a build cache keys on) and --runtime-files (what a
   // remote action ships beside the binary) stand alone, without a command.
   bool version = false, version_json = false, runtime_files = false;
-  app.add_flag("--version", version, "Print the version and exit (with --json: version, digest of the tool and its "
-                                     "modules, runtime files and library versions, as JSON)");
+  app.add_flag("--version", version,
+               "Print the version and exit (with --json: version, digest of the tool and its "
+               "modules, runtime files and library versions, as JSON)");
   app.add_flag("--runtime-files", runtime_files,
                "Print the files texproc runs with (the binary, its runtime modules), one a line, and exit");
   CLI::Option* json_flag = app.add_flag("--json", version_json, "With --version: print JSON");
@@ -57,8 +57,7 @@ int main(int argc, char** argv) {
   // The runtime modules (OpenEXR, OpenImageIO, OpenColorIO) are loaded on
   // first use; this is read then, so setting it while parsing is in time.
   app.add_option_function<std::string>(
-         "--module-dir",
-         [](const std::string& dir) { ::setenv("TEXPROC_MODULE_DIR", dir.c_str(), 1); },
+         "--module-dir", [](const std::string& dir) { ::setenv("TEXPROC_MODULE_DIR", dir.c_str(), 1); },
          "Folder of texproc's runtime modules (default: beside the binary, then the installed lib/.../texproc; "
          "also TEXPROC_MODULE_DIR)")
       ->check(CLI::ExistingDirectory);
@@ -82,8 +81,10 @@ int main(int argc, char** argv) {
       return int(texproc::cli::ExitCode::bad_arguments);
     }
     try {
-      if (version && version_json) std::cout << texproc::cli::to_json(texproc::cli::version_json());
-      else if (version) std::cout << "texproc " << texproc::version_string() << "\n";
+      if (version && version_json)
+        std::cout << texproc::cli::to_json(texproc::cli::version_json());
+      else if (version)
+        std::cout << "texproc " << texproc::version_string() << "\n";
       if (runtime_files) {
         for (const std::string& f : texproc::runtime_files()) std::cout << f << "\n";
       }

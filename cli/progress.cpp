@@ -10,7 +10,9 @@
 namespace texproc::cli {
 
 Progress::Progress(std::string command, std::size_t total, bool enabled)
-    : command_(std::move(command)), total_(total), enabled_(enabled && total > 0),
+    : command_(std::move(command)),
+      total_(total),
+      enabled_(enabled && total > 0),
       start_(std::chrono::steady_clock::now()) {
   if (!enabled_) return;
   ticker_ = std::thread([this] {

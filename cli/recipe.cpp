@@ -39,13 +39,20 @@ struct Node {
 
 const char* kind_name(Node::Kind k) {
   switch (k) {
-    case Node::string: return "a string";
-    case Node::integer: return "an integer";
-    case Node::real: return "a number";
-    case Node::boolean: return "a boolean";
-    case Node::array: return "an array";
-    case Node::table: return "a table";
-    case Node::other: return "a date or time";
+    case Node::string:
+      return "a string";
+    case Node::integer:
+      return "an integer";
+    case Node::real:
+      return "a number";
+    case Node::boolean:
+      return "a boolean";
+    case Node::array:
+      return "an array";
+    case Node::table:
+      return "a table";
+    case Node::other:
+      return "a date or time";
   }
   return "?";
 }
@@ -292,7 +299,8 @@ std::vector<std::string> names_of(const RecipeJob& j, const std::string& file) {
   std::vector<std::string> out{absolute_normal(file)};
   if (!j.output_base.empty()) {
     const fs::path rel = fs::path(out[0]).lexically_relative(j.output_base);
-    if (!rel.empty() && *rel.begin() != "..") out.push_back((fs::path(j.source_base) / rel).lexically_normal().string());
+    if (!rel.empty() && *rel.begin() != "..")
+      out.push_back((fs::path(j.source_base) / rel).lexically_normal().string());
   }
   return out;
 }
@@ -466,7 +474,8 @@ Recipe read_recipe(const std::string& path, const std::string& out_dir) {
   }
   const Node* jobs = root.find("jobs");
   if (!jobs) fail(path, 1, "jobs: missing (a list of jobs: [[jobs]] in TOML, \"jobs\": [...] in JSON)");
-  if (jobs->kind != Node::array || jobs->items.empty()) fail(path, jobs->line, "jobs: expected a non-empty array of tables");
+  if (jobs->kind != Node::array || jobs->items.empty())
+    fail(path, jobs->line, "jobs: expected a non-empty array of tables");
   for (std::size_t i = 0; i < jobs->items.size(); ++i) {
     const Node& jn = jobs->items[i];
     RecipeJob j;
@@ -486,12 +495,14 @@ Recipe read_recipe(const std::string& path, const std::string& out_dir) {
       out = n->text;
       if (line) *line = n->line;
     };
-    static const char* known[] = {"name", "command", "inputs", "exclude", "output", "recursive", "options", "overrides"};
+    static const char* known[] = {"name",   "command",   "inputs",  "exclude",
+                                  "output", "recursive", "options", "overrides"};
     for (const auto& [key, v] : jn.fields) {
       if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) ==
           std::end(known)) {
         fail(path, v.line,
-             at + "." + key + ": unknown key (valid: name, command, inputs, exclude, output, recursive, options, overrides)");
+             at + "." + key +
+                 ": unknown key (valid: name, command, inputs, exclude, output, recursive, options, overrides)");
       }
     }
     string_field("name", false, j.name, nullptr);
@@ -535,7 +546,8 @@ Recipe read_recipe(const std::string& path, const std::string& out_dir) {
         RecipeOverride o;
         o.line = on.line;
         for (const auto& [key, v] : on.fields) {
-          if (key != "inputs" && key != "options") fail(path, v.line, ok + "." + key + ": unknown key (valid: inputs, options)");
+          if (key != "inputs" && key != "options")
+            fail(path, v.line, ok + "." + key + ": unknown key (valid: inputs, options)");
         }
         const Node* oi = on.find("inputs");
         const Node* oo = on.find("options");

@@ -49,7 +49,7 @@ struct RecipeJob {
   std::string command;  // mip, compress, ...
   std::vector<InputSpec> inputs;
   std::vector<std::string> excludes;  // glob patterns (resolved): files matching one are left out
-  std::string output;  // resolved against the recipe's folder
+  std::string output;                 // resolved against the recipe's folder
   bool recursive = false;
   std::vector<RecipeOption> options;  // the recipe's defaults for the command, then the job's own
   std::vector<RecipeOverride> overrides;

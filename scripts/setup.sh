@@ -16,8 +16,8 @@ packages=(
   libnvtt-bin libsquish-dev android-libetc1-dev python3-pil
   # the Bazel rules' test: Debian's Bazel, nginx (WebDAV remote cache), Bazel's RemoteWorker sources and a JDK
   bazel-bootstrap bazel-bootstrap-source nginx default-jdk-headless
-  # the libFuzzer harnesses (scripts/fuzz.sh)
-  clang libclang-rt-14-dev
+  # the libFuzzer harnesses (scripts/fuzz.sh); the format check (ctest Format.Sources)
+  clang libclang-rt-14-dev clang-format
 )
 missing=()
 for p in "${packages[@]}"; do

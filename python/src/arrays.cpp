@@ -67,9 +67,12 @@ py::array to_array(Image&& image) {
   const std::vector<py::ssize_t> shape = {owned->height(), owned->width(), owned->channels()};
   const std::vector<py::ssize_t> strides = {py::ssize_t(owned->row_stride()), owned->channels() * item, item};
   switch (owned->type()) {
-    case PixelType::u8: return py::array(py::dtype::of<std::uint8_t>(), shape, strides, owned->data(), owner);
-    case PixelType::u16: return py::array(py::dtype::of<std::uint16_t>(), shape, strides, owned->data(), owner);
-    case PixelType::f32: return py::array(py::dtype::of<float>(), shape, strides, owned->data(), owner);
+    case PixelType::u8:
+      return py::array(py::dtype::of<std::uint8_t>(), shape, strides, owned->data(), owner);
+    case PixelType::u16:
+      return py::array(py::dtype::of<std::uint16_t>(), shape, strides, owned->data(), owner);
+    case PixelType::f32:
+      return py::array(py::dtype::of<float>(), shape, strides, owned->data(), owner);
   }
   throw Error(ErrorCode::runtime, "unknown pixel type");
 }
@@ -102,9 +105,12 @@ std::optional<PixelType> parse_optional_dtype(const py::handle& dtype) {
 
 const char* dtype_name(PixelType type) {
   switch (type) {
-    case PixelType::u8: return "uint8";
-    case PixelType::u16: return "uint16";
-    case PixelType::f32: return "float32";
+    case PixelType::u8:
+      return "uint8";
+    case PixelType::u16:
+      return "uint16";
+    case PixelType::f32:
+      return "float32";
   }
   return "?";
 }

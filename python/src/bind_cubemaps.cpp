@@ -56,12 +56,13 @@ std::shared_ptr<Texture> to_texture(const Cubemap& c, const std::string& dtype) 
   std::vector<std::vector<Image>> chains(6);
   for (const CubeLevel& l : c.levels) {
     for (int f = 0; f < 6; ++f) {
-      chains[std::size_t(f)].push_back(eight_bit
-                                           ? from_linear_rgba(l.faces[std::size_t(f)].view(), ColorSpace::srgb(), 4, PixelType::u8)
-                                           : from_linear_rgba(l.faces[std::size_t(f)].view(), ColorSpace::linear(), 4, PixelType::f32));
+      chains[std::size_t(f)].push_back(
+          eight_bit ? from_linear_rgba(l.faces[std::size_t(f)].view(), ColorSpace::srgb(), 4, PixelType::u8)
+                    : from_linear_rgba(l.faces[std::size_t(f)].view(), ColorSpace::linear(), 4, PixelType::f32));
     }
   }
-  return std::make_shared<Texture>(texture_from_surfaces(std::move(chains), {.faces = 6}, {.srgb = eight_bit, .half = dtype == "float16"}));
+  return std::make_shared<Texture>(
+      texture_from_surfaces(std::move(chains), {.faces = 6}, {.srgb = eight_bit, .half = dtype == "float16"}));
 }
 
 void bind_cubemap_class(py::module_& m) {
@@ -72,37 +73,51 @@ void bind_cubemap_class(py::module_& m) {
       .def_property_readonly("levels", [](const Cubemap& c) { return c.levels.size(); })
       .def("face", &face_view, py::arg("face"), py::arg("level") = 0,
            "One face as a read-only float32 array (it keeps the cube alive).")
-      .def_static("from_equirect", [](const py::handle& panorama, int size, const std::string& flip,
-                                      const std::string& color_space) {
+      .def_static(
+          "from_equirect",
+          [](const py::handle& panorama, int size, const std::string& flip, const std::string& color_space) {
             Image rgba = linear_rgba(panorama, color_space, "panorama");
             const CubeFlip f = parse_cube_flip(flip);
             py::gil_scoped_release release;
             return own(cubemap_from_equirect(rgba.view(), size > 0 ? size : default_cube_size(rgba.width()), f));
-          }, py::arg("panorama"), py::kw_only(), py::arg("size") = 0, py::arg("flip") = "none",
+          },
+          py::arg("panorama"), py::kw_only(), py::arg("size") = 0, py::arg("flip") = "none",
           py::arg("color_space") = "", "From a 2:1 latitude-longitude panorama (size 0: from its width).")
-      .def_static("from_faces", [](const py::list& faces, const std::string& color_space) {
+      .def_static(
+          "from_faces",
+          [](const py::list& faces, const std::string& color_space) {
             if (faces.size() != 6) throw Error(ErrorCode::bad_arguments, "faces: want 6 images");
             std::vector<Image> rgba;
             for (const py::handle& f : faces) rgba.push_back(linear_rgba(f, color_space, "faces"));
             py::gil_scoped_release release;
             return own(cubemap_from_images(rgba));
-          }, py::arg("faces"), py::kw_only(), py::arg("color_space") = "", "From six square faces.")
-      .def_static("from_layout", [](const py::handle& image, const std::string& layout, const std::string& color_space) {
+          },
+          py::arg("faces"), py::kw_only(), py::arg("color_space") = "", "From six square faces.")
+      .def_static(
+          "from_layout",
+          [](const py::handle& image, const std::string& layout, const std::string& color_space) {
             Image rgba = linear_rgba(image, color_space, "image");
-            const CubeLayout l = layout == "auto" ? detect_cube_layout(rgba.width(), rgba.height()) : parse_cube_layout(layout);
+            const CubeLayout l =
+                layout == "auto" ? detect_cube_layout(rgba.width(), rgba.height()) : parse_cube_layout(layout);
             py::gil_scoped_release release;
             return own(l == CubeLayout::equirect ? cubemap_from_equirect(rgba.view(), default_cube_size(rgba.width()))
                                                  : cubemap_from_layout(rgba.view(), l));
-          }, py::arg("image"), py::arg("layout") = "auto", py::kw_only(), py::arg("color_space") = "",
+          },
+          py::arg("image"), py::arg("layout") = "auto", py::kw_only(), py::arg("color_space") = "",
           "From a cross, strip or panorama image (layout 'auto' tells by the aspect ratio).")
-      .def("with_mips", [](const Cubemap& c, int max_levels) {
+      .def(
+          "with_mips",
+          [](const Cubemap& c, int max_levels) {
             py::gil_scoped_release release;
             Cubemap copy = c;
             copy.levels.resize(1);
             generate_cube_mips(copy, max_levels);
             return own(std::move(copy));
-          }, py::arg("max_levels") = 0, "A copy with a filtered mip chain from level 0.")
-      .def("to_equirect", [](const Cubemap& c, int width, int level) {
+          },
+          py::arg("max_levels") = 0, "A copy with a filtered mip chain from level 0.")
+      .def(
+          "to_equirect",
+          [](const Cubemap& c, int width, int level) {
             face_of(c, 0, level);
             Image out;
             {
@@ -110,8 +125,11 @@ void bind_cubemap_class(py::module_& m) {
               out = cubemap_to_equirect(c, width, level);
             }
             return to_array(std::move(out));
-          }, py::arg("width"), py::arg("level") = 0, "A width x width/2 RGBA float32 panorama of a level.")
-      .def("to_layout", [](const Cubemap& c, const std::string& layout, int level) {
+          },
+          py::arg("width"), py::arg("level") = 0, "A width x width/2 RGBA float32 panorama of a level.")
+      .def(
+          "to_layout",
+          [](const Cubemap& c, const std::string& layout, int level) {
             face_of(c, 0, level);
             const CubeLayout l = parse_cube_layout(layout);
             Image out;
@@ -120,7 +138,8 @@ void bind_cubemap_class(py::module_& m) {
               out = cubemap_to_layout(c, l, level);
             }
             return to_array(std::move(out));
-          }, py::arg("layout"), py::arg("level") = 0, "A cross or strip image of a level.")
+          },
+          py::arg("layout"), py::arg("level") = 0, "A cross or strip image of a level.")
       .def("to_texture", &to_texture, py::arg("dtype") = "float16",
            "An uncompressed cube texture of every level: float16 (rgba16_float), float32, or uint8 (rgba8_srgb).");
 }
@@ -129,8 +148,9 @@ void bind_cubemap_class(py::module_& m) {
 
 void bind_cubemaps(py::module_& m) {
   bind_cubemap_class(m);
-  m.def("prefilter_specular", [](const Cubemap& source, int size, int levels, int min_size, int samples,
-                                 double exact_budget) {
+  m.def(
+      "prefilter_specular",
+      [](const Cubemap& source, int size, int levels, int min_size, int samples, double exact_budget) {
         SpecularOptions o;
         o.size = size;
         o.levels = levels;
@@ -139,14 +159,20 @@ void bind_cubemaps(py::module_& m) {
         o.exact_budget = exact_budget;
         py::gil_scoped_release release;
         return own(prefilter_specular(source, o));
-      }, py::arg("source"), py::kw_only(), py::arg("size") = 0, py::arg("levels") = 0, py::arg("min_size") = 8,
+      },
+      py::arg("source"), py::kw_only(), py::arg("size") = 0, py::arg("levels") = 0, py::arg("min_size") = 8,
       py::arg("samples") = 512, py::arg("exact_budget") = 1.0e9,
       "The GGX specular chain of an environment: level k for roughness k / (levels - 1).");
-  m.def("irradiance", [](const Cubemap& source, int size) {
+  m.def(
+      "irradiance",
+      [](const Cubemap& source, int size) {
         py::gil_scoped_release release;
         return own(irradiance_cubemap(source, size));
-      }, py::arg("source"), py::kw_only(), py::arg("size") = 32, "The diffuse irradiance (divided by pi) cube.");
-  m.def("sh9", [](const Cubemap& source) {
+      },
+      py::arg("source"), py::kw_only(), py::arg("size") = 32, "The diffuse irradiance (divided by pi) cube.");
+  m.def(
+      "sh9",
+      [](const Cubemap& source) {
         SphericalHarmonics9 sh;
         {
           py::gil_scoped_release release;
@@ -156,7 +182,8 @@ void bind_cubemaps(py::module_& m) {
         for (int i = 0; i < 9; ++i)
           for (int c = 0; c < 3; ++c) out.mutable_at(i, c) = sh.radiance[std::size_t(i)][std::size_t(c)];
         return out;
-      }, py::arg("source"), "Nine spherical-harmonic radiance coefficients (9 x 3: L00, L1-1, L10, L11, L2-2...).");
+      },
+      py::arg("source"), "Nine spherical-harmonic radiance coefficients (9 x 3: L00, L1-1, L10, L11, L2-2...).");
 }
 
 }  // namespace texproc::py_binding

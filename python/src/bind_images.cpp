@@ -11,8 +11,8 @@
 namespace texproc::py_binding {
 
 MipOptions mip_options(const std::string& filter, float sigma, const std::string& wrap,
-                       std::optional<float> alpha_coverage, bool premultiplied_alpha, bool normal_map,
-                       int max_levels, int min_size) {
+                       std::optional<float> alpha_coverage, bool premultiplied_alpha, bool normal_map, int max_levels,
+                       int min_size) {
   MipOptions o;
   o.filter.kind = parse_filter_kind(filter);
   if (!(sigma > 0.0f && sigma <= 4.0f)) {
@@ -86,7 +86,8 @@ py::list mips(const py::handle& array, const std::string& filter, float sigma, c
               bool premultiplied_alpha, std::optional<float> alpha_coverage, bool normal_map, int max_levels,
               int min_size) {
   const InputImage in(array, "image");
-  MipOptions o = mip_options(filter, sigma, wrap, alpha_coverage, premultiplied_alpha, normal_map, max_levels, min_size);
+  MipOptions o =
+      mip_options(filter, sigma, wrap, alpha_coverage, premultiplied_alpha, normal_map, max_levels, min_size);
   o.color_space = color_space;
   o.output_color_space = output_color_space;
   o.output_type = parse_optional_dtype(dtype);
@@ -157,11 +158,11 @@ void bind_images(py::module_& m) {
   m.def("read_image", &read, py::arg("path"),
         "Reads an image file (PNG, JPEG, TGA, TIFF, OpenEXR, DDS/KTX2/KTX1/PKM/.astc level 0 decoded, and what "
         "OpenImageIO reads) as an array: height x width x channels of uint8, uint16 or float32.");
-  m.def("probe_image", [](const std::string& path) { return file_info_dict(probe_image(path, read_options())); }, py::arg("path"),
-        "Header facts of an image file without reading its pixels, as a dict.");
+  m.def(
+      "probe_image", [](const std::string& path) { return file_info_dict(probe_image(path, read_options())); },
+      py::arg("path"), "Header facts of an image file without reading its pixels, as a dict.");
   m.def("write_image", &write, py::arg("path"), py::arg("image"), py::kw_only(), py::arg("half") = false,
-        py::arg("compression") = "", py::arg("color_space") = "", py::arg("quality") = 95,
-        py::arg("red_green") = false,
+        py::arg("compression") = "", py::arg("color_space") = "", py::arg("quality") = 95, py::arg("red_green") = false,
         "Writes an image atomically; the format follows the extension. half: float32 stored as 16-bit halves "
         "(EXR, TIFF). compression: PNG zip:N, TIFF none/zip/lzw/packbits, EXR none/rle/zips/zip/piz/... "
         "color_space: 'srgb' or 'linear' to tag. quality: JPEG. red_green: two channels are RG, not grey+alpha.");

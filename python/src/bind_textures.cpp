@@ -56,11 +56,21 @@ py::bytes to_bytes(const Texture& t, const std::string& container, int zstd, con
   {
     py::gil_scoped_release release;
     switch (kind) {
-      case ContainerKind::dds: bytes = encode_dds(t, parse_dds_header(dds_header)); break;
-      case ContainerKind::ktx2: bytes = encode_ktx2(t, "", zstd); break;
-      case ContainerKind::ktx1: bytes = encode_ktx1(t); break;
-      case ContainerKind::pkm: bytes = encode_pkm(t); break;
-      case ContainerKind::astc: bytes = encode_astc(t); break;
+      case ContainerKind::dds:
+        bytes = encode_dds(t, parse_dds_header(dds_header));
+        break;
+      case ContainerKind::ktx2:
+        bytes = encode_ktx2(t, "", zstd);
+        break;
+      case ContainerKind::ktx1:
+        bytes = encode_ktx1(t);
+        break;
+      case ContainerKind::pkm:
+        bytes = encode_pkm(t);
+        break;
+      case ContainerKind::astc:
+        bytes = encode_astc(t);
+        break;
     }
   }
   return py::bytes(reinterpret_cast<const char*>(bytes.data()), bytes.size());
@@ -80,11 +90,16 @@ TexturePtr from_bytes(const py::buffer& data, const std::string& name) {
   py::gil_scoped_release release;
   const ReadLimits& limits = read_options().limits;
   switch (kind) {
-    case ContainerKind::dds: return std::make_shared<Texture>(decode_dds(p, n, name, limits));
-    case ContainerKind::ktx2: return std::make_shared<Texture>(decode_ktx2(p, n, name, limits));
-    case ContainerKind::ktx1: return std::make_shared<Texture>(decode_ktx1(p, n, name, limits));
-    case ContainerKind::pkm: return std::make_shared<Texture>(decode_pkm(p, n, name, limits));
-    case ContainerKind::astc: return std::make_shared<Texture>(decode_astc(p, n, name, limits));
+    case ContainerKind::dds:
+      return std::make_shared<Texture>(decode_dds(p, n, name, limits));
+    case ContainerKind::ktx2:
+      return std::make_shared<Texture>(decode_ktx2(p, n, name, limits));
+    case ContainerKind::ktx1:
+      return std::make_shared<Texture>(decode_ktx1(p, n, name, limits));
+    case ContainerKind::pkm:
+      return std::make_shared<Texture>(decode_pkm(p, n, name, limits));
+    case ContainerKind::astc:
+      return std::make_shared<Texture>(decode_astc(p, n, name, limits));
   }
   throw Error(ErrorCode::runtime, "unknown container");
 }
@@ -127,7 +142,8 @@ std::vector<Image> copy_surfaces(const py::handle& surfaces) {
     const InputImage in(a, "image");
     const ConstImageView& v = in.view();
     Image copy = Image::uninitialized(v.width, v.height, v.channels, v.type);
-    for (int y = 0; y < v.height; ++y) std::memcpy(copy.row<std::uint8_t>(y), v.row<std::uint8_t>(y), copy.row_stride());
+    for (int y = 0; y < v.height; ++y)
+      std::memcpy(copy.row<std::uint8_t>(y), v.row<std::uint8_t>(y), copy.row_stride());
     out.push_back(std::move(copy));
   };
   if (py::isinstance<py::list>(surfaces) || py::isinstance<py::tuple>(surfaces)) {
@@ -142,7 +158,8 @@ std::vector<Image> copy_surfaces(const py::handle& surfaces) {
 Image decode_to_linear(const Image& img, const ColorSpace& from) {
   Image out = Image::uninitialized(img.width(), img.height(), img.channels(), PixelType::f32);
   for_each_row_block(img.height(), 16, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) from.decode_row(img.row<std::uint8_t>(y), img.type(), img.channels(), img.width(), out.row<float>(y));
+    for (int y = y0; y < y1; ++y)
+      from.decode_row(img.row<std::uint8_t>(y), img.type(), img.channels(), img.width(), out.row<float>(y));
   });
   return out;
 }
@@ -171,12 +188,14 @@ TexturePtr compress(const py::handle& images, const std::string& format_name, co
   TextureEncodeOptions options;
   options.encode.bc1_black = bc1_black;
   if (astc_effort) {
-    if (!(*astc_effort >= 0.0f && *astc_effort <= 100.0f)) throw Error(ErrorCode::bad_arguments, "astc_effort must be 0 to 100");
+    if (!(*astc_effort >= 0.0f && *astc_effort <= 100.0f))
+      throw Error(ErrorCode::bad_arguments, "astc_effort must be 0 to 100");
     options.encode.astc_effort = *astc_effort;
   }
   options.normal_map = normal_map;
   options.transparent = parse_transparent(transparent_color);
-  const MipOptions mip = mip_options(filter, sigma, wrap, alpha_coverage, premultiplied_alpha, normal_map, max_levels, min_size);
+  const MipOptions mip =
+      mip_options(filter, sigma, wrap, alpha_coverage, premultiplied_alpha, normal_map, max_levels, min_size);
   std::vector<Image> surfaces = copy_surfaces(images);
   const SurfaceLayout l = layout_of(surfaces.size(), faces, is_array);
   // HDR formats hold light: integer colour is decoded (from sRGB unless
@@ -248,10 +267,13 @@ void bind_texture_class(py::module_& m) {
       .def_readonly("faces", &Texture::faces)
       .def_readonly("layers", &Texture::layers)
       .def_readonly("is_array", &Texture::is_array)
-      .def("level_size", [](const Texture& t, std::uint32_t level) {
+      .def(
+          "level_size",
+          [](const Texture& t, std::uint32_t level) {
             check_index(t, level, 0, 0);
             return py::make_tuple(t.level_width(level), t.level_height(level));
-          }, py::arg("level"), "(width, height) of a level.")
+          },
+          py::arg("level"), "(width, height) of a level.")
       .def("image", &image_bytes_view, py::arg("level") = 0, py::arg("layer") = 0, py::arg("face") = 0,
            "The stored bytes of one image (read-only uint8 array; it keeps the texture alive).")
       .def("decode", &decode, py::arg("level") = 0, py::arg("layer") = 0, py::arg("face") = 0,
@@ -260,17 +282,23 @@ void bind_texture_class(py::module_& m) {
       .def("to_bytes", &to_bytes, py::arg("container") = "ktx2", py::kw_only(), py::arg("zstd") = 0,
            py::arg("dds_header") = "auto",
            "The texture as a file's bytes: 'dds', 'ktx2', 'ktx', 'pkm', 'astc'. zstd: KTX2 Zstandard level 1-22.")
-      .def("save", [](const Texture& t, const std::string& path, int zstd, const std::string& dds_header) {
+      .def(
+          "save",
+          [](const Texture& t, const std::string& path, int zstd, const std::string& dds_header) {
             check_zstd(zstd);
             py::gil_scoped_release release;
             write_texture(path, t, parse_dds_header(dds_header), zstd);
-          }, py::arg("path"), py::kw_only(), py::arg("zstd") = 0, py::arg("dds_header") = "auto",
+          },
+          py::arg("path"), py::kw_only(), py::arg("zstd") = 0, py::arg("dds_header") = "auto",
           "Writes the texture atomically; the container follows the extension.")
       .def_static("from_bytes", &from_bytes, py::arg("data"), py::arg("name") = "<bytes>",
                   "A texture from a DDS, KTX2, KTX1, PKM or .astc file's bytes (found by signature).")
-      .def_static("from_levels", [](const py::list& levels, bool srgb, bool half) {
+      .def_static(
+          "from_levels",
+          [](const py::list& levels, bool srgb, bool half) {
             return from_surfaces(py::list(py::make_tuple(levels)), 1, false, srgb, half);
-          }, py::arg("levels"), py::kw_only(), py::arg("srgb") = false, py::arg("half") = false,
+          },
+          py::arg("levels"), py::kw_only(), py::arg("srgb") = false, py::arg("half") = false,
           "An uncompressed texture from a mip chain (r8/rg8/rgba8, r16/rg16/rgba16, rgba16_float with half, "
           "rgba32_float).")
       .def_static("from_surfaces", &from_surfaces, py::arg("chains"), py::kw_only(), py::arg("faces") = 1,
@@ -287,10 +315,13 @@ void bind_texture_class(py::module_& m) {
 
 void bind_textures(py::module_& m) {
   bind_texture_class(m);
-  m.def("read_texture", [](const std::string& path) {
+  m.def(
+      "read_texture",
+      [](const std::string& path) {
         py::gil_scoped_release release;
         return std::make_shared<Texture>(read_texture(path, read_options().limits));
-      }, py::arg("path"), "Reads a DDS, KTX2, KTX1, PKM or .astc file.");
+      },
+      py::arg("path"), "Reads a DDS, KTX2, KTX1, PKM or .astc file.");
   m.def("compress", &compress, py::arg("image"), py::arg("format"), py::kw_only(), py::arg("quality") = "normal",
         py::arg("mips") = false, py::arg("faces") = 1, py::arg("is_array") = false, py::arg("color_space") = "",
         py::arg("normal_map") = false, py::arg("transparent_color") = "keep", py::arg("bc1_black") = false,

@@ -24,8 +24,8 @@ namespace texproc::py_binding {
 
 // The mip options generate_mips and compress share, checked.
 MipOptions mip_options(const std::string& filter, float sigma, const std::string& wrap,
-                       std::optional<float> alpha_coverage, bool premultiplied_alpha, bool normal_map,
-                       int max_levels, int min_size);
+                       std::optional<float> alpha_coverage, bool premultiplied_alpha, bool normal_map, int max_levels,
+                       int min_size);
 
 // How the package reads files: as the texproc tool does
 // (ReadOptions::from_environment(), read once).

@@ -51,11 +51,20 @@ void make_exceptions(py::module_& m) {
 void raise(const Error& e) {
   PyObject* cls = exceptions.base;
   switch (e.code()) {
-    case ErrorCode::bad_arguments: cls = exceptions.bad_arguments; break;
-    case ErrorCode::io: cls = exceptions.io; break;
-    case ErrorCode::invalid_file: cls = exceptions.invalid_file; break;
-    case ErrorCode::unsupported: cls = exceptions.unsupported; break;
-    default: break;
+    case ErrorCode::bad_arguments:
+      cls = exceptions.bad_arguments;
+      break;
+    case ErrorCode::io:
+      cls = exceptions.io;
+      break;
+    case ErrorCode::invalid_file:
+      cls = exceptions.invalid_file;
+      break;
+    case ErrorCode::unsupported:
+      cls = exceptions.unsupported;
+      break;
+    default:
+      break;
   }
   py::object instance = py::reinterpret_steal<py::object>(PyObject_CallFunction(cls, "s", e.what()));
   if (!instance) return;  // the call set its own error

@@ -63,8 +63,7 @@ TEST(Batch, FolderInputsMirrorTheTreeUnderAnOutputFolder) {
 
 TEST(Batch, TemplatesNameEachOutput) {
   const std::string dir = make_tree("batch_template");
-  RunResult r = run_texproc(
-      "normalmap a -r -o 'n/{reldir}/{stem}_{ext}.png' --dry-run", dir);
+  RunResult r = run_texproc("normalmap a -r -o 'n/{reldir}/{stem}_{ext}.png' --dry-run", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out, "n/b_png.png\nn/c_png.png\nn/sub/d_png.png\nn/sub/deeper/e_tga.png\n");
   r = run_texproc("mip a/b.png a/sub/d.png -o 'm/{dir}/{name}.ktx2' --dry-run", dir);
@@ -76,8 +75,7 @@ TEST(Batch, TemplatesNameEachOutput) {
   // Mistakes are caught before any work, with the fix in the message.
   r = run_texproc("mip a/b.png -o 'm/{base}.dds'", dir);
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("unknown placeholder {base} (valid: {stem}, {name}, {ext}, {dir}, {reldir})"),
-            std::string::npos)
+  EXPECT_NE(r.err.find("unknown placeholder {base} (valid: {stem}, {name}, {ext}, {dir}, {reldir})"), std::string::npos)
       << r.err;
   r = run_texproc("mip a/b.png a/c.png -o m.dds", dir);
   EXPECT_EQ(r.exit_code, 1);

@@ -84,9 +84,7 @@ TEST(Cli, MipErrorsNameTheFileAndProblem) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("would overwrite the input"), std::string::npos) << r.err;
 
-  {
-    std::ofstream(dir + "/garbage.png") << "not an image";
-  }
+  { std::ofstream(dir + "/garbage.png") << "not an image"; }
   r = run_texproc("mip " + dir + "/garbage.png -o " + dir + "/g.tif");
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.err.find("garbage.png"), std::string::npos) << r.err;
@@ -204,9 +202,7 @@ TEST(Cli, SatBuildQueryBlurAndInfo) {
   EXPECT_NE(r.err.find("outside the 10x6 table"), std::string::npos) << r.err;
   r = run_texproc("sat query " + dir + "/missing.sat 0 0 1 1");
   EXPECT_EQ(r.exit_code, 2);
-  {
-    std::ofstream(dir + "/junk.sat") << "not a table";
-  }
+  { std::ofstream(dir + "/junk.sat") << "not a table"; }
   r = run_texproc("sat query " + dir + "/junk.sat 0 0 1 1");
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.err.find("junk.sat: not a valid .sat file"), std::string::npos) << r.err;
@@ -251,9 +247,7 @@ TEST(Cli, MipIntoContainersAndInfo) {
   r = run_texproc("mip " + dir + "/a.png -o " + dir + "/d.dds --dds-header dx11");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("(valid: auto, dx9, dx10)"), std::string::npos) << r.err;
-  {
-    std::ofstream(dir + "/bad.ktx2", std::ios::binary) << std::string("\xABKTX 20\xBB\r\n\x1A\n", 12) << "short";
-  }
+  { std::ofstream(dir + "/bad.ktx2", std::ios::binary) << std::string("\xABKTX 20\xBB\r\n\x1A\n", 12) << "short"; }
   r = run_texproc("info " + dir + "/bad.ktx2");
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.err.find("bad.ktx2: truncated: typeSize needs bytes 16..20 of 17"), std::string::npos) << r.err;
@@ -266,12 +260,13 @@ TEST(Cli, ConemapWritesMapAndPreview) {
   for (int y = 0; y < 24; ++y)
     for (int x = 0; x < 24; ++x) h.set(x, y, 0, (x / 6 + y / 6) % 2 ? 0.8f : 0.1f);
   write_image(dir + "/h.png", h.view());
-  RunResult r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/c.png --preview " + dir + "/p.png --preview-size 32 -q");
+  RunResult r =
+      run_texproc("conemap " + dir + "/h.png -o " + dir + "/c.png --preview " + dir + "/p.png --preview-size 32 -q");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Image c = read_image(dir + "/c.png");
   EXPECT_EQ(c.channels(), 3);
-  EXPECT_EQ(c.get(3, 3, 0), h.get(3, 3, 0));  // R is the height
-  EXPECT_EQ(read_image(dir + "/p.png").width(), 96);  // linear, cones, relaxed cones
+  EXPECT_EQ(c.get(3, 3, 0), h.get(3, 3, 0));           // R is the height
+  EXPECT_EQ(read_image(dir + "/p.png").width(), 96);   // linear, cones, relaxed cones
   EXPECT_EQ(read_image(dir + "/p.png").height(), 64);  // renders over heat maps
   // The fast generator and the brute force write the same bytes.
   r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/b.png --brute-force -q");
@@ -293,7 +288,8 @@ TEST(Cli, ConemapWritesMapAndPreview) {
     for (int x = 0; x < 24; ++x) EXPECT_GE(rx.get(x, y, 1), c.get(x, y, 1)) << x << "," << y;
   // --bilinear-safe: never wider than the classic cones, and with the
   // preview (whose relaxed panel uses texel-centre cones); not with relaxed.
-  r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/s.png --bilinear-safe --preview " + dir + "/sp.png --preview-size 16 -q");
+  r = run_texproc("conemap " + dir + "/h.png -o " + dir + "/s.png --bilinear-safe --preview " + dir +
+                  "/sp.png --preview-size 16 -q");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Image sb = read_image(dir + "/s.png");
   int narrower = 0;
@@ -478,7 +474,8 @@ TEST(Cli, CompressBc6hFromHdrInputs) {
   float src_max = 0, back_max = 0;
   for (int y = 0; y < src.height(); ++y)
     for (int x = 0; x < src.width(); ++x)
-      for (int c = 0; c < 3; ++c) src_max = std::max(src_max, src.get(x, y, c)), back_max = std::max(back_max, back.get(x, y, c));
+      for (int c = 0; c < 3; ++c)
+        src_max = std::max(src_max, src.get(x, y, c)), back_max = std::max(back_max, back.get(x, y, c));
   ASSERT_GT(src_max, 2.0f);
   EXPECT_GT(back_max, 0.9f * src_max);
   r = run_texproc("compare " + sky + " " + dir + "/out/s.exr --max-log-rmse 0.08");
@@ -512,10 +509,12 @@ TEST(Cli, CompressBc6hFromHdrInputs) {
   r = run_texproc("compress " + sky + " -o " + dir + "/s1.dds --format bc1 --quality fast");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("an HDR format keeps them (bc6h"), std::string::npos) << r.err;
-  r = run_texproc("compress " + std::string(TEXPROC_SAMPLES_DIR) + "/albedo_desert_512.png -o " + dir + "/a.dds --format bc6h --quality fast");
+  r = run_texproc("compress " + std::string(TEXPROC_SAMPLES_DIR) + "/albedo_desert_512.png -o " + dir +
+                  "/a.dds --format bc6h --quality fast");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find("clipped"), std::string::npos) << r.err;
-  r = run_texproc("compress " + std::string(TEXPROC_SAMPLES_DIR) + "/albedo_desert_512.png -o " + dir + "/a7.dds --format bc7 --quality fast");
+  r = run_texproc("compress " + std::string(TEXPROC_SAMPLES_DIR) + "/albedo_desert_512.png -o " + dir +
+                  "/a7.dds --format bc7 --quality fast");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find("clipped"), std::string::npos) << r.err;
   fs::remove_all(dir);
@@ -558,8 +557,8 @@ TEST(Cli, DepfileListsOutputsAndInputs) {
   RunResult r = run_texproc("mip '" + dir + "/in put/a#1.png' -o " + dir + "/out/a.png --levels 2 --depfile " + dir +
                             "/deps/a.d -q");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(read_text(dir + "/deps/a.d"), dir + "/out/a_mip0.png " + dir + "/out/a_mip1.png: \\\n  " + dir +
-                                              "/in\\ put/a\\#1.png\n");
+  EXPECT_EQ(read_text(dir + "/deps/a.d"),
+            dir + "/out/a_mip0.png " + dir + "/out/a_mip1.png: \\\n  " + dir + "/in\\ put/a\\#1.png\n");
   // The config is a dependency when a space came from it.
   const std::string env = "OCIO=" + dir + "/cfg.ocio ";
   const int status = std::system((env + TEXPROC_CLI_PATH + " mip '" + dir + "/in put/a#1.png' -o " + dir +
@@ -844,7 +843,8 @@ TEST(Cli, CompressKeepsAlphaCoverage) {
     level3[keep] = coverage(decode_texture_image(t, 3, 0, 0, PixelType::f32));
     if (keep) {
       const double c0 = coverage(decode_texture_image(t, 0, 0, 0, PixelType::f32));
-      for (int l = 1; l < 4; ++l) EXPECT_NEAR(coverage(decode_texture_image(t, l, 0, 0, PixelType::f32)), c0, 0.06) << l;
+      for (int l = 1; l < 4; ++l)
+        EXPECT_NEAR(coverage(decode_texture_image(t, l, 0, 0, PixelType::f32)), c0, 0.06) << l;
     }
   }
   EXPECT_GT(level3[1], level3[0] + 0.05);
@@ -870,13 +870,13 @@ TEST(Cli, CompressNoPremultiply) {
   double blue[2] = {};
   for (int plain = 0; plain < 2; ++plain) {
     const std::string out = dir + "/d" + std::to_string(plain) + ".ktx2";
-    RunResult r = run_texproc("compress " + dir + "/data.png -o " + out + " --format bc3 --linear --mips --filter box -q" +
-                              (plain ? " --no-premultiply" : ""));
+    RunResult r = run_texproc("compress " + dir + "/data.png -o " + out +
+                              " --format bc3 --linear --mips --filter box -q" + (plain ? " --no-premultiply" : ""));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const Image d = decode_texture_image(read_texture(out), 3, 0, 0, PixelType::f32);  // 1x1: the average
     blue[plain] = d.get(0, 0, 2);
   }
-  EXPECT_LT(blue[0], 0.05);        // weighed by alpha: only the opaque red half counts
+  EXPECT_LT(blue[0], 0.05);         // weighed by alpha: only the opaque red half counts
   EXPECT_NEAR(blue[1], 0.5, 0.05);  // data: both halves
   RunResult bad = run_texproc("compress " + dir + "/data.png -o " + dir + "/x.dds --format bc3 --no-premultiply");
   EXPECT_EQ(bad.exit_code, 1);
@@ -903,7 +903,8 @@ TEST(Cli, Bc1BlackFlag) {
   double se[2] = {};
   for (int black = 0; black < 2; ++black) {
     const std::string out = dir + "/art" + std::to_string(black) + ".ktx2";
-    RunResult r = run_texproc("compress " + dir + "/art.png -o " + out + " --format bc1 --linear -q" + (black ? " --bc1-black" : ""));
+    RunResult r = run_texproc("compress " + dir + "/art.png -o " + out + " --format bc1 --linear -q" +
+                              (black ? " --bc1-black" : ""));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const Image d = decode_texture_image(read_texture(out), 0, 0, 0, PixelType::u8);
     for (int y = 0; y < 32; ++y)
@@ -929,9 +930,11 @@ TEST(Cli, NvdecompressAgreesOnLegacyDds) {
   write_image(dir + "/in.png", random_image(64, 48, 4, PixelType::u8, 31).view());
   for (const char* f : {"bc1", "bc1a", "bc2", "bc3", "bc4", "bc5"}) {
     const std::string dds = dir + "/" + f + ".dds";
-    RunResult r = run_texproc("compress " + dir + "/in.png -o " + dds + " --format " + f + " --linear --dds-header dx9 -q");
+    RunResult r =
+        run_texproc("compress " + dir + "/in.png -o " + dds + " --format " + f + " --linear --dds-header dx9 -q");
     ASSERT_EQ(r.exit_code, 0) << f << r.err;
-    ASSERT_EQ(std::system(("cd '" + dir + "' && nvdecompress " + std::string(f) + ".dds >/dev/null 2>&1").c_str()), 0) << f;
+    ASSERT_EQ(std::system(("cd '" + dir + "' && nvdecompress " + std::string(f) + ".dds >/dev/null 2>&1").c_str()), 0)
+        << f;
     const Image nv = read_image(dir + "/" + f + ".tga");
     const Image ours = decode_texture_image(read_texture(dds), 0, 0, 0, PixelType::f32);
     const int channels = ours.channels();

@@ -116,16 +116,17 @@ TEST(Convert, CubesAndArraysKeepTheirSurfaces) {
 TEST(Convert, RefusesWhatTheTargetCannotHold) {
   const std::string dir = temp_dir("convert_refuse");
   write_image(dir + "/c.png", random_image(16, 16, 4, PixelType::u8, 5).view());
-  ASSERT_EQ(run_texproc("compress " + q(dir + "/c.png") + " -o " + q(dir + "/bc7.dds") + " --format bc7 --mips -q")
-                .exit_code, 0);
-  ASSERT_EQ(run_texproc("compress " + q(dir + "/c.png") + " -o " + q(dir + "/etc.ktx2") + " --format etc2 -q").exit_code,
-            0);
+  ASSERT_EQ(
+      run_texproc("compress " + q(dir + "/c.png") + " -o " + q(dir + "/bc7.dds") + " --format bc7 --mips -q").exit_code,
+      0);
+  ASSERT_EQ(
+      run_texproc("compress " + q(dir + "/c.png") + " -o " + q(dir + "/etc.ktx2") + " --format etc2 -q").exit_code, 0);
   struct Refusal {
     std::string in, out, says;
   };
-  for (const Refusal& c : {Refusal{"bc7.dds", "x.pkm", "PKM holds ETC1 and ETC2 RGB only"},
-                           Refusal{"etc.ktx2", "x.dds", "DDS cannot hold"},
-                           Refusal{"bc7.dds", "x.astc", ".astc holds ASTC blocks"}}) {
+  for (const Refusal& c :
+       {Refusal{"bc7.dds", "x.pkm", "PKM holds ETC1 and ETC2 RGB only"},
+        Refusal{"etc.ktx2", "x.dds", "DDS cannot hold"}, Refusal{"bc7.dds", "x.astc", ".astc holds ASTC blocks"}}) {
     const RunResult r = run_texproc("convert " + q(dir + "/" + c.in) + " -o " + q(dir + "/" + c.out));
     EXPECT_EQ(r.exit_code, 5) << c.in << " -> " << c.out;
     EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
@@ -133,8 +134,11 @@ TEST(Convert, RefusesWhatTheTargetCannotHold) {
     EXPECT_FALSE(fs::exists(dir + "/" + c.out)) << c.out;
   }
   // Allowed, but what .astc cannot say is named.
-  ASSERT_EQ(run_texproc("compress " + q(dir + "/c.png") + " -o " + q(dir + "/a.ktx2") + " --format astc-4x4 "
-                        "--quality fast -q").exit_code, 0);
+  ASSERT_EQ(run_texproc("compress " + q(dir + "/c.png") + " -o " + q(dir + "/a.ktx2") +
+                        " --format astc-4x4 "
+                        "--quality fast -q")
+                .exit_code,
+            0);
   RunResult r = run_texproc("convert " + q(dir + "/a.ktx2") + " -o " + q(dir + "/a.astc"));
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("the sRGB mark"), std::string::npos) << r.err;
@@ -156,7 +160,9 @@ TEST(Convert, PillowDecodesAConvertedDds) {
   const std::string dir = temp_dir("convert_pil");
   write_image(dir + "/c.png", random_image(32, 24, 4, PixelType::u8, 6).view());
   ASSERT_EQ(run_texproc("compress " + q(dir + "/c.png") + " -o " + q(dir + "/a.ktx2") +
-                        " --format bc7 --linear --quality fast -q").exit_code, 0);
+                        " --format bc7 --linear --quality fast -q")
+                .exit_code,
+            0);
   ASSERT_EQ(run_texproc("convert " + q(dir + "/a.ktx2") + " -o " + q(dir + "/a.dds") + " -q").exit_code, 0);
   const std::string out = dir + "/px.bin";
   const std::string cmd = "/usr/bin/python3 -c \"from PIL import Image; im = Image.open('" + dir +

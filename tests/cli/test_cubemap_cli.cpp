@@ -59,7 +59,8 @@ TEST(CubemapCli, EveryLayoutInAndOut) {
   EXPECT_EQ(info.width, 128);
   EXPECT_EQ(info.height, 96);
   for (const char* to : {"vcross", "strip", "vstrip"}) {
-    ASSERT_EQ(run_texproc("cubemap '" + dir + "/pano.exr' -o '" + dir + "/" + to + ".exr' --to " + to + " -q").exit_code, 0)
+    ASSERT_EQ(
+        run_texproc("cubemap '" + dir + "/pano.exr' -o '" + dir + "/" + to + ".exr' --to " + to + " -q").exit_code, 0)
         << to;
   }
   // Each layout comes back to the same cube (the faces are copied exactly).
@@ -73,7 +74,8 @@ TEST(CubemapCli, EveryLayoutInAndOut) {
     ASSERT_EQ(t.width, 32u) << l;
     for (int f = 0; f < 6; ++f) {
       const Image a = image_from_texture(t, 0, 0, f), b = image_from_texture(ref, 0, 0, f);
-      for (int c = 0; c < 3; ++c) EXPECT_NEAR(a.get(5, 20, c), b.get(5, 20, c), 1e-3) << l << " face " << f;  // EXR half
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(a.get(5, 20, c), b.get(5, 20, c), 1e-3) << l << " face " << f;  // EXR half
     }
   }
   // Six faces out (DIR/) and back in (--faces).

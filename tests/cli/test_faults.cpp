@@ -55,8 +55,8 @@ TEST(Faults, FullDiskLeavesNoFileUnderTheFinalName) {
   for (const Case& c : cases) {
     SCOPED_TRACE(c.args);
     // `timeout` turns a hang (OpenEXR's tiled writer after a failed write, before) into a failure.
-    const std::string cmd = "timeout 60 " + std::string(TEXPROC_CLI_PATH) + " " + c.args + " -q >/dev/null 2>'" + src +
-                            "/err.txt'";
+    const std::string cmd =
+        "timeout 60 " + std::string(TEXPROC_CLI_PATH) + " " + c.args + " -q >/dev/null 2>'" + src + "/err.txt'";
     const int status = std::system(cmd.c_str());
     const std::string err = slurp(src + "/err.txt");
     EXPECT_EQ(WEXITSTATUS(status), 2) << err;
@@ -66,8 +66,8 @@ TEST(Faults, FullDiskLeavesNoFileUnderTheFinalName) {
   }
   // A batch: the file that fits is written, the one that does not is not.
   write_image(src + "/tiny.png", random_image(8, 8, 3, PixelType::u8, 6).view());
-  const RunResult r = run_texproc("mip '" + src + "/tiny.png' '" + src + "/a.png' -o '" + disk.dir +
-                                  "/{stem}.dds' --type f32 -q");
+  const RunResult r =
+      run_texproc("mip '" + src + "/tiny.png' '" + src + "/a.png' -o '" + disk.dir + "/{stem}.dds' --type f32 -q");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_TRUE(fs::exists(disk.dir + "/tiny.dds"));
   EXPECT_FALSE(fs::exists(disk.dir + "/a.dds"));
@@ -134,7 +134,8 @@ TEST(Faults, OutputThatIsAnotherInputIsRefused) {
   write_image(dir + "/a_n.png", random_image(16, 16, 1, PixelType::u8, 2).view());
   const std::string before = slurp(dir + "/a_n.png");
   // a.png's output is a_n.png, the second input: refused before any work, even with -f.
-  RunResult r = run_texproc("normalmap '" + dir + "/a.png' '" + dir + "/a_n.png' -o '" + dir + "/{stem}_n.png' -f -j 2");
+  RunResult r =
+      run_texproc("normalmap '" + dir + "/a.png' '" + dir + "/a_n.png' -o '" + dir + "/{stem}_n.png' -f -j 2");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("a_n.png"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("never overwrite inputs"), std::string::npos) << r.err;
@@ -163,9 +164,10 @@ TEST(Faults, TwoProcessesNeverBothReplaceOneOutput) {
   int both = 0, one = 0;
   for (int trial = 0; trial < 6; ++trial) {
     fs::remove(dir + "/out.dds");
-    const std::string cmd = std::string(TEXPROC_CLI_PATH) + " mip '" + dir + "/a.png' -o '" + dir + "/out.dds' -q 2>/dev/null";
-    const std::string both_cmd = "(" + cmd + "; echo $? > '" + dir + "/rc1') & (" + cmd + "; echo $? > '" + dir +
-                                 "/rc2') & wait";
+    const std::string cmd =
+        std::string(TEXPROC_CLI_PATH) + " mip '" + dir + "/a.png' -o '" + dir + "/out.dds' -q 2>/dev/null";
+    const std::string both_cmd =
+        "(" + cmd + "; echo $? > '" + dir + "/rc1') & (" + cmd + "; echo $? > '" + dir + "/rc2') & wait";
     ASSERT_EQ(std::system(both_cmd.c_str()), 0);
     const int rc1 = std::stoi(slurp(dir + "/rc1")), rc2 = std::stoi(slurp(dir + "/rc2"));
     both += rc1 == 0 && rc2 == 0;
@@ -204,13 +206,14 @@ TEST(Faults, KtxValidateAcceptsEveryKtx2) {
   const std::string dir = temp_dir("ktxvalidate");
   write_image(dir + "/src.png", random_image(37, 21, 4, PixelType::u8, 2).view());
   std::vector<std::string> files;
-  for (const char* fmt : {"bc1", "bc1a", "bc2", "bc3", "bc4", "bc4s", "bc5", "bc5s", "etc1", "etc2", "etc2a1", "etc2a",
-                          "eac-r11", "eac-r11s", "eac-rg11", "eac-rg11s", "bc7", "astc-4x4", "astc-6x5", "astc-12x12",
-                          "astc-8x8-hdr"}) {
+  for (const char* fmt : {"bc1",      "bc1a",      "bc2",  "bc3",      "bc4",      "bc4s",       "bc5",
+                          "bc5s",     "etc1",      "etc2", "etc2a1",   "etc2a",    "eac-r11",    "eac-r11s",
+                          "eac-rg11", "eac-rg11s", "bc7",  "astc-4x4", "astc-6x5", "astc-12x12", "astc-8x8-hdr"}) {
     for (const char* cs : {"", " --linear"}) {
       for (const char* mips : {"", " --mips"}) {
         const std::string out = dir + "/" + fmt + (cs[0] ? "_lin" : "") + (mips[0] ? "_mips" : "") + ".ktx2";
-        if (run_texproc("compress '" + dir + "/src.png' -o '" + out + "' --format " + fmt + cs + mips + " -q").exit_code == 0) {
+        if (run_texproc("compress '" + dir + "/src.png' -o '" + out + "' --format " + fmt + cs + mips + " -q")
+                .exit_code == 0) {
           files.push_back(out);
         }
       }
@@ -218,7 +221,9 @@ TEST(Faults, KtxValidateAcceptsEveryKtx2) {
   }
   for (const char* fmt : {"bc1", "bc3", "etc2a", "bc5"}) {  // Zstandard-supercompressed
     const std::string out = dir + "/z_" + fmt + ".ktx2";
-    ASSERT_EQ(run_texproc("compress '" + dir + "/src.png' -o '" + out + "' --format " + fmt + " --mips --zstd 9 -q").exit_code, 0);
+    ASSERT_EQ(run_texproc("compress '" + dir + "/src.png' -o '" + out + "' --format " + fmt + " --mips --zstd 9 -q")
+                  .exit_code,
+              0);
     files.push_back(out);
   }
   for (const char* type : {"u8", "u16", "f16", "f32"}) {
@@ -233,8 +238,9 @@ TEST(Faults, KtxValidateAcceptsEveryKtx2) {
     for (int x = 0; x < 64 * 3; ++x) pano.row<float>(y)[x] = float((x * 7 + y * 3) % 23) / 11.0f;
   write_image(dir + "/pano.exr", pano.view());
   write_image(dir + "/pano.png", random_image(64, 32, 3, PixelType::u8, 5).view());
-  for (const char* args : {"pano.png' -o '{}/cube_srgb.ktx2' --mips", "pano.exr' -o '{}/cube_half.ktx2' --mips",
-                           "pano.exr' -o '{}/cube_f32.ktx2' --format rgba32f", "pano.exr' -o '{}/cube_ibl.ktx2' --ibl specular"}) {
+  for (const char* args :
+       {"pano.png' -o '{}/cube_srgb.ktx2' --mips", "pano.exr' -o '{}/cube_half.ktx2' --mips",
+        "pano.exr' -o '{}/cube_f32.ktx2' --format rgba32f", "pano.exr' -o '{}/cube_ibl.ktx2' --ibl specular"}) {
     std::string a = args;
     a.replace(a.find("{}"), 2, dir);
     ASSERT_EQ(run_texproc("cubemap '" + dir + "/" + a + " -q").exit_code, 0) << a;
@@ -242,8 +248,9 @@ TEST(Faults, KtxValidateAcceptsEveryKtx2) {
   }
   // BC6H (UF16, SF16) from floats with float mips, and both encoders' cube
   // maps.
-  for (const char* args : {"pano.exr' -o '{}/hdr_bc6h.ktx2' --format bc6h --mips", "pano.exr' -o '{}/hdr_bc6hs.ktx2' --format bc6hs",
-                           "cube_half.ktx2' -o '{}/cube_bc6h.ktx2' --format bc6h", "cube_srgb.ktx2' -o '{}/cube_bc7.ktx2' --format bc7"}) {
+  for (const char* args :
+       {"pano.exr' -o '{}/hdr_bc6h.ktx2' --format bc6h --mips", "pano.exr' -o '{}/hdr_bc6hs.ktx2' --format bc6hs",
+        "cube_half.ktx2' -o '{}/cube_bc6h.ktx2' --format bc6h", "cube_srgb.ktx2' -o '{}/cube_bc7.ktx2' --format bc7"}) {
     std::string a = args;
     a.replace(a.find("{}"), 2, dir);
     ASSERT_EQ(run_texproc("compress '" + dir + "/" + a + " -q").exit_code, 0) << a;
@@ -252,7 +259,8 @@ TEST(Faults, KtxValidateAcceptsEveryKtx2) {
   }
   // BC6H and BC7 random blocks (every mode, reserved ones included), three
   // levels, written by the container layer.
-  for (TexelFormat bf : {TexelFormat::bc6h_ufloat, TexelFormat::bc6h_sfloat, TexelFormat::bc7_unorm, TexelFormat::bc7_srgb}) {
+  for (TexelFormat bf :
+       {TexelFormat::bc6h_ufloat, TexelFormat::bc6h_sfloat, TexelFormat::bc7_unorm, TexelFormat::bc7_srgb}) {
     Texture t;
     t.format = bf;
     t.width = 12, t.height = 8, t.levels = 3, t.layers = t.faces = 1;
@@ -299,7 +307,8 @@ TEST(Faults, ColourMetadataMatchesTheValues) {
   const Image e = read_image(dir + "/c.exr", &info);
   const Image p = read_image(dir + "/c.png");
   EXPECT_EQ(info.color_space_tag, "Linear");
-  for (int x = 0; x < 16; ++x) EXPECT_NEAR(e.get(x, 5, 1), srgb8_to_linear(p.row<std::uint8_t>(5)[4 * x + 1]), 2e-3) << x;
+  for (int x = 0; x < 16; ++x)
+    EXPECT_NEAR(e.get(x, 5, 1), srgb8_to_linear(p.row<std::uint8_t>(5)[4 * x + 1]), 2e-3) << x;
   // --all-levels: one level is one file; a chain into .exr is one MIP file.
   ASSERT_EQ(run_texproc("compress '" + dir + "/in8.png' -o '" + dir + "/one.dds' --format bc1 -q").exit_code, 0);
   RunResult r = run_texproc("decompress '" + dir + "/one.dds' -o '" + dir + "/one.png' --all-levels -q");
@@ -316,10 +325,13 @@ TEST(Faults, ColourMetadataMatchesTheValues) {
 TEST(Faults, FormatAliasesAndIgnoredOptions) {
   const std::string dir = temp_dir("aliases");
   write_image(dir + "/a.png", random_image(16, 16, 4, PixelType::u8, 2).view());
-  for (const auto& [alias, name] : std::vector<std::pair<std::string, TexelFormat>>{
-           {"DXT1", TexelFormat::bc1_rgb_srgb}, {"dxt5", TexelFormat::bc3_srgb}, {"ATI2", TexelFormat::bc5_unorm},
-           {"BC4", TexelFormat::bc4_unorm}, {"dxt3", TexelFormat::bc2_srgb}}) {
-    const RunResult r = run_texproc("compress '" + dir + "/a.png' -o '" + dir + "/" + alias + ".ktx2' --format " + alias + " -q");
+  for (const auto& [alias, name] : std::vector<std::pair<std::string, TexelFormat>>{{"DXT1", TexelFormat::bc1_rgb_srgb},
+                                                                                    {"dxt5", TexelFormat::bc3_srgb},
+                                                                                    {"ATI2", TexelFormat::bc5_unorm},
+                                                                                    {"BC4", TexelFormat::bc4_unorm},
+                                                                                    {"dxt3", TexelFormat::bc2_srgb}}) {
+    const RunResult r =
+        run_texproc("compress '" + dir + "/a.png' -o '" + dir + "/" + alias + ".ktx2' --format " + alias + " -q");
     ASSERT_EQ(r.exit_code, 0) << alias << ": " << r.err;
     EXPECT_EQ(read_texture(dir + "/" + alias + ".ktx2").format, name) << alias;
   }
@@ -358,9 +370,9 @@ TEST(Faults, NonFiniteInputsWarnAndDoNotSpread) {
   const std::string dir = temp_dir("nonfinite");
   Image img = random_image(16, 16, 1, PixelType::f32, 8);
   for (int i = 0; i < 12; ++i) {
-    img.row<float>(i)[i] = i % 3 == 0 ? std::numeric_limits<float>::quiet_NaN()
-                                      : i % 3 == 1 ? std::numeric_limits<float>::infinity()
-                                                   : -std::numeric_limits<float>::infinity();
+    img.row<float>(i)[i] = i % 3 == 0   ? std::numeric_limits<float>::quiet_NaN()
+                           : i % 3 == 1 ? std::numeric_limits<float>::infinity()
+                                        : -std::numeric_limits<float>::infinity();
   }
   write_image(dir + "/h.exr", img.view());
   RunResult r = run_texproc("mip '" + dir + "/h.exr' -o '" + dir + "/m.ktx2' --type f32");
@@ -394,21 +406,29 @@ TEST(Faults, EveryCommandIsDeterministic) {
   const std::string dir = temp_dir("determinism");
   fs::create_directories(dir + "/in");
   for (int i = 0; i < 3; ++i) {
-    write_image(dir + "/in/c" + std::to_string(i) + ".png", random_image(150 + 20 * i, 97, 4, PixelType::u8, 30 + i).view());
+    write_image(dir + "/in/c" + std::to_string(i) + ".png",
+                random_image(150 + 20 * i, 97, 4, PixelType::u8, 30 + i).view());
   }
   struct Case {
     std::string command, options, ext;
   };
   const std::vector<Case> cases = {
-      {"compress", "--format bc1 --mips", ".dds"},       {"compress", "--format bc3 --quality high", ".ktx2"},
-      {"compress", "--format etc2a --mips", ".ktx2"},    {"compress", "--format bc5 --normal-map", ".dds"},
-      {"mip", "--filter lanczos3", ".ktx2"},             {"mip", "--type f32", ".exr"},
-      {"normalmap", "--kernel sobel5 --mips", ".ktx2"}, {"conemap", "--mode relaxed", ".png"},
-      {"sat", "", ".sat"},                               {"sat blur", "--radius 3", ".png"},
+      {"compress", "--format bc1 --mips", ".dds"},
+      {"compress", "--format bc3 --quality high", ".ktx2"},
+      {"compress", "--format etc2a --mips", ".ktx2"},
+      {"compress", "--format bc5 --normal-map", ".dds"},
+      {"mip", "--filter lanczos3", ".ktx2"},
+      {"mip", "--type f32", ".exr"},
+      {"normalmap", "--kernel sobel5 --mips", ".ktx2"},
+      {"conemap", "--mode relaxed", ".png"},
+      {"sat", "", ".sat"},
+      {"sat blur", "--radius 3", ".png"},
       {"compress", "--format astc-6x6 --mips --quality fast", ".ktx2"},
   };
   const std::vector<std::pair<std::string, std::string>> configs = {
-      {"", "--threads 1 --jobs 1"}, {"", "--threads 2 --jobs 3"}, {"", "--threads 7 --jobs 1"},
+      {"", "--threads 1 --jobs 1"},
+      {"", "--threads 2 --jobs 3"},
+      {"", "--threads 7 --jobs 1"},
       {"TEXPROC_FORCE_SCALAR=1 ", "--threads 2 --jobs 3"}};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.command + " " + c.options);
@@ -417,14 +437,16 @@ TEST(Faults, EveryCommandIsDeterministic) {
       const std::string out = dir + "/out" + std::to_string(k);
       fs::remove_all(out);
       const std::string cmd = configs[k].first + TEXPROC_CLI_PATH + " " + c.command + " '" + dir + "/in' -o '" + out +
-                              "/{stem}" + c.ext + "' -q " + c.options + " " + configs[k].second + " 2>'" + dir + "/err'";
+                              "/{stem}" + c.ext + "' -q " + c.options + " " + configs[k].second + " 2>'" + dir +
+                              "/err'";
       ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(dir + "/err");
       for (const auto& f : entries(out)) {
         const std::string bytes = slurp(out + "/" + f);
         if (k == 0) {
           reference[f] = bytes;
         } else {
-          EXPECT_TRUE(reference.count(f) && reference[f] == bytes) << f << " differs under " << configs[k].first << configs[k].second;
+          EXPECT_TRUE(reference.count(f) && reference[f] == bytes)
+              << f << " differs under " << configs[k].first << configs[k].second;
         }
       }
       if (k == 0) {

@@ -116,10 +116,17 @@ std::string tiff_with_tile(std::uint32_t tile_w, std::uint32_t tile_h) {
   const std::uint32_t bits_at = entries_at + 2 + n * 12 + 4;
   const std::uint32_t data_at = bits_at + 8;
   const std::string zlib_of_nothing("\x78\x9c\x03\x00\x00\x00\x00\x01", 8);
-  const Entry e[n] = {{256, 3, 1, 16},         {257, 3, 1, 16},       {258, 3, 4, bits_at},
-                      {259, 3, 1, 8},          {262, 3, 1, 2},        {277, 3, 1, 4},
-                      {284, 3, 1, 1},          {322, 4, 1, tile_w},   {323, 4, 1, tile_h},
-                      {324, 4, 1, data_at},    {325, 4, 1, std::uint32_t(zlib_of_nothing.size())}};
+  const Entry e[n] = {{256, 3, 1, 16},
+                      {257, 3, 1, 16},
+                      {258, 3, 4, bits_at},
+                      {259, 3, 1, 8},
+                      {262, 3, 1, 2},
+                      {277, 3, 1, 4},
+                      {284, 3, 1, 1},
+                      {322, 4, 1, tile_w},
+                      {323, 4, 1, tile_h},
+                      {324, 4, 1, data_at},
+                      {325, 4, 1, std::uint32_t(zlib_of_nothing.size())}};
   u16(n);
   for (const Entry& x : e) {
     u16(x.tag);
@@ -329,7 +336,8 @@ TEST(Hostile, DeclaredWorkIsBoundedBeforeAllocation) {
     SCOPED_TRACE(cmd);
     const Measured m = run_measured(cmd + " '" + dir + "/tile.tif'" + (cmd == "mip" ? " -o '" + dir + "/t.png'" : ""));
     EXPECT_EQ(m.exit_code, 3) << m.err;
-    EXPECT_NE(m.err.find("tile.tif: TIFF tile 32768x32768 is larger than its image (16x16) needs"), std::string::npos) << m.err;
+    EXPECT_NE(m.err.find("tile.tif: TIFF tile 32768x32768 is larger than its image (16x16) needs"), std::string::npos)
+        << m.err;
     EXPECT_LT(m.max_rss_kib, 100 * 1024);
   }
   // A tile the image needs (16 rounded) still reads.
@@ -554,7 +562,8 @@ TEST(Hostile, NumericOptionsAreRangeChecked) {
       {"cubemap " + a + o + " --equirect-width 2147483647", "--equirect-width: 2147483647 is outside the valid range"},
       {"cubemap " + a + o + " --equirect-width -4", "--equirect-width: -4 is outside"},
       {"cubemap " + a + o + " --samples 0", "--samples: 0 is outside"},
-      {"compress " + a + o + " --format astc-4x4 --astc-effort -5", "--astc-effort: -5 is outside the valid range [0, 100]"},
+      {"compress " + a + o + " --format astc-4x4 --astc-effort -5",
+       "--astc-effort: -5 is outside the valid range [0, 100]"},
       {"compress " + a + o + " --format bc1 --mips --alpha-coverage nan", "--alpha-coverage: nan is outside"},
       {"mip " + a + o + " --alpha-coverage 1.5", "--alpha-coverage: 1.5 is outside the valid range (0, 1]"},
       {"mip " + a + o + " --sigma inf", "--sigma: inf is outside"},
@@ -566,7 +575,8 @@ TEST(Hostile, NumericOptionsAreRangeChecked) {
       {"sat blur " + a + " -o '" + dir + "/b.png' --radius nan", "--radius: nan is outside"},
       {"decompress " + a + " -o '" + dir + "/d.png' --face 6", "--face: 6 is outside the valid range [0, 5]"},
       {"conemap " + a + " -o '" + dir + "/c.png' --view-angle 90", "--view-angle: 90 is outside"},
-      {"normalmap " + a + o + " --kernel multiscale --multiscale-weights 0.5,nan", "--multiscale-weights: nan is outside"},
+      {"normalmap " + a + o + " --kernel multiscale --multiscale-weights 0.5,nan",
+       "--multiscale-weights: nan is outside"},
       {"mip " + a + o + " -j abc", "'abc' is not a number (valid: [0, 4096])"},
       {"mip " + a + o + " --threads 100000", "--threads: 100000 is outside the valid range [0, 4096]"},
   };

@@ -26,7 +26,8 @@ TEST(Messages, MislabelledFilesAreRefusedByTheirSignature) {
     const char* file;
     const char* says;
   };
-  for (const Case& c : {Case{"empty.png", "empty file (0 bytes)"}, Case{"text.png", "the extension says PNG, but the file does not start with PNG's signature"},
+  for (const Case& c : {Case{"empty.png", "empty file (0 bytes)"},
+                        Case{"text.png", "the extension says PNG, but the file does not start with PNG's signature"},
                         Case{"text.exr", "the extension says OpenEXR"}}) {
     for (const char* cmd : {"mip", "info"}) {
       const std::string out = std::string(cmd) == "mip" ? " -o '" + dir + "/o.dds'" : "";
@@ -56,7 +57,8 @@ TEST(Messages, DepfileFolderIsCheckedBeforeAnyWork) {
   EXPECT_NE(r.err.find("--depfile cannot be written in"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir + "/a.dds"));
   // A folder that does not exist yet is made, as an output's is.
-  const RunResult ok = run_texproc("mip '" + dir + "/a.png' -o '" + dir + "/a.dds' --depfile '" + dir + "/deps/a.d' -q");
+  const RunResult ok =
+      run_texproc("mip '" + dir + "/a.png' -o '" + dir + "/a.dds' --depfile '" + dir + "/deps/a.d' -q");
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_TRUE(fs::exists(dir + "/deps/a.d"));
   fs::remove_all(dir);
@@ -75,7 +77,8 @@ TEST(Messages, InfoShowsSupercompressionAndFailures) {
   EXPECT_EQ(st.inflated_bytes[0], 32u * 32u * 4u);
   RunResult r = run_texproc("info '" + dir + "/z.ktx2'");
   EXPECT_NE(r.out.find("Zstandard-supercompressed to "), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("level 0: 32x32, 4096 bytes, stored in " + std::to_string(st.stored_bytes[0])), std::string::npos)
+  EXPECT_NE(r.out.find("level 0: 32x32, 4096 bytes, stored in " + std::to_string(st.stored_bytes[0])),
+            std::string::npos)
       << r.out;
   r = run_texproc("info '" + dir + "/p.ktx2'");
   EXPECT_EQ(r.out.find("supercompressed"), std::string::npos) << r.out;
@@ -114,8 +117,8 @@ TEST(Messages, WriteIfChangedReportsKeptAndReplaced) {
 TEST(Messages, InfoSaysTaggedOnlyForTaggedFiles) {
   if (std::system("/usr/bin/python3 -c 'import PIL' >/dev/null 2>&1") != 0) GTEST_SKIP() << "python3-pil not installed";
   const std::string dir = temp_dir("info_tag");
-  const std::string make = "/usr/bin/python3 -c \"from PIL import Image; Image.new('RGB', (4, 4)).save('" + dir +
-                           "/plain.png')\"";
+  const std::string make =
+      "/usr/bin/python3 -c \"from PIL import Image; Image.new('RGB', (4, 4)).save('" + dir + "/plain.png')\"";
   ASSERT_EQ(std::system(make.c_str()), 0);
   RunResult r = run_texproc("info '" + dir + "/plain.png'");
   EXPECT_NE(r.out.find("no colour tag (read as sRGB)"), std::string::npos) << r.out;

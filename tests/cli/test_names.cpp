@@ -21,14 +21,15 @@ TEST(Names, FormatNamesOfEveryTool) {
     const char* name;
     TexelFormat want;
   };
-  for (const Case& c : {Case{"BC7_UNORM_SRGB", TexelFormat::bc7_srgb}, Case{"DXGI_FORMAT_BC7_UNORM", TexelFormat::bc7_unorm},
-                        Case{"bc1_unorm", TexelFormat::bc1_rgb_unorm}, Case{"BC5_SNORM", TexelFormat::bc5_snorm},
-                        Case{"BC6H_UF16", TexelFormat::bc6h_ufloat}, Case{"VK_FORMAT_BC1_RGBA_SRGB_BLOCK", TexelFormat::bc1_rgba_srgb},
-                        Case{"ETC2_R8G8B8_UNORM_BLOCK", TexelFormat::etc2_rgb_unorm},
-                        Case{"vk_format_eac_r11g11_snorm_block", TexelFormat::eac_rg11_snorm},
-                        Case{"VK_FORMAT_ASTC_6x6_SRGB_BLOCK", TexelFormat::astc_6x6_srgb},
-                        Case{"ASTC_8X8_SFLOAT_BLOCK", TexelFormat::astc_8x8_sfloat},
-                        Case{"R8G8B8A8_UNORM_SRGB", TexelFormat::rgba8_srgb}, Case{"EAC_RG11_UNORM", TexelFormat::eac_rg11_unorm}}) {
+  for (const Case& c :
+       {Case{"BC7_UNORM_SRGB", TexelFormat::bc7_srgb}, Case{"DXGI_FORMAT_BC7_UNORM", TexelFormat::bc7_unorm},
+        Case{"bc1_unorm", TexelFormat::bc1_rgb_unorm}, Case{"BC5_SNORM", TexelFormat::bc5_snorm},
+        Case{"BC6H_UF16", TexelFormat::bc6h_ufloat}, Case{"VK_FORMAT_BC1_RGBA_SRGB_BLOCK", TexelFormat::bc1_rgba_srgb},
+        Case{"ETC2_R8G8B8_UNORM_BLOCK", TexelFormat::etc2_rgb_unorm},
+        Case{"vk_format_eac_r11g11_snorm_block", TexelFormat::eac_rg11_snorm},
+        Case{"VK_FORMAT_ASTC_6x6_SRGB_BLOCK", TexelFormat::astc_6x6_srgb},
+        Case{"ASTC_8X8_SFLOAT_BLOCK", TexelFormat::astc_8x8_sfloat},
+        Case{"R8G8B8A8_UNORM_SRGB", TexelFormat::rgba8_srgb}, Case{"EAC_RG11_UNORM", TexelFormat::eac_rg11_unorm}}) {
     EXPECT_EQ(parse_texel_format(c.name), c.want) << c.name;
   }
   EXPECT_THROW(parse_texel_format("BC8_UNORM"), Error);
@@ -49,12 +50,14 @@ TEST(Names, CompressTakesFullNamesAndAnyCase) {
   for (const Case& c : {Case{"bc7", TexelFormat::bc7_srgb, ".dds"}, Case{"bc7_unorm", TexelFormat::bc7_unorm, ".dds"},
                         Case{"BC7_UNORM_SRGB", TexelFormat::bc7_srgb, ".dds"},
                         Case{"BC1_UNORM", TexelFormat::bc1_rgb_unorm, ".ktx2"},  // (DDS reads DXT1 as RGBA)
-                        
+
                         Case{"eac_rg11_unorm", TexelFormat::eac_rg11_unorm, ".ktx2"},
                         Case{"VK_FORMAT_ETC2_R8G8B8A8_SRGB_BLOCK", TexelFormat::etc2_rgba8_srgb, ".ktx2"},
-                        Case{"ASTC_4x4_UNORM_BLOCK", TexelFormat::astc_4x4_unorm, ".ktx2"}, Case{"BC7", TexelFormat::bc7_srgb, ".dds"}}) {
+                        Case{"ASTC_4x4_UNORM_BLOCK", TexelFormat::astc_4x4_unorm, ".ktx2"},
+                        Case{"BC7", TexelFormat::bc7_srgb, ".dds"}}) {
     const std::string out = dir + "/o" + c.ext;
-    const RunResult r = run_texproc("compress " + in + " -o '" + out + "' --format " + c.format + " --quality Fast -f -q");
+    const RunResult r =
+        run_texproc("compress " + in + " -o '" + out + "' --format " + c.format + " --quality Fast -f -q");
     ASSERT_EQ(r.exit_code, 0) << c.format << ": " << r.err;
     EXPECT_EQ(read_texture(out).format, c.want) << c.format;
   }
@@ -112,7 +115,9 @@ TEST(Names, DxtNamesOnSrgbColourSayTheHeaderNeedsDx10) {
   RunResult r = run_texproc(base);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("needs a DX10 header that DX9-era readers (NVTT 2) cannot read; --linear writes a legacy "
-                       "DXT5 header"), std::string::npos) << r.err;
+                       "DXT5 header"),
+            std::string::npos)
+      << r.err;
   r = run_texproc(base + " --linear");
   EXPECT_EQ(r.err.find("DX10"), std::string::npos) << r.err;
   EXPECT_EQ(read_texture(dir + "/d.dds").format, TexelFormat::bc3_unorm);

@@ -146,7 +146,8 @@ TEST(Recipe, MistakesAreNamedByLineAndKey) {
     write_text(dir + "/" + c.file, c.text);
     RunResult r = run_texproc(std::string("build ") + c.file, dir);
     EXPECT_EQ(r.exit_code, 1) << c.file << "\n" << r.err;
-    EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.file << "\nexpected: " << c.expected << "\ngot: " << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos)
+        << c.file << "\nexpected: " << c.expected << "\ngot: " << r.err;
     EXPECT_FALSE(fs::exists(dir + "/out/rock_h_n.png")) << c.file;
   }
   RunResult r = run_texproc("build missing.toml", dir);
@@ -158,12 +159,13 @@ TEST(Recipe, MistakesAreNamedByLineAndKey) {
 // The bundled samples/recipe.toml cooks every sample.
 TEST(Recipe, SampleRecipeCooksTheSamples) {
   const std::string dir = temp_dir("recipe_samples");
-  RunResult r = run_texproc("build " + std::string(TEXPROC_SAMPLES_DIR) + "/recipe.toml --out-dir " + dir + " -j 2 --json");
+  RunResult r =
+      run_texproc("build " + std::string(TEXPROC_SAMPLES_DIR) + "/recipe.toml --out-dir " + dir + " -j 2 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* f : {"textures/albedo_desert_512.dds", "textures/cutout_fence_512x256.dds",
-                        "textures/normal_stein_256.ktx2", "textures/height_mount_250_n.dds",
-                        "textures/height_stein_256_n.dds", "textures/height_stein_256_cones.png",
-                        "previews/height_stein_256_cones_preview.png"}) {
+  for (const char* f :
+       {"textures/albedo_desert_512.dds", "textures/cutout_fence_512x256.dds", "textures/normal_stein_256.ktx2",
+        "textures/height_mount_250_n.dds", "textures/height_stein_256_n.dds", "textures/height_stein_256_cones.png",
+        "previews/height_stein_256_cones_preview.png"}) {
     EXPECT_TRUE(fs::exists(dir + "/" + f)) << f;
   }
   EXPECT_NE(r.out.find("\"job\" : \"heights-to-normals\""), std::string::npos) << r.out;

@@ -97,12 +97,15 @@ TEST(RecipeGraph, ProducersRunFirstWithGlobsDefaultsAndOverrides) {
   fs::create_directories(dir + "/hand");
   for (const char* f : {"h1", "a/h2", "a/b/h3"}) {
     const std::string stem = fs::path(f).filename().string();
-    ASSERT_EQ(run_texproc("normalmap src/" + std::string(f) + ".png -o hand/" + stem + "_n.png --kernel scharr3 -q", dir)
-                  .exit_code,
-              0);
+    ASSERT_EQ(
+        run_texproc("normalmap src/" + std::string(f) + ".png -o hand/" + stem + "_n.png --kernel scharr3 -q", dir)
+            .exit_code,
+        0);
     const std::string format = stem == "h1" ? "bc7" : "bc5";
-    ASSERT_EQ(run_texproc("compress hand/" + stem + "_n.png -o hand/" + stem + "_n.dds --normal-map --quality fast "
-                          "--format " + format + " -q",
+    ASSERT_EQ(run_texproc("compress hand/" + stem + "_n.png -o hand/" + stem +
+                              "_n.dds --normal-map --quality fast "
+                              "--format " +
+                              format + " -q",
                           dir)
                   .exit_code,
               0);
@@ -118,8 +121,9 @@ TEST(RecipeGraph, ProducersRunFirstWithGlobsDefaultsAndOverrides) {
   write_image(dir + "/src/a/h2.png", random_image(12, 20, 1, PixelType::u8, 7).view());
   r = run_texproc("build r.toml --dry-run", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.out, "inter/h2_n.png (input changed: src/a/h2.png)\n"
-                   "out/h2_n.dds (input inter/h2_n.png rebuilt by job 'normals')\n");
+  EXPECT_EQ(r.out,
+            "inter/h2_n.png (input changed: src/a/h2.png)\n"
+            "out/h2_n.dds (input inter/h2_n.png rebuilt by job 'normals')\n");
   // The override's options changed: that file only.
   std::string text = kGraph;
   text.replace(text.find("format = \"bc7\""), 14, "format = \"bc3\"");
@@ -157,13 +161,15 @@ output = "x/{stem}_b.png"
                        "reads outputs of job 'there'"),
             std::string::npos)
       << r.err;
-  write_text(dir + "/self.toml", "version = 1\n[[jobs]]\nname = \"n\"\ncommand = \"normalmap\"\ninputs = \"src/*.png\"\n"
-                                 "output = \"src/{stem}_n.png\"\n");
+  write_text(dir + "/self.toml",
+             "version = 1\n[[jobs]]\nname = \"n\"\ncommand = \"normalmap\"\ninputs = \"src/*.png\"\n"
+             "output = \"src/{stem}_n.png\"\n");
   r = run_texproc("build self.toml", dir);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("self.toml:6: job 'n': reads its own outputs"), std::string::npos) << r.err;
-  write_text(dir + "/none.toml", "version = 1\n[[jobs]]\ncommand = \"normalmap\"\ninputs = [\"src/h1.png\",\n"
-                                 "  \"src/**/*.tga\"]\noutput = \"z/{stem}.png\"\n");
+  write_text(dir + "/none.toml",
+             "version = 1\n[[jobs]]\ncommand = \"normalmap\"\ninputs = [\"src/h1.png\",\n"
+             "  \"src/**/*.tga\"]\noutput = \"z/{stem}.png\"\n");
   r = run_texproc("build none.toml", dir);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("none.toml:5: jobs[0]: inputs: 'src/**/*.tga' matches no file"), std::string::npos) << r.err;
@@ -180,8 +186,8 @@ TEST(ScaleOut, ShardsPartitionTheRun) {
   std::set<std::string> seen;
   std::size_t total = 0;
   for (int i = 0; i < 3; ++i) {
-    RunResult r = run_texproc("normalmap src -r -o 'sh/{reldir}/{stem}.png' --shard " + std::to_string(i) + "/3 --json",
-                              dir);
+    RunResult r =
+        run_texproc("normalmap src -r -o 'sh/{reldir}/{stem}.png' --shard " + std::to_string(i) + "/3 --json", dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const Json::Value v = parse_json(r.out);
     for (const Json::Value& f : v["files"]) {
@@ -294,9 +300,10 @@ colorspaces:
     name: curve22
     to_scene_reference: !<ExponentTransform> {value: 2.2}
 )");
-  RunResult m = run_texproc("mip src/h1.png -o g.tif --colorspace curve22 --ocio-config cfg.ocio --json "
-                            "--depfile g.d",
-                            dir);
+  RunResult m = run_texproc(
+      "mip src/h1.png -o g.tif --colorspace curve22 --ocio-config cfg.ocio --json "
+      "--depfile g.d",
+      dir);
   ASSERT_EQ(m.exit_code, 0) << m.err;
   EXPECT_NE(m.out.find("cfg.ocio"), std::string::npos) << m.out;
   EXPECT_NE(slurp(dir + "/g.d").find("cfg.ocio"), std::string::npos);
@@ -318,8 +325,9 @@ TEST(ScaleOut, ConcurrentSharesKeepEveryRecord) {
   for (int i = 0; i < 12; ++i) {
     write_image(dir + "/src/h" + std::to_string(i) + ".png", random_image(8, 8, 1, PixelType::u8, 20 + i).view());
   }
-  write_text(dir + "/r.toml", "version = 1\n[[jobs]]\ncommand = \"normalmap\"\ninputs = \"src/*.png\"\n"
-                              "output = \"out/{stem}_n.png\"\n");
+  write_text(dir + "/r.toml",
+             "version = 1\n[[jobs]]\ncommand = \"normalmap\"\ninputs = \"src/*.png\"\n"
+             "output = \"out/{stem}_n.png\"\n");
   std::string cmd = "cd '" + dir + "' && (";
   for (int i = 0; i < 4; ++i) {
     cmd += std::string(TEXPROC_CLI_PATH) + " build r.toml -q --threads 1 --shard " + std::to_string(i) + "/4 & ";

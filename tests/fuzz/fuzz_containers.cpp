@@ -21,8 +21,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   limits.max_texture_dimension = 4096;
   limits.max_layers = 64;
   limits.max_inflated_bytes = std::uint64_t(64) << 20;
-  const std::pair<Decode, Encode> kinds[] = {{decode_dds, dds}, {decode_ktx2, ktx2}, {decode_ktx1, encode_ktx1},
-                                             {decode_pkm, encode_pkm}, {decode_astc, encode_astc}};
+  const std::pair<Decode, Encode> kinds[] = {{decode_dds, dds},
+                                             {decode_ktx2, ktx2},
+                                             {decode_ktx1, encode_ktx1},
+                                             {decode_pkm, encode_pkm},
+                                             {decode_astc, encode_astc}};
   for (const auto& [decode, encode] : kinds) {
     Texture t;
     try {

@@ -16,7 +16,6 @@
 
 using namespace texproc;
 
-
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const ReadOptions reads = fuzz::limited_reads();
   for (const char* ext : {".png", ".tga", ".sat"}) {  // PNG/JPEG/TIFF/EXR by signature, whatever the name

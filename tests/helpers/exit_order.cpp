@@ -7,7 +7,7 @@
 #include "texproc/image.h"
 
 int main() {
-  static texproc::PixelBytes held;  // constructed before the library's cache: destroyed after it
+  static texproc::PixelBytes held;     // constructed before the library's cache: destroyed after it
   held.resize(std::size_t(16) << 20);  // 16 MiB: a large block
   {
     texproc::PixelBytes freed(std::size_t(16) << 20);  // freed into the cache, which now holds one block

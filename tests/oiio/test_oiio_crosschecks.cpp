@@ -47,8 +47,8 @@ Texture random_levels(TexelFormat f, std::uint32_t w, std::uint32_t h, std::uint
 TEST(BcDecode, OpenImageIoAgreesOnLegacyDds) {
   const std::string dir = temp_dir("bc_oiio");
   std::mt19937 rng(8);
-  for (TexelFormat f : {TexelFormat::bc1_rgba_unorm, TexelFormat::bc2_unorm, TexelFormat::bc3_unorm, TexelFormat::bc4_unorm,
-                        TexelFormat::bc5_unorm}) {
+  for (TexelFormat f : {TexelFormat::bc1_rgba_unorm, TexelFormat::bc2_unorm, TexelFormat::bc3_unorm,
+                        TexelFormat::bc4_unorm, TexelFormat::bc5_unorm}) {
     Texture t;
     t.format = f;
     t.width = 12;
@@ -80,7 +80,8 @@ TEST(BcDecode, OpenImageIoAgreesOnLegacyDds) {
 // DDS files back with the same pixels: RGBA8, BGRA8, L8 (r8), L8A8 (rg8).
 TEST(Container, OpenImageIoReadsLegacyDds) {
   const std::string dir = temp_dir("dds_oiio");
-  for (TexelFormat f : {TexelFormat::rgba8_unorm, TexelFormat::bgra8_unorm, TexelFormat::r8_unorm, TexelFormat::rg8_unorm}) {
+  for (TexelFormat f :
+       {TexelFormat::rgba8_unorm, TexelFormat::bgra8_unorm, TexelFormat::r8_unorm, TexelFormat::rg8_unorm}) {
     const Texture t = random_levels(f, 13, 6, 3, 21);
     const std::string path = dir + "/" + format_info(f).name + ".dds";
     write_texture(path, t);
@@ -99,7 +100,8 @@ TEST(Container, OpenImageIoReadsLegacyDds) {
         for (int x = 0; x < want.width(); ++x) {
           // OIIO reads L8 as one channel, L8A8 as two (gray, alpha).
           for (int c = 0; c < want.channels(); ++c) {
-            ASSERT_EQ(px[(std::size_t(y) * want.width() + x) * C + c], want.row<std::uint8_t>(y)[x * want.channels() + c])
+            ASSERT_EQ(px[(std::size_t(y) * want.width() + x) * C + c],
+                      want.row<std::uint8_t>(y)[x * want.channels() + c])
                 << format_info(f).name << " level " << l << " at " << x << "," << y << " c" << c;
           }
         }
@@ -200,7 +202,8 @@ TEST(CubemapCli, OpenImageIoReadsTheDdsCube) {
     for (int y = 0; y < 32; y += 5)
       for (int x = 0; x < 32; x += 3)
         for (int c = 0; c < 3; ++c)
-          ASSERT_EQ(px[((std::size_t(f) * 32 + y) * 32 + x) * 4 + c], t.image(0, 0, f)[(std::size_t(y) * 32 + x) * 4 + c])
+          ASSERT_EQ(px[((std::size_t(f) * 32 + y) * 32 + x) * 4 + c],
+                    t.image(0, 0, f)[(std::size_t(y) * 32 + x) * 4 + c])
               << "face " << f << " at " << x << "," << y;
   fs::remove_all(dir);
 }

@@ -24,7 +24,8 @@ static_assert(std::is_same_v<decltype(std::declval<const Image&>().view()), Cons
 static_assert(std::is_same_v<decltype(std::declval<Image&>().view()), ImageView>);
 static_assert(std::is_same_v<decltype(std::declval<const ConstImageView&>().row<float>(0)), const float*>);
 static_assert(std::is_invocable_v<decltype(compute_normal_map), ConstImageView, ImageView, const NormalMapOptions&>);
-static_assert(!std::is_invocable_v<decltype(compute_normal_map), ConstImageView, ConstImageView, const NormalMapOptions&>);
+static_assert(
+    !std::is_invocable_v<decltype(compute_normal_map), ConstImageView, ConstImageView, const NormalMapOptions&>);
 
 TEST(Api, ConstViewReadsTheSamePixels) {
   Image img(3, 2, 2, PixelType::u16);
@@ -87,7 +88,8 @@ TEST(Api, SurfaceLayoutAndStorage) {
   EXPECT_FALSE(cube.is_array);
   EXPECT_EQ(cube.format, TexelFormat::rgba8_srgb);
   std::vector<std::vector<Image>> layers(3, std::vector<Image>{Image(8, 8, 4, PixelType::u8)});
-  const Texture arr = compress_texture(layers, {.layers = 3, .is_array = true}, TexelFormat::bc1_rgb_unorm, Quality::fast);
+  const Texture arr =
+      compress_texture(layers, {.layers = 3, .is_array = true}, TexelFormat::bc1_rgb_unorm, Quality::fast);
   EXPECT_EQ(arr.layers, 3u);
   EXPECT_TRUE(arr.is_array);
   EXPECT_EQ(texture_from_levels({Image(2, 2, 4, PixelType::f32)}, {.half = true}).format, TexelFormat::rgba16_float);

@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::pair<int, int> kFootprints[] = {{4, 4}, {5, 4},  {5, 5},  {6, 5},   {6, 6},   {8, 5},   {8, 6},
+const std::pair<int, int> kFootprints[] = {{4, 4}, {5, 4},  {5, 5},  {6, 5},  {6, 6},   {8, 5},   {8, 6},
                                            {8, 8}, {10, 5}, {10, 6}, {10, 8}, {10, 10}, {12, 10}, {12, 12}};
 
 // A smooth RGBA gradient with a soft alpha ramp: what ASTC codes well.
@@ -73,11 +73,12 @@ TEST(Astc, ChannelLayoutsFillRgba) {
   const float value[4] = {0.4f, 0.7f, 0.2f, 0.9f};
   for (int channels : {1, 2, 3, 4}) {
     const Image src = constant_image(10, 6, channels, PixelType::u8, value);
-    const Image back = decompress_image(compress_image(src.view(), TexelFormat::astc_4x4_unorm, Quality::fast), 10,
-                                        6, TexelFormat::astc_4x4_unorm, PixelType::u8);
-    const float want[4][4] = {{0.4f, 0.4f, 0.4f, 1.0f}, {0.4f, 0.4f, 0.4f, 0.7f}, {0.4f, 0.7f, 0.2f, 1.0f},
-                              {0.4f, 0.7f, 0.2f, 0.9f}};
-    for (int c = 0; c < 4; ++c) EXPECT_NEAR(back.get(9, 5, c), want[channels - 1][c], 1.5f / 255.0f) << channels << " " << c;
+    const Image back = decompress_image(compress_image(src.view(), TexelFormat::astc_4x4_unorm, Quality::fast), 10, 6,
+                                        TexelFormat::astc_4x4_unorm, PixelType::u8);
+    const float want[4][4] = {
+        {0.4f, 0.4f, 0.4f, 1.0f}, {0.4f, 0.4f, 0.4f, 0.7f}, {0.4f, 0.7f, 0.2f, 1.0f}, {0.4f, 0.7f, 0.2f, 0.9f}};
+    for (int c = 0; c < 4; ++c)
+      EXPECT_NEAR(back.get(9, 5, c), want[channels - 1][c], 1.5f / 255.0f) << channels << " " << c;
   }
 }
 
@@ -86,7 +87,8 @@ TEST(Astc, HdrRoundTripKeepsValuesAboveOne) {
   Image src(30, 18, 3, PixelType::f32);
   for (int y = 0; y < 18; ++y)
     for (int x = 0; x < 30; ++x)
-      for (int c = 0; c < 3; ++c) src.row<float>(y)[x * 3 + c] = std::exp2(float(x) / 29.0f * 6.0f - 1.0f) * (1.0f + 0.2f * c);
+      for (int c = 0; c < 3; ++c)
+        src.row<float>(y)[x * 3 + c] = std::exp2(float(x) / 29.0f * 6.0f - 1.0f) * (1.0f + 0.2f * c);
   const TexelFormat f = TexelFormat::astc_6x6_sfloat;
   const Image back = decompress_image(compress_image(src.view(), f, Quality::normal), 30, 18, f, PixelType::f32);
   float top = 0.0f;
@@ -119,8 +121,8 @@ TEST(Astc, NormalMapStoresXInRgbAndYInAlpha) {
     }
   EncodeOptions o;
   o.normal_map = true;
-  const Image back = decompress_image(compress_image(n.view(), TexelFormat::astc_5x5_unorm, Quality::normal, o), 20,
-                                      20, TexelFormat::astc_5x5_unorm, PixelType::f32);
+  const Image back = decompress_image(compress_image(n.view(), TexelFormat::astc_5x5_unorm, Quality::normal, o), 20, 20,
+                                      TexelFormat::astc_5x5_unorm, PixelType::f32);
   for (int y = 0; y < 20; y += 3)
     for (int x = 0; x < 20; x += 3) {
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(back.get(x, y, c), n.get(x, y, 0), 0.02f);
@@ -186,11 +188,11 @@ TEST(Astc, Ktx2LevelSizesAndDfdForEveryFootprint) {
         EXPECT_EQ(length, t.images[l].size()) << "level " << l;
       }
       const std::size_t dfd = u32(48);
-      EXPECT_EQ(u32(dfd), 44u);                           // dfdTotalSize: one block, one sample
-      EXPECT_EQ(u32(dfd + 12) & 0xFF, 162u);              // KHR_DF_MODEL_ASTC
+      EXPECT_EQ(u32(dfd), 44u);                                   // dfdTotalSize: one block, one sample
+      EXPECT_EQ(u32(dfd + 12) & 0xFF, 162u);                      // KHR_DF_MODEL_ASTC
       EXPECT_EQ((u32(dfd + 12) >> 16) & 0xFF, p == 1 ? 2u : 1u);  // transfer sRGB / linear
       EXPECT_EQ(u32(dfd + 16), std::uint32_t(bw - 1) | std::uint32_t(bh - 1) << 8);
-      EXPECT_EQ(u32(dfd + 20), 16u);                      // bytesPlane0
+      EXPECT_EQ(u32(dfd + 20), 16u);  // bytesPlane0
       EXPECT_EQ(u32(dfd + 28), 127u << 16 | (p == 2 ? 0xC0u : 0u) << 24);
       EXPECT_EQ(u32(dfd + 36), p == 2 ? 0xBF800000u : 0u);
       EXPECT_EQ(u32(dfd + 40), p == 2 ? 0x3F800000u : 0xFFFFFFFFu);
@@ -256,8 +258,8 @@ TEST(Astc, MalformedAstcFilesAreRejected) {
   EXPECT_EQ(code_of(with(7, {0xFF, 0xFF, 0xFF})), ErrorCode::invalid_file);  // 16M wide, 144 bytes of blocks
   EXPECT_EQ(code_of(with(4, {7, 7})), ErrorCode::invalid_file);              // no 7x7 footprint
   EXPECT_EQ(code_of(with(4, {0, 4})), ErrorCode::invalid_file);
-  EXPECT_EQ(code_of(with(6, {0})), ErrorCode::invalid_file);                 // block depth 0
-  EXPECT_EQ(code_of(with(6, {4})), ErrorCode::unsupported);                  // 3D
+  EXPECT_EQ(code_of(with(6, {0})), ErrorCode::invalid_file);  // block depth 0
+  EXPECT_EQ(code_of(with(6, {4})), ErrorCode::unsupported);   // 3D
   std::vector<std::uint8_t> longer = good;
   longer.push_back(0);
   EXPECT_EQ(code_of(longer), ErrorCode::invalid_file);
@@ -317,8 +319,8 @@ TEST(Astc, LibraryIsLoadedOnFirstUseOnly) {
   write_image(dir + "/a.png", gradient(16, 16).view());
   // texproc with `env` set; returns the exit status, stderr in `err`.
   auto run_env = [&](const std::string& env, const std::string& args, std::string& err) {
-    const std::string cmd = env + " " + TEXPROC_CLI_PATH + " compress '" + dir + "/a.png' " + args + " 2>'" + dir +
-                            "/err.txt' >/dev/null";
+    const std::string cmd =
+        env + " " + TEXPROC_CLI_PATH + " compress '" + dir + "/a.png' " + args + " 2>'" + dir + "/err.txt' >/dev/null";
     const int status = std::system(cmd.c_str());
     err = slurp(dir + "/err.txt");
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -328,11 +330,14 @@ TEST(Astc, LibraryIsLoadedOnFirstUseOnly) {
   EXPECT_EQ(err.find("astcenc"), std::string::npos) << "a BC1 run maps libastcenc";
   EXPECT_EQ(run_env("LD_DEBUG=files", "-o '" + dir + "/a.ktx2' --format astc-4x4", err), 0);
   EXPECT_NE(err.find("astcenc"), std::string::npos);
-  EXPECT_EQ(run_env("TEXPROC_ASTCENC_LIBRARY=/nonexistent/libastcenc.so", "-o '" + dir + "/d.ktx2' --format astc-4x4", err), 5);
+  EXPECT_EQ(
+      run_env("TEXPROC_ASTCENC_LIBRARY=/nonexistent/libastcenc.so", "-o '" + dir + "/d.ktx2' --format astc-4x4", err),
+      5);
   EXPECT_NE(err.find("astc-encoder"), std::string::npos) << err;
   EXPECT_NE(err.find("/nonexistent/libastcenc.so"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir + "/d.ktx2"));
-  EXPECT_EQ(run_env("TEXPROC_ASTCENC_LIBRARY=/nonexistent/libastcenc.so", "-o '" + dir + "/d.dds' --format bc1", err), 0);
+  EXPECT_EQ(run_env("TEXPROC_ASTCENC_LIBRARY=/nonexistent/libastcenc.so", "-o '" + dir + "/d.dds' --format bc1", err),
+            0);
   fs::remove_all(dir);
 }
 
@@ -417,7 +422,9 @@ TEST(Astc, CubemapsKeepTheirFaces) {
     faces.back().push_back(random_image(16, 16, 4, PixelType::u8, unsigned(40 + f)));
   }
   write_texture(dir + "/cube.dds", texture_from_surfaces(std::move(faces), {.faces = 6}, {.srgb = true}));
-  ASSERT_EQ(run_texproc("compress '" + dir + "/cube.dds' -o '" + dir + "/cube.ktx2' --format astc-8x8 --mips -q").exit_code, 0);
+  ASSERT_EQ(
+      run_texproc("compress '" + dir + "/cube.dds' -o '" + dir + "/cube.ktx2' --format astc-8x8 --mips -q").exit_code,
+      0);
   const Texture t = read_texture(dir + "/cube.ktx2");
   EXPECT_EQ(t.format, TexelFormat::astc_8x8_srgb);
   EXPECT_EQ(t.faces, 6u);

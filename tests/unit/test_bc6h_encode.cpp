@@ -48,9 +48,12 @@ int spec_unquantize(int x, int bits, bool is_signed) {
   if (bits >= 16) return x;
   const int m = std::abs(x);
   int unq;
-  if (m == 0) unq = 0;
-  else if (m >= (1 << (bits - 1)) - 1) unq = 0x7FFF;
-  else unq = ((m << 15) + 0x4000) >> (bits - 1);
+  if (m == 0)
+    unq = 0;
+  else if (m >= (1 << (bits - 1)) - 1)
+    unq = 0x7FFF;
+  else
+    unq = ((m << 15) + 0x4000) >> (bits - 1);
   return x < 0 ? -unq : unq;
 }
 std::uint16_t spec_finish(int v, bool is_signed) {
@@ -104,7 +107,8 @@ Image hdr_crop(const std::string& file, int x0, int y0, int w, int h) {
   Image crop(w, h, 3, PixelType::f32);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 3; ++c) crop.row<float>(y)[3 * x + c] = src.get(x0 + x, y0 + y, std::min(c, src.channels() - 1));
+      for (int c = 0; c < 3; ++c)
+        crop.row<float>(y)[3 * x + c] = src.get(x0 + x, y0 + y, std::min(c, src.channels() - 1));
   return crop;
 }
 
@@ -165,7 +169,8 @@ TEST(Bc6hEncode, EveryModeAndPartitionPacksWhatTheDecoderReads) {
           }
           const int bits = M.partition_bits ? 3 : 4;
           const int anchor1 = M.partition_bits ? bptc::kAnchor2[part] : -1;
-          for (int i = 0; i < 16; ++i) c.index[i] = std::uint8_t(rng() % (1u << (i == 0 || i == anchor1 ? bits - 1 : bits)));
+          for (int i = 0; i < 16; ++i)
+            c.index[i] = std::uint8_t(rng() % (1u << (i == 0 || i == anchor1 ? bits - 1 : bits)));
           std::uint8_t block[16];
           std::uint16_t want[16][3], got[16][3];
           bc6h::pack_block(c, block);
@@ -186,9 +191,11 @@ TEST(Bc6hEncode, QuantizeFindsTheNearestCode) {
   for (bool is_signed : {false, true})
     for (int bits : {6, 7, 8, 9, 10, 11, 12, 16})
       for (int n = 0; n < 2000; ++n) {
-        const float u = is_signed ? -32767.0f + 65534.0f * float(rng() % 100000) / 99999.0f : 65535.0f * float(rng() % 100000) / 99999.0f;
+        const float u = is_signed ? -32767.0f + 65534.0f * float(rng() % 100000) / 99999.0f
+                                  : 65535.0f * float(rng() % 100000) / 99999.0f;
         const int q = bc6h::quantize(u, bits, is_signed);
-        const int lo = is_signed ? -((1 << (bits - 1)) - 1) : 0, hi = is_signed ? (1 << (bits - 1)) - 1 : (1 << bits) - 1;
+        const int lo = is_signed ? -((1 << (bits - 1)) - 1) : 0,
+                  hi = is_signed ? (1 << (bits - 1)) - 1 : (1 << bits) - 1;
         float best = INFINITY;
         for (int c = lo; c <= hi; ++c) best = std::min(best, std::fabs(float(spec_unquantize(c, bits, is_signed)) - u));
         ASSERT_EQ(std::fabs(float(spec_unquantize(q, bits, is_signed)) - u), best) << bits << " bits, u " << u;
@@ -214,15 +221,18 @@ TEST(Bc6hEncode, OneColourBlocksAreExactForEveryHalf) {
           for (int i = 0; i < 16; ++i)
             for (int c = 0; c < 3; ++c) texel[i][c][k] = values[v0 + std::size_t(k)];
         std::uint8_t out[kBc6hBatch][16];
-        if (scalar) ref::bc6h_encode_lanes(texel, count, is_signed, bc6h_level(Quality::fast), out);
-        else bc6h_encode_lanes(texel, count, is_signed, bc6h_level(Quality::fast), out);
+        if (scalar)
+          ref::bc6h_encode_lanes(texel, count, is_signed, bc6h_level(Quality::fast), out);
+        else
+          bc6h_encode_lanes(texel, count, is_signed, bc6h_level(Quality::fast), out);
         for (int k = 0; k < count; ++k) {
           std::uint16_t h[16][3];
           bc::decode_bc6h(out[k], is_signed, h);
           for (int i = 0; i < 16; ++i)
             for (int c = 0; c < 3; ++c)
               if (bc6h::target(h[i][c], is_signed) != values[v0 + std::size_t(k)] && wrong++ < 5)
-                ADD_FAILURE() << (is_signed ? "SF16" : "UF16") << " value " << values[v0 + std::size_t(k)] << " decodes to " << h[i][c];
+                ADD_FAILURE() << (is_signed ? "SF16" : "UF16") << " value " << values[v0 + std::size_t(k)]
+                              << " decodes to " << h[i][c];
         }
       }
       EXPECT_EQ(wrong, 0) << (scalar ? "scalar" : "SIMD");
@@ -264,7 +274,8 @@ TEST(Bc6hEncode, HdrValuesSurviveAndSignsAreKept) {
 // SF16 on the same crops with every third channel negated.
 TEST(Bc6hEncode, LevelsOrderAndSimdMatchesScalarOnCorpusCrops) {
   if (!have_corpus()) GTEST_SKIP() << "no corpus at " << corpus_dir();
-  for (const char* file : {"hdr/blender_world_forest.exr", "hdr/blender_matcap_metal_carpaint.exr", "hdr/blender_world_night.exr"}) {
+  for (const char* file :
+       {"hdr/blender_world_forest.exr", "hdr/blender_matcap_metal_carpaint.exr", "hdr/blender_world_night.exr"}) {
     Image crop = hdr_crop(file, 200, 100, 72, 40);  // 18 blocks a row: a batch of 16 and one of 2
     for (bool is_signed : {false, true}) {
       if (is_signed)
@@ -307,8 +318,8 @@ TEST(Bc6hEncode, PillowReadsTheEncodersBlocks) {
   t.images = {compress_image(crop.view(), t.format, Quality::normal)};
   write_texture(dir + "/b.dds", t);
   const std::string out = dir + "/px.bin";
-  const std::string cmd = "/usr/bin/python3 -c \"from PIL import Image; im = Image.open('" + dir + "/b.dds'); open('" + out +
-                          "', 'wb').write(im.mode.encode() + b' ' + im.tobytes())\" 2>" + dir + "/err.txt";
+  const std::string cmd = "/usr/bin/python3 -c \"from PIL import Image; im = Image.open('" + dir + "/b.dds'); open('" +
+                          out + "', 'wb').write(im.mode.encode() + b' ' + im.tobytes())\" 2>" + dir + "/err.txt";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp_file(dir + "/err.txt");
   const std::string px = slurp_file(out);
   ASSERT_EQ(px.substr(0, 4), "RGB ");
@@ -320,8 +331,10 @@ TEST(Bc6hEncode, PillowReadsTheEncodersBlocks) {
       for (int c = 0; c < 3; ++c) {
         const float v = std::clamp(d.row<const float>(y)[d.channels() * x + c], 0.0f, 1.0f);
         inside += v > 0.0f && v < 1.0f;
-        const int mine = int(std::lround(v * 255.0f)), theirs = std::uint8_t(px[4 + (std::size_t(y) * 128 + x) * 3 + c]);
-        if (std::abs(mine - theirs) > 1 && wrong++ < 5) ADD_FAILURE() << x << "," << y << " channel " << c << ": " << mine << " vs Pillow " << theirs;
+        const int mine = int(std::lround(v * 255.0f)),
+                  theirs = std::uint8_t(px[4 + (std::size_t(y) * 128 + x) * 3 + c]);
+        if (std::abs(mine - theirs) > 1 && wrong++ < 5)
+          ADD_FAILURE() << x << "," << y << " channel " << c << ": " << mine << " vs Pillow " << theirs;
       }
   EXPECT_EQ(wrong, 0);
   EXPECT_GT(inside, 128 * 128);

@@ -39,15 +39,19 @@ void expected_texels(const bc7::Choice& c, std::uint8_t out[16][4]) {
     const int v = has_p ? c.code[s][k][ch] << 1 | c.pbit[s][k] : c.code[s][k][ch];
     return (v << (8 - n) | v >> (2 * n - 8)) & 255;
   };
-  const std::uint32_t part = M.subsets == 2 ? bptc::kPartitions2[c.partition] : M.subsets == 3 ? bptc::kPartitions3[c.partition] : 0;
+  const std::uint32_t part = M.subsets == 2   ? bptc::kPartitions2[c.partition]
+                             : M.subsets == 3 ? bptc::kPartitions3[c.partition]
+                                              : 0;
   const bool swap = c.mode == 4 && c.index_selection;
-  const int cbits = swap ? M.index2_bits : M.index_bits, abits = M.index2_bits ? (swap ? M.index_bits : M.index2_bits) : cbits;
+  const int cbits = swap ? M.index2_bits : M.index_bits,
+            abits = M.index2_bits ? (swap ? M.index_bits : M.index2_bits) : cbits;
   const std::uint8_t* cw = cbits == 2 ? bptc::kWeights2 : cbits == 3 ? bptc::kWeights3 : bptc::kWeights4;
   const std::uint8_t* aw = abits == 2 ? bptc::kWeights2 : abits == 3 ? bptc::kWeights3 : bptc::kWeights4;
   for (int i = 0; i < 16; ++i) {
     const int s = M.subsets == 1 ? 0 : int(part >> (2 * i) & 3);
     int px[4];
-    for (int ch = 0; ch < 3; ++ch) px[ch] = ((64 - cw[c.color_index[i]]) * value(s, 0, ch) + cw[c.color_index[i]] * value(s, 1, ch) + 32) >> 6;
+    for (int ch = 0; ch < 3; ++ch)
+      px[ch] = ((64 - cw[c.color_index[i]]) * value(s, 0, ch) + cw[c.color_index[i]] * value(s, 1, ch) + 32) >> 6;
     const int ai = M.index2_bits ? c.alpha_index[i] : c.color_index[i];
     px[3] = ((64 - aw[ai]) * value(s, 0, 3) + aw[ai] * value(s, 1, 3) + 32) >> 6;
     if (c.rotation) std::swap(px[3], px[c.rotation - 1]);
@@ -62,7 +66,9 @@ Image crop_rgba8(const Image& src, int x0, int y0, int w, int h, bool force_opaq
       for (int c = 0; c < 4; ++c) {
         const int sc = std::min(c, src.channels() - 1);
         const bool alpha = c == 3;
-        const float v = alpha && (force_opaque || src.channels() < 4) ? 1.0f : src.get(x0 + x, y0 + y, alpha ? sc : (src.channels() < 3 ? 0 : sc));
+        const float v = alpha && (force_opaque || src.channels() < 4)
+                            ? 1.0f
+                            : src.get(x0 + x, y0 + y, alpha ? sc : (src.channels() < 3 ? 0 : sc));
         crop.row<std::uint8_t>(y)[4 * x + c] = std::uint8_t(std::lround(v * 255.0f));
       }
   return crop;
@@ -117,8 +123,8 @@ TEST(Bc7Encode, EveryModeAndPartitionPacksWhatTheDecoderReads) {
           bc7::pack_block(c, block);
           expected_texels(c, want);
           bc::decode_bc7(block, got);
-          ASSERT_EQ(0, std::memcmp(want, got, sizeof want)) << "mode " << mode << " partition " << part << " rotation " << rot
-                                                            << " isel " << isel;
+          ASSERT_EQ(0, std::memcmp(want, got, sizeof want))
+              << "mode " << mode << " partition " << part << " rotation " << rot << " isel " << isel;
           ++checked;
         }
   }
@@ -186,7 +192,8 @@ TEST(Bc7Encode, OneColourBlocksAreExact) {
       std::uint8_t px[4];
       for (auto& c : px) c = std::uint8_t(n < 4 ? (n & 1) * 255 : rng() & 255);
       for (int i = 0; i < 16; ++i) std::memcpy(img.row<std::uint8_t>(i / 4) + 4 * (i % 4), px, 4);
-      EXPECT_EQ(rgba_error(img, compress_image(img.view(), TexelFormat::bc7_unorm, q)), 0.0) << to_string(q) << " " << n;
+      EXPECT_EQ(rgba_error(img, compress_image(img.view(), TexelFormat::bc7_unorm, q)), 0.0)
+          << to_string(q) << " " << n;
     }
 }
 
@@ -198,7 +205,8 @@ TEST(Bc7Encode, OpaqueImagesNeverGetAlphaBelow255) {
   for (int y = 0; y < opaque.height(); ++y)
     for (int x = 0; x < opaque.width(); ++x) opaque.row<std::uint8_t>(y)[4 * x + 3] = 255;
   for (Quality q : {Quality::fast, Quality::normal, Quality::high, Quality::max}) {
-    const Image d = decompress_image(compress_image(opaque.view(), TexelFormat::bc7_unorm, q), 64, 32, TexelFormat::bc7_unorm, PixelType::u8);
+    const Image d = decompress_image(compress_image(opaque.view(), TexelFormat::bc7_unorm, q), 64, 32,
+                                     TexelFormat::bc7_unorm, PixelType::u8);
     for (int y = 0; y < 32; ++y)
       for (int x = 0; x < 64; ++x) ASSERT_EQ(d.row<const std::uint8_t>(y)[4 * x + 3], 255) << to_string(q);
   }
@@ -214,11 +222,13 @@ TEST(Bc7Encode, LevelsOrderAndSimdMatchesScalarOnCorpusCrops) {
     const char* file;
     bool opaque;
   };
-  for (const Source& s : {Source{"photo/skimage_astronaut_512.png", true}, Source{"albedo_srgb/colobot_desert4.png", true},
-                          Source{"normal_ts/ufoai_rock017_nm_alphaheight.png", true}, Source{"alpha/ufoai_fence_512x256.png", false},
-                          Source{"alpha/trigger_palm_tree2_1000.png", false}}) {
+  for (const Source& s :
+       {Source{"photo/skimage_astronaut_512.png", true}, Source{"albedo_srgb/colobot_desert4.png", true},
+        Source{"normal_ts/ufoai_rock017_nm_alphaheight.png", true}, Source{"alpha/ufoai_fence_512x256.png", false},
+        Source{"alpha/trigger_palm_tree2_1000.png", false}}) {
     const Image src = read_image(corpus_dir() + "/" + s.file);
-    const Image crop = crop_rgba8(src, 100, 100, 72, 40, s.opaque);  // 18 blocks a row: batches of 16 that cross rows, and a short one
+    const Image crop =
+        crop_rgba8(src, 100, 100, 72, 40, s.opaque);  // 18 blocks a row: batches of 16 that cross rows, and a short one
     double last = INFINITY;
     for (Quality q : {Quality::fast, Quality::normal, Quality::high}) {
       const auto blocks = compress_image(crop.view(), TexelFormat::bc7_unorm, q);
@@ -258,7 +268,8 @@ TEST(Bc7Encode, FitKnobsOffTheLevelsSimdMatchesScalar) {
     for (int b = 0; b < count; ++b)
       for (int i = 0; i < 16; ++i) {
         const std::uint8_t* p = crop.row<const std::uint8_t>(b / bw * 4 + i / 4) + 4 * (b % bw * 4 + i % 4);
-        texel[b / kBc7Batch][i][b % kBc7Batch] = std::uint32_t(p[0]) | p[1] << 8 | p[2] << 16 | std::uint32_t(p[3]) << 24;
+        texel[b / kBc7Batch][i][b % kBc7Batch] =
+            std::uint32_t(p[0]) | p[1] << 8 | p[2] << 16 | std::uint32_t(p[3]) << 24;
       }
     for (const Bc7Level& level : rows)
       expect_same_on_every_target(
@@ -276,7 +287,8 @@ TEST(Bc7Encode, FitKnobsOffTheLevelsSimdMatchesScalar) {
 // about 8 dB), and sRGB is the same search on the stored values.
 TEST(Bc7Encode, BeatsBc1AndSrgbIsTheSameBlocks) {
   if (!have_corpus()) GTEST_SKIP() << "no corpus at " << corpus_dir();
-  const Image crop = crop_rgba8(read_image(corpus_dir() + "/photo/skimage_astronaut_512.png"), 128, 128, 128, 128, true);
+  const Image crop =
+      crop_rgba8(read_image(corpus_dir() + "/photo/skimage_astronaut_512.png"), 128, 128, 128, 128, true);
   const auto bc7 = compress_image(crop.view(), TexelFormat::bc7_unorm, Quality::fast);
   const auto bc1 = compress_image(crop.view(), TexelFormat::bc1_rgb_unorm, Quality::high);
   const Image d1 = decompress_image(bc1, 128, 128, TexelFormat::bc1_rgb_unorm, PixelType::u8);

@@ -83,7 +83,7 @@ TEST(BcDecode, Bc4BothModesExact) {
 
 // BC2: explicit 4-bit alpha, a * 17; the colour half always four-colour.
 TEST(BcDecode, Bc2ExplicitAlpha) {
-  std::uint8_t block[16] = {0x10, 0x32, 0x54, 0x76, 0x98, 0xBA, 0xDC, 0xFE,  // alpha 0..15
+  std::uint8_t block[16] = {0x10, 0x32, 0x54, 0x76, 0x98, 0xBA, 0xDC, 0xFE,   // alpha 0..15
                             0x1F, 0x00, 0x00, 0xF8, 0xE4, 0xE4, 0xE4, 0xE4};  // c0 = blue < c1 = red
   float t[16][4];
   decode_block(TexelFormat::bc2_unorm, block, t);
@@ -103,8 +103,9 @@ TEST(BcDecode, MatchesLibsquishWithinOneLevel) {
     int bytes;
   };
 
-  for (const Case& c : {Case{TexelFormat::bc1_rgba_unorm, squish::kDxt1, 8}, Case{TexelFormat::bc2_unorm, squish::kDxt3, 16},
-                        Case{TexelFormat::bc3_unorm, squish::kDxt5, 16}}) {
+  for (const Case& c :
+       {Case{TexelFormat::bc1_rgba_unorm, squish::kDxt1, 8}, Case{TexelFormat::bc2_unorm, squish::kDxt3, 16},
+        Case{TexelFormat::bc3_unorm, squish::kDxt5, 16}}) {
     for (int n = 0; n < 4000; ++n) {
       std::uint8_t block[16];
       for (auto& b : block) b = std::uint8_t(rng());
@@ -139,28 +140,29 @@ TEST(BcDecode, MatchesLibsquishWithinOneLevel) {
 TEST(BlockDecode, EightBitOutputEqualsTheFloatDecoderStored) {
   using F = TexelFormat;
   std::mt19937 rng(5);
-  for (F f : {F::bc1_rgb_unorm, F::bc1_rgba_srgb, F::bc2_unorm, F::bc3_srgb, F::bc4_unorm, F::bc4_snorm, F::bc5_unorm, F::bc5_snorm,
-              F::bc6h_ufloat, F::bc6h_sfloat, F::bc7_unorm, F::bc7_srgb, F::etc1_rgb, F::etc2_rgb_srgb, F::etc2_rgba1_unorm,
+  for (F f : {F::bc1_rgb_unorm,   F::bc1_rgba_srgb, F::bc2_unorm,     F::bc3_srgb,       F::bc4_unorm,
+              F::bc4_snorm,       F::bc5_unorm,     F::bc5_snorm,     F::bc6h_ufloat,    F::bc6h_sfloat,
+              F::bc7_unorm,       F::bc7_srgb,      F::etc1_rgb,      F::etc2_rgb_srgb,  F::etc2_rgba1_unorm,
               F::etc2_rgba8_srgb, F::eac_r11_unorm, F::eac_r11_snorm, F::eac_rg11_unorm, F::eac_rg11_snorm}) {
     const FormatInfo& info = format_info(f);
     // Partial blocks; whole blocks only (each row's last block a run's
     // last); one block.
     for (auto [w, h] : {std::pair{37, 22}, std::pair{16, 12}, std::pair{4, 4}}) {
-    const int bw = (w + 3) / 4, bh = (h + 3) / 4;
-    std::vector<std::uint8_t> blocks(std::size_t(bw) * bh * info.block_bytes);
-    for (auto& b : blocks) b = std::uint8_t(rng());
-    const Image u8 = decompress_image(blocks, w, h, f, PixelType::u8);
-    const Image f32 = decompress_image(blocks, w, h, f, PixelType::f32);
-    ASSERT_EQ(u8.channels(), f32.channels()) << info.name;
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        for (int c = 0; c < u8.channels(); ++c) {
-          float v = f32.get(x, y, c);
-          if (info.snorm) v = (v + 1.0f) * 0.5f;
-          const float cl = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
-          ASSERT_EQ(u8.row<const std::uint8_t>(y)[x * u8.channels() + c], std::uint8_t(cl * 255.0f + 0.5f))
-              << info.name << " " << w << "x" << h << " at " << x << "," << y << " channel " << c;
-        }
+      const int bw = (w + 3) / 4, bh = (h + 3) / 4;
+      std::vector<std::uint8_t> blocks(std::size_t(bw) * bh * info.block_bytes);
+      for (auto& b : blocks) b = std::uint8_t(rng());
+      const Image u8 = decompress_image(blocks, w, h, f, PixelType::u8);
+      const Image f32 = decompress_image(blocks, w, h, f, PixelType::f32);
+      ASSERT_EQ(u8.channels(), f32.channels()) << info.name;
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          for (int c = 0; c < u8.channels(); ++c) {
+            float v = f32.get(x, y, c);
+            if (info.snorm) v = (v + 1.0f) * 0.5f;
+            const float cl = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+            ASSERT_EQ(u8.row<const std::uint8_t>(y)[x * u8.channels() + c], std::uint8_t(cl * 255.0f + 0.5f))
+                << info.name << " " << w << "x" << h << " at " << x << "," << y << " channel " << c;
+          }
     }
   }
 }
@@ -208,7 +210,8 @@ TEST(BlockDecode, EacEightBitRowsMatchTheElevenBitDecoderForEveryBlockHeader) {
       for (int i = 0; i < 16; ++i) {
         const std::uint8_t want = bc::to_unorm8(snorm ? (float(v[i]) / 1023.0f + 1.0f) * 0.5f : float(v[i]) / 2047.0f);
         ASSERT_EQ(one[i / 4][i % 4], want) << (snorm ? "SNORM " : "UNORM ") << "header " << header << " texel " << i;
-        ASSERT_EQ(two[i / 4][2 * (i % 4) + 1], want) << (snorm ? "SNORM " : "UNORM ") << "header " << header << " texel " << i;
+        ASSERT_EQ(two[i / 4][2 * (i % 4) + 1], want)
+            << (snorm ? "SNORM " : "UNORM ") << "header " << header << " texel " << i;
       }
     }
 }
@@ -220,7 +223,8 @@ TEST(BlockDecode, EacEightBitRowsMatchTheElevenBitDecoderForEveryBlockHeader) {
 // bits, rows apart by a stride wider than a block.
 TEST(BlockDecode, Bc6hFloatRowsAreTheHalvesConverted) {
   std::mt19937 rng(61);
-  const int modes[] = {0, 1, 2, 6, 10, 14, 18, 22, 26, 30, 3, 7, 11, 15, 19, 23, 27, 31};  // 5-bit and 2-bit mode numbers
+  const int modes[] = {0,  1, 2, 6,  10, 14, 18, 22, 26,
+                       30, 3, 7, 11, 15, 19, 23, 27, 31};  // 5-bit and 2-bit mode numbers
   for (bool is_signed : {false, true})
     for (int n = 0; n < 40000; ++n) {
       std::uint8_t block[16];

@@ -115,7 +115,11 @@ TEST(Bc4Encode, MaxIsTheExhaustiveOptimum) {
     for (int a = int(lo); a <= int(hi); ++a)
       for (int b = int(lo); b <= int(hi); ++b) {
         double pal[8] = {double(a), double(b)};
-        for (int k = 1; k <= 6; ++k) pal[k + 1] = a > b ? double(a * (7 - k) + b * k) / 7.0 : k <= 4 ? double(a * (5 - k) + b * k) / 5.0 : k == 5 ? lo : hi;
+        for (int k = 1; k <= 6; ++k)
+          pal[k + 1] = a > b    ? double(a * (7 - k) + b * k) / 7.0
+                       : k <= 4 ? double(a * (5 - k) + b * k) / 5.0
+                       : k == 5 ? lo
+                                : hi;
         double e = 0.0;
         for (int i = 0; i < 16 && e < least; ++i) {
           double be = 1e300;
@@ -241,8 +245,11 @@ long long best_single_color_error(const int rgb[3]) {
       for (int a = 0; a < n; ++a)
         for (int b = 0; b < n; ++b) {
           const int ea = expand(a, bits), eb = expand(b, bits);
-          const int v = mode == 0 ? ea : mode == 1 ? eb : mode == 2 ? (2 * ea + eb + 1) / 3
-                      : mode == 3 ? (ea + 2 * eb + 1) / 3 : (ea + eb + 1) / 2;
+          const int v = mode == 0   ? ea
+                        : mode == 1 ? eb
+                        : mode == 2 ? (2 * ea + eb + 1) / 3
+                        : mode == 3 ? (ea + 2 * eb + 1) / 3
+                                    : (ea + eb + 1) / 2;
           bc = std::min(bc, std::abs(v - rgb[ch]));
         }
       total += 16LL * bc * bc;
@@ -275,7 +282,8 @@ TEST(Bc1Encode, SingleColourBlocksAreOptimal) {
     int rgb[3] = {int(rng() % 256), int(rng() % 256), int(rng() % 256)};
     if (n < 6) rgb[0] = rgb[1] = rgb[2] = n * 51;  // greys, black and white
     std::uint8_t px[16][4];
-    for (auto& p : px) p[0] = std::uint8_t(rgb[0]), p[1] = std::uint8_t(rgb[1]), p[2] = std::uint8_t(rgb[2]), p[3] = 255;
+    for (auto& p : px)
+      p[0] = std::uint8_t(rgb[0]), p[1] = std::uint8_t(rgb[1]), p[2] = std::uint8_t(rgb[2]), p[3] = 255;
     std::uint8_t block[8];
     encode_bc1_color(px, Bc1Mode::bc1, Quality::fast, block);
     ASSERT_EQ(bc1_error(block, px), best_single_color_error(rgb)) << rgb[0] << "," << rgb[1] << "," << rgb[2];
@@ -324,7 +332,8 @@ TEST(Bc1Encode, PunchThroughOneColourIsOptimal) {
       for (int i = 0; i < 16; ++i) {
         EXPECT_EQ(t[i][3], px[i][3] == 255 ? 1.0f : 0.0f) << i;
         if (px[i][3] == 255)
-          for (int ch = 0; ch < 3; ++ch) e += (std::lround(t[i][ch] * 255.0f) - c[ch]) * (std::lround(t[i][ch] * 255.0f) - c[ch]);
+          for (int ch = 0; ch < 3; ++ch)
+            e += (std::lround(t[i][ch] * 255.0f) - c[ch]) * (std::lround(t[i][ch] * 255.0f) - c[ch]);
       }
       EXPECT_EQ(e, least * opaque) << c[0] << "," << c[1] << "," << c[2] << " " << to_string(q);
     }
@@ -393,7 +402,8 @@ TEST(Bc1Encode, TwoGridColoursAreLossless) {
   std::mt19937 rng(7);
   for (int n = 0; n < 200; ++n) {
     int c[2][3];
-    for (auto& col : c) col[0] = expand(int(rng() % 32), 5), col[1] = expand(int(rng() % 64), 6), col[2] = expand(int(rng() % 32), 5);
+    for (auto& col : c)
+      col[0] = expand(int(rng() % 32), 5), col[1] = expand(int(rng() % 64), 6), col[2] = expand(int(rng() % 32), 5);
     std::uint8_t px[16][4];
     for (int i = 0; i < 16; ++i) {
       const int* col = c[(i * 7 + n) % 3 == 0 ? 1 : 0];
@@ -446,7 +456,8 @@ TEST(Bc1Encode, BlackIndexOptIn) {
     }
     EXPECT_EQ(compress_image(img.view(), TexelFormat::bc1_rgba_unorm, q, black),
               compress_image(img.view(), TexelFormat::bc1_rgba_unorm, q));
-    EXPECT_EQ(compress_image(img.view(), TexelFormat::bc3_unorm, q, black), compress_image(img.view(), TexelFormat::bc3_unorm, q));
+    EXPECT_EQ(compress_image(img.view(), TexelFormat::bc3_unorm, q, black),
+              compress_image(img.view(), TexelFormat::bc3_unorm, q));
   }
 }
 
@@ -510,7 +521,8 @@ TEST(Bc1Encode, PunchThroughAndBc3Alpha) {
   d = decode_texture_image(t, 0, 0, 0, PixelType::u8);
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 8; ++x) {
-      EXPECT_LE(std::abs(d.row<std::uint8_t>(y)[4 * x + 3] - img.row<std::uint8_t>(y)[4 * x + 3]), 9);  // 4 bits: 17 steps
+      EXPECT_LE(std::abs(d.row<std::uint8_t>(y)[4 * x + 3] - img.row<std::uint8_t>(y)[4 * x + 3]),
+                9);  // 4 bits: 17 steps
     }
 }
 
@@ -582,8 +594,10 @@ TEST(Bc4Encode, SimdMatchesScalarOnEveryTarget) {
   Image img = random_image(40, 36, 4, PixelType::u16, 8);
   for (int y = 0; y < 18; ++y)  // smooth rows above, noise below
     for (int x = 0; x < 40; ++x)
-      for (int c = 0; c < 4; ++c) img.row<std::uint16_t>(y)[x * 4 + c] = std::uint16_t((x * 900 + y * 500 + c * 7000) & 0xFFFF);
-  for (TexelFormat f : {TexelFormat::bc4_unorm, TexelFormat::bc4_snorm, TexelFormat::bc5_unorm, TexelFormat::bc3_unorm}) {
+      for (int c = 0; c < 4; ++c)
+        img.row<std::uint16_t>(y)[x * 4 + c] = std::uint16_t((x * 900 + y * 500 + c * 7000) & 0xFFFF);
+  for (TexelFormat f :
+       {TexelFormat::bc4_unorm, TexelFormat::bc4_snorm, TexelFormat::bc5_unorm, TexelFormat::bc3_unorm}) {
     for (Quality q : {Quality::fast, Quality::normal, Quality::high}) {
       expect_same_on_every_target([&] { return compress_image(img.view(), f, q); },
                                   std::string(format_info(f).name) + " " + to_string(q));
@@ -616,10 +630,12 @@ TEST(BlockEncode, QualityLevelsAreOrdered) {
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 96; ++x)
       for (int c = 0; c < 4; ++c)
-        img.row<std::uint8_t>(y)[4 * x + c] = c == 3 ? std::uint8_t(255 - 2 * y) : photo.row<std::uint8_t>(180 + y)[3 * (200 + x) + c];
-  for (TexelFormat f : {TexelFormat::bc1_rgb_unorm, TexelFormat::bc3_unorm, TexelFormat::bc4_unorm, TexelFormat::bc5_unorm,
-                        TexelFormat::etc1_rgb, TexelFormat::etc2_rgb_unorm, TexelFormat::etc2_rgba8_unorm,
-                        TexelFormat::etc2_rgba1_unorm, TexelFormat::eac_r11_unorm, TexelFormat::eac_rg11_snorm}) {
+        img.row<std::uint8_t>(y)[4 * x + c] =
+            c == 3 ? std::uint8_t(255 - 2 * y) : photo.row<std::uint8_t>(180 + y)[3 * (200 + x) + c];
+  for (TexelFormat f :
+       {TexelFormat::bc1_rgb_unorm, TexelFormat::bc3_unorm, TexelFormat::bc4_unorm, TexelFormat::bc5_unorm,
+        TexelFormat::etc1_rgb, TexelFormat::etc2_rgb_unorm, TexelFormat::etc2_rgba8_unorm,
+        TexelFormat::etc2_rgba1_unorm, TexelFormat::eac_r11_unorm, TexelFormat::eac_rg11_snorm}) {
     // Punch-through: a cutout (holes in some blocks, so both its paths run),
     // scored over the visible texels' colour.
     const bool punch = f == TexelFormat::etc2_rgba1_unorm;
@@ -656,10 +672,10 @@ TEST(BlockEncode, QualityLevelsAreOrdered) {
 // block's bytes depend on its texels alone), and says how many.
 TEST(BlockEncode, OneBlockApiMatchesImages) {
   const Image img = random_image(12, 8, 4, PixelType::u8, 21);
-  for (TexelFormat f : {TexelFormat::bc1_rgb_unorm, TexelFormat::bc1_rgba_srgb, TexelFormat::bc2_unorm, TexelFormat::bc3_srgb,
-                        TexelFormat::bc4_unorm, TexelFormat::bc4_snorm, TexelFormat::bc5_snorm, TexelFormat::etc1_rgb,
-                        TexelFormat::etc2_rgb_unorm, TexelFormat::etc2_rgba1_unorm, TexelFormat::etc2_rgba8_srgb,
-                        TexelFormat::eac_r11_unorm, TexelFormat::eac_rg11_snorm})
+  for (TexelFormat f : {TexelFormat::bc1_rgb_unorm, TexelFormat::bc1_rgba_srgb, TexelFormat::bc2_unorm,
+                        TexelFormat::bc3_srgb, TexelFormat::bc4_unorm, TexelFormat::bc4_snorm, TexelFormat::bc5_snorm,
+                        TexelFormat::etc1_rgb, TexelFormat::etc2_rgb_unorm, TexelFormat::etc2_rgba1_unorm,
+                        TexelFormat::etc2_rgba8_srgb, TexelFormat::eac_r11_unorm, TexelFormat::eac_rg11_snorm})
     for (Quality q : {Quality::fast, Quality::normal, Quality::high}) {
       const std::vector<std::uint8_t> whole = compress_image(img.view(), f, q);
       const int bytes = format_info(f).block_bytes;
@@ -682,7 +698,8 @@ TEST(BlockEncode, OneBlockApiMatchesImages) {
 TEST(BlockEncode, ProgressRisesToOne) {
   ThreadLimit two(2);
   const Image img = random_image(64, 72, 4, PixelType::u8, 23);
-  for (TexelFormat f : {TexelFormat::bc1_rgb_unorm, TexelFormat::bc3_unorm, TexelFormat::bc5_unorm, TexelFormat::etc2_rgba8_unorm}) {
+  for (TexelFormat f :
+       {TexelFormat::bc1_rgb_unorm, TexelFormat::bc3_unorm, TexelFormat::bc5_unorm, TexelFormat::etc2_rgba8_unorm}) {
     std::vector<double> seen;
     std::atomic<int> inside{0};
     bool overlapped = false;
@@ -723,11 +740,13 @@ TEST(BlockEncode, SimdMatchesScalarOnCorpusCrops) {
     crops.push_back(std::move(crop));
   }
   for (std::size_t n = 0; n < crops.size(); ++n)
-    for (TexelFormat f : {TexelFormat::bc1_rgb_unorm, TexelFormat::bc3_unorm, TexelFormat::bc4_unorm, TexelFormat::bc5_snorm,
-                          TexelFormat::etc1_rgb, TexelFormat::etc2_rgba8_unorm, TexelFormat::eac_rg11_unorm})
+    for (TexelFormat f :
+         {TexelFormat::bc1_rgb_unorm, TexelFormat::bc3_unorm, TexelFormat::bc4_unorm, TexelFormat::bc5_snorm,
+          TexelFormat::etc1_rgb, TexelFormat::etc2_rgba8_unorm, TexelFormat::eac_rg11_unorm})
       for (Quality q : {Quality::fast, Quality::normal, Quality::high})
-        expect_same_on_every_target([&] { return compress_image(crops[n].view(), f, q); },
-                                    std::string("crop ") + std::to_string(n) + " " + format_info(f).name + " " + to_string(q));
+        expect_same_on_every_target(
+            [&] { return compress_image(crops[n].view(), f, q); },
+            std::string("crop ") + std::to_string(n) + " " + format_info(f).name + " " + to_string(q));
 }
 
 // BC1's error bound: on every corpus colour image (albedo, photos,
@@ -739,7 +758,8 @@ TEST(Bc1Encode, HighIsNeverBelowLibsquishClusterFit) {
   if (!have_corpus()) GTEST_SKIP() << "no corpus at " << corpus_dir();
   std::vector<std::string> files;
   for (const char* dir : {"albedo_srgb", "photo", "alpha", "normal_ts"})
-    for (const auto& e : std::filesystem::directory_iterator(corpus_dir() + "/" + dir)) files.push_back(e.path().string());
+    for (const auto& e : std::filesystem::directory_iterator(corpus_dir() + "/" + dir))
+      files.push_back(e.path().string());
   std::sort(files.begin(), files.end());
   ASSERT_GE(files.size(), 20u);
   std::vector<double> ours(files.size()), theirs(files.size());
@@ -769,5 +789,6 @@ TEST(Bc1Encode, HighIsNeverBelowLibsquishClusterFit) {
     ours[n] = psnr(compress_image(img.view(), TexelFormat::bc1_rgb_unorm, Quality::high));
   });
   for (std::size_t n = 0; n < files.size(); ++n)
-    EXPECT_GE(ours[n], theirs[n] - 0.05) << files[n] << ": texproc high " << ours[n] << " dB, libsquish cluster fit " << theirs[n];
+    EXPECT_GE(ours[n], theirs[n] - 0.05) << files[n] << ": texproc high " << ours[n] << " dB, libsquish cluster fit "
+                                         << theirs[n];
 }

@@ -246,7 +246,8 @@ std::vector<std::uint8_t> random_blocks(bool bc6h, int count, unsigned seed) {
 }
 
 // Pillow's pixels for a DDS of `blocks` (w x h texels), as raw bytes.
-std::string pillow_pixels(const std::string& dir, TexelFormat f, const std::vector<std::uint8_t>& blocks, int w, int h) {
+std::string pillow_pixels(const std::string& dir, TexelFormat f, const std::vector<std::uint8_t>& blocks, int w,
+                          int h) {
   Texture t;
   t.format = f;
   t.width = std::uint32_t(w), t.height = std::uint32_t(h);
@@ -254,9 +255,8 @@ std::string pillow_pixels(const std::string& dir, TexelFormat f, const std::vect
   t.images = {blocks};
   write_texture(dir + "/b.dds", t);
   const std::string out = dir + "/px.bin";
-  const std::string cmd = "/usr/bin/python3 -c \"from PIL import Image; im = Image.open('" + dir +
-                          "/b.dds'); open('" + out + "', 'wb').write(im.mode.encode() + b' ' + im.tobytes())\" 2>" +
-                          dir + "/err.txt";
+  const std::string cmd = "/usr/bin/python3 -c \"from PIL import Image; im = Image.open('" + dir + "/b.dds'); open('" +
+                          out + "', 'wb').write(im.mode.encode() + b' ' + im.tobytes())\" 2>" + dir + "/err.txt";
   if (std::system(cmd.c_str()) != 0) return "error: " + slurp_file(dir + "/err.txt");
   return slurp_file(out);
 }
@@ -282,7 +282,9 @@ TEST(Bc7Decode, MatchesPillowOnRandomBlocksOfEveryMode) {
       const int x = (k % bw) * 4 + i % 4, y = (k / bw) * 4 + i / 4;
       for (int c = 0; c < 4; ++c) {
         const int theirs = std::uint8_t(px[5 + (std::size_t(y) * bw * 4 + x) * 4 + c]);
-        if (theirs != t[i][c] && wrong++ < 5) ADD_FAILURE() << "block " << k << " (mode " << k % 8 << ") texel " << i << " channel " << c << ": " << int(t[i][c]) << " vs Pillow " << theirs;
+        if (theirs != t[i][c] && wrong++ < 5)
+          ADD_FAILURE() << "block " << k << " (mode " << k % 8 << ") texel " << i << " channel " << c << ": "
+                        << int(t[i][c]) << " vs Pillow " << theirs;
       }
     }
   }
@@ -321,11 +323,14 @@ TEST(Bc6hDecode, MatchesPillowOnRandomBlocksOfEveryMode) {
       for (int i = 0; i < 16; ++i) {
         const int x = (k % bw) * 4 + i % 4, y = (k / bw) * 4 + i / 4;
         for (int c = 0; c < 3; ++c) {
-          const float v = std::isfinite(t[i][c]) ? std::min(std::max(t[i][c], 0.0f), 1.0f) : (t[i][c] > 0 ? 1.0f : 0.0f);
-          const int mine = int(std::lround(v * 255.0f)), theirs = std::uint8_t(px[4 + (std::size_t(y) * bw * 4 + x) * 3 + c]);
+          const float v =
+              std::isfinite(t[i][c]) ? std::min(std::max(t[i][c], 0.0f), 1.0f) : (t[i][c] > 0 ? 1.0f : 0.0f);
+          const int mine = int(std::lround(v * 255.0f)),
+                    theirs = std::uint8_t(px[4 + (std::size_t(y) * bw * 4 + x) * 3 + c]);
           if (v > 0.0f && v < 1.0f) ++inside;
           if (std::abs(mine - theirs) > 1 && wrong++ < 5)
-            ADD_FAILURE() << format_info(f).name << " block " << k << " texel " << i << " channel " << c << ": " << t[i][c] << " vs Pillow " << theirs;
+            ADD_FAILURE() << format_info(f).name << " block " << k << " texel " << i << " channel " << c << ": "
+                          << t[i][c] << " vs Pillow " << theirs;
         }
       }
     }
@@ -345,9 +350,9 @@ TEST(Bc6hDecode, SignedTransformedEndpointsByHand) {
     const char* v;
     int hi, lo;
   };
-  static const Seg kMode2[] = {{"r0", 9, 0}, {"g0", 9, 0}, {"b0", 9, 0}, {"r1", 4, 0}, {"r0", 10, 10}, {"g2", 3, 0},
-                               {"g1", 3, 0}, {"g0", 10, 10}, {"b3", 0, 0}, {"g3", 3, 0}, {"b1", 3, 0}, {"b0", 10, 10},
-                               {"b3", 1, 1}, {"b2", 3, 0}, {"r2", 4, 0}, {"b3", 2, 2}, {"r3", 4, 0}, {"b3", 3, 3}};
+  static const Seg kMode2[] = {{"r0", 9, 0}, {"g0", 9, 0},   {"b0", 9, 0}, {"r1", 4, 0}, {"r0", 10, 10}, {"g2", 3, 0},
+                               {"g1", 3, 0}, {"g0", 10, 10}, {"b3", 0, 0}, {"g3", 3, 0}, {"b1", 3, 0},   {"b0", 10, 10},
+                               {"b3", 1, 1}, {"b2", 3, 0},   {"r2", 4, 0}, {"b3", 2, 2}, {"r3", 4, 0},   {"b3", 3, 3}};
   // Endpoint values: e0 11-bit, the others deltas (r 5 bits, g and b 4 bits), two's complement.
   const int e0[3] = {-16, -300, -1000};
   const int d[3][3] = {{2, -3, 7}, {-1, 5, -8}, {-16, 0, 1}};  // e1, e2, e3 deltas by channel
@@ -374,7 +379,10 @@ TEST(Bc6hDecode, SignedTransformedEndpointsByHand) {
     int u = x == 0 ? 0 : x >= (1 << (bits - 1)) - 1 ? 0x7FFF : ((x << 15) + 0x4000) >> (bits - 1);
     return neg ? -u : u;
   };
-  auto wrap11 = [](int v) { v &= 2047; return v >= 1024 ? v - 2048 : v; };
+  auto wrap11 = [](int v) {
+    v &= 2047;
+    return v >= 1024 ? v - 2048 : v;
+  };
   static const int kW3[8] = {0, 9, 18, 27, 37, 46, 55, 64};
   float f[16][4];
   decode_block(TexelFormat::bc6h_sfloat, w.b, f);
@@ -399,7 +407,8 @@ TEST(Bc6hDecode, SignedTransformedEndpointsByHand) {
 TEST(BptcContainers, RoundTripEveryContainer) {
   const std::string dir = (fs::temp_directory_path() / "texproc_bptc_containers").string();
   fs::create_directories(dir);
-  for (TexelFormat f : {TexelFormat::bc6h_ufloat, TexelFormat::bc6h_sfloat, TexelFormat::bc7_unorm, TexelFormat::bc7_srgb}) {
+  for (TexelFormat f :
+       {TexelFormat::bc6h_ufloat, TexelFormat::bc6h_sfloat, TexelFormat::bc7_unorm, TexelFormat::bc7_srgb}) {
     Texture t;
     t.format = f;
     t.width = 9, t.height = 6, t.levels = 2, t.layers = t.faces = 1;

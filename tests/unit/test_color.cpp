@@ -110,11 +110,20 @@ TEST(SrgbRows, SimdTwinsMatchReferenceOnEveryTarget) {
   std::uniform_real_distribution<float> u(-0.2f, 1.3f);
   for (std::size_t i = 0; i < floats.size(); ++i) {
     switch (i % 11) {
-      case 0: floats[i] = std::nanf(""); break;
-      case 1: floats[i] = float(srgb_to_linear((i % 255 + 0.5) / 255.0)); break;  // near a threshold
-      case 2: floats[i] = 1e-30f; break;
-      case 3: floats[i] = 0.0f; break;
-      default: floats[i] = u(rng);
+      case 0:
+        floats[i] = std::nanf("");
+        break;
+      case 1:
+        floats[i] = float(srgb_to_linear((i % 255 + 0.5) / 255.0));
+        break;  // near a threshold
+      case 2:
+        floats[i] = 1e-30f;
+        break;
+      case 3:
+        floats[i] = 0.0f;
+        break;
+      default:
+        floats[i] = u(rng);
     }
   }
   const int n = int(bytes.size() / 4);

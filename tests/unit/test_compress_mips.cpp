@@ -40,10 +40,11 @@ std::vector<Image> copies(const std::vector<Image>& v) {
 }  // namespace
 
 TEST(CompressMips, SameBytesAsWholeChainsForEveryBlockFormat) {
-  const TexelFormat formats[] = {TexelFormat::bc1_rgb_srgb,  TexelFormat::bc1_rgba_unorm, TexelFormat::bc2_unorm,
-                                 TexelFormat::bc3_srgb,      TexelFormat::bc4_unorm,      TexelFormat::bc5_snorm,
-                                 TexelFormat::bc7_srgb,      TexelFormat::etc1_rgb,       TexelFormat::etc2_rgba8_unorm,
-                                 TexelFormat::etc2_rgba1_srgb, TexelFormat::eac_r11_unorm, TexelFormat::eac_rg11_unorm};
+  const TexelFormat formats[] = {
+      TexelFormat::bc1_rgb_srgb,    TexelFormat::bc1_rgba_unorm, TexelFormat::bc2_unorm,
+      TexelFormat::bc3_srgb,        TexelFormat::bc4_unorm,      TexelFormat::bc5_snorm,
+      TexelFormat::bc7_srgb,        TexelFormat::etc1_rgb,       TexelFormat::etc2_rgba8_unorm,
+      TexelFormat::etc2_rgba1_srgb, TexelFormat::eac_r11_unorm,  TexelFormat::eac_rg11_unorm};
   const int sizes[][2] = {{37, 21}, {8, 130}, {1, 5}};
   for (const auto& wh : sizes) {
     const std::vector<Image> in{random_image(wh[0], wh[1], 4, PixelType::u8, unsigned(wh[0] + wh[1]))};

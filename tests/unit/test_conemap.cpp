@@ -35,7 +35,7 @@ std::vector<float> field(int w, int h, const char* kind, unsigned seed) {
       if (k == "peak") v = std::max(0.0f, 1.0f - std::hypot(x - w / 2.0f, y - h / 3.0f) / 10.0f);
       if (k == "flat") v = 0.5f;
       if (k == "quantized") v = std::round(u(rng) * 255.0f) / 255.0f;  // ties in height
-      if (k == "ramp") v = float(x) / float(w);  // every uphill texel of a row ties
+      if (k == "ramp") v = float(x) / float(w);                        // every uphill texel of a row ties
       if (k == "planes") {  // tilted sawtooth planes: the slope bound's case, across the wrap
         const float t = 0.37f * float(x) / float(w) + 1.3f * float(y) / float(h);
         v = t - std::floor(t);
@@ -190,7 +190,8 @@ double bilinear(const std::vector<float>& f, int W, int H, WrapMode wrap, double
   const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
   const double tx = x - x0, ty = y - y0;
   auto at = [&](int i, int j) { return double(f[std::size_t(wrap_index(j, H, wrap)) * W + wrap_index(i, W, wrap)]); };
-  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) + ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
+  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) +
+         ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
 }
 
 // Points of the bilinear surface (a quarter-texel grid) strictly inside the
@@ -475,7 +476,7 @@ TEST(ConeMap, BandsEqualTheWholeMap) {
     const std::vector<float> whole = cone_ratios(f, w, h, o);
     const ConeRatioSearch search(f, w, h, o);
     for (const auto& [y0, y1] : {std::pair{0, h}, std::pair{0, 8}, std::pair{3, 21}, std::pair{16, 24},
-                                  std::pair{30, 37}, std::pair{36, 37}}) {
+                                 std::pair{30, 37}, std::pair{36, 37}}) {
       std::vector<float> band(std::size_t(y1 - y0) * w);
       search.rows(y0, y1, band.data());
       EXPECT_TRUE(std::equal(band.begin(), band.end(), whole.begin() + std::ptrdiff_t(y0) * w)) << y0 << ".." << y1;

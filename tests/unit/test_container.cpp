@@ -84,22 +84,32 @@ std::uint32_t full_levels(std::uint32_t w, std::uint32_t h) {
 
 Texture decode(ContainerKind k, const std::vector<std::uint8_t>& b) {
   switch (k) {
-    case ContainerKind::dds: return decode_dds(b.data(), b.size(), "t.dds");
-    case ContainerKind::ktx2: return decode_ktx2(b.data(), b.size(), "t.ktx2");
-    case ContainerKind::ktx1: return decode_ktx1(b.data(), b.size(), "t.ktx");
-    case ContainerKind::pkm: return decode_pkm(b.data(), b.size(), "t.pkm");
-    case ContainerKind::astc: return decode_astc(b.data(), b.size(), "t.astc");
+    case ContainerKind::dds:
+      return decode_dds(b.data(), b.size(), "t.dds");
+    case ContainerKind::ktx2:
+      return decode_ktx2(b.data(), b.size(), "t.ktx2");
+    case ContainerKind::ktx1:
+      return decode_ktx1(b.data(), b.size(), "t.ktx");
+    case ContainerKind::pkm:
+      return decode_pkm(b.data(), b.size(), "t.pkm");
+    case ContainerKind::astc:
+      return decode_astc(b.data(), b.size(), "t.astc");
   }
   return {};
 }
 
 std::vector<std::uint8_t> encode(ContainerKind k, const Texture& t) {
   switch (k) {
-    case ContainerKind::dds: return encode_dds(t);
-    case ContainerKind::ktx2: return encode_ktx2(t, "test");
-    case ContainerKind::ktx1: return encode_ktx1(t);
-    case ContainerKind::pkm: return encode_pkm(t);
-    case ContainerKind::astc: return encode_astc(t);
+    case ContainerKind::dds:
+      return encode_dds(t);
+    case ContainerKind::ktx2:
+      return encode_ktx2(t, "test");
+    case ContainerKind::ktx1:
+      return encode_ktx1(t);
+    case ContainerKind::pkm:
+      return encode_pkm(t);
+    case ContainerKind::astc:
+      return encode_astc(t);
   }
   return {};
 }
@@ -107,11 +117,16 @@ std::vector<std::uint8_t> encode(ContainerKind k, const Texture& t) {
 bool holds(ContainerKind k, TexelFormat f) {
   const FormatInfo& i = format_info(f);
   switch (k) {
-    case ContainerKind::dds: return i.dxgi_format != 0;
-    case ContainerKind::ktx2: return true;
-    case ContainerKind::ktx1: return i.gl_internal_format != 0;
-    case ContainerKind::pkm: return f == TexelFormat::etc1_rgb || f == TexelFormat::etc2_rgb_unorm;
-    case ContainerKind::astc: return is_astc(f);
+    case ContainerKind::dds:
+      return i.dxgi_format != 0;
+    case ContainerKind::ktx2:
+      return true;
+    case ContainerKind::ktx1:
+      return i.gl_internal_format != 0;
+    case ContainerKind::pkm:
+      return f == TexelFormat::etc1_rgb || f == TexelFormat::etc2_rgb_unorm;
+    case ContainerKind::astc:
+      return is_astc(f);
   }
   return false;
 }
@@ -138,7 +153,8 @@ TEST(Container, RoundTripEveryFormatSizeAndContainer) {
        {ContainerKind::dds, ContainerKind::ktx2, ContainerKind::ktx1, ContainerKind::pkm, ContainerKind::astc}) {
     for (TexelFormat f : all_formats()) {
       if (!holds(k, f)) {
-        EXPECT_THROW(encode(k, random_texture(f, 4, 4, 1, 1, 1, 1)), Error) << to_string(k) << " " << format_info(f).name;
+        EXPECT_THROW(encode(k, random_texture(f, 4, 4, 1, 1, 1, 1)), Error)
+            << to_string(k) << " " << format_info(f).name;
         continue;
       }
       for (auto [w, h] : {std::pair{1u, 1u}, {3u, 5u}, {4u, 4u}, {100u, 60u}, {256u, 256u}}) {
@@ -148,8 +164,9 @@ TEST(Container, RoundTripEveryFormatSizeAndContainer) {
           Texture back = decode(k, encode(k, t));
           Texture want = t;
           want.format = as_read(k, f);
-          expect_same(back, want, std::string(to_string(k)) + " " + format_info(f).name + " " + std::to_string(w) + "x" +
-                                      std::to_string(h) + (mips ? " mips" : ""));
+          expect_same(back, want,
+                      std::string(to_string(k)) + " " + format_info(f).name + " " + std::to_string(w) + "x" +
+                          std::to_string(h) + (mips ? " mips" : ""));
           ++checked;
         }
       }
@@ -181,20 +198,20 @@ TEST(Container, DdsLegacyHeaderBytes) {
     return v;
   };
   EXPECT_EQ(std::string(b.begin(), b.begin() + 4), "DDS ");
-  EXPECT_EQ(u32(4), 124u);                         // dwSize
+  EXPECT_EQ(u32(4), 124u);                             // dwSize
   EXPECT_EQ(u32(8), 0x1u | 0x2 | 0x4 | 0x8 | 0x1000);  // CAPS|HEIGHT|WIDTH|PITCH|PIXELFORMAT: no mips
-  EXPECT_EQ(u32(12), 4u);                          // height
-  EXPECT_EQ(u32(16), 4u);                          // width
-  EXPECT_EQ(u32(20), 16u);                         // pitch: 4 texels * 4 bytes
-  EXPECT_EQ(u32(28), 0u);                          // no mip count without mips
-  EXPECT_EQ(u32(76), 32u);                         // ddspf.dwSize
-  EXPECT_EQ(u32(80), 0x40u | 0x1);                 // DDPF_RGB | DDPF_ALPHAPIXELS
-  EXPECT_EQ(u32(88), 32u);                         // bits
-  EXPECT_EQ(u32(92), 0x000000FFu);                 // R mask: byte 0
+  EXPECT_EQ(u32(12), 4u);                              // height
+  EXPECT_EQ(u32(16), 4u);                              // width
+  EXPECT_EQ(u32(20), 16u);                             // pitch: 4 texels * 4 bytes
+  EXPECT_EQ(u32(28), 0u);                              // no mip count without mips
+  EXPECT_EQ(u32(76), 32u);                             // ddspf.dwSize
+  EXPECT_EQ(u32(80), 0x40u | 0x1);                     // DDPF_RGB | DDPF_ALPHAPIXELS
+  EXPECT_EQ(u32(88), 32u);                             // bits
+  EXPECT_EQ(u32(92), 0x000000FFu);                     // R mask: byte 0
   EXPECT_EQ(u32(96), 0x0000FF00u);
   EXPECT_EQ(u32(100), 0x00FF0000u);
   EXPECT_EQ(u32(104), 0xFF000000u);
-  EXPECT_EQ(u32(108), 0x1000u);                    // DDSCAPS_TEXTURE only
+  EXPECT_EQ(u32(108), 0x1000u);  // DDSCAPS_TEXTURE only
   EXPECT_EQ(0, std::memcmp(&b[128], t.images[0].data(), 64));
 }
 
@@ -208,15 +225,15 @@ TEST(Container, DdsDx10HeaderBytes) {
     return v;
   };
   EXPECT_EQ(u32(8), 0x1u | 0x2 | 0x4 | 0x1000 | 0x20000 | 0x80000);  // + MIPMAPCOUNT, LINEARSIZE
-  EXPECT_EQ(u32(20), 32u);            // linear size of level 0: 2x2 blocks of 8 bytes
-  EXPECT_EQ(u32(28), 4u);             // mip count
-  EXPECT_EQ(u32(80), 0x4u);           // DDPF_FOURCC
-  EXPECT_EQ(u32(84), 0x30315844u);    // "DX10"
-  EXPECT_EQ(u32(108), 0x1000u | 0x8 | 0x400000);  // TEXTURE | COMPLEX | MIPMAP
-  EXPECT_EQ(u32(128), 72u);           // DXGI_FORMAT_BC1_UNORM_SRGB
-  EXPECT_EQ(u32(132), 3u);            // TEXTURE2D
-  EXPECT_EQ(u32(136), 0u);            // not a cube
-  EXPECT_EQ(u32(140), 1u);            // array size
+  EXPECT_EQ(u32(20), 32u);                                           // linear size of level 0: 2x2 blocks of 8 bytes
+  EXPECT_EQ(u32(28), 4u);                                            // mip count
+  EXPECT_EQ(u32(80), 0x4u);                                          // DDPF_FOURCC
+  EXPECT_EQ(u32(84), 0x30315844u);                                   // "DX10"
+  EXPECT_EQ(u32(108), 0x1000u | 0x8 | 0x400000);                     // TEXTURE | COMPLEX | MIPMAP
+  EXPECT_EQ(u32(128), 72u);                                          // DXGI_FORMAT_BC1_UNORM_SRGB
+  EXPECT_EQ(u32(132), 3u);                                           // TEXTURE2D
+  EXPECT_EQ(u32(136), 0u);                                           // not a cube
+  EXPECT_EQ(u32(140), 1u);                                           // array size
   // Levels 8x8, 4x4, 2x2, 1x1: 32 + 8 + 8 + 8 bytes after the 148-byte headers.
   EXPECT_EQ(b.size(), 148u + 32 + 8 + 8 + 8);
   // The same texture in linear space has a FourCC: DXT1.
@@ -250,21 +267,21 @@ TEST(Container, Ktx2HeaderAndDfdBytes) {
   EXPECT_EQ(u32(16), 1u);   // typeSize
   EXPECT_EQ(u32(20), 2u);
   EXPECT_EQ(u32(24), 2u);
-  EXPECT_EQ(u32(28), 0u);   // depth
-  EXPECT_EQ(u32(32), 0u);   // layerCount 0: not an array
-  EXPECT_EQ(u32(36), 1u);   // faces
-  EXPECT_EQ(u32(40), 1u);   // levels
-  EXPECT_EQ(u32(44), 0u);   // no supercompression
+  EXPECT_EQ(u32(28), 0u);  // depth
+  EXPECT_EQ(u32(32), 0u);  // layerCount 0: not an array
+  EXPECT_EQ(u32(36), 1u);  // faces
+  EXPECT_EQ(u32(40), 1u);  // levels
+  EXPECT_EQ(u32(44), 0u);  // no supercompression
   // Index: the DFD follows the 80-byte header+index and one 24-byte level entry.
   EXPECT_EQ(u32(48), 104u);
   EXPECT_EQ(u32(52), 92u);  // 4 (total size) + 24 (block header) + 4 samples * 16
   // DFD: RGBSDA, BT.709, sRGB transfer, straight alpha; 4 bytes per texel.
   EXPECT_EQ(u32(104), 92u);
-  EXPECT_EQ(u32(108), 0u);                    // Khronos, basic block
-  EXPECT_EQ(u32(112), 2u | 88u << 16);        // version 2, block size 88
+  EXPECT_EQ(u32(108), 0u);                       // Khronos, basic block
+  EXPECT_EQ(u32(112), 2u | 88u << 16);           // version 2, block size 88
   EXPECT_EQ(u32(116), 1u | 1u << 8 | 2u << 16);  // model RGBSDA, BT709, SRGB
-  EXPECT_EQ(u32(120), 0u);                    // 1x1x1x1 texel block
-  EXPECT_EQ(u32(124), 4u);                    // bytesPlane0
+  EXPECT_EQ(u32(120), 0u);                       // 1x1x1x1 texel block
+  EXPECT_EQ(u32(124), 4u);                       // bytesPlane0
   EXPECT_EQ(u32(128), 0u);
   // Samples: R at bit 0, G 8, B 16, 8 bits each, [0, 255]; alpha (15) at 24
   // with the LINEAR qualifier (0x10): alpha never goes through sRGB.
@@ -299,9 +316,8 @@ TEST(Container, Ktx2CompressedDfds) {
     return w;
   };
   // BC1 RGB: one 64-bit sample, channel BC1A_COLOR (0), [0, 0xFFFFFFFF].
-  EXPECT_EQ(words(TexelFormat::bc1_rgb_unorm),
-            (std::vector<std::uint32_t>{44, 0, 2 | 40 << 16, 128 | 1 << 8 | 1 << 16, 0x0303, 8, 0, 63 << 16, 0, 0,
-                                        0xFFFFFFFF}));
+  EXPECT_EQ(words(TexelFormat::bc1_rgb_unorm), (std::vector<std::uint32_t>{44, 0, 2 | 40 << 16, 128 | 1 << 8 | 1 << 16,
+                                                                           0x0303, 8, 0, 63 << 16, 0, 0, 0xFFFFFFFF}));
   // BC1 RGBA: channel ALPHAPRESENT (1); sRGB transfer for the _SRGB format.
   EXPECT_EQ(words(TexelFormat::bc1_rgba_srgb)[3], 128u | 1 << 8 | 2 << 16);
   EXPECT_EQ(words(TexelFormat::bc1_rgba_srgb)[7], 63u << 16 | 1u << 24);
@@ -359,7 +375,8 @@ TEST(Container, Ktx2CompressedDfds) {
 
 // Levels are stored smallest first, each aligned to lcm(block bytes, 4).
 TEST(Container, Ktx2LevelOrderAndAlignment) {
-  for (TexelFormat f : {TexelFormat::r8_unorm, TexelFormat::bc1_rgb_unorm, TexelFormat::bc3_unorm, TexelFormat::rgba32_float}) {
+  for (TexelFormat f :
+       {TexelFormat::r8_unorm, TexelFormat::bc1_rgb_unorm, TexelFormat::bc3_unorm, TexelFormat::rgba32_float}) {
     const Texture t = random_texture(f, 37, 11, full_levels(37, 11), 1, 1, 9);
     const std::vector<std::uint8_t> b = encode_ktx2(t, "w");
     const std::size_t align = std::max<std::size_t>(4, std::size_t(format_info(f).block_bytes));
@@ -442,8 +459,9 @@ TEST(Container, NvddsinfoReadsDx10Headers) {
     TexelFormat f;
     const char* want;
   };
-  for (const Case& c : {Case{TexelFormat::rgba8_srgb, "DXGI Format: 29"}, Case{TexelFormat::bc5_snorm, "DXGI Format: 84"},
-                        Case{TexelFormat::bc4_snorm, "DXGI Format: 81"}, Case{TexelFormat::rgba16_float, "DXGI Format: 10"}}) {
+  for (const Case& c :
+       {Case{TexelFormat::rgba8_srgb, "DXGI Format: 29"}, Case{TexelFormat::bc5_snorm, "DXGI Format: 84"},
+        Case{TexelFormat::bc4_snorm, "DXGI Format: 81"}, Case{TexelFormat::rgba16_float, "DXGI Format: 10"}}) {
     const std::string path = dir + "/t.dds";
     write_texture(path, random_texture(c.f, 16, 8, 5, 1, 1, 3));
     const std::string out = dir + "/info.txt";
@@ -468,9 +486,9 @@ TEST(Container, KtxParseReadsKtx2) {
     TexelFormat f;
     std::uint32_t faces, layers;
   };
-  for (const Case& c : {Case{TexelFormat::rgba8_srgb, 1, 1}, Case{TexelFormat::bc1_rgb_unorm, 1, 1},
-                        Case{TexelFormat::bc5_snorm, 6, 1}, Case{TexelFormat::etc2_rgba8_srgb, 1, 3},
-                        Case{TexelFormat::rgba16_float, 1, 1}}) {
+  for (const Case& c :
+       {Case{TexelFormat::rgba8_srgb, 1, 1}, Case{TexelFormat::bc1_rgb_unorm, 1, 1}, Case{TexelFormat::bc5_snorm, 6, 1},
+        Case{TexelFormat::etc2_rgba8_srgb, 1, 3}, Case{TexelFormat::rgba16_float, 1, 1}}) {
     const std::uint32_t w = c.faces == 6 ? 16 : 20, h = c.faces == 6 ? 16 : 12;  // cube faces are square
     const Texture t = random_texture(c.f, w, h, full_levels(w, h), c.faces, c.layers, 5);
     const std::string path = dir + "/t.ktx2";
@@ -539,12 +557,12 @@ TEST(Container, Ktx1HeaderBytes) {
   EXPECT_EQ(u32(32), 0x1903u);      // glBaseInternalFormat RED
   EXPECT_EQ(u32(36), 3u);
   EXPECT_EQ(u32(40), 2u);
-  EXPECT_EQ(u32(44), 0u);           // depth
-  EXPECT_EQ(u32(48), 0u);           // not an array
-  EXPECT_EQ(u32(52), 1u);           // faces
-  EXPECT_EQ(u32(56), 1u);           // levels
-  EXPECT_EQ(u32(60), 0u);           // no key/value data
-  EXPECT_EQ(u32(64), 8u);           // imageSize: 2 rows of 4 bytes
+  EXPECT_EQ(u32(44), 0u);  // depth
+  EXPECT_EQ(u32(48), 0u);  // not an array
+  EXPECT_EQ(u32(52), 1u);  // faces
+  EXPECT_EQ(u32(56), 1u);  // levels
+  EXPECT_EQ(u32(60), 0u);  // no key/value data
+  EXPECT_EQ(u32(64), 8u);  // imageSize: 2 rows of 4 bytes
   EXPECT_EQ(b.size(), 76u);
   EXPECT_EQ(0, std::memcmp(&b[68], t.images[0].data(), 3));
   EXPECT_EQ(b[71], 0);  // row padding
@@ -589,8 +607,8 @@ TEST(Container, PillowReadsLegacyDds) {
 // Malformed files that the readers once accepted or described wrongly: each
 // is refused with a message naming the field, the value and what was expected.
 TEST(Container, MalformedFilesAreRefusedByName) {
-  auto refused = [](const std::vector<std::uint8_t>& b, Texture (*decode)(const std::uint8_t*, std::size_t,
-                                                                          const std::string&, const ReadLimits&),
+  auto refused = [](const std::vector<std::uint8_t>& b,
+                    Texture (*decode)(const std::uint8_t*, std::size_t, const std::string&, const ReadLimits&),
                     const std::string& want) {
     try {
       decode(b.data(), b.size(), "f", ReadLimits{});
@@ -647,7 +665,8 @@ TEST(Container, MalformedFilesAreRefusedByName) {
   {
     Texture e = random_texture(TexelFormat::etc1_rgb, 8, 8, 1, 1, 1, 5);
     std::vector<std::uint8_t> p = encode_pkm(e);
-    refused(std::vector<std::uint8_t>(p.begin(), p.begin() + 10), decode_pkm, "the header needs 16 bytes, the file has 10");
+    refused(std::vector<std::uint8_t>(p.begin(), p.begin() + 10), decode_pkm,
+            "the header needs 16 bytes, the file has 10");
     p[4] = 0x01;
     p[5] = 0xFF;
     refused(p, decode_pkm, "PKM version '\\x01\\xFF'");

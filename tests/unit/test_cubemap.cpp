@@ -217,8 +217,8 @@ TEST(CubeFromPanorama, FlipMirrorsTheWorldAxis) {
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
         for (int k = 0; k < 3; ++k)
-          EXPECT_NEAR(mirrored.levels[0].faces[f].row<float>(j)[4 * i + k], c.levels[0].faces[f].row<float>(j)[4 * i + k],
-                      1e-5);
+          EXPECT_NEAR(mirrored.levels[0].faces[f].row<float>(j)[4 * i + k],
+                      c.levels[0].faces[f].row<float>(j)[4 * i + k], 1e-5);
 }
 
 TEST(CubeFromPanorama, ABrightDirectionLandsOnItsTexel) {
@@ -367,7 +367,8 @@ TEST(CubeSh, ConstantAndCosineLobeAreExact) {
   EXPECT_NEAR(a.radiance[0][0], 1.5 * 0.282095 * 4 * kPi, 1e-4);
   for (int k = 1; k < 9; ++k) EXPECT_NEAR(a.radiance[k][1], 0.0, 1e-5) << k;
   // L = max(z, 0): L00 = 0.282095 pi, L10 = 0.488603 (2 pi / 3), L20 = 0.315392 pi / 4 ... (pi / 2) * 0.25 * 2.
-  const Image lobe = panorama_of(1024, [](const double* d, float* rgb) { rgb[0] = rgb[1] = rgb[2] = float(std::max(d[2], 0.0)); });
+  const Image lobe =
+      panorama_of(1024, [](const double* d, float* rgb) { rgb[0] = rgb[1] = rgb[2] = float(std::max(d[2], 0.0)); });
   const SphericalHarmonics9 b = project_sh9(cubemap_from_equirect(lobe.view(), 128));
   EXPECT_NEAR(b.radiance[0][0], 0.282095 * kPi, 2e-3 * 0.886);
   EXPECT_NEAR(b.radiance[2][0], 0.488603 * 2 * kPi / 3, 2e-3 * 1.023);

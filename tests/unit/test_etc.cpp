@@ -118,7 +118,8 @@ std::vector<Px> plain_etc2(const Bits& b, bool punch, bool etc1_only = false) {
     for (int y = 0; y < 4; ++y)
       for (int x = 0; x < 4; ++x) {
         const int i = index2(b, x, y);
-        out[y * 4 + x] = !opaque && i == 2 ? Px{0, 0, 0, 0} : Px{clamp8(p[i][0]), clamp8(p[i][1]), clamp8(p[i][2]), 255};
+        out[y * 4 + x] =
+            !opaque && i == 2 ? Px{0, 0, 0, 0} : Px{clamp8(p[i][0]), clamp8(p[i][1]), clamp8(p[i][2]), 255};
       }
   };
   if (etc1_only || (R2 >= 0 && R2 <= 31 && G2 >= 0 && G2 <= 31 && B2 >= 0 && B2 <= 31)) {
@@ -195,8 +196,8 @@ void expect_rgba(TexelFormat f, const std::vector<std::uint8_t>& block, const st
   float t[16][4];
   decode(f, block, t);
   for (int i = 0; i < 16; ++i) {
-    const int got[4] = {int(std::lround(t[i][0] * 255)), int(std::lround(t[i][1] * 255)), int(std::lround(t[i][2] * 255)),
-                        int(std::lround(t[i][3] * 255))};
+    const int got[4] = {int(std::lround(t[i][0] * 255)), int(std::lround(t[i][1] * 255)),
+                        int(std::lround(t[i][2] * 255)), int(std::lround(t[i][3] * 255))};
     ASSERT_EQ(got[0], want[i].r) << what << " texel " << i;
     ASSERT_EQ(got[1], want[i].g) << what << " texel " << i;
     ASSERT_EQ(got[2], want[i].b) << what << " texel " << i;
@@ -220,7 +221,8 @@ TEST(EtcDecode, IndividualModeByHand) {
       want[y * 4 + x] = x < 2 ? Px{0xAA + 5, 0x33 + 5, 5, 255} : Px{0x55 + 33, 0xCC + 33, 33, 255};
     }
   want[2 * 4 + 1] = {0xAA - 17, 0x33 - 17, 0, 255};
-  for (TexelFormat f : {TexelFormat::etc1_rgb, TexelFormat::etc2_rgb_unorm}) expect_rgba(f, b.bytes(), want, "individual");
+  for (TexelFormat f : {TexelFormat::etc1_rgb, TexelFormat::etc2_rgb_unorm})
+    expect_rgba(f, b.bytes(), want, "individual");
 }
 
 // Differential mode, flipped (4x2 halves): base 5-bit (31, 0, 16) and delta
@@ -235,10 +237,11 @@ TEST(EtcDecode, DifferentialModeByHand) {
   std::vector<Px> want(16);
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 4; ++x) {
-      want[y * 4 + x] = y < 2 ? Px{255, clamp8(e5(0) + 183), clamp8(e5(16) + 183), 255}
-                              : Px{e5(28) + 8, e5(3) + 8, e5(16) + 8, 255};
+      want[y * 4 + x] =
+          y < 2 ? Px{255, clamp8(e5(0) + 183), clamp8(e5(16) + 183), 255} : Px{e5(28) + 8, e5(3) + 8, e5(16) + 8, 255};
     }
-  for (TexelFormat f : {TexelFormat::etc1_rgb, TexelFormat::etc2_rgb_unorm}) expect_rgba(f, b.bytes(), want, "differential");
+  for (TexelFormat f : {TexelFormat::etc1_rgb, TexelFormat::etc2_rgb_unorm})
+    expect_rgba(f, b.bytes(), want, "differential");
 }
 
 // T mode: red overflows. C1 = (0xF, 0x8, 0x0) by nibbles, C2 = (0x4, 0x0, 0x2),
@@ -255,8 +258,8 @@ TEST(EtcDecode, TModeByHand) {
       const int i = (x + y) % 4;
       b.put(x * 4 + y + 16, 1, i >> 1), b.put(x * 4 + y, 1, i & 1);
     }
-  const Px paint[4] = {{0xFF, 0x88, 0x00, 255}, {0x44 + 11, 11, 0x22 + 11, 255}, {0x44, 0, 0x22, 255},
-                       {0x44 - 11, 0, 0x22 - 11, 255}};
+  const Px paint[4] = {
+      {0xFF, 0x88, 0x00, 255}, {0x44 + 11, 11, 0x22 + 11, 255}, {0x44, 0, 0x22, 255}, {0x44 - 11, 0, 0x22 - 11, 255}};
   std::vector<Px> want(16);
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 4; ++x) want[y * 4 + x] = paint[(x + y) % 4];
@@ -462,7 +465,8 @@ namespace {
 Image image_of(const float t[16][4], int channels) {
   Image img = Image::uninitialized(4, 4, channels, PixelType::u8);
   for (int i = 0; i < 16; ++i)
-    for (int c = 0; c < channels; ++c) img.row<std::uint8_t>(i / 4)[(i % 4) * channels + c] = std::uint8_t(std::lround(t[i][c] * 255));
+    for (int c = 0; c < channels; ++c)
+      img.row<std::uint8_t>(i / 4)[(i % 4) * channels + c] = std::uint8_t(std::lround(t[i][c] * 255));
   return img;
 }
 
@@ -477,7 +481,8 @@ void expect_exact_round_trip(TexelFormat f, const std::vector<std::uint8_t>& blo
   for (int i = 0; i < 16; ++i)
     for (int c = 0; c < 4; ++c) {
       ASSERT_EQ(got[i][c], want[i][c]) << what << " block " << n << " texel " << i << " channel " << c << ": "
-                                       << std::hex << Bits::of(block.data()).v << " encoded as " << Bits::of(enc.data()).v;
+                                       << std::hex << Bits::of(block.data()).v << " encoded as "
+                                       << Bits::of(enc.data()).v;
     }
 }
 
@@ -498,7 +503,8 @@ Image random_smooth_or_noise() {
   for (int y = 0; y < 37; ++y)
     for (int x = 0; x < 30; ++x) {
       std::uint8_t* p = img.row<std::uint8_t>(y) + x * 4;
-      p[0] = std::uint8_t(x * 8), p[1] = std::uint8_t(y * 6), p[2] = std::uint8_t(128 + (x - y)), p[3] = std::uint8_t(x * 8);
+      p[0] = std::uint8_t(x * 8), p[1] = std::uint8_t(y * 6), p[2] = std::uint8_t(128 + (x - y)),
+      p[3] = std::uint8_t(x * 8);
     }
   return img;
 }
@@ -513,13 +519,15 @@ TEST(EtcEncode, EachModeRoundTripsExactly) {
     // Individual: 4-bit colours 4..11, tables 0..3.
     Bits ind;
     for (int c = 0; c < 3; ++c) ind.put(63 - 8 * c, 4, pick(rng, 4, 11)), ind.put(59 - 8 * c, 4, pick(rng, 4, 11));
-    ind.put(39, 3, pick(rng, 0, 3)), ind.put(36, 3, pick(rng, 0, 3)), ind.put(33, 1, 0), ind.put(32, 1, pick(rng, 0, 1));
+    ind.put(39, 3, pick(rng, 0, 3)), ind.put(36, 3, pick(rng, 0, 3)), ind.put(33, 1, 0),
+        ind.put(32, 1, pick(rng, 0, 1));
     balanced_indices(ind, rng);
     expect_exact_round_trip(TexelFormat::etc1_rgb, ind.bytes(), "individual", n);
     // Differential: 5-bit bases 8..23, deltas -2..2.
     Bits dif;
     for (int c = 0; c < 3; ++c) dif.put(63 - 8 * c, 5, pick(rng, 8, 23)), dif.put(58 - 8 * c, 3, pick(rng, -2, 2) & 7);
-    dif.put(39, 3, pick(rng, 0, 3)), dif.put(36, 3, pick(rng, 0, 3)), dif.put(33, 1, 1), dif.put(32, 1, pick(rng, 0, 1));
+    dif.put(39, 3, pick(rng, 0, 3)), dif.put(36, 3, pick(rng, 0, 3)), dif.put(33, 1, 1),
+        dif.put(32, 1, pick(rng, 0, 1));
     balanced_indices(dif, rng);
     expect_exact_round_trip(TexelFormat::etc1_rgb, dif.bytes(), "differential", n);
     expect_exact_round_trip(TexelFormat::etc2_rgb_unorm, dif.bytes(), "differential (ETC2)", n);
@@ -541,8 +549,8 @@ TEST(EtcEncode, EachModeRoundTripsExactly) {
     // H: two colour pairs C1 +- d and C2 +- d.
     Bits h;
     const int hr1 = pick(rng, 2, 4), hg1 = pick(rng, 2, 4), hb1 = pick(rng, 2, 4);
-    h.put(62, 4, hr1), h.put(58, 3, hg1 >> 1), h.put(52, 1, hg1 & 1), h.put(51, 1, hb1 >> 3), h.put(49, 2, hb1 >> 1 & 3),
-        h.put(47, 1, hb1 & 1);
+    h.put(62, 4, hr1), h.put(58, 3, hg1 >> 1), h.put(52, 1, hg1 & 1), h.put(51, 1, hb1 >> 3),
+        h.put(49, 2, hb1 >> 1 & 3), h.put(47, 1, hb1 & 1);
     const int hg2 = pick(rng, 11, 12);
     h.put(46, 4, pick(rng, 11, 12)), h.put(42, 3, hg2 >> 1), h.put(39, 1, hg2 & 1), h.put(38, 4, pick(rng, 11, 12));
     h.put(34, 1, 0), h.put(32, 1, pick(rng, 0, 1)), h.put(33, 1, 1);
@@ -574,7 +582,8 @@ TEST(EtcEncode, EachModeRoundTripsExactly) {
     }
     for (int hi : {63, 55}) {
       const int lo3 = hi - 5;
-      if (int(p.range(hi, hi - 4)) + sext3(p.range(lo3, lo3 - 2)) > 31 || int(p.range(hi, hi - 4)) + sext3(p.range(lo3, lo3 - 2)) < 0) {
+      if (int(p.range(hi, hi - 4)) + sext3(p.range(lo3, lo3 - 2)) > 31 ||
+          int(p.range(hi, hi - 4)) + sext3(p.range(lo3, lo3 - 2)) < 0) {
         p.put(hi, 1, 1 - p.get({hi}));
       }
     }
@@ -668,8 +677,9 @@ TEST(EtcEncode, FlatBlocksAreOptimal) {
       if (bits == 4 && !individual) continue;
       for (int t = 0; t < 8; ++t)
         for (int i = 0; i < 4; ++i) {
-          static const int kMods[8][4] = {{2, 8, -2, -8},       {5, 17, -5, -17},    {9, 29, -9, -29},   {13, 42, -13, -42},
-                                          {18, 60, -18, -60},   {24, 80, -24, -80},  {33, 106, -33, -106}, {47, 183, -47, -183}};
+          static const int kMods[8][4] = {{2, 8, -2, -8},       {5, 17, -5, -17},    {9, 29, -9, -29},
+                                          {13, 42, -13, -42},   {18, 60, -18, -60},  {24, 80, -24, -80},
+                                          {33, 106, -33, -106}, {47, 183, -47, -183}};
           long e = 0;
           for (int ch = 0; ch < 3; ++ch) {
             long be = -1;
@@ -689,7 +699,8 @@ TEST(EtcEncode, FlatBlocksAreOptimal) {
     const int c[3] = {int(rng() % 256), int(rng() % 256), int(rng() % 256)};
     Image img(4, 4, 4, PixelType::u8);
     for (int i = 0; i < 16; ++i)
-      for (int ch = 0; ch < 4; ++ch) img.row<std::uint8_t>(i / 4)[4 * (i % 4) + ch] = std::uint8_t(ch == 3 ? 255 : c[ch]);
+      for (int ch = 0; ch < 4; ++ch)
+        img.row<std::uint8_t>(i / 4)[4 * (i % 4) + ch] = std::uint8_t(ch == 3 ? 255 : c[ch]);
     for (TexelFormat f : {TexelFormat::etc1_rgb, TexelFormat::etc2_rgb_unorm, TexelFormat::etc2_rgba1_unorm}) {
       const long limit = oracle(c, f != TexelFormat::etc2_rgba1_unorm);
       long first = -1;
@@ -704,7 +715,8 @@ TEST(EtcEncode, FlatBlocksAreOptimal) {
         if (f == TexelFormat::etc1_rgb) {
           EXPECT_EQ(e, limit) << c[0] << "," << c[1] << "," << c[2] << " " << to_string(q);
         } else {
-          EXPECT_LE(e, limit) << format_info(f).name << " " << c[0] << "," << c[1] << "," << c[2] << " " << to_string(q);
+          EXPECT_LE(e, limit) << format_info(f).name << " " << c[0] << "," << c[1] << "," << c[2] << " "
+                              << to_string(q);
         }
         if (first < 0) first = e;
         EXPECT_EQ(e, first) << format_info(f).name << " " << to_string(q) << ": every level the same";
@@ -852,7 +864,8 @@ TEST(EtcEncode, SimdMatchesScalarOnEveryTarget) {
     expect_same_on_every_target([&] { return compress_image(cutout.view(), TexelFormat::etc2_rgba1_unorm, q); },
                                 std::string("etc2a1 ") + to_string(q) + ", whole rows");
   for (Quality q : {Quality::normal, Quality::high})
-    for (TexelFormat f : {TexelFormat::etc1_rgb, TexelFormat::etc2_rgba8_unorm, TexelFormat::eac_r11_unorm, TexelFormat::eac_rg11_snorm})
+    for (TexelFormat f : {TexelFormat::etc1_rgb, TexelFormat::etc2_rgba8_unorm, TexelFormat::eac_r11_unorm,
+                          TexelFormat::eac_rg11_snorm})
       expect_same_on_every_target([&] { return compress_image(wide.view(), f, q); },
                                   std::string(format_info(f).name) + " " + to_string(q) + ", whole rows");
 }
@@ -885,7 +898,8 @@ TEST(EtcEncode, LineArtFindsClampedModifiers) {
       for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x)
           for (int c = 0; c < 3; ++c)
-            se += std::pow(double(d.row<std::uint8_t>(y)[d.channels() * x + c]) - img.row<std::uint8_t>(y)[4 * x + c], 2);
+            se +=
+                std::pow(double(d.row<std::uint8_t>(y)[d.channels() * x + c]) - img.row<std::uint8_t>(y)[4 * x + c], 2);
       return se;
     };
     std::vector<std::uint8_t> rgb(64 * 64 * 3), libetc1(etc1_get_encoded_data_size(64, 64));

@@ -87,14 +87,13 @@ std::vector<std::string> corpus_images() {
 
 std::string make_variants() {
   const std::string dir = temp_dir("variants");
-  const std::string cmd = "/usr/bin/python3 '" + std::string(TEXPROC_SOURCE_DIR) + "/tests/tools/make_image_variants.py' '" + dir + "'";
+  const std::string cmd =
+      "/usr/bin/python3 '" + std::string(TEXPROC_SOURCE_DIR) + "/tests/tools/make_image_variants.py' '" + dir + "'";
   if (std::system(cmd.c_str()) != 0) return "";
   return dir;
 }
 
-void write_bytes(const std::string& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary) << bytes;
-}
+void write_bytes(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
 
 }  // namespace
 
@@ -149,7 +148,8 @@ TEST(ImageCodecs, WrittenFilesReadTheSameBothWays) {
           EXPECT_EQ(back.type(), PixelType::f32);  // OpenEXR holds floats
         }
         if (e != ".jpg" && e != ".exr") {
-          ASSERT_EQ(back.byte_size(), img.byte_size()) << path << " came back with " << back.channels() << " channels of " << to_string(back.type());
+          ASSERT_EQ(back.byte_size(), img.byte_size())
+              << path << " came back with " << back.channels() << " channels of " << to_string(back.type());
           EXPECT_EQ(0, std::memcmp(back.data(), img.data(), img.byte_size())) << path;
         }
         ++n;
@@ -192,9 +192,9 @@ TEST(ImageCodecs, ModuleLoadsOnlyForFormatsThatNeedIt) {
   if (!have_corpus()) GTEST_SKIP() << "no corpus at " << corpus_dir();
   if (image_module_loaded()) GTEST_SKIP() << "an earlier test in this process loaded the module (run it alone)";
   const std::string dir = temp_dir("noload");
-  for (const char* f : {"/photo/skimage_astronaut_512.png", "/photo/skimage_rocket_640x427.jpg",
-                        "/alpha/openarena_frame1_l_ui.tga", "/hdr/blender_matcap_metal_carpaint.exr",
-                        "/hdr/qt3d_default_specular_cube_rgba16f.dds"}) {
+  for (const char* f :
+       {"/photo/skimage_astronaut_512.png", "/photo/skimage_rocket_640x427.jpg", "/alpha/openarena_frame1_l_ui.tga",
+        "/hdr/blender_matcap_metal_carpaint.exr", "/hdr/qt3d_default_specular_cube_rgba16f.dds"}) {
     const Image img = read_image(corpus_dir() + f);
     write_image(dir + "/x.tif", img.view());
     read_image(dir + "/x.tif");
@@ -225,7 +225,8 @@ TEST(ImageCodecs, CliStartsWithoutOpenImageIO) {
   EXPECT_EQ(ld.find("OpenEXR"), std::string::npos);
   EXPECT_EQ(ld.find("OpenColorIO"), std::string::npos);
   auto loads = [&](const std::string& args, const std::string& object) {
-    const std::string c = "LD_DEBUG=files " + std::string(TEXPROC_CLI_PATH) + " " + args + " >/dev/null 2>" + dir + "/ld3.txt";
+    const std::string c =
+        "LD_DEBUG=files " + std::string(TEXPROC_CLI_PATH) + " " + args + " >/dev/null 2>" + dir + "/ld3.txt";
     EXPECT_EQ(std::system(c.c_str()), 0) << args;
     return slurp(dir + "/ld3.txt").find(object) != std::string::npos;
   };
@@ -248,8 +249,8 @@ TEST(ImageCodecs, MissingModuleNamesTheFileAndSparesOtherFormats) {
   const std::string dir = temp_dir("nomodule");
   const std::string env = "TEXPROC_OIIO_MODULE=" + dir + "/absent.so ";
   const std::string bmp = corpus_dir() + "/albedo_srgb/scorched3d_f18_512.bmp";
-  const std::string cmd = env + TEXPROC_CLI_PATH + " mip '" + bmp + "' -o '" + dir + "/x.dds' >" + dir + "/o.txt 2>" +
-                          dir + "/e.txt";
+  const std::string cmd =
+      env + TEXPROC_CLI_PATH + " mip '" + bmp + "' -o '" + dir + "/x.dds' >" + dir + "/o.txt 2>" + dir + "/e.txt";
   const int status = std::system(cmd.c_str());
   EXPECT_EQ(WEXITSTATUS(status), 5);
   const std::string err = slurp(dir + "/e.txt");
@@ -257,8 +258,8 @@ TEST(ImageCodecs, MissingModuleNamesTheFileAndSparesOtherFormats) {
   EXPECT_NE(err.find("OpenImageIO module"), std::string::npos) << err;
   EXPECT_NE(err.find("absent.so"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(dir + "/x.dds"));
-  const std::string png = env + TEXPROC_CLI_PATH + " mip '" + corpus_dir() + "/photo/skimage_astronaut_512.png' -o '" +
-                          dir + "/y.dds' -q";
+  const std::string png =
+      env + TEXPROC_CLI_PATH + " mip '" + corpus_dir() + "/photo/skimage_astronaut_512.png' -o '" + dir + "/y.dds' -q";
   EXPECT_EQ(std::system(png.c_str()), 0);
   EXPECT_TRUE(fs::exists(dir + "/y.dds"));
   fs::remove_all(dir);
@@ -319,9 +320,7 @@ TEST(ImageCodecs, ContainersAreInputs) {
   const std::string dir = temp_dir("containers_in");
   const Image img = random_image(64, 48, 4, PixelType::u8, 12);
   write_image(dir + "/src.png", img.view());
-  auto ok = [](const RunResult& r) {
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-  };
+  auto ok = [](const RunResult& r) { EXPECT_EQ(r.exit_code, 0) << r.err; };
   // The PNG as an uncompressed one-level DDS, KTX2 and KTX1.
   for (const char* c : {"dds", "ktx2", "ktx"}) {
     ok(run_texproc("mip '" + dir + "/src.png' -o '" + dir + "/src." + c + "' --levels 1 -q"));
@@ -369,7 +368,8 @@ TEST(ImageCodecs, CubemapInputsKeepTheirFaces) {
     o.output_type = PixelType::f32;
     const Texture alone = texture_from_levels(generate_mips(in.images[f].view(), o).levels, {.half = true});
     ASSERT_EQ(alone.levels, m.levels);
-    for (std::uint32_t l = 0; l < m.levels; ++l) EXPECT_TRUE(m.image(l, 0, f) == alone.image(l)) << "face " << f << " level " << l;
+    for (std::uint32_t l = 0; l < m.levels; ++l)
+      EXPECT_TRUE(m.image(l, 0, f) == alone.image(l)) << "face " << f << " level " << l;
   }
   // compress: the faces' level 0 as compress_image encodes each alone.
   r = run_texproc("compress '" + cube + "' -o '" + dir + "/c.dds' --format bc4 --linear -q");
@@ -377,7 +377,8 @@ TEST(ImageCodecs, CubemapInputsKeepTheirFaces) {
   const Texture c = read_texture(dir + "/c.dds");
   EXPECT_EQ(c.faces, 6u);
   for (std::uint32_t f = 0; f < 6; ++f) {
-    const std::vector<std::uint8_t> alone = compress_image(in.images[f].view(), TexelFormat::bc4_unorm, Quality::normal);
+    const std::vector<std::uint8_t> alone =
+        compress_image(in.images[f].view(), TexelFormat::bc4_unorm, Quality::normal);
     EXPECT_TRUE(c.image(0, 0, f) == alone) << "face " << f;
   }
   r = run_texproc("mip '" + cube + "' -o '" + dir + "/m.png' -q");

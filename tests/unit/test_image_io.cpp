@@ -79,10 +79,9 @@ TEST(ImageIo, RoundTripsEveryWritableFormat) {
     PixelType type;
     int channels;
   };
-  for (const Case& c : {Case{".png", PixelType::u8, 1}, Case{".png", PixelType::u8, 2},
-                        Case{".png", PixelType::u16, 4}, Case{".tga", PixelType::u8, 4},
-                        Case{".tif", PixelType::u16, 3}, Case{".exr", PixelType::f32, 4},
-                        Case{".tif", PixelType::f32, 1}}) {
+  for (const Case& c : {Case{".png", PixelType::u8, 1}, Case{".png", PixelType::u8, 2}, Case{".png", PixelType::u16, 4},
+                        Case{".tga", PixelType::u8, 4}, Case{".tif", PixelType::u16, 3},
+                        Case{".exr", PixelType::f32, 4}, Case{".tif", PixelType::f32, 1}}) {
     const Image img = random_image(19, 7, c.channels, c.type, 3);
     const std::string path = dir + "/img" + std::to_string(c.channels) + to_string(c.type) + c.ext;
     write_image(path, img.view());
@@ -179,7 +178,8 @@ TEST(ImageIo, ReadOptionsFromEnvironment) {
     ::setenv("TEXPROC_MAX_IMAGE_PIXELS", bad, 1);
     EXPECT_EQ(ReadLimits::from_environment().max_image_pixels, defaults.max_image_pixels) << "'" << bad << "'";
   }
-  for (const char* name : {"TEXPROC_MAX_IMAGE_PIXELS", "TEXPROC_MAX_JPEG_SCANS", "TEXPROC_MAX_TEXTURE_BYTES", "TEXPROC_IMAGE_IO"}) {
+  for (const char* name :
+       {"TEXPROC_MAX_IMAGE_PIXELS", "TEXPROC_MAX_JPEG_SCANS", "TEXPROC_MAX_TEXTURE_BYTES", "TEXPROC_IMAGE_IO"}) {
     ::unsetenv(name);
   }
   EXPECT_EQ(ReadOptions::from_environment().io_path, ImageIoPath::direct);

@@ -25,8 +25,8 @@ MipOptions options(FilterKind k, WrapMode w) {
 }
 
 bool same_bytes(const Image& a, const Image& b) {
-  return a.width() == b.width() && a.height() == b.height() && a.channels() == b.channels() &&
-         a.type() == b.type() && std::memcmp(a.data(), b.data(), a.byte_size()) == 0;
+  return a.width() == b.width() && a.height() == b.height() && a.channels() == b.channels() && a.type() == b.type() &&
+         std::memcmp(a.data(), b.data(), a.byte_size()) == 0;
 }
 }  // namespace
 

@@ -17,8 +17,8 @@ using namespace texproc;
 using namespace texproc::test;
 
 namespace {
-const GradientKernel kAllKernels[] = {GradientKernel::gather2x2, GradientKernel::central,  GradientKernel::sobel3,
-                                      GradientKernel::sobel5,    GradientKernel::prewitt3, GradientKernel::prewitt5,
+const GradientKernel kAllKernels[] = {GradientKernel::gather2x2, GradientKernel::central,   GradientKernel::sobel3,
+                                      GradientKernel::sobel5,    GradientKernel::prewitt3,  GradientKernel::prewitt5,
                                       GradientKernel::scharr3,   GradientKernel::multiscale};
 
 // A float heightfield from a function of texel coordinates.
@@ -157,9 +157,9 @@ TEST(NormalMap, SinusoidRanksTheKernels) {
   EXPECT_LT(sobel, central);
   EXPECT_LT(scharr, central);
   EXPECT_LT(central, gather);
-  RecordProperty("mean_error_deg_gather_central_sobel_scharr",
-                 std::to_string(gather) + " " + std::to_string(central) + " " + std::to_string(sobel) + " " +
-                     std::to_string(scharr));
+  RecordProperty("mean_error_deg_gather_central_sobel_scharr", std::to_string(gather) + " " + std::to_string(central) +
+                                                                   " " + std::to_string(sobel) + " " +
+                                                                   std::to_string(scharr));
 }
 
 // Tiling: with repeat, a periodic heightfield shifted by k columns gives the
@@ -176,7 +176,8 @@ TEST(NormalMap, RepeatIsSeamless) {
     const Image na = normal_map(a.view(), o, PixelType::u8), nb = normal_map(b.view(), o, PixelType::u8);
     for (int y = 0; y < 20; ++y)
       for (int x = 0; x < 48; ++x)
-        ASSERT_EQ(0, std::memcmp(na.row<std::uint8_t>(y) + 3 * x, nb.row<std::uint8_t>((y + 7) % 20) + 3 * ((x + 5) % 48), 3))
+        ASSERT_EQ(
+            0, std::memcmp(na.row<std::uint8_t>(y) + 3 * x, nb.row<std::uint8_t>((y + 7) % 20) + 3 * ((x + 5) % 48), 3))
             << to_string(k) << " at " << x << "," << y;
   }
 }
@@ -267,7 +268,8 @@ TEST(NormalMap, SameBytesForThreadsAndSimdTargets) {
     for (int64_t target : hwy::SupportedAndGeneratedTargets()) {
       hwy::SetSupportedTargetsForTest(target);
       const Image t = normal_map(img.view(), o, PixelType::u16);
-      EXPECT_EQ(0, std::memcmp(one.data(), t.data(), one.byte_size())) << to_string(k) << " " << hwy::TargetName(target);
+      EXPECT_EQ(0, std::memcmp(one.data(), t.data(), one.byte_size()))
+          << to_string(k) << " " << hwy::TargetName(target);
     }
     hwy::SetSupportedTargetsForTest(0);
   }

@@ -76,5 +76,7 @@ TEST(Runtime, ForEachInOrderStopsWhenDoneSaysSo) {
   EXPECT_LE(started, 6u);  // the stop and at most in_flight beyond it
   for (std::size_t i = 0; i < 50; ++i) EXPECT_EQ(worked[i], i < started ? 1 : 0) << i;
   EXPECT_EQ(done_order.size(), started);
-  EXPECT_EQ(for_each_in_order(0, 4, [](std::size_t) {}, [](std::size_t) { return true; }), 0u);
+  EXPECT_EQ(for_each_in_order(
+                0, 4, [](std::size_t) {}, [](std::size_t) { return true; }),
+            0u);
 }

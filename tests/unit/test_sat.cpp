@@ -23,9 +23,12 @@ namespace {
 // The stored value as the table sums it: integer codes, or floats.
 double code(const Image& img, int x, int y, int c) {
   switch (img.type()) {
-    case PixelType::u8: return img.row<std::uint8_t>(y)[x * img.channels() + c];
-    case PixelType::u16: return img.row<std::uint16_t>(y)[x * img.channels() + c];
-    case PixelType::f32: return img.row<float>(y)[x * img.channels() + c];
+    case PixelType::u8:
+      return img.row<std::uint8_t>(y)[x * img.channels() + c];
+    case PixelType::u16:
+      return img.row<std::uint16_t>(y)[x * img.channels() + c];
+    case PixelType::f32:
+      return img.row<float>(y)[x * img.channels() + c];
   }
   return 0;
 }

@@ -36,10 +36,11 @@ Texture one_level(TexelFormat f, const Image& img, Quality q = Quality::fast) {
 TEST(StreamedIo, DecodedRowsAreTheWholeLevelsRows) {
   const Image rgba = random_image(37, 21, 4, PixelType::u8, 1);
   const Image hdr = random_image(19, 13, 3, PixelType::f32, 2);
-  std::vector<Texture> textures = {one_level(TexelFormat::bc1_rgb_srgb, rgba),   one_level(TexelFormat::bc3_unorm, rgba),
-                                   one_level(TexelFormat::bc4_snorm, rgba),      one_level(TexelFormat::bc5_unorm, rgba),
-                                   one_level(TexelFormat::bc7_srgb, rgba),       one_level(TexelFormat::etc2_rgba8_unorm, rgba),
-                                   one_level(TexelFormat::eac_rg11_snorm, rgba), one_level(TexelFormat::bc6h_sfloat, hdr)};
+  std::vector<Texture> textures = {
+      one_level(TexelFormat::bc1_rgb_srgb, rgba),   one_level(TexelFormat::bc3_unorm, rgba),
+      one_level(TexelFormat::bc4_snorm, rgba),      one_level(TexelFormat::bc5_unorm, rgba),
+      one_level(TexelFormat::bc7_srgb, rgba),       one_level(TexelFormat::etc2_rgba8_unorm, rgba),
+      one_level(TexelFormat::eac_rg11_snorm, rgba), one_level(TexelFormat::bc6h_sfloat, hdr)};
   textures.push_back(texture_from_levels({Image(rgba)}, {.srgb = true}));  // uncompressed rgba8
   for (const Texture& t : textures) {
     for (PixelType type : {PixelType::u8, PixelType::u16, PixelType::f32}) {

@@ -37,8 +37,8 @@ Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t 
 // `row_stride` bytes apart), decoding only the
 // block rows they lie in: a level written out band by band is never whole
 // in memory. Throws Error{bad_arguments} for rows outside the level.
-void decode_texture_rows(const Texture& t, std::uint32_t level, std::uint32_t layer, std::uint32_t face,
-                         PixelType type, int y0, int y1, void* dst, std::size_t row_stride);
+void decode_texture_rows(const Texture& t, std::uint32_t level, std::uint32_t layer, std::uint32_t face, PixelType type,
+                         int y0, int y1, void* dst, std::size_t row_stride);
 
 // compress_image's inverse: `blocks` (a width x height image in `format`)
 // decoded to `type`, as decode_texture_image decodes a level.

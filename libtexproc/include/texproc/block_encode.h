@@ -83,7 +83,8 @@ struct EncodeOptions {
   // .a and rebuild Z = sqrt(1 - X^2 - Y^2) after mapping both to [-1, 1].
   bool normal_map = false;
 };
-std::vector<std::uint8_t> compress_image(const ConstImageView& image, TexelFormat format, Quality q, const EncodeOptions& options);
+std::vector<std::uint8_t> compress_image(const ConstImageView& image, TexelFormat format, Quality q,
+                                         const EncodeOptions& options);
 
 // One block of any block format (BC1-BC5, ETC1, ETC2, EAC) from 16 RGBA8
 // texels, row by row, taken as compress_image takes an RGBA8 image (BC4/EAC

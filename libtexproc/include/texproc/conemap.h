@@ -28,8 +28,8 @@ namespace texproc {
 enum class ConeMode { conservative, relaxed };
 
 struct ConeMapOptions {
-  float depth = 1.0f;       // relief depth in texture widths (> 0)
-  float max_ratio = 1.0f;   // cap on the ratio (> 0); the map stores sqrt(ratio / max_ratio)
+  float depth = 1.0f;                // relief depth in texture widths (> 0)
+  float max_ratio = 1.0f;            // cap on the ratio (> 0); the map stores sqrt(ratio / max_ratio)
   WrapMode wrap = WrapMode::repeat;  // repeat: tiling reliefs see across the edges; clamp: they do not
   // Fast cones, never wider than exact, 0 = exact: the pyramid blocks next
   // to the texel's 8x8 cell are searched texel by texel, and a farther block
@@ -116,8 +116,8 @@ void cone_map_rows(const std::vector<float>& heights, const std::vector<float>& 
 // descended (the view direction's horizontal part over its vertical part).
 struct ReliefHit {
   float u = 0, v = 0, height = 0;
-  int steps = 0;       // height-map lookups
-  bool hit = false;    // false if the ray left the texture (clamp) without a hit
+  int steps = 0;     // height-map lookups
+  bool hit = false;  // false if the ray left the texture (clamp) without a hit
 };
 
 // The exact first hit on the texel-centre (nearest-texel) surface: a grid
@@ -148,7 +148,6 @@ ReliefHit trace_relaxed(const std::vector<float>& heights, const std::vector<flo
 // pixel below it (blue few, red many): an RGB8 image of 2 (or 3) x 2 panels
 // of `size` x `size`.
 Image render_preview(const std::vector<float>& heights, const std::vector<float>& ratios, int width, int height,
-                     const ConeMapOptions& o, int size, float view_angle_deg,
-                     const std::vector<float>& relaxed = {});
+                     const ConeMapOptions& o, int size, float view_angle_deg, const std::vector<float>& relaxed = {});
 
 }  // namespace texproc

@@ -28,14 +28,13 @@ enum class DdsHeader {
   dx10        // always the DX10 extended header
 };
 
-
 // In-memory encoders and decoders (`name` appears in error messages).
 std::vector<std::uint8_t> encode_dds(const Texture& t, DdsHeader header = DdsHeader::automatic);
 // zstd_level 1-22: each level Zstandard-supercompressed (scheme 2, as `ktx
 // deflate --zstd` writes); 0: none.
 std::vector<std::uint8_t> encode_ktx2(const Texture& t, const std::string& writer = "", int zstd_level = 0);
 std::vector<std::uint8_t> encode_ktx1(const Texture& t);
-std::vector<std::uint8_t> encode_pkm(const Texture& t);  // ETC1/ETC2 RGB, one level
+std::vector<std::uint8_t> encode_pkm(const Texture& t);   // ETC1/ETC2 RGB, one level
 std::vector<std::uint8_t> encode_astc(const Texture& t);  // ASTC, one level (astcenc's file)
 Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& = {});
 Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& = {});

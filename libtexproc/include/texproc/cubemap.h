@@ -164,13 +164,13 @@ SeamStats measure_seams(const CubeLevel& level);
 float specular_roughness(int level, int levels);
 
 struct SpecularOptions {
-  int size = 0;      // face size of level 0 (0: the source's, at most 256)
-  int levels = 0;    // 0: down to min_size
+  int size = 0;    // face size of level 0 (0: the source's, at most 256)
+  int levels = 0;  // 0: down to min_size
   // The smallest face: a 1x1 or 2x2 face cannot show a wide lobe without
   // its faces showing (bilinear taps over six texels), so roughness 1 sits
   // on 8x8 faces by default.
   int min_size = 8;
-  int samples = 512; // importance samples per texel where the lobe is sampled
+  int samples = 512;  // importance samples per texel where the lobe is sampled
   // Levels whose exact convolution (every texel of a source level fine
   // enough for the lobe) costs at most this many texel pairs are convolved
   // exactly; the others use filtered importance sampling. 0: sample all.

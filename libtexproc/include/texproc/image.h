@@ -21,9 +21,12 @@ enum class PixelType : std::uint8_t { u8, u16, f32 };
 // Bytes per channel of `t`.
 constexpr std::size_t bytes_per_channel(PixelType t) {
   switch (t) {
-    case PixelType::u8: return 1;
-    case PixelType::u16: return 2;
-    case PixelType::f32: return 4;
+    case PixelType::u8:
+      return 1;
+    case PixelType::u16:
+      return 2;
+    case PixelType::f32:
+      return 4;
   }
   return 0;
 }
@@ -58,9 +61,7 @@ struct BasicImageView {
     assert(y >= 0 && y < height);
     return reinterpret_cast<Ptr<T>>(static_cast<Byte*>(data) + y * row_stride);
   }
-  operator BasicImageView<const void>() const
-    requires(!std::is_const_v<Void>)
-  {
+  operator BasicImageView<const void>() const requires(!std::is_const_v<Void>) {
     return {data, width, height, channels, type, row_stride};
   }
 };
@@ -150,9 +151,13 @@ class Image {
   std::uint8_t* data() { return data_.data(); }
   const std::uint8_t* data() const { return data_.data(); }
   template <typename T>
-  T* row(int y) { return reinterpret_cast<T*>(data_.data() + y * row_stride()); }
+  T* row(int y) {
+    return reinterpret_cast<T*>(data_.data() + y * row_stride());
+  }
   template <typename T>
-  const T* row(int y) const { return reinterpret_cast<const T*>(data_.data() + y * row_stride()); }
+  const T* row(int y) const {
+    return reinterpret_cast<const T*>(data_.data() + y * row_stride());
+  }
 
   ImageView view() { return {data_.data(), width_, height_, channels_, type_, row_stride()}; }
   ConstImageView view() const { return {data_.data(), width_, height_, channels_, type_, row_stride()}; }

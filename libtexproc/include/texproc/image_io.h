@@ -21,10 +21,10 @@
 namespace texproc {
 
 struct ImageFileInfo {
-  std::string format;       // OpenImageIO's format name: "png", "tiff", "openexr", ...; "dds", "ktx2", "ktx1", "pkm"
+  std::string format;  // OpenImageIO's format name: "png", "tiff", "openexr", ...; "dds", "ktx2", "ktx1", "pkm"
   int width = 0, height = 0;
-  int channels = 0;         // channels in the file (texproc reads at most 4)
-  std::string file_type;    // element type in the file: "uint8", "uint16", "half", "float", ...
+  int channels = 0;                // channels in the file (texproc reads at most 4)
+  std::string file_type;           // element type in the file: "uint8", "uint16", "half", "float", ...
   PixelType type = PixelType::u8;  // the type read_image returns
   std::string color_space_tag;     // what the file says ("sRGB", "Linear"...), a hint only
   // Whether the file carries that tag (a PNG sRGB, gAMA or iCCP chunk, a
@@ -34,7 +34,7 @@ struct ImageFileInfo {
   int subimages = 1;
   int mip_levels = 1;
   std::vector<std::pair<int, int>> level_sizes;  // probe_image: width, height of each MIP level
-  bool via_module = false;  // read through the OpenImageIO module
+  bool via_module = false;                       // read through the OpenImageIO module
 };
 
 // Where image files go. direct (the default): texproc's own readers and

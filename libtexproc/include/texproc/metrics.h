@@ -19,9 +19,9 @@ struct ChannelDifference {
 struct ImageDifference {
   int width = 0, height = 0, channels = 0;
   std::vector<ChannelDifference> channel;
-  double mse = 0;      // over every channel
-  double mse_rgb = 0;  // over the first min(3, channels) channels (color without alpha)
-  double max_abs = 0;  // over every channel
+  double mse = 0;                      // over every channel
+  double mse_rgb = 0;                  // over the first min(3, channels) channels (color without alpha)
+  double max_abs = 0;                  // over every channel
   std::uint64_t differing_texels = 0;  // texels where any channel differs (by more than 1e-6)
   // Texels where either image holds NaN or an infinity in any channel. Each
   // is a differing texel; when there is one, the distance is not defined:

@@ -16,8 +16,8 @@
 namespace texproc {
 
 struct MipOptions {
-  Filter filter;                       // default: Gaussian, sigma 0.5 destination texels
-  WrapMode wrap = WrapMode::clamp;     // taps past the edges
+  Filter filter;                    // default: Gaussian, sigma 0.5 destination texels
+  WrapMode wrap = WrapMode::clamp;  // taps past the edges
   // Source color space; empty: sRGB for u8/u16 input, linear for f32 input.
   // Normal maps are always decoded as linear data.
   std::string color_space;
@@ -46,10 +46,10 @@ int mip_level_count(int width, int height, int max_levels = 0, int min_size = 1)
 int mip_level_dim(int size, int level);
 
 struct MipChain {
-  std::vector<Image> levels;         // level 0 first
-  std::string color_space;           // of the stored levels
-  std::vector<float> alpha_coverage; // per level, when alpha_coverage_ref is set
-  std::vector<float> alpha_scale;    // per level, the factor applied to alpha
+  std::vector<Image> levels;          // level 0 first
+  std::string color_space;            // of the stored levels
+  std::vector<float> alpha_coverage;  // per level, when alpha_coverage_ref is set
+  std::vector<float> alpha_scale;     // per level, the factor applied to alpha
 };
 
 // Builds the chain. Level 0 is the input converted to the output type and

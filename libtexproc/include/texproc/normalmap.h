@@ -17,31 +17,31 @@
 namespace texproc {
 
 enum class GradientKernel {
-  gather2x2,   // the 2x2 footprint (x..x+1, y..y+1): cheapest; centred half a texel right and down
-  central,     // (h[x+1] - h[x-1]) / 2
-  sobel3,      // [-1 0 1] x [1 2 1] / 8 (default)
-  sobel5,      // [-1 -2 0 2 1] x [1 4 6 4 1] / 128
-  prewitt3,    // [-1 0 1] x [1 1 1] / 6
-  prewitt5,    // [-2 -1 0 1 2] x [1 1 1 1 1] / 50
-  scharr3,     // [-1 0 1] x [3 10 3] / 32
-  multiscale   // weighted central differences over 1, 2, 4, ... texels
+  gather2x2,  // the 2x2 footprint (x..x+1, y..y+1): cheapest; centred half a texel right and down
+  central,    // (h[x+1] - h[x-1]) / 2
+  sobel3,     // [-1 0 1] x [1 2 1] / 8 (default)
+  sobel5,     // [-1 -2 0 2 1] x [1 4 6 4 1] / 128
+  prewitt3,   // [-1 0 1] x [1 1 1] / 6
+  prewitt5,   // [-2 -1 0 1 2] x [1 1 1 1 1] / 50
+  scharr3,    // [-1 0 1] x [3 10 3] / 32
+  multiscale  // weighted central differences over 1, 2, 4, ... texels
 };
 
 enum class HeightChannel { automatic, r, g, b, a, luma };
 enum class NormalChannels {
-  xyz,   // RGB = n * 0.5 + 0.5
-  xy,    // RG only (BC5, EAC RG11): the shader rebuilds z = sqrt(1 - x^2 - y^2)
-  xyzh   // RGBA, the height in A (parallax mapping)
+  xyz,  // RGB = n * 0.5 + 0.5
+  xy,   // RG only (BC5, EAC RG11): the shader rebuilds z = sqrt(1 - x^2 - y^2)
+  xyzh  // RGBA, the height in A (parallax mapping)
 };
 
 struct NormalMapOptions {
   GradientKernel kernel = GradientKernel::sobel3;
   HeightChannel height_channel = HeightChannel::automatic;  // gray: the gray; color: luma
-  bool invert = false;         // depth maps: h -> 1 - h
-  float height_scale = 8.0f;   // texels spanned by a height of 1.0 (> 0)
-  float strength = 1.0f;       // multiplies the slope on top (> 0)
+  bool invert = false;                                      // depth maps: h -> 1 - h
+  float height_scale = 8.0f;                                // texels spanned by a height of 1.0 (> 0)
+  float strength = 1.0f;                                    // multiplies the slope on top (> 0)
   WrapMode wrap = WrapMode::clamp;
-  bool y_up = true;            // OpenGL (+Y up, green = up); false: DirectX (green flipped)
+  bool y_up = true;  // OpenGL (+Y up, green = up); false: DirectX (green flipped)
   NormalChannels channels = NormalChannels::xyz;
   // multiscale only: the weight of scale 2^i (differences over +-2^i texels).
   // Normalized to sum 1. Default {0.5, 0.3, 0.2}: scales 1, 2 and 4.

@@ -48,8 +48,8 @@ struct SummedAreaTable {
   // accumulates), so rounding R to float costs well under half an 8-bit step.
   // M is rebuilt exactly from the block means (double) at query time.
   static constexpr int kBlock = 16;
-  int block = 0;                     // kBlock for f32 tables, 0 for the others
-  std::vector<double> block_means;   // ceil(W/block) * ceil(H/block) * channels, row-major
+  int block = 0;                    // kBlock for f32 tables, 0 for the others
+  std::vector<double> block_means;  // ceil(W/block) * ceil(H/block) * channels, row-major
   // The largest |entry| and the largest |M|, which bound the rounding error.
   double max_abs_entry = 0.0;
   double max_abs_model = 0.0;
@@ -95,7 +95,7 @@ void write_sat_file(const std::string& path, const SummedAreaTable& table);
 SummedAreaTable read_sat_file(const std::string& path);
 
 struct BoxBlurOptions {
-  float radius = 4.0f;                  // half-width in texels: a box of 2r + 1 (fractional r blends)
+  float radius = 4.0f;                         // half-width in texels: a box of 2r + 1 (fractional r blends)
   const ConstImageView* radius_map = nullptr;  // optional: per texel r = radius * map (first channel, [0, 1])
   WrapMode wrap = WrapMode::clamp;
   std::string color_space;  // "" : srgb for 8/16-bit, linear for float input

@@ -13,32 +13,93 @@ namespace texproc {
 
 enum class TexelFormat {
   // uncompressed
-  r8_unorm, r8_srgb, rg8_unorm, rg8_srgb, rgba8_unorm, rgba8_srgb, bgra8_unorm, bgra8_srgb,
-  r16_unorm, rg16_unorm, rgba16_unorm, rgba16_float, rgba32_float,
+  r8_unorm,
+  r8_srgb,
+  rg8_unorm,
+  rg8_srgb,
+  rgba8_unorm,
+  rgba8_srgb,
+  bgra8_unorm,
+  bgra8_srgb,
+  r16_unorm,
+  rg16_unorm,
+  rgba16_unorm,
+  rgba16_float,
+  rgba32_float,
   // BC (S3TC / RGTC)
-  bc1_rgb_unorm, bc1_rgb_srgb, bc1_rgba_unorm, bc1_rgba_srgb, bc2_unorm, bc2_srgb, bc3_unorm, bc3_srgb,
-  bc4_unorm, bc4_snorm, bc5_unorm, bc5_snorm,
+  bc1_rgb_unorm,
+  bc1_rgb_srgb,
+  bc1_rgba_unorm,
+  bc1_rgba_srgb,
+  bc2_unorm,
+  bc2_srgb,
+  bc3_unorm,
+  bc3_srgb,
+  bc4_unorm,
+  bc4_snorm,
+  bc5_unorm,
+  bc5_snorm,
   // BPTC: BC6H (HDR RGB, unsigned and signed half floats) and BC7 (RGBA)
-  bc6h_ufloat, bc6h_sfloat, bc7_unorm, bc7_srgb,
+  bc6h_ufloat,
+  bc6h_sfloat,
+  bc7_unorm,
+  bc7_srgb,
   // ETC / EAC (ETC1 is written as ETC2 RGB, of which it is a subset)
-  etc1_rgb, etc2_rgb_unorm, etc2_rgb_srgb, etc2_rgba1_unorm, etc2_rgba1_srgb, etc2_rgba8_unorm, etc2_rgba8_srgb,
-  eac_r11_unorm, eac_r11_snorm, eac_rg11_unorm, eac_rg11_snorm,
+  etc1_rgb,
+  etc2_rgb_unorm,
+  etc2_rgb_srgb,
+  etc2_rgba1_unorm,
+  etc2_rgba1_srgb,
+  etc2_rgba8_unorm,
+  etc2_rgba8_srgb,
+  eac_r11_unorm,
+  eac_r11_snorm,
+  eac_rg11_unorm,
+  eac_rg11_snorm,
   // ASTC, every 2D footprint: LDR (UNORM, sRGB) and HDR (SFLOAT); encoded and
   // decoded through ARM's astc-encoder (docs/compression.md)
-  astc_4x4_unorm, astc_4x4_srgb, astc_4x4_sfloat,
-  astc_5x4_unorm, astc_5x4_srgb, astc_5x4_sfloat,
-  astc_5x5_unorm, astc_5x5_srgb, astc_5x5_sfloat,
-  astc_6x5_unorm, astc_6x5_srgb, astc_6x5_sfloat,
-  astc_6x6_unorm, astc_6x6_srgb, astc_6x6_sfloat,
-  astc_8x5_unorm, astc_8x5_srgb, astc_8x5_sfloat,
-  astc_8x6_unorm, astc_8x6_srgb, astc_8x6_sfloat,
-  astc_8x8_unorm, astc_8x8_srgb, astc_8x8_sfloat,
-  astc_10x5_unorm, astc_10x5_srgb, astc_10x5_sfloat,
-  astc_10x6_unorm, astc_10x6_srgb, astc_10x6_sfloat,
-  astc_10x8_unorm, astc_10x8_srgb, astc_10x8_sfloat,
-  astc_10x10_unorm, astc_10x10_srgb, astc_10x10_sfloat,
-  astc_12x10_unorm, astc_12x10_srgb, astc_12x10_sfloat,
-  astc_12x12_unorm, astc_12x12_srgb, astc_12x12_sfloat,
+  astc_4x4_unorm,
+  astc_4x4_srgb,
+  astc_4x4_sfloat,
+  astc_5x4_unorm,
+  astc_5x4_srgb,
+  astc_5x4_sfloat,
+  astc_5x5_unorm,
+  astc_5x5_srgb,
+  astc_5x5_sfloat,
+  astc_6x5_unorm,
+  astc_6x5_srgb,
+  astc_6x5_sfloat,
+  astc_6x6_unorm,
+  astc_6x6_srgb,
+  astc_6x6_sfloat,
+  astc_8x5_unorm,
+  astc_8x5_srgb,
+  astc_8x5_sfloat,
+  astc_8x6_unorm,
+  astc_8x6_srgb,
+  astc_8x6_sfloat,
+  astc_8x8_unorm,
+  astc_8x8_srgb,
+  astc_8x8_sfloat,
+  astc_10x5_unorm,
+  astc_10x5_srgb,
+  astc_10x5_sfloat,
+  astc_10x6_unorm,
+  astc_10x6_srgb,
+  astc_10x6_sfloat,
+  astc_10x8_unorm,
+  astc_10x8_srgb,
+  astc_10x8_sfloat,
+  astc_10x10_unorm,
+  astc_10x10_srgb,
+  astc_10x10_sfloat,
+  astc_12x10_unorm,
+  astc_12x10_srgb,
+  astc_12x10_sfloat,
+  astc_12x12_unorm,
+  astc_12x12_srgb,
+  astc_12x12_sfloat,
 };
 
 // Everything the containers need to know about a format, from one table
@@ -51,15 +112,15 @@ const char* to_string(CodecFamily family);  // "uncompressed", "bc1", ... "astc"
 
 struct FormatInfo {
   TexelFormat format;
-  const char* name;         // "rgba8_srgb", "bc1_rgba_unorm", ...
+  const char* name;  // "rgba8_srgb", "bc1_rgba_unorm", ...
   CodecFamily family;
   int block_width, block_height;
-  int block_bytes;          // bytes per block (per texel for uncompressed formats)
-  int channels;             // 1..4
+  int block_bytes;  // bytes per block (per texel for uncompressed formats)
+  int channels;     // 1..4
   bool srgb, snorm, is_float, compressed;
-  int type_size;            // KTX2 typeSize: 1 for block formats, else bytes per component
-  std::uint32_t vk_format;  // VkFormat
-  std::uint32_t dxgi_format;  // DXGI_FORMAT, 0 if DDS cannot hold it
+  int type_size;                                         // KTX2 typeSize: 1 for block formats, else bytes per component
+  std::uint32_t vk_format;                               // VkFormat
+  std::uint32_t dxgi_format;                             // DXGI_FORMAT, 0 if DDS cannot hold it
   std::uint32_t gl_internal_format, gl_format, gl_type;  // KTX1
 };
 

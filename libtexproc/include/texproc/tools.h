@@ -63,8 +63,8 @@ class AtomicFile {
   bool commit_now();
   void check_free() const;  // under no_replace: Error{io} if path() exists now
   std::string path_, temp_;
-  int fd_ = -1;         // the unnamed temporary, or -1 for a named one
-  int policy_ = -1;     // a CommitPolicy of its own, or -1 for the group's (replace outside a group)
+  int fd_ = -1;      // the unnamed temporary, or -1 for a named one
+  int policy_ = -1;  // a CommitPolicy of its own, or -1 for the group's (replace outside a group)
   bool committed_ = false;
 };
 

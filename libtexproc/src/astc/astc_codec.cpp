@@ -204,8 +204,10 @@ Packed pack(const ConstImageView& img, bool hdr, bool normal_map) {
           switch (img.type) {
             case PixelType::u8: {
               const std::uint8_t v = s < 0 ? 255 : img.row<const std::uint8_t>(y)[x * C + s];
-              if (p.type == ASTCENC_TYPE_U8) p.u8[i] = v;
-              else p.f32[i] = float(v) / 255.0f;
+              if (p.type == ASTCENC_TYPE_U8)
+                p.u8[i] = v;
+              else
+                p.f32[i] = float(v) / 255.0f;
               break;
             }
             case PixelType::u16: {
@@ -232,15 +234,20 @@ unsigned threads_now() { return unsigned(std::max(1, thread_limit())); }
 
 float effort_for(Quality q) {
   switch (q) {
-    case Quality::fast: return ASTCENC_PRE_FAST;
-    case Quality::normal: return ASTCENC_PRE_MEDIUM;
-    case Quality::high: return ASTCENC_PRE_THOROUGH;
-    case Quality::max: return ASTCENC_PRE_EXHAUSTIVE;
+    case Quality::fast:
+      return ASTCENC_PRE_FAST;
+    case Quality::normal:
+      return ASTCENC_PRE_MEDIUM;
+    case Quality::high:
+      return ASTCENC_PRE_THOROUGH;
+    case Quality::max:
+      return ASTCENC_PRE_EXHAUSTIVE;
   }
   return ASTCENC_PRE_MEDIUM;
 }
 
-std::vector<std::uint8_t> encode(const ConstImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
+std::vector<std::uint8_t> encode(const ConstImageView& img, TexelFormat format, Quality q,
+                                 const EncodeOptions& options) {
   const FormatInfo& fi = format_info(format);
   const float effort = options.astc_effort ? *options.astc_effort : effort_for(q);
   if (!(effort >= 0.0f && effort <= 100.0f))
@@ -248,10 +255,13 @@ std::vector<std::uint8_t> encode(const ConstImageView& img, TexelFormat format, 
   if (options.normal_map && fi.is_float)
     throw Error(ErrorCode::bad_arguments, std::string("a normal map is LDR data: ") + fi.name + " is an HDR format");
   // An 8-bit RGBA image in packed rows is what astc-encoder reads: no copy.
-  const bool as_is = !fi.is_float && img.type == PixelType::u8 && img.channels == 4 &&
-                     img.row_stride == std::size_t(img.width) * 4;
+  const bool as_is =
+      !fi.is_float && img.type == PixelType::u8 && img.channels == 4 && img.row_stride == std::size_t(img.width) * 4;
   Packed packed = as_is ? Packed{} : pack(img, fi.is_float, options.normal_map);
-  const Key key{profile_of(fi, false), unsigned(fi.block_width), unsigned(fi.block_height), effort,
+  const Key key{profile_of(fi, false),
+                unsigned(fi.block_width),
+                unsigned(fi.block_height),
+                effort,
                 (options.normal_map ? ASTCENC_FLG_MAP_NORMAL : 0u) | ASTCENC_FLG_SELF_DECOMPRESS_ONLY,
                 threads_now()};
   std::vector<std::uint8_t> out(image_bytes(format, std::uint32_t(img.width), std::uint32_t(img.height)));
@@ -260,9 +270,9 @@ std::vector<std::uint8_t> encode(const ConstImageView& img, TexelFormat format, 
   astcenc_image image{unsigned(img.width), unsigned(img.height), 1, packed.type, &slice};
   // A normal map's X goes to RGB and Y to alpha (astc-encoder's rrrg, as its
   // CLI's -normal): the swizzle is the library's, which reads it per texel.
-  const astcenc_swizzle swizzle =
-      options.normal_map ? astcenc_swizzle{ASTCENC_SWZ_R, ASTCENC_SWZ_R, ASTCENC_SWZ_R, ASTCENC_SWZ_G}
-                         : astcenc_swizzle{ASTCENC_SWZ_R, ASTCENC_SWZ_G, ASTCENC_SWZ_B, ASTCENC_SWZ_A};
+  const astcenc_swizzle swizzle = options.normal_map
+                                      ? astcenc_swizzle{ASTCENC_SWZ_R, ASTCENC_SWZ_R, ASTCENC_SWZ_R, ASTCENC_SWZ_G}
+                                      : astcenc_swizzle{ASTCENC_SWZ_R, ASTCENC_SWZ_G, ASTCENC_SWZ_B, ASTCENC_SWZ_A};
   const Api& a = api();
   Lease ctx(key);
   std::atomic<int> error{ASTCENC_SUCCESS};
@@ -280,7 +290,8 @@ Image decode(const std::uint8_t* blocks, std::size_t size, int width, int height
   const FormatInfo& fi = format_info(format);
   if (size < image_bytes(format, std::uint32_t(width), std::uint32_t(height)))
     throw Error(ErrorCode::invalid_file, std::string(fi.name) + ": fewer bytes than the image's blocks");
-  const Key key{profile_of(fi, true), unsigned(fi.block_width), unsigned(fi.block_height), 0.0f,
+  const Key key{profile_of(fi, true),        unsigned(fi.block_width),
+                unsigned(fi.block_height),   0.0f,
                 ASTCENC_FLG_DECOMPRESS_ONLY, threads_now()};
   Image out = Image::uninitialized(width, height, 4, fi.is_float ? PixelType::f32 : PixelType::u8);
   void* slice = out.data();

@@ -20,6 +20,7 @@ float effort_for(Quality q);
 
 // Encodes an image to `format` (any ASTC format), as compress_image
 // documents. Bytes are the same for any thread count.
-std::vector<std::uint8_t> encode(const ConstImageView& image, TexelFormat format, Quality q, const EncodeOptions& options);
+std::vector<std::uint8_t> encode(const ConstImageView& image, TexelFormat format, Quality q,
+                                 const EncodeOptions& options);
 
 }  // namespace texproc::astc

@@ -44,17 +44,18 @@ void ClusterSplits(const double pre[17][3], double total_sq, int n, int i, int j
       const auto xa = hn::Add(hn::Set(d, pre[i][c] + (2.0 / 3.0) * x1s), hn::Mul(hn::Set(d, 1.0 / 3.0), x2));
       const auto xb = hn::Add(hn::Add(hn::Sub(hn::Set(d, pre[n][c]), pk), hn::Mul(hn::Set(d, 1.0 / 3.0), x1)),
                               hn::Mul(hn::Set(d, 2.0 / 3.0), x2));
-      const auto a = hn::Min(hn::Max(hn::Mul(hn::Sub(hn::Mul(xa, bb), hn::Mul(xb, ab)), inv), hn::Zero(d)),
-                             hn::Set(d, 255.0));
-      const auto b = hn::Min(hn::Max(hn::Mul(hn::Sub(hn::Mul(xb, aa), hn::Mul(xa, ab)), inv), hn::Zero(d)),
-                             hn::Set(d, 255.0));
+      const auto a =
+          hn::Min(hn::Max(hn::Mul(hn::Sub(hn::Mul(xa, bb), hn::Mul(xb, ab)), inv), hn::Zero(d)), hn::Set(d, 255.0));
+      const auto b =
+          hn::Min(hn::Max(hn::Mul(hn::Sub(hn::Mul(xb, aa), hn::Mul(xa, ab)), inv), hn::Zero(d)), hn::Set(d, 255.0));
       HWY_ALIGN double av[HWY_MAX_BYTES / sizeof(double)], bv[HWY_MAX_BYTES / sizeof(double)];
       hn::Store(a, d, av);
       hn::Store(b, d, bv);
       for (int l = 0; l < lanes; ++l) out.a[k + l - j][c] = av[l], out.b[k + l - j][c] = bv[l];
       const auto fit = hn::Mul(hn::Set(d, -2.0), hn::Add(hn::Mul(a, xa), hn::Mul(b, xb)));
-      const auto quad = hn::Add(hn::Add(hn::Mul(hn::Mul(a, a), aa), hn::Mul(hn::Mul(hn::Mul(hn::Set(d, 2.0), a), b), ab)),
-                                hn::Mul(hn::Mul(b, b), bb));
+      const auto quad =
+          hn::Add(hn::Add(hn::Mul(hn::Mul(a, a), aa), hn::Mul(hn::Mul(hn::Mul(hn::Set(d, 2.0), a), b), ab)),
+                  hn::Mul(hn::Mul(b, b), bb));
       err = hn::Add(err, hn::Add(fit, quad));
     }
     err = hn::IfThenElse(singular, hn::Set(d, std::numeric_limits<double>::infinity()), err);

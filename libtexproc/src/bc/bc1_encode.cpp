@@ -114,7 +114,6 @@ const SingleColorTables& single() {
   return t;
 }
 
-
 // Cluster fit (as libsquish's, with every candidate scored exactly): the
 // opaque texels ordered along `axis` are split into consecutive clusters,
 // one per palette entry (four: a, 2/3 a + 1/3 b, 1/3 a + 2/3 b, b; three: a,
@@ -246,7 +245,8 @@ Result one_colour_block(const RgbBlock& tx, bool three_allowed) {
     int pal[4][3], nearest = 0, least = -1;
     palette(r.e, r.four, pal);
     for (int k = 0; k < (r.four ? 4 : 3); ++k) {
-      const int d = (c[0] - pal[k][0]) * (c[0] - pal[k][0]) + (c[1] - pal[k][1]) * (c[1] - pal[k][1]) + (c[2] - pal[k][2]) * (c[2] - pal[k][2]);
+      const int d = (c[0] - pal[k][0]) * (c[0] - pal[k][0]) + (c[1] - pal[k][1]) * (c[1] - pal[k][1]) +
+                    (c[2] - pal[k][2]) * (c[2] - pal[k][2]);
       if (least < 0 || d < least) least = d, nearest = k;
     }
     std::fill(r.idx, r.idx + 16, std::uint8_t(nearest));
@@ -274,7 +274,8 @@ Result punch_one_colour_block(const RgbBlock& tx) {
       const int bits = ch == 1 ? 6 : 5;
       int nearest_q = 0;
       for (int v = 1; v < (1 << bits); ++v)
-        if (std::abs((bits == 6 ? expand6(v) : expand5(v)) - c[ch]) < std::abs((bits == 6 ? expand6(nearest_q) : expand5(nearest_q)) - c[ch]))
+        if (std::abs((bits == 6 ? expand6(v) : expand5(v)) - c[ch]) <
+            std::abs((bits == 6 ? expand6(nearest_q) : expand5(nearest_q)) - c[ch]))
           nearest_q = v;
       ends.c[k][ch] = nearest_q;
     }
@@ -370,7 +371,8 @@ void keep_lane_block(const RgbBlock& tx, Bc1Mode mode, const Bc1LaneSearch& lane
   bool handled = false;
   bc1_encode_lanes(texel, 1, lane, three_allowed, mode == Bc1Mode::bc1_punch_through, block, &handled);
   if (!handled) return;
-  const std::uint16_t c0 = std::uint16_t(block[0][0] | block[0][1] << 8), c1 = std::uint16_t(block[0][2] | block[0][3] << 8);
+  const std::uint16_t c0 = std::uint16_t(block[0][0] | block[0][1] << 8),
+                      c1 = std::uint16_t(block[0][2] | block[0][3] << 8);
   const bool four = mode == Bc1Mode::four_only || c0 > c1;
   if (!(four || three_allowed) || (four && any_transparent)) return;
   Endpoints e;
@@ -403,13 +405,16 @@ void encode_block_by_block(const RgbBlock& tx, Bc1Mode mode, const Bc1Level& lev
     return;
   }
   // Covariance (times n^2, exact) and mean.
-  const std::int64_t cov_n2[6] = {
-      std::int64_t(m.sq[0]) * n - std::int64_t(m.sum[0]) * m.sum[0], std::int64_t(m.sq[1]) * n - std::int64_t(m.sum[0]) * m.sum[1],
-      std::int64_t(m.sq[2]) * n - std::int64_t(m.sum[0]) * m.sum[2], std::int64_t(m.sq[3]) * n - std::int64_t(m.sum[1]) * m.sum[1],
-      std::int64_t(m.sq[4]) * n - std::int64_t(m.sum[1]) * m.sum[2], std::int64_t(m.sq[5]) * n - std::int64_t(m.sum[2]) * m.sum[2]};
+  const std::int64_t cov_n2[6] = {std::int64_t(m.sq[0]) * n - std::int64_t(m.sum[0]) * m.sum[0],
+                                  std::int64_t(m.sq[1]) * n - std::int64_t(m.sum[0]) * m.sum[1],
+                                  std::int64_t(m.sq[2]) * n - std::int64_t(m.sum[0]) * m.sum[2],
+                                  std::int64_t(m.sq[3]) * n - std::int64_t(m.sum[1]) * m.sum[1],
+                                  std::int64_t(m.sq[4]) * n - std::int64_t(m.sum[1]) * m.sum[2],
+                                  std::int64_t(m.sq[5]) * n - std::int64_t(m.sum[2]) * m.sum[2]};
   float mean[3];
   for (int ch = 0; ch < 3; ++ch) mean[ch] = float(m.sum[ch]) / float(n);
-  if (cov_n2[0] == 0 && cov_n2[3] == 0 && cov_n2[5] == 0 && any_transparent) return write(punch_one_colour_block(tx), out);
+  if (cov_n2[0] == 0 && cov_n2[3] == 0 && cov_n2[5] == 0 && any_transparent)
+    return write(punch_one_colour_block(tx), out);
 
   float axis[3];
   colour_axis(cov_n2, axis);
@@ -448,8 +453,8 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], Bc1Mode mode, Quality q, s
     for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
     std::uint8_t block[1][8];
     bool handled = false;
-    bc1_encode_lanes(texel, 1, bc1_level(q).lane, mode != Bc1Mode::four_only,
-                     mode == Bc1Mode::bc1_punch_through, block, &handled);
+    bc1_encode_lanes(texel, 1, bc1_level(q).lane, mode != Bc1Mode::four_only, mode == Bc1Mode::bc1_punch_through, block,
+                     &handled);
     if (handled) {
       std::memcpy(out, block[0], 8);
       return;

@@ -16,7 +16,8 @@ int quantize(float v, int max) { return quantize_channel(v, max); }  // block/qu
 // The palette of quantized endpoints qa, qb (four colours, or three: the
 // average and no black); each texel's nearest entry (first of equals); the
 // total squared error.
-std::int32_t nearest(const int rgb[16][3], const bool clear[16], const int qa[3], const int qb[3], bool four, int codes[16]) {
+std::int32_t nearest(const int rgb[16][3], const bool clear[16], const int qa[3], const int qb[3], bool four,
+                     int codes[16]) {
   int pal[4][3];
   for (int ch = 0; ch < 3; ++ch) {
     const int ea = ch == 1 ? (qa[ch] << 2 | qa[ch] >> 4) : (qa[ch] << 3 | qa[ch] >> 2);
@@ -129,7 +130,8 @@ void nudge(const int rgb[16][3], const bool clear[16], bool four, State& s) {
 // three-colour one): partition variants on halves of the extent (45, each a
 // least-squares fit, scored and refitted), then one-step nudges of the
 // quantized endpoints while they help (at most four passes).
-void three_colour_search(const int rgb[16][3], const bool clear[16], float hi, float lo, const float proj[16], State& t) {
+void three_colour_search(const int rgb[16][3], const bool clear[16], float hi, float lo, const float proj[16],
+                         State& t) {
   for (int o = -4; o <= 4; ++o)
     for (int sv = -2; sv <= 2; ++sv) {
       const float scale = hi > lo ? 2.0f * (1.0f + kVariantStep * float(sv)) / (hi - lo) : 0.0f;
@@ -162,8 +164,8 @@ void three_colour_search(const int rgb[16][3], const bool clear[16], float hi, f
 // they lie along its principal axis.
 struct Block {
   int rgb[16][3];
-  bool clear[16];    // punch-through: transparent (index 3 of the three-colour mode)
-  bool transparent;  // any texel clear: only the three-colour mode can have them
+  bool clear[16];          // punch-through: transparent (index 3 of the three-colour mode)
+  bool transparent;        // any texel clear: only the three-colour mode can have them
   float proj[16], lo, hi;  // each texel's projection; the opaque texels' extent
   float a[3], b[3];        // the extent's ends as colours
 };
@@ -302,8 +304,8 @@ void pack(const State& st, bool four, std::uint8_t out[8]) {
 
 }  // namespace
 
-void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three, bool punch,
-                      std::uint8_t out[][8], bool handled[]) {
+void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three,
+                      bool punch, std::uint8_t out[][8], bool handled[]) {
   for (int k = 0; k < count; ++k) {
     Block blk;
     handled[k] = load(texel, k, punch, blk);
@@ -331,7 +333,8 @@ void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, const
         t.error = nearest(blk.rgb, blk.clear, t.qa, t.qb, false, t.codes);
         refit(blk.rgb, blk.clear, false, t);
         if (blk.transparent) refit(blk.rgb, blk.clear, false, t);  // the block's only mode: refitted twice
-        if (blk.transparent && level.punch_variants) three_colour_search(blk.rgb, blk.clear, blk.hi, blk.lo, blk.proj, t);
+        if (blk.transparent && level.punch_variants)
+          three_colour_search(blk.rgb, blk.clear, blk.hi, blk.lo, blk.proj, t);
         if (blk.transparent || t.error < st.error) st = t, four = false;
       }
     }

@@ -42,8 +42,8 @@ constexpr int kBc1Batch = kBlockBatch;  // core/block_batch.h
 // 45 partition variants on halves of the extent and one-step nudges). Blocks
 // whose opaque texels are all one colour (or that have none) are left to
 // the caller (`handled[k]` false; their bytes are not written).
-void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three, bool punch,
-                      std::uint8_t out[][8], bool handled[]);
+void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three,
+                      bool punch, std::uint8_t out[][8], bool handled[]);
 
 namespace ref {
 // The partition variants: texels split into four runs along the axis at
@@ -54,8 +54,8 @@ inline float variant_shift(int offset, int stretch) {
   return 0.5f + kVariantStep * float(offset) - kVariantStep * float(stretch) * 1.5f;
 }
 
-void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three, bool punch,
-                      std::uint8_t out[][8], bool handled[]);
+void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three,
+                      bool punch, std::uint8_t out[][8], bool handled[]);
 }  // namespace ref
 
 }  // namespace texproc

@@ -53,7 +53,11 @@ struct Bc1Batch {
   // Written out (not default member initializers): the implicit constructor
   // would be compiled without the target's attributes.
   HWY_ATTR Bc1Batch()
-      : one(hn::Set(df, 1.0f)), zero_f(hn::Zero(df)), top(hn::Set(df, 255.0f)), half(hn::Set(df, 0.5f)), mask8(hn::Set(d, 255)) {}
+      : one(hn::Set(df, 1.0f)),
+        zero_f(hn::Zero(df)),
+        top(hn::Set(df, 255.0f)),
+        half(hn::Set(df, 0.5f)),
+        mask8(hn::Set(d, 255)) {}
 
   // v where texel i is opaque, else 0 (punch-through only).
   HWY_INLINE V opaque_only(int i, V v) const {
@@ -88,14 +92,18 @@ struct Bc1Batch {
       const V t = hn::BitCast(d, tu);
       clear[i] = kPunch ? hn::RebindMask(d, hn::Lt(hn::ShiftRight<24>(tu), hn::Set(du, 128u))) : hn::Lt(mask8, mask8);
       // Transparent texels count as black in the sums (that is, not at all).
-      r[i] = hn::And(t, mask8), g[i] = hn::And(hn::ShiftRight<8>(t), mask8), b[i] = hn::And(hn::ShiftRight<16>(t), mask8);
+      r[i] = hn::And(t, mask8), g[i] = hn::And(hn::ShiftRight<8>(t), mask8),
+      b[i] = hn::And(hn::ShiftRight<16>(t), mask8);
       if constexpr (kPunch) {
-        r[i] = hn::IfThenZeroElse(clear[i], r[i]), g[i] = hn::IfThenZeroElse(clear[i], g[i]), b[i] = hn::IfThenZeroElse(clear[i], b[i]);
+        r[i] = hn::IfThenZeroElse(clear[i], r[i]), g[i] = hn::IfThenZeroElse(clear[i], g[i]),
+        b[i] = hn::IfThenZeroElse(clear[i], b[i]);
       }
       n_opaque = hn::Add(n_opaque, hn::IfThenZeroElse(clear[i], hn::Set(d, 1)));
       s0 = hn::Add(s0, r[i]), s1 = hn::Add(s1, g[i]), s2 = hn::Add(s2, b[i]);
-      q0 = hn::Add(q0, hn::Mul(r[i], r[i])), q1 = hn::Add(q1, hn::Mul(r[i], g[i])), q2 = hn::Add(q2, hn::Mul(r[i], b[i]));
-      q3 = hn::Add(q3, hn::Mul(g[i], g[i])), q4 = hn::Add(q4, hn::Mul(g[i], b[i])), q5 = hn::Add(q5, hn::Mul(b[i], b[i]));
+      q0 = hn::Add(q0, hn::Mul(r[i], r[i])), q1 = hn::Add(q1, hn::Mul(r[i], g[i])),
+      q2 = hn::Add(q2, hn::Mul(r[i], b[i]));
+      q3 = hn::Add(q3, hn::Mul(g[i], g[i])), q4 = hn::Add(q4, hn::Mul(g[i], b[i])),
+      q5 = hn::Add(q5, hn::Mul(b[i], b[i]));
     }
     transparent = hn::Lt(n_opaque, hn::Set(d, 16));
     const V no = n_opaque;
@@ -120,8 +128,8 @@ struct Bc1Batch {
       v1 = hn::Add(hn::Add(hn::Mul(c1, x), hn::Mul(c3, y)), hn::Mul(c4, z));
       v2 = hn::Add(hn::Add(hn::Mul(c2, x), hn::Mul(c4, y)), hn::Mul(c5, z));
     }
-    const VF len = hn::IfThenElse(
-        flat_f, one, hn::Sqrt(hn::Add(hn::Add(hn::Mul(v0, v0), hn::Mul(v1, v1)), hn::Mul(v2, v2))));
+    const VF len =
+        hn::IfThenElse(flat_f, one, hn::Sqrt(hn::Add(hn::Add(hn::Mul(v0, v0), hn::Mul(v1, v1)), hn::Mul(v2, v2))));
     const VF inv_len = hn::Div(one, len);
     ax = hn::Mul(v0, inv_len), ay = hn::Mul(v1, inv_len), az = hn::Mul(v2, inv_len);
     lo = hn::Set(df, 1e30f), hi = hn::Set(df, -1e30f);
@@ -137,7 +145,8 @@ struct Bc1Batch {
       proj[i] = p;
     }
     const VF fn = hn::ConvertTo(df, hn::Max(n_opaque, hn::Set(d, 1)));  // no opaque texel: a flat lane, skipped
-    m0 = hn::Div(hn::ConvertTo(df, s0), fn), m1 = hn::Div(hn::ConvertTo(df, s1), fn), m2 = hn::Div(hn::ConvertTo(df, s2), fn);
+    m0 = hn::Div(hn::ConvertTo(df, s0), fn), m1 = hn::Div(hn::ConvertTo(df, s1), fn),
+    m2 = hn::Div(hn::ConvertTo(df, s2), fn);
     mean_p = hn::Add(hn::Add(hn::Mul(m0, ax), hn::Mul(m1, ay)), hn::Mul(m2, az));
   }
 
@@ -160,8 +169,10 @@ struct Bc1Batch {
     V pal[4][3];
     for (int ch = 0; ch < 3; ++ch) {
       const V qa = st.qa[ch], qb = st.qb[ch];
-      const V ea = ch == 1 ? hn::Or(hn::ShiftLeft<2>(qa), hn::ShiftRight<4>(qa)) : hn::Or(hn::ShiftLeft<3>(qa), hn::ShiftRight<2>(qa));
-      const V eb = ch == 1 ? hn::Or(hn::ShiftLeft<2>(qb), hn::ShiftRight<4>(qb)) : hn::Or(hn::ShiftLeft<3>(qb), hn::ShiftRight<2>(qb));
+      const V ea = ch == 1 ? hn::Or(hn::ShiftLeft<2>(qa), hn::ShiftRight<4>(qa))
+                           : hn::Or(hn::ShiftLeft<3>(qa), hn::ShiftRight<2>(qa));
+      const V eb = ch == 1 ? hn::Or(hn::ShiftLeft<2>(qb), hn::ShiftRight<4>(qb))
+                           : hn::Or(hn::ShiftLeft<3>(qb), hn::ShiftRight<2>(qb));
       const V third = hn::Set(d, 43691), one_i = hn::Set(d, 1);
       pal[0][ch] = ea, pal[1][ch] = eb;
       pal[2][ch] = four ? hn::ShiftRight<17>(hn::Mul(hn::Add(hn::Add(hn::Add(ea, ea), eb), one_i), third))
@@ -194,19 +205,24 @@ struct Bc1Batch {
     const V den = hn::Set(d, den_s);
     V aa = hn::Zero(d), ab = aa, bb = aa, at[3] = {aa, aa, aa}, bt[3] = {aa, aa, aa};
     for (int i = 0; i < 16; ++i) {
-      aa = hn::Add(aa, hn::Mul(u[i], u[i])), ab = hn::Add(ab, hn::Mul(u[i], w[i])), bb = hn::Add(bb, hn::Mul(w[i], w[i]));
-      at[0] = hn::Add(at[0], hn::Mul(u[i], r[i])), at[1] = hn::Add(at[1], hn::Mul(u[i], g[i])), at[2] = hn::Add(at[2], hn::Mul(u[i], b[i]));
-      bt[0] = hn::Add(bt[0], hn::Mul(w[i], r[i])), bt[1] = hn::Add(bt[1], hn::Mul(w[i], g[i])), bt[2] = hn::Add(bt[2], hn::Mul(w[i], b[i]));
+      aa = hn::Add(aa, hn::Mul(u[i], u[i])), ab = hn::Add(ab, hn::Mul(u[i], w[i])),
+      bb = hn::Add(bb, hn::Mul(w[i], w[i]));
+      at[0] = hn::Add(at[0], hn::Mul(u[i], r[i])), at[1] = hn::Add(at[1], hn::Mul(u[i], g[i])),
+      at[2] = hn::Add(at[2], hn::Mul(u[i], b[i]));
+      bt[0] = hn::Add(bt[0], hn::Mul(w[i], r[i])), bt[1] = hn::Add(bt[1], hn::Mul(w[i], g[i])),
+      bt[2] = hn::Add(bt[2], hn::Mul(w[i], b[i]));
     }
     const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
     solvable = hn::Ne(det, hn::Zero(d));
     const VF inv_det = hn::Div(one, hn::ConvertTo(df, hn::IfThenElse(solvable, det, hn::Set(d, 1))));
     if (red) {  // the unquantized fit's reduction of the squared error
-      const VF faa = hn::ConvertTo(df, aa), fab = hn::ConvertTo(df, ab), fbb = hn::ConvertTo(df, bb), two = hn::Set(df, 2.0f);
+      const VF faa = hn::ConvertTo(df, aa), fab = hn::ConvertTo(df, ab), fbb = hn::ConvertTo(df, bb),
+               two = hn::Set(df, 2.0f);
       *red = hn::Zero(df);
       for (int ch = 0; ch < 3; ++ch) {
         const VF x = hn::ConvertTo(df, at[ch]), y = hn::ConvertTo(df, bt[ch]);
-        const VF t = hn::Add(hn::Sub(hn::Mul(hn::Mul(x, x), fbb), hn::Mul(hn::Mul(hn::Mul(two, x), y), fab)), hn::Mul(hn::Mul(y, y), faa));
+        const VF t = hn::Add(hn::Sub(hn::Mul(hn::Mul(x, x), fbb), hn::Mul(hn::Mul(hn::Mul(two, x), y), fab)),
+                             hn::Mul(hn::Mul(y, y), faa));
         *red = hn::Add(*red, hn::Mul(t, inv_det));
       }
     }
@@ -249,7 +265,8 @@ struct Bc1Batch {
     const V den = hn::Set(d, den_s);
     V w[16], u[16];
     for (int i = 0; i < 16; ++i) {
-      const V p = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(hn::Mul(hn::Sub(hi, proj[i]), scale), shift))), hn::Zero(d)), den);
+      const V p = hn::Min(
+          hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(hn::Mul(hn::Sub(hi, proj[i]), scale), shift))), hn::Zero(d)), den);
       w[i] = opaque_only(i, p), u[i] = opaque_only(i, hn::Sub(den, p));
     }
     solve(w, u, den_s, qa, qb, solvable, red);
@@ -268,7 +285,8 @@ struct Bc1Batch {
         V* q = m < 6 ? n.qa : n.qb;  // a pointer, as in the reference (GCC 12.2, sanitizers)
         V& v = q[ch];
         v = hn::Add(v, hn::Set(d, m % 2 ? 1 : -1));
-        const auto valid = hn::And(moving, hn::And(hn::Not(hn::Lt(v, hn::Zero(d))), hn::Not(hn::Gt(v, hn::Set(d, max)))));
+        const auto valid =
+            hn::And(moving, hn::And(hn::Not(hn::Lt(v, hn::Zero(d))), hn::Not(hn::Gt(v, hn::Set(d, max)))));
         if (hn::AllFalse(d, valid)) continue;
         v = hn::Min(hn::Max(v, hn::Zero(d)), hn::Set(d, max));
         nearest(four_colours, n);
@@ -296,7 +314,8 @@ struct Bc1Batch {
     M solvable;
     solve(w, u, 3, n.qa, n.qb, solvable, nullptr);
     for (int ch = 0; ch < 3; ++ch)
-      st.qa[ch] = hn::IfThenElse(solvable, n.qa[ch], st.qa[ch]), st.qb[ch] = hn::IfThenElse(solvable, n.qb[ch], st.qb[ch]);
+      st.qa[ch] = hn::IfThenElse(solvable, n.qa[ch], st.qa[ch]),
+      st.qb[ch] = hn::IfThenElse(solvable, n.qb[ch], st.qb[ch]);
     nearest(true, st);
   }
 
@@ -312,8 +331,8 @@ struct Bc1Batch {
     for (int ch = 0; ch < 3; ++ch) kept1[0][ch] = kept1[1][ch] = kept2[0][ch] = kept2[1][ch] = hn::Zero(d);
     for (int o = -offsets; o <= offsets; ++o)
       for (int sv = -stretches; sv <= stretches; ++sv) {
-        const VF scale = hn::IfThenElseZero(
-            wide, hn::Div(hn::Set(df, 3.0f * (1.0f + ref::kVariantStep * float(sv))), extent));
+        const VF scale =
+            hn::IfThenElseZero(wide, hn::Div(hn::Set(df, 3.0f * (1.0f + ref::kVariantStep * float(sv))), extent));
         const VF shift = hn::Set(df, ref::variant_shift(o, sv));
         State n;
         M solvable;
@@ -358,7 +377,8 @@ struct Bc1Batch {
     const VF extent = hn::IfThenElse(wide, hn::Sub(hi, lo), one);
     for (int o = -4; o <= 4; ++o)
       for (int sv = -2; sv <= 2; ++sv) {
-        const VF scale = hn::IfThenElseZero(wide, hn::Div(hn::Set(df, 2.0f * (1.0f + ref::kVariantStep * float(sv))), extent));
+        const VF scale =
+            hn::IfThenElseZero(wide, hn::Div(hn::Set(df, 2.0f * (1.0f + ref::kVariantStep * float(sv))), extent));
         const VF shift = hn::Set(df, 0.5f + ref::kVariantStep * float(o) - ref::kVariantStep * float(sv));
         State n;
         M solvable;
@@ -441,7 +461,8 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, co
       batch.variants(level, st);
       batch.nudge(true, hn::Eq(batch.mask8, batch.mask8), st);
     }
-    if (!level.thirds_fit && (three || !hn::AllFalse(batch.d, batch.transparent))) batch.three_colour(level, three, start, st, four);
+    if (!level.thirds_fit && (three || !hn::AllFalse(batch.d, batch.transparent)))
+      batch.three_colour(level, three, start, st, four);
     HWY_ALIGN std::uint32_t head[kBc1Batch], bits_out[kBc1Batch];
     batch.pack(st, four, head, bits_out);
     for (int k = 0; k < lanes && k0 + k < count; ++k) {
@@ -453,8 +474,8 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, co
   }
 }
 
-void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three, bool punch,
-                    std::uint8_t out[][8], bool handled[]) {
+void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three,
+                    bool punch, std::uint8_t out[][8], bool handled[]) {
   if (punch) {
     Bc1Lanes<true>(texel, count, level, three, out, handled);
   } else {
@@ -470,8 +491,8 @@ HWY_AFTER_NAMESPACE();
 namespace texproc {
 HWY_EXPORT(Bc1EncodeLanes);
 
-void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three, bool punch,
-                      std::uint8_t out[][8], bool handled[]) {
+void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three,
+                      bool punch, std::uint8_t out[][8], bool handled[]) {
   if (force_scalar()) return ref::bc1_encode_lanes(texel, count, level, three, punch, out, handled);
   HWY_DYNAMIC_DISPATCH(Bc1EncodeLanes)(texel, count, level, three, punch, out, handled);
 }

@@ -28,7 +28,8 @@ long long block_errors(const std::uint8_t block[8], const std::uint8_t rgba[16][
   }
   int pal[4][3];
   palette(e, c0 > c1, pal);
-  const std::uint32_t bits = std::uint32_t(block[4]) | std::uint32_t(block[5]) << 8 | std::uint32_t(block[6]) << 16 | std::uint32_t(block[7]) << 24;
+  const std::uint32_t bits = std::uint32_t(block[4]) | std::uint32_t(block[5]) << 8 | std::uint32_t(block[6]) << 16 |
+                             std::uint32_t(block[7]) << 24;
   long long total = 0;
   for (int i = 0; i < 16; ++i) {
     const int* p = pal[bits >> (2 * i) & 3];
@@ -60,7 +61,9 @@ void bc1_try_two_colours(const std::uint8_t rgba[16][4], Bc1Mode mode, std::uint
     if (!four && mode == Bc1Mode::four_only) continue;
     const int den = four ? 3 : 2;
     // Palette positions in steps of 1/den from the first end, and their indices.
-    auto index_of = [&](int pos) { return four ? (pos == 0 ? 0 : pos == 3 ? 1 : pos == 1 ? 2 : 3) : (pos == 0 ? 0 : pos == 2 ? 1 : 2); };
+    auto index_of = [&](int pos) {
+      return four ? (pos == 0 ? 0 : pos == 3 ? 1 : pos == 1 ? 2 : 3) : (pos == 0 ? 0 : pos == 2 ? 1 : 2);
+    };
     for (int ta = 0; ta <= den; ++ta)
       for (int tb = ta + 1; tb <= den; ++tb) {
         Result r;
@@ -78,7 +81,8 @@ void bc1_try_two_colours(const std::uint8_t rgba[16][4], Bc1Mode mode, std::uint
           // The ends that put a at ta and b at tb exactly, then the quantized
           // neighbours of each.
           const double span = double(b[c] - a[c]) * den / (tb - ta), e0 = a[c] - ta * span / den, e1 = e0 + span;
-          const int q0 = std::clamp(int(std::lround(e0 * top / 255.0)), 0, top), q1 = std::clamp(int(std::lround(e1 * top / 255.0)), 0, top);
+          const int q0 = std::clamp(int(std::lround(e0 * top / 255.0)), 0, top),
+                    q1 = std::clamp(int(std::lround(e1 * top / 255.0)), 0, top);
           long channel = -1;
           for (int d0 = -1; d0 <= 1; ++d0)
             for (int d1 = -1; d1 <= 1; ++d1) {

@@ -74,7 +74,7 @@ void lane_block(const float v[16], bool snorm, const Bc4LaneSearch& search, std:
 }  // namespace
 
 void encode_bc4_block(const float v[16], bool snorm, Quality q, std::uint8_t out[8]) {
-  const Bc4Level& level = bc4_level(q);  // bc4_levels.h
+  const Bc4Level& level = bc4_level(q);                           // bc4_levels.h
   if (level.lanes) return lane_block(v, snorm, level.lane, out);  // as whole images do: bc4_lanes.h
   // Block by block (`max`): every endpoint pair in both modes, scored with the exact palette;
   // the first pair in this order with the least error, as scoring every pair
@@ -91,7 +91,8 @@ void encode_bc4_block(const float v[16], bool snorm, Quality q, std::uint8_t out
   double least = bc4_block_error(start, v, snorm);
   least += least * 1e-9 + 1e-9;
   double t[16], mean = 0.0;
-  for (int i = 0; i < 16; ++i) t[i] = std::min(std::max(double(v[i]), double(lo_code)), double(hi_code)), mean += t[i] / 16.0;
+  for (int i = 0; i < 16; ++i)
+    t[i] = std::min(std::max(double(v[i]), double(lo_code)), double(hi_code)), mean += t[i] / 16.0;
   int order[16];
   for (int i = 0; i < 16; ++i) order[i] = i;
   std::stable_sort(order, order + 16, [&](int x, int y) { return std::abs(t[x] - mean) > std::abs(t[y] - mean); });

@@ -8,7 +8,8 @@
 
 namespace texproc::ref {
 
-void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level, std::uint8_t out[][8]) {
+void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level,
+                      std::uint8_t out[][8]) {
   const float lo_code = snorm ? -127.0f : 0.0f, hi_code = snorm ? 127.0f : 255.0f;
   const int lo_int = int(lo_code), hi_int = int(hi_code);
   for (int k = 0; k < count; ++k) {
@@ -23,7 +24,9 @@ void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, const
       mn = std::min(mn, t[i]), mx = std::max(mx, t[i]);
       if (t[i] > lo_code + 0.5f && t[i] < hi_code - 0.5f) mn6 = std::min(mn6, t[i]), mx6 = std::max(mx6, t[i]);
     }
-    auto error_of = [&](int a, int b, int* pos = nullptr) { return a > b ? error8(val, a, b, pos) : error6(val, a, b, pos); };
+    auto error_of = [&](int a, int b, int* pos = nullptr) {
+      return a > b ? error8(val, a, b, pos) : error6(val, a, b, pos);
+    };
     // The range (equal ends: one value, exact in the six-value mode).
     const int lo = int(std::floor(mn)), hi = int(std::ceil(mx));
     int r0 = hi > lo ? hi : lo, r1 = lo;
@@ -99,13 +102,15 @@ void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, const
             // steps - p.
             float sp = 0.0f, spp = 0.0f, spt = 0.0f;
             for (int i = 0; i < 16; ++i) {
-              const float p = in[i] ? std::min(std::max(std::floor(base[i] * stretch + shift), 0.0f), float(steps)) : 0.0f;
+              const float p =
+                  in[i] ? std::min(std::max(std::floor(base[i] * stretch + shift), 0.0f), float(steps)) : 0.0f;
               sp += p, spp += p * p, spt += p * t[i];
             }
             const int isp = int(sp), ispp = int(spp);
             const int aa = n_in * steps * steps - 2 * steps * isp + ispp, ab = steps * isp - ispp, bb = ispp;
             int ia, ib;
-            if (ls_endpoints(aa, ab, bb, float(steps) * sum_t - spt, spt, steps, mode, lo_int, hi_int, ia, ib)) window_at(ia, ib, 0);
+            if (ls_endpoints(aa, ab, bb, float(steps) * sum_t - spt, spt, steps, mode, lo_int, hi_int, ia, ib))
+              window_at(ia, ib, 0);
           }
       }
     }

@@ -36,10 +36,12 @@ constexpr int kBc4Batch = kBlockBatch;  // core/block_batch.h
 // the values placed on the mode's grid between its starting endpoints, the
 // grid shifted (up to +-0.6 of a step) and stretched (up to +-20%), each
 // position set fitted by least squares and scored.
-void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level, std::uint8_t out[][8]);
+void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level,
+                      std::uint8_t out[][8]);
 
 namespace ref {
-void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level, std::uint8_t out[][8]);
+void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level,
+                      std::uint8_t out[][8]);
 }  // namespace ref
 
 }  // namespace texproc

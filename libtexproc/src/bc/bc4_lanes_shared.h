@@ -61,7 +61,8 @@ inline float variant_shift(int offset, int stretch, int steps) {
 // and pos weigh the two endpoints), rounded and clamped to [lo, hi]; the
 // six-value mode's (mode 1) in ascending order. False where there is no
 // solution, or where the eight-value mode's (mode 0) fit left that mode.
-inline bool ls_endpoints(int aa, int ab, int bb, float at, float bt, int steps, int mode, int lo, int hi, int& ia, int& ib) {
+inline bool ls_endpoints(int aa, int ab, int bb, float at, float bt, int steps, int mode, int lo, int hi, int& ia,
+                         int& ib) {
   const int det = aa * bb - ab * ab;
   if (det == 0) return false;
   const float fa = float(steps) * (at * float(bb) - bt * float(ab)) / float(det);

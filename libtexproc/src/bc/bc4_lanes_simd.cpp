@@ -43,10 +43,18 @@ struct Bc4Batch {
   VF error;
 
   HWY_ATTR explicit Bc4Batch(bool snorm)
-      : lo_c(snorm ? -127.0f : 0.0f), hi_c(snorm ? 127.0f : 255.0f), lo_code(hn::Set(df, lo_c)), hi_code(hn::Set(df, hi_c)),
-        half(hn::Set(df, 0.5f)), one(hn::Set(df, 1.0f)), seven(hn::Set(df, 7.0f)), five(hn::Set(df, 5.0f)),
-        inner_lo(hn::Add(lo_code, half)), inner_hi(hn::Sub(hi_code, half)),
-        lo_i(hn::Set(d, snorm ? -127 : 0)), hi_i(hn::Set(d, snorm ? 127 : 255)) {}
+      : lo_c(snorm ? -127.0f : 0.0f),
+        hi_c(snorm ? 127.0f : 255.0f),
+        lo_code(hn::Set(df, lo_c)),
+        hi_code(hn::Set(df, hi_c)),
+        half(hn::Set(df, 0.5f)),
+        one(hn::Set(df, 1.0f)),
+        seven(hn::Set(df, 7.0f)),
+        five(hn::Set(df, 5.0f)),
+        inner_lo(hn::Add(lo_code, half)),
+        inner_hi(hn::Sub(hi_code, half)),
+        lo_i(hn::Set(d, snorm ? -127 : 0)),
+        hi_i(hn::Set(d, snorm ? 127 : 255)) {}
 
   HWY_INLINE void load(const float v[16][kBc4Batch], int k0) {
     mn = hi_code, mx = lo_code, mn6 = hi_code, mx6 = lo_code;
@@ -64,7 +72,8 @@ struct Bc4Batch {
   // As ref::error8 and ref::error6, per lane; lanes outside the mode
   // (`valid` false) score a harmless pair and are ignored by the caller.
   HWY_INLINE VF error8(V a0, V a1, M valid, V* pos) const {
-    const VF f0 = hn::ConvertTo(df, a0), span = hn::IfThenElse(hn::RebindMask(df, valid), hn::ConvertTo(df, hn::Sub(a0, a1)), one);
+    const VF f0 = hn::ConvertTo(df, a0),
+             span = hn::IfThenElse(hn::RebindMask(df, valid), hn::ConvertTo(df, hn::Sub(a0, a1)), one);
     const VF kk = hn::Div(seven, span), a = hn::Mul(seven, f0);
     VF e = hn::Zero(df);
     for (int i = 0; i < 16; ++i) {
@@ -113,7 +122,8 @@ struct Bc4Batch {
       take_where(hn::And(narrow, hn::RebindMask(d, hn::Lt(e7, error))), a, b, e7);
     }
     const M inner = hn::RebindMask(d, hn::Le(mn6, mx6));
-    lo6 = hn::IfThenElse(inner, hn::ConvertTo(d, hn::Floor(mn6)), lo), hi6 = hn::IfThenElse(inner, hn::ConvertTo(d, hn::Ceil(mx6)), hi);
+    lo6 = hn::IfThenElse(inner, hn::ConvertTo(d, hn::Floor(mn6)), lo),
+    hi6 = hn::IfThenElse(inner, hn::ConvertTo(d, hn::Ceil(mx6)), hi);
     const M try6 = hn::And(inner, hn::Or(hn::Ne(lo6, lo), hn::Ne(hi6, hi)));
     if (!hn::AllFalse(d, try6)) {
       const VF e6 = error6(lo6, hi6, nullptr);
@@ -127,8 +137,10 @@ struct Bc4Batch {
     const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
     valid = hn::And(valid, hn::Ne(det, hn::Zero(d)));
     const VF fdet = hn::ConvertTo(df, hn::IfThenElse(valid, det, hn::Set(d, 1)));
-    const VF fa = hn::Div(hn::Mul(fsteps, hn::Sub(hn::Mul(at, hn::ConvertTo(df, bb)), hn::Mul(bt, hn::ConvertTo(df, ab)))), fdet);
-    const VF fb = hn::Div(hn::Mul(fsteps, hn::Sub(hn::Mul(bt, hn::ConvertTo(df, aa)), hn::Mul(at, hn::ConvertTo(df, ab)))), fdet);
+    const VF fa =
+        hn::Div(hn::Mul(fsteps, hn::Sub(hn::Mul(at, hn::ConvertTo(df, bb)), hn::Mul(bt, hn::ConvertTo(df, ab)))), fdet);
+    const VF fb =
+        hn::Div(hn::Mul(fsteps, hn::Sub(hn::Mul(bt, hn::ConvertTo(df, aa)), hn::Mul(at, hn::ConvertTo(df, ab)))), fdet);
     ia = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(fa, half))), lo_i), hi_i);
     ib = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(fb, half))), lo_i), hi_i);
     if (mode == 0) {
@@ -211,14 +223,17 @@ struct Bc4Batch {
     const VF top = hn::Set(df, float(steps_i));
     for (int o = -level.variant_offsets; o <= level.variant_offsets; ++o)
       for (int sv = -level.variant_stretches; sv <= level.variant_stretches; ++sv) {
-        const VF stretch = hn::Set(df, ref::variant_stretch(sv)), shift = hn::Set(df, ref::variant_shift(o, sv, steps_i));
+        const VF stretch = hn::Set(df, ref::variant_stretch(sv)),
+                 shift = hn::Set(df, ref::variant_shift(o, sv, steps_i));
         VF sp = hn::Zero(df), spp = sp, spt = sp;
         for (int i = 0; i < 16; ++i) {
-          const VF p = hn::IfThenElseZero(in[i], hn::Min(hn::Max(hn::Floor(hn::Add(hn::Mul(base[i], stretch), shift)), hn::Zero(df)), top));
+          const VF p = hn::IfThenElseZero(
+              in[i], hn::Min(hn::Max(hn::Floor(hn::Add(hn::Mul(base[i], stretch), shift)), hn::Zero(df)), top));
           sp = hn::Add(sp, p), spp = hn::Add(spp, hn::Mul(p, p)), spt = hn::Add(spt, hn::Mul(p, t[i]));
         }
         const V isp = hn::ConvertTo(d, sp), ispp = hn::ConvertTo(d, spp);
-        const V aa = hn::Add(hn::Sub(hn::Mul(n_in, hn::Set(d, steps_i * steps_i)), hn::Mul(hn::Set(d, 2 * steps_i), isp)), ispp);
+        const V aa =
+            hn::Add(hn::Sub(hn::Mul(n_in, hn::Set(d, steps_i * steps_i)), hn::Mul(hn::Set(d, 2 * steps_i), isp)), ispp);
         const V ab = hn::Sub(hn::Mul(steps, isp), ispp);
         M valid = lane_ok;
         V ia, ib;
@@ -237,9 +252,11 @@ struct Bc4Batch {
     error6(r0, r1, pos6);
     for (int i = 0; i < 16; ++i) {
       const V p = hn::IfThenElse(eight, pos8[i], pos6[i]), top = hn::IfThenElse(eight, hn::Set(d, 7), hn::Set(d, 5));
-      V c = hn::IfThenElse(hn::Eq(p, hn::Zero(d)), hn::Zero(d), hn::IfThenElse(hn::Eq(p, top), hn::Set(d, 1), hn::Add(p, hn::Set(d, 1))));
+      V c = hn::IfThenElse(hn::Eq(p, hn::Zero(d)), hn::Zero(d),
+                           hn::IfThenElse(hn::Eq(p, top), hn::Set(d, 1), hn::Add(p, hn::Set(d, 1))));
       const VF dl = hn::Sub(t[i], lo_code), dh = hn::Sub(t[i], hi_code);
-      const V end = hn::IfThenElse(hn::RebindMask(d, hn::Lt(hn::Mul(dh, dh), hn::Mul(dl, dl))), hn::Set(d, 7), hn::Set(d, 6));
+      const V end =
+          hn::IfThenElse(hn::RebindMask(d, hn::Lt(hn::Mul(dh, dh), hn::Mul(dl, dl))), hn::Set(d, 7), hn::Set(d, 6));
       code[i] = hn::IfThenElse(hn::Lt(p, hn::Zero(d)), end, c);
     }
     bits_lo = hn::Zero(d), bits_hi = hn::Zero(d);
@@ -250,7 +267,8 @@ struct Bc4Batch {
   }
 };
 
-void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level, std::uint8_t out[][8]) {
+void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level,
+                    std::uint8_t out[][8]) {
   const int lanes = int(hn::Lanes(D()));
   Bc4Batch batch(snorm);
   for (int k0 = 0; k0 < count; k0 += lanes) {
@@ -289,7 +307,8 @@ HWY_AFTER_NAMESPACE();
 namespace texproc {
 HWY_EXPORT(Bc4EncodeLanes);
 
-void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level, std::uint8_t out[][8]) {
+void bc4_encode_lanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level,
+                      std::uint8_t out[][8]) {
   if (force_scalar()) return ref::bc4_encode_lanes(v, count, snorm, level, out);
   HWY_DYNAMIC_DISPATCH(Bc4EncodeLanes)(v, count, snorm, level, out);
 }

@@ -116,7 +116,8 @@ void quantize_ends(int k, const float e[4][3], bool is_signed, int code[4][3]) {
     for (int c = 0; c < 3; ++c) code[j][c] = bc6h::quantize(e[j][c] * 64.0f, M.endpoint_bits, is_signed);
   if (M.transformed)
     for (int j = 1; j < n; ++j)
-      for (int c = 0; c < 3; ++c) code[j][c] = bc6h::limit_delta(code[0][c], code[j][c], M.endpoint_bits, M.delta_bits[c]);
+      for (int c = 0; c < 3; ++c)
+        code[j][c] = bc6h::limit_delta(code[0][c], code[j][c], M.endpoint_bits, M.delta_bits[c]);
 }
 
 int texel_error(const int a[3], const int x[3]) {
@@ -164,8 +165,8 @@ struct Best {
 };
 
 // Mode k on the partition's fitted ends, refined; kept where it is better.
-void try_mode(const Block& b, int k, int partition, const unsigned members[2], const float ends[4][3], const Bc6hLevel& level,
-              Best& best) {
+void try_mode(const Block& b, int k, int partition, const unsigned members[2], const float ends[4][3],
+              const Bc6hLevel& level, Best& best) {
   const int ns = bc6h::regions(k), bits = bc6h::index_bits(k);
   Choice c;
   c.mode = k, c.partition = ns == 2 ? partition : 0;

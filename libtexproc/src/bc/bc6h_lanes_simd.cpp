@@ -232,7 +232,8 @@ struct Bc6hBatch {
       for (int c = 0; c < 3; ++c) code[j][c] = quantize(e[j][c], Md.endpoint_bits);
     if (Md.transformed)
       for (int j = 1; j < n; ++j)
-        for (int c = 0; c < 3; ++c) code[j][c] = limit_delta(code[0][c], code[j][c], Md.endpoint_bits, Md.delta_bits[c]);
+        for (int c = 0; c < 3; ++c)
+          code[j][c] = limit_delta(code[0][c], code[j][c], Md.endpoint_bits, Md.delta_bits[c]);
   }
 
   // As ref::assign; region1[i]: texel i is in region 1 (two regions).
@@ -243,9 +244,11 @@ struct Bc6hBatch {
     V pal[2][16][3];
     for (int s = 0; s < ns; ++s)
       for (int c = 0; c < 3; ++c) {
-        const V u0 = unquantize(code[2 * s][c], Md.endpoint_bits), u1 = unquantize(code[2 * s + 1][c], Md.endpoint_bits);
+        const V u0 = unquantize(code[2 * s][c], Md.endpoint_bits),
+                u1 = unquantize(code[2 * s + 1][c], Md.endpoint_bits);
         for (int j = 0; j <= L; ++j) {
-          const V p = hn::Add(hn::Add(hn::Mul(hn::Set(d, 64 - w[j]), u0), hn::Mul(hn::Set(d, w[j]), u1)), hn::Set(d, 32));
+          const V p =
+              hn::Add(hn::Add(hn::Mul(hn::Set(d, 64 - w[j]), u0), hn::Mul(hn::Set(d, w[j]), u1)), hn::Set(d, 32));
           pal[s][j][c] = finish(hn::ShiftRight<6>(p));
         }
       }

@@ -72,12 +72,13 @@ HWY_INLINE V round_clamped(VF v, float hi) {
 // in float arithmetic, fused or not: the reference's integers.
 HWY_INLINE VF subset_residual(int cnt, const VF S[3], const VF Q[6]) {
   const DF df;
-  static constexpr float kInverse[17] = {0.0f,        1.0f / 1,  1.0f / 2,  1.0f / 3,  1.0f / 4,  1.0f / 5,
-                                         1.0f / 6,    1.0f / 7,  1.0f / 8,  1.0f / 9,  1.0f / 10, 1.0f / 11,
-                                         1.0f / 12,   1.0f / 13, 1.0f / 14, 1.0f / 15, 1.0f / 16};
+  static constexpr float kInverse[17] = {0.0f,      1.0f / 1,  1.0f / 2,  1.0f / 3,  1.0f / 4,  1.0f / 5,
+                                         1.0f / 6,  1.0f / 7,  1.0f / 8,  1.0f / 9,  1.0f / 10, 1.0f / 11,
+                                         1.0f / 12, 1.0f / 13, 1.0f / 14, 1.0f / 15, 1.0f / 16};
   const VF n = hn::Set(df, float(cnt));
   auto entry = [&](int q, int a, int b) { return hn::NegMulAdd(S[a], S[b], hn::Mul(n, Q[q])); };
-  const VF c00 = entry(0, 0, 0), c01 = entry(1, 0, 1), c02 = entry(2, 0, 2), c11 = entry(3, 1, 1), c12 = entry(4, 1, 2), c22 = entry(5, 2, 2);
+  const VF c00 = entry(0, 0, 0), c01 = entry(1, 0, 1), c02 = entry(2, 0, 2), c11 = entry(3, 1, 1), c12 = entry(4, 1, 2),
+           c22 = entry(5, 2, 2);
   return hn::Mul(axis_residual(df, c00, c01, c02, c11, c12, c22), hn::Set(df, kInverse[cnt]));
 }
 
@@ -110,7 +111,8 @@ HWY_INLINE void insert(RankedV& r, VF e, V p) {
 // `two` (slot 2 p + s); the three-subset pass takes those of the first
 // `two_scanned` two-subset partitions, and its own, where a subset is one
 // already seen (kResidualReuse): the same floats, fewer divisions.
-HWY_INLINE void rank_partitions(const V (&x)[16][4], int subsets, int scanned, RankedV& all, RankedV* first16, VF* two, int two_scanned) {
+HWY_INLINE void rank_partitions(const V (&x)[16][4], int subsets, int scanned, RankedV& all, RankedV* first16, VF* two,
+                                int two_scanned) {
   const DI d;
   const DF df;
   const bc7::SumPlan& plan = subsets == 2 ? bc7::kSumPlan2 : bc7::kSumPlan3;

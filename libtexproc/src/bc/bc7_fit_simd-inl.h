@@ -33,7 +33,6 @@ namespace hn = hwy::HWY_NAMESPACE;
 using bc7::EndpointFormat;
 using bc7::Pbit;
 
-
 // As the reference's SetFit, a lane each.
 struct SetFitV {
   V code[2][4], pbit[2], value[2][4];
@@ -55,7 +54,9 @@ HWY_INLINE V pair16(V lo, V hi) {
 // The texels' channels in pairs (pair16): R G, B alone, B A; a set of 3
 // channels uses the first two, of 4 the first and the third.
 using PairsV = V[3];
-HWY_INLINE void make_pairs(const V x[4], PairsV& xp) { xp[0] = pair16(x[0], x[1]), xp[1] = x[2], xp[2] = pair16(x[2], x[3]); }
+HWY_INLINE void make_pairs(const V x[4], PairsV& xp) {
+  xp[0] = pair16(x[0], x[1]), xp[1] = x[2], xp[2] = pair16(x[2], x[3]);
+}
 
 // As the reference's Set: the texels (possibly rotated), the members (a
 // mask per texel), the channels; the texels in pairs too (for sets of 3
@@ -161,7 +162,8 @@ struct Bc7FitLanes {
   }
 
   // As ref::quantize_ends; `force_p1` per lane.
-  HWY_INLINE void quantize_ends(const SetV& s, const VF e[2][4], EndpointFormat fmt, M force_p1, SetFitV& fit, int combo = -1) const {
+  HWY_INLINE void quantize_ends(const SetV& s, const VF e[2][4], EndpointFormat fmt, M force_p1, SetFitV& fit,
+                                int combo = -1) const {
     const std::int32_t* table = bc7::kQuantPairs[fmt.bits - 4][fmt.pbit == Pbit::none ? 0 : 1];
     V v[2][4], q0[2][4], q1[2][4];
     V err0[2] = {hn::Zero(d), hn::Zero(d)}, err1[2] = {hn::Zero(d), hn::Zero(d)};
@@ -169,14 +171,16 @@ struct Bc7FitLanes {
       for (int a = 0; a < s.n; ++a) {
         v[k][a] = round_clamped(e[k][s.c0 + a], 255.0f);
         const V pair = hn::GatherIndex(d, table, v[k][a]);
-        q0[k][a] = hn::And(pair, hn::Set(d, 0xFFFF)), q1[k][a] = hn::And(hn::ShiftRight<16>(pair), hn::Set(d, 0xFFFF));  // the shift is arithmetic
+        q0[k][a] = hn::And(pair, hn::Set(d, 0xFFFF)),
+        q1[k][a] = hn::And(hn::ShiftRight<16>(pair), hn::Set(d, 0xFFFF));  // the shift is arithmetic
         const V d0 = hn::Sub(hn::ShiftRight<8>(q0[k][a]), v[k][a]), d1 = hn::Sub(hn::ShiftRight<8>(q1[k][a]), v[k][a]);
         err0[k] = hn::Add(err0[k], hn::Mul(d0, d0)), err1[k] = hn::Add(err1[k], hn::Mul(d1, d1));
       }
     M p1[2] = {hn::FirstN(d, 0), hn::FirstN(d, 0)};
     if (fmt.pbit != Pbit::none && combo >= 0) {
       const int second = fmt.pbit == Pbit::unique ? combo >> 1 & 1 : combo & 1;
-      p1[0] = hn::Or(force_p1, hn::FirstN(d, (combo & 1) ? kBc7Batch : 0)), p1[1] = hn::Or(force_p1, hn::FirstN(d, second ? kBc7Batch : 0));
+      p1[0] = hn::Or(force_p1, hn::FirstN(d, (combo & 1) ? kBc7Batch : 0)),
+      p1[1] = hn::Or(force_p1, hn::FirstN(d, second ? kBc7Batch : 0));
     } else if (fmt.pbit == Pbit::unique) {
       for (int k = 0; k < 2; ++k) p1[k] = hn::Or(force_p1, hn::Lt(err1[k], err0[k]));
     } else if (fmt.pbit == Pbit::shared) {
@@ -194,7 +198,8 @@ struct Bc7FitLanes {
   // As ref::quantize_joint (forced lanes' p-bits 1 in every choice, so
   // their first is kept, as the reference's only one).
   template <int N>  // the channels, 1, 3 or 4
-  HWY_NOINLINE void quantize_joint_n(const SetV& s, const VF e[2][4], const VF H[3], EndpointFormat fmt, M force_p1, SetFitV& fit) const {
+  HWY_NOINLINE void quantize_joint_n(const SetV& s, const VF e[2][4], const VF H[3], EndpointFormat fmt, M force_p1,
+                                     SetFitV& fit) const {
     const std::int32_t* table = bc7::kQuantPairs[fmt.bits - 4][fmt.pbit == Pbit::none ? 0 : 1];
     const int top = (1 << fmt.bits) - 1;
     const int combos = fmt.pbit == Pbit::none ? 1 : fmt.pbit == Pbit::unique ? 4 : 2;
@@ -208,7 +213,8 @@ struct Bc7FitLanes {
     for (int combo = 0; combo < combos; ++combo) {
       M p1[2];
       const bool second = fmt.pbit == Pbit::unique ? (combo >> 1 & 1) : (combo & 1);
-      p1[0] = hn::Or(force_p1, hn::FirstN(d, (combo & 1) ? kBc7Batch : 0)), p1[1] = hn::Or(force_p1, hn::FirstN(d, second ? kBc7Batch : 0));
+      p1[0] = hn::Or(force_p1, hn::FirstN(d, (combo & 1) ? kBc7Batch : 0)),
+      p1[1] = hn::Or(force_p1, hn::FirstN(d, second ? kBc7Batch : 0));
       if (fmt.pbit == Pbit::none) p1[0] = p1[1] = hn::FirstN(d, 0);
       V pbit[2], code[2][4], value[2][4];
       VF total = hn::Zero(df);
@@ -217,7 +223,8 @@ struct Bc7FitLanes {
         V cand[2][2], val[2][2];
         for (int k = 0; k < 2; ++k) {
           const V pr = pair[k][a];
-          const V q = hn::IfThenElse(p1[k], hn::And(hn::ShiftRight<16>(pr), hn::Set(d, 0xFFFF)), hn::And(pr, hn::Set(d, 0xFFFF)));
+          const V q = hn::IfThenElse(p1[k], hn::And(hn::ShiftRight<16>(pr), hn::Set(d, 0xFFFF)),
+                                     hn::And(pr, hn::Set(d, 0xFFFF)));
           cand[k][0] = hn::And(q, hn::Set(d, 255)), val[k][0] = hn::ShiftRight<8>(q);
           const V step = hn::IfThenElse(hn::Lt(val[k][0], v[k][a]), hn::Set(d, 1), hn::Set(d, -1));
           cand[k][1] = hn::Min(hn::Max(hn::Add(cand[k][0], step), hn::Zero(d)), hn::Set(d, top));
@@ -227,7 +234,8 @@ struct Bc7FitLanes {
         for (int i = 0; i < 2; ++i)
           for (int j = 0; j < 2; ++j) {
             const VF d0 = hn::Sub(f(val[0][i]), e[0][s.c0 + a]), d1 = hn::Sub(f(val[1][j]), e[1][s.c0 + a]);
-            const VF t = hn::Add(hn::Add(hn::Mul(hn::Mul(H[0], d0), d0), hn::Mul(hn::Mul(H[1], d0), d1)), hn::Mul(hn::Mul(H[2], d1), d1));
+            const VF t = hn::Add(hn::Add(hn::Mul(hn::Mul(H[0], d0), d0), hn::Mul(hn::Mul(H[1], d0), d1)),
+                                 hn::Mul(hn::Mul(H[2], d1), d1));
             const auto lt = hn::Lt(t, least);
             const M lti = hn::RebindMask(d, lt);
             least = hn::IfThenElse(lt, t, least);
@@ -245,11 +253,12 @@ struct Bc7FitLanes {
         fit.pbit[k] = hn::IfThenElse(take, pbit[k], fit.pbit[k]);
         for (int a = 0; a < N; ++a)
           fit.code[k][s.c0 + a] = hn::IfThenElse(take, code[k][a], fit.code[k][s.c0 + a]),
-          fit.value[k][s.c0 + a] = hn::IfThenElse(take, value[k][a], fit.value[k][s.c0 + a]);
+                             fit.value[k][s.c0 + a] = hn::IfThenElse(take, value[k][a], fit.value[k][s.c0 + a]);
       }
     }
   }
-  HWY_INLINE void quantize_joint(const SetV& s, const VF e[2][4], const VF H[3], EndpointFormat fmt, M force_p1, SetFitV& fit) const {
+  HWY_INLINE void quantize_joint(const SetV& s, const VF e[2][4], const VF H[3], EndpointFormat fmt, M force_p1,
+                                 SetFitV& fit) const {
     return by_channels(s.n, [&](auto N) { quantize_joint_n<N>(s, e, H, fmt, force_p1, fit); });
   }
 
@@ -258,13 +267,15 @@ struct Bc7FitLanes {
   // floor((128 j + L) / 2L), which is never a whole number, so the float
   // product floors exactly (tests compare both with the tables).
   HWY_INLINE V weight(V j, int L) const {
-    if (L < int(hn::Lanes(d))) return hn::TableLookupLanes(weight_table[L == 3 ? 0 : L == 7 ? 1 : 2], hn::IndicesFromVec(d, j));
+    if (L < int(hn::Lanes(d)))
+      return hn::TableLookupLanes(weight_table[L == 3 ? 0 : L == 7 ? 1 : 2], hn::IndicesFromVec(d, j));
     const VF num = f(hn::Add(hn::Mul(j, hn::Set(d, 128)), hn::Set(d, L)));
     return hn::ConvertTo(d, hn::Floor(hn::Mul(num, hn::Set(df, 1.0f / float(2 * L)))));
   }
   // The weight in both 16-bit halves.
   HWY_INLINE V weight_pair(V j, int L) const {
-    if (L < int(hn::Lanes(d))) return hn::TableLookupLanes(weight_pairs[L == 3 ? 0 : L == 7 ? 1 : 2], hn::IndicesFromVec(d, j));
+    if (L < int(hn::Lanes(d)))
+      return hn::TableLookupLanes(weight_pairs[L == 3 ? 0 : L == 7 ? 1 : 2], hn::IndicesFromVec(d, j));
     const V w = weight(j, L);
     return hn::Or(w, hn::ShiftLeft<16>(w));
   }
@@ -294,7 +305,8 @@ struct Bc7FitLanes {
     const auto w = hn::BitCast(d16, weight_pair(j, L));
     V t = hn::Zero(d);
     for (int k = 0; k < 2; ++k) {
-      const auto p = hn::Add(hn::BitCast(d16, v0p[k]), hn::ShiftRight<6>(hn::Add(hn::Mul(w, hn::BitCast(d16, dvp[k])), hn::Set(d16, 32))));
+      const auto p = hn::Add(hn::BitCast(d16, v0p[k]),
+                             hn::ShiftRight<6>(hn::Add(hn::Mul(w, hn::BitCast(d16, dvp[k])), hn::Set(d16, 32))));
       const V e = hn::BitCast(d, hn::Sub(p, hn::BitCast(d16, s.xp[i][k == 0 ? 0 : N == 3 ? 1 : 2])));
       t = hn::Add(t, dot16(e, e));
     }
@@ -333,7 +345,9 @@ struct Bc7FitLanes {
       dvp[1] = N == 4 ? pair16(dv[2], dv[3]) : hn::And(dv[2], hn::Set(d, 0xFFFF));
       v0p[1] = N == 4 ? pair16(v0[2], v0[3]) : v0[2];
     }
-    auto error_at = [&](int i, V j) { return paired ? texel_error_pairs<N>(s, dvp, v0p, i, j, L) : texel_error<N>(s, fit, dv, i, j, L); };
+    auto error_at = [&](int i, V j) {
+      return paired ? texel_error_pairs<N>(s, dvp, v0p, i, j, L) : texel_error<N>(s, fit, dv, i, j, L);
+    };
     auto project = [&](int i) {
       if (!paired) return projection<N>(s, dv, i);
       return hn::Add(dot16(s.xp[i][0], dvp[0]), dot16(s.xp[i][N == 3 ? 1 : 2], dvp[1]));
@@ -384,7 +398,8 @@ struct Bc7FitLanes {
         Sx[c] = hn::IfThenElse(m, hn::Add(Sx[c], x), Sx[c]), RB[c] = hn::Add(RB[c], mul16(b, x));
       }
     }
-    const V AA = hn::Add(hn::Sub(hn::ShiftLeft<12>(n), hn::ShiftLeft<7>(Sb)), BB), AB = hn::Sub(hn::ShiftLeft<6>(Sb), BB);
+    const V AA = hn::Add(hn::Sub(hn::ShiftLeft<12>(n), hn::ShiftLeft<7>(Sb)), BB),
+            AB = hn::Sub(hn::ShiftLeft<6>(Sb), BB);
     for (int c = 0; c < N; ++c) RA[c] = hn::Sub(hn::ShiftLeft<6>(Sx[c]), RB[c]);
     const VF fAA = f(AA), fAB = f(AB), fBB = f(BB);
     H[0] = fAA, H[1] = hn::Mul(hn::Set(df, 2.0f), fAB), H[2] = fBB;
@@ -405,14 +420,16 @@ struct Bc7FitLanes {
     for (int k = 0; k < 2; ++k) {
       to.pbit[k] = hn::IfThenElse(m, from.pbit[k], to.pbit[k]);
       for (int a = s.c0; a < s.c0 + s.n; ++a)
-        to.code[k][a] = hn::IfThenElse(m, from.code[k][a], to.code[k][a]), to.value[k][a] = hn::IfThenElse(m, from.value[k][a], to.value[k][a]);
+        to.code[k][a] = hn::IfThenElse(m, from.code[k][a], to.code[k][a]),
+        to.value[k][a] = hn::IfThenElse(m, from.value[k][a], to.value[k][a]);
     }
     for (int i = 0; i < 16; ++i) to.index[i] = hn::IfThenElse(m, from.index[i], to.index[i]);
     to.error = hn::IfThenElse(m, from.error, to.error);
   }
 
   // As ref::quantize_assign (forced lanes' p-bits stay 1 in every choice).
-  HWY_INLINE void quantize_assign(const SetV& s, const VF e[2][4], EndpointFormat fmt, int bits, M force_p1, SetFitV& fit) const {
+  HWY_INLINE void quantize_assign(const SetV& s, const VF e[2][4], EndpointFormat fmt, int bits, M force_p1,
+                                  SetFitV& fit) const {
     quantize_ends(s, e, fmt, force_p1, fit);
     assign(s, bits, fit);
     if (!level.pbit_search || fmt.pbit == Pbit::none || hn::AllTrue(d, force_p1)) return;
@@ -436,7 +453,8 @@ struct Bc7FitLanes {
   }
 
   // As ref::fit_seed.
-  HWY_INLINE void fit_seed(const SetV& s, const VF line[2][4], int seed, EndpointFormat fmt, int bits, M force_p1, SetFitV& fit) const {
+  HWY_INLINE void fit_seed(const SetV& s, const VF line[2][4], int seed, EndpointFormat fmt, int bits, M force_p1,
+                           SetFitV& fit) const {
     VF e[2][4];
     seed_ends(s, line, seed, (1 << bits) - 1, e);
     for (auto& j : fit.index) j = hn::Zero(d);
@@ -485,7 +503,8 @@ struct Bc7FitLanes {
   }
 
   // As ref::step_ends, in the lanes `going`.
-  HWY_INLINE void step_ends(const SetV& s, EndpointFormat fmt, int bits, bool exact, int rounds, M going, SetFitV& best_fit) const {
+  HWY_INLINE void step_ends(const SetV& s, EndpointFormat fmt, int bits, bool exact, int rounds, M going,
+                            SetFitV& best_fit) const {
     const int top = (1 << fmt.bits) - 1;
     for (int round = 0; round < rounds; ++round) {
       const M now = hn::And(going, hn::Gt(best_fit.error, hn::Zero(d)));

@@ -204,7 +204,8 @@ void quantize_joint(const Set& s, const float e[2][4], const LsqSums& q, Endpoin
   float best = INFINITY;
   for (int combo = 0; combo < combos; ++combo) {
     int p[2] = {-1, -1};
-    if (f.pbit != Pbit::none) p[0] = force_p1 ? 1 : combo & 1, p[1] = force_p1 ? 1 : f.pbit == Pbit::unique ? combo >> 1 & 1 : p[0];
+    if (f.pbit != Pbit::none)
+      p[0] = force_p1 ? 1 : combo & 1, p[1] = force_p1 ? 1 : f.pbit == Pbit::unique ? combo >> 1 & 1 : p[0];
     int code[2][4] = {}, value[2][4] = {};
     float total = 0.0f;
     for (int a = 0; a < s.n; ++a) {
@@ -221,7 +222,9 @@ void quantize_joint(const Set& s, const float e[2][4], const LsqSums& q, Endpoin
         for (int j = 0; j < 2; ++j) {
           const float d0 = float(val[0][i]) - e[0][s.c0 + a], d1 = float(val[1][j]) - e[1][s.c0 + a];
           const float t = AA * d0 * d0 + AB2 * d0 * d1 + BB * d1 * d1;
-          if (t < least) least = t, code[0][a] = cand[0][i], code[1][a] = cand[1][j], value[0][a] = val[0][i], value[1][a] = val[1][j];
+          if (t < least)
+            least = t, code[0][a] = cand[0][i], code[1][a] = cand[1][j], value[0][a] = val[0][i],
+            value[1][a] = val[1][j];
         }
       total += least;
     }
@@ -237,7 +240,8 @@ void quantize_joint(const Set& s, const float e[2][4], const LsqSums& q, Endpoin
 // The ends quantized and the indices assigned: the nearest p-bits, or with
 // level.pbit_search every p-bit choice after them, the first of least
 // error kept.
-void quantize_assign(const Set& s, const float e[2][4], EndpointFormat f, int bits, bool force_p1, const Bc7Level& level, SetFit& fit) {
+void quantize_assign(const Set& s, const float e[2][4], EndpointFormat f, int bits, bool force_p1,
+                     const Bc7Level& level, SetFit& fit) {
   quantize_ends(s, e, f, force_p1, fit);
   assign(s, bits, level.exact_indices, fit);
   if (!level.pbit_search || f.pbit == Pbit::none || force_p1) return;
@@ -267,7 +271,8 @@ void seed_ends(const Set& s, const float line[2][4], int seed, int L, float e[2]
 
 // One index set fitted from one seed: its ends quantized, then up to
 // level.refine least-squares rounds while the error falls.
-SetFit fit_seed(const Set& s, const float line[2][4], int seed, EndpointFormat f, int bits, bool force_p1, const Bc7Level& level) {
+SetFit fit_seed(const Set& s, const float line[2][4], int seed, EndpointFormat f, int bits, bool force_p1,
+                const Bc7Level& level) {
   float e[2][4] = {};
   seed_ends(s, line, seed, (1 << bits) - 1, e);
   SetFit fit;
@@ -471,7 +476,9 @@ void try_rotated(const Block& b, int mode, int rotation, int isel, const Bc7Leve
 void step_winner(const Block& b, const Bc7Level& level, Choice& c) {
   if (!has_winner_pass(level) || c.mode == 4 || c.mode == 5) return;
   const bptc::Bc7Mode& M = bptc::kBc7Modes[c.mode];
-  const std::uint32_t bits = M.subsets == 2 ? bptc::kPartitions2[c.partition] : M.subsets == 3 ? bptc::kPartitions3[c.partition] : 0;
+  const std::uint32_t bits = M.subsets == 2   ? bptc::kPartitions2[c.partition]
+                             : M.subsets == 3 ? bptc::kPartitions3[c.partition]
+                                              : 0;
   const int n = M.alpha_bits ? 4 : 3;
   const EndpointFormat f = bc7::color_format(c.mode);
   for (int s = 0; s < M.subsets; ++s) {
@@ -482,7 +489,8 @@ void step_winner(const Block& b, const Bc7Level& level, Choice& c) {
     for (int k = 0; k < 2; ++k) {
       fit.pbit[k] = c.pbit[s][k];
       for (int a = 0; a < n; ++a)
-        fit.code[k][a] = c.code[s][k][a], fit.value[k][a] = bc7::expand(fit.code[k][a], f.bits, f.pbit == Pbit::none ? -1 : fit.pbit[k]);
+        fit.code[k][a] = c.code[s][k][a],
+        fit.value[k][a] = bc7::expand(fit.code[k][a], f.bits, f.pbit == Pbit::none ? -1 : fit.pbit[k]);
     }
     const bool exact = level.exact_indices || level.exact_winner;
     assign(set, M.index_bits, exact, fit);
@@ -491,7 +499,8 @@ void step_winner(const Block& b, const Bc7Level& level, Choice& c) {
       line_ends(set, line);
       for (int seed = std::max(level.seeds, 1); seed < level.winner_seeds; ++seed) {
         SetFit next = fit_seed(set, line, seed, f, M.index_bits, b.opaque && n == 4, level);
-        if (exact != level.exact_indices) assign(set, M.index_bits, exact, next);  // else next's indices are already these
+        if (exact != level.exact_indices)
+          assign(set, M.index_bits, exact, next);  // else next's indices are already these
         if (next.error < fit.error) fit = next;
       }
     }

@@ -49,7 +49,8 @@ struct Bc7Batch : Bc7FitLanes {
     const V first = hn::LoadU(d, reinterpret_cast<const std::int32_t*>(texel[0]) + k0);
     for (int i = 0; i < 16; ++i) {
       const V t = hn::LoadU(d, reinterpret_cast<const std::int32_t*>(texel[i]) + k0);
-      for (int c = 0; c < 4; ++c) x[i][c] = hn::And(hn::ShiftRightSame(t, 8 * c), hn::Set(d, 255));  // masked: the shift is arithmetic
+      for (int c = 0; c < 4; ++c)
+        x[i][c] = hn::And(hn::ShiftRightSame(t, 8 * c), hn::Set(d, 255));  // masked: the shift is arithmetic
       make_pairs(x[i], xp[i]);
       opaque = hn::And(opaque, hn::Eq(x[i][3], hn::Set(d, 255)));
       solid = hn::And(solid, hn::Eq(t, first));
@@ -65,8 +66,8 @@ struct Bc7Batch : Bc7FitLanes {
   };
 
   // As ref::Best::offer: the candidate replaces the best where `allowed` and its error is less.
-  HWY_INLINE void offer(M allowed, V error, const Header& h, const V code[3][2][4], const V pbit[3][2], const V* color_index,
-                        const V* alpha_index) {
+  HWY_INLINE void offer(M allowed, V error, const Header& h, const V code[3][2][4], const V pbit[3][2],
+                        const V* color_index, const V* alpha_index) {
     const M take = hn::And(allowed, hn::Lt(error, best.error));
     if (hn::AllFalse(d, take)) return;
     best.error = hn::IfThenElse(take, error, best.error);
@@ -116,7 +117,8 @@ struct Bc7Batch : Bc7FitLanes {
   // As ref::try_partitioned; the partition per lane.
   HWY_INLINE void try_partitioned(int mode, V part, M allowed) {
     const bptc::Bc7Mode& Md = bptc::kBc7Modes[mode];
-    const std::int32_t* table = reinterpret_cast<const std::int32_t*>(Md.subsets == 2 ? bptc::kPartitions2 : bptc::kPartitions3);
+    const std::int32_t* table =
+        reinterpret_cast<const std::int32_t*>(Md.subsets == 2 ? bptc::kPartitions2 : bptc::kPartitions3);
     const V bits = hn::GatherIndex(d, table, part);
     const int n = Md.alpha_bits ? 4 : 3;
     V code[3][2][4], pbit[3][2], color_index[16], zero[16];
@@ -126,7 +128,8 @@ struct Bc7Batch : Bc7FitLanes {
     const M force = n == 4 ? opaque : hn::FirstN(d, 0);
     for (int s = 0; s < Md.subsets; ++s) {
       M member[16];
-      for (int i = 0; i < 16; ++i) member[i] = hn::Eq(hn::And(hn::ShiftRightSame(bits, 2 * i), hn::Set(d, 3)), hn::Set(d, s));
+      for (int i = 0; i < 16; ++i)
+        member[i] = hn::Eq(hn::And(hn::ShiftRightSame(bits, 2 * i), hn::Set(d, 3)), hn::Set(d, s));
       SetFitV fit;
       fit_set(SetV{x, member, 0, n, xp}, bc7::color_format(mode), Md.index_bits, force, fit);
       error = hn::Add(error, fit.error);
@@ -173,12 +176,14 @@ struct Bc7Batch : Bc7FitLanes {
     const int n = Md.alpha_bits ? 4 : 3;
     V bits = hn::Zero(d);
     if (Md.subsets > 1) {
-      const std::int32_t* table = reinterpret_cast<const std::int32_t*>(Md.subsets == 2 ? bptc::kPartitions2 : bptc::kPartitions3);
+      const std::int32_t* table =
+          reinterpret_cast<const std::int32_t*>(Md.subsets == 2 ? bptc::kPartitions2 : bptc::kPartitions3);
       bits = hn::GatherIndex(d, table, hn::And(best.partition, hn::Set(d, 63)));
     }
     for (int s = 0; s < Md.subsets; ++s) {
       M member[16];
-      for (int i = 0; i < 16; ++i) member[i] = hn::Eq(hn::And(hn::ShiftRightSame(bits, 2 * i), hn::Set(d, 3)), hn::Set(d, s));
+      for (int i = 0; i < 16; ++i)
+        member[i] = hn::Eq(hn::And(hn::ShiftRightSame(bits, 2 * i), hn::Set(d, 3)), hn::Set(d, s));
       const SetV set{x, member, 0, n, xp};
       SetFitV fit;
       for (int k = 0; k < 2; ++k) {
@@ -198,7 +203,8 @@ struct Bc7Batch : Bc7FitLanes {
         for (int seed = std::max(level.seeds, 1); seed < level.winner_seeds; ++seed) {
           SetFitV next;
           fit_seed(set, line, seed, fmt, Md.index_bits, force, next);
-          if (exact != level.exact_indices) assign(set, Md.index_bits, exact, next);  // else next's indices are already these
+          if (exact != level.exact_indices)
+            assign(set, Md.index_bits, exact, next);  // else next's indices are already these
           select_fit(hn::Lt(next.error, fit.error), next, fit, set);
         }
       }
@@ -207,7 +213,8 @@ struct Bc7Batch : Bc7FitLanes {
         best.pbit[s][k] = hn::IfThenElse(here, fit.pbit[k], best.pbit[s][k]);
         for (int a = 0; a < n; ++a) best.code[s][k][a] = hn::IfThenElse(here, fit.code[k][a], best.code[s][k][a]);
       }
-      for (int i = 0; i < 16; ++i) best.color_index[i] = hn::IfThenElse(hn::And(here, member[i]), fit.index[i], best.color_index[i]);
+      for (int i = 0; i < 16; ++i)
+        best.color_index[i] = hn::IfThenElse(hn::And(here, member[i]), fit.index[i], best.color_index[i]);
     }
   }
 
@@ -241,7 +248,8 @@ struct Bc7Batch : Bc7FitLanes {
     if (hn::AllFalse(d, hn::AndNot(solid, rotated))) return;
     for (int rot = 0; rot < level.rotations; ++rot) try_rotated(5, rot, 0, rot ? rotated : with_alpha);
     for (int rot = 0; rot < level.rotations; ++rot)
-      for (int isel = 0; isel < (level.index_selection ? 2 : 1); ++isel) try_rotated(4, rot, isel, rot ? rotated : with_alpha);
+      for (int isel = 0; isel < (level.index_selection ? 2 : 1); ++isel)
+        try_rotated(4, rot, isel, rot ? rotated : with_alpha);
     if (level.mode7 && !hn::AllFalse(d, hn::AndNot(solid, with_alpha)))
       for (int r = 0; r < two.k; ++r) try_partitioned(7, two.partition[r], with_alpha);
   }
@@ -258,7 +266,9 @@ struct Bc7Batch : Bc7FitLanes {
         hn::StoreU(best.pbit[s][e], d, t.pbit[s][e] + k0);
         for (int ch = 0; ch < 4; ++ch) hn::StoreU(best.code[s][e][ch], d, t.code[s][e][ch] + k0);
       }
-    for (int i = 0; i < 16; ++i) hn::StoreU(best.color_index[i], d, t.color_index[i] + k0), hn::StoreU(best.alpha_index[i], d, t.alpha_index[i] + k0);
+    for (int i = 0; i < 16; ++i)
+      hn::StoreU(best.color_index[i], d, t.color_index[i] + k0),
+          hn::StoreU(best.alpha_index[i], d, t.alpha_index[i] + k0);
   }
   HWY_INLINE void load_choices(const bc7::LaneChoices& t) {
     best.mode = hn::LoadU(d, t.mode), best.partition = hn::LoadU(d, t.partition);
@@ -268,7 +278,8 @@ struct Bc7Batch : Bc7FitLanes {
         best.pbit[s][e] = hn::LoadU(d, t.pbit[s][e]);
         for (int ch = 0; ch < 4; ++ch) best.code[s][e][ch] = hn::LoadU(d, t.code[s][e][ch]);
       }
-    for (int i = 0; i < 16; ++i) best.color_index[i] = hn::LoadU(d, t.color_index[i]), best.alpha_index[i] = hn::LoadU(d, t.alpha_index[i]);
+    for (int i = 0; i < 16; ++i)
+      best.color_index[i] = hn::LoadU(d, t.color_index[i]), best.alpha_index[i] = hn::LoadU(d, t.alpha_index[i]);
   }
 };
 
@@ -293,7 +304,8 @@ void Bc7EncodeLanes(const Bc7Texels* texel, int count, const Bc7Level& level, st
     }
     if (!stepped) continue;
     step_winners(batch, texel + s0 / kBc7Batch, t.get(), span);
-    for (int b = 0; b * kBc7Batch < span; ++b) bc7::pack_lanes_simd(t[b], std::min(kBc7Batch, span - b * kBc7Batch), out + s0 + b * kBc7Batch);
+    for (int b = 0; b * kBc7Batch < span; ++b)
+      bc7::pack_lanes_simd(t[b], std::min(kBc7Batch, span - b * kBc7Batch), out + s0 + b * kBc7Batch);
   }
 }
 

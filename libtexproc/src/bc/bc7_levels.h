@@ -75,7 +75,8 @@ struct Bc7Level {
 inline constexpr bool has_winner_pass(const Bc7Level& l) { return l.winner_steps > 0 || l.winner_seeds > l.seeds; }
 
 inline constexpr Bc7Level kBc7Levels[] = {
-    //            p2  mode3 est2 p3  rot  isel  mode7 opaque-rot refine exact perturb winner pairs pbits exact-winner joint seeds winner-seeds
+    //            p2  mode3 est2 p3  rot  isel  mode7 opaque-rot refine exact perturb winner pairs pbits exact-winner
+    //            joint seeds winner-seeds
     /* fast   */ {1, false, 32, 0, 1, false, false, false, 1, false, 0, 0, false, false, false, false, 1, 1},
     /* normal */ {4, false, 64, 1, 1, false, true, false, 1, false, 0, 0, false, false, false, true, 1, 4},
     /* high   */ {12, false, 64, 2, 4, true, true, true, 1, false, 0, 2, true, false, true, true, 2, 4},

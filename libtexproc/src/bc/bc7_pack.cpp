@@ -52,8 +52,10 @@ const std::int32_t* solid5_packed() {
 }
 
 constexpr QuantTable kQuant[5][3] = {
-    {make_quant_table(4, -1), make_quant_table(4, 0), make_quant_table(4, 1)}, {make_quant_table(5, -1), make_quant_table(5, 0), make_quant_table(5, 1)},
-    {make_quant_table(6, -1), make_quant_table(6, 0), make_quant_table(6, 1)}, {make_quant_table(7, -1), make_quant_table(7, 0), make_quant_table(7, 1)},
+    {make_quant_table(4, -1), make_quant_table(4, 0), make_quant_table(4, 1)},
+    {make_quant_table(5, -1), make_quant_table(5, 0), make_quant_table(5, 1)},
+    {make_quant_table(6, -1), make_quant_table(6, 0), make_quant_table(6, 1)},
+    {make_quant_table(7, -1), make_quant_table(7, 0), make_quant_table(7, 1)},
     {make_quant_table(8, -1), make_quant_table(8, -1), make_quant_table(8, -1)},  // 8 bits: no p-bit
 };
 
@@ -98,7 +100,10 @@ void pack_mode(const Choice& in, std::uint8_t out[16]) {
   const int color_bits = swap_streams ? M.index2_bits : M.index_bits;
   const int alpha_bits = swap_streams ? M.index_bits : M.index2_bits;
   const std::uint32_t part = ns == 2 ? bptc::kPartitions2[c.partition] : ns == 3 ? bptc::kPartitions3[c.partition] : 0;
-  const int anchor[3] = {0, ns == 2 ? bptc::kAnchor2[c.partition] : ns == 3 ? bptc::kAnchor3a[c.partition] : -1,
+  const int anchor[3] = {0,
+                         ns == 2   ? bptc::kAnchor2[c.partition]
+                         : ns == 3 ? bptc::kAnchor3a[c.partition]
+                                   : -1,
                          ns == 3 ? bptc::kAnchor3b[c.partition] : -1};
   // Anchors' top index bits to 0: the subset's endpoints swapped (the
   // channels those indices weigh), its indices mirrored.
@@ -157,14 +162,22 @@ void pack_mode(const Choice& in, std::uint8_t out[16]) {
 
 void pack_block(const Choice& c, std::uint8_t out[16]) {
   switch (c.mode) {
-    case 0: return pack_mode<0>(c, out);
-    case 1: return pack_mode<1>(c, out);
-    case 2: return pack_mode<2>(c, out);
-    case 3: return pack_mode<3>(c, out);
-    case 4: return pack_mode<4>(c, out);
-    case 5: return pack_mode<5>(c, out);
-    case 6: return pack_mode<6>(c, out);
-    default: return pack_mode<7>(c, out);
+    case 0:
+      return pack_mode<0>(c, out);
+    case 1:
+      return pack_mode<1>(c, out);
+    case 2:
+      return pack_mode<2>(c, out);
+    case 3:
+      return pack_mode<3>(c, out);
+    case 4:
+      return pack_mode<4>(c, out);
+    case 5:
+      return pack_mode<5>(c, out);
+    case 6:
+      return pack_mode<6>(c, out);
+    default:
+      return pack_mode<7>(c, out);
   }
 }
 

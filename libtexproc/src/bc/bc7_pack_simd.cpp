@@ -28,7 +28,8 @@ struct AnchorTables {
 };
 constexpr AnchorTables make_anchor_tables() {
   AnchorTables a{};
-  for (int p = 0; p < 64; ++p) a.t[0][p] = bptc::kAnchor2[p], a.t[1][p] = bptc::kAnchor3a[p], a.t[2][p] = bptc::kAnchor3b[p];
+  for (int p = 0; p < 64; ++p)
+    a.t[0][p] = bptc::kAnchor2[p], a.t[1][p] = bptc::kAnchor3a[p], a.t[2][p] = bptc::kAnchor3b[p];
   return a;
 }
 inline constexpr AnchorTables kAnchorTables = make_anchor_tables();
@@ -86,7 +87,8 @@ HWY_INLINE void stream(const DI d, const V* index, int bits, const V anchor[3], 
   lo = hn::Zero(du), hi = hn::Zero(du);
   for (int i = 0; i < 16; ++i) {
     V pos = hn::Set(d, i * bits - (i > 0 ? 1 : 0));
-    for (int s = 1; s < ns; ++s) pos = hn::Add(pos, hn::VecFromMask(d, hn::Lt(anchor[s], hn::Set(d, i))));  // -1 past each anchor
+    for (int s = 1; s < ns; ++s)
+      pos = hn::Add(pos, hn::VecFromMask(d, hn::Lt(anchor[s], hn::Set(d, i))));  // -1 past each anchor
     const U v = hn::BitCast(du, index[i]);
     const M low = hn::Lt(pos, hn::Set(d, 32));
     const U p = hn::BitCast(du, hn::And(pos, hn::Set(d, 31)));
@@ -108,7 +110,8 @@ HWY_INLINE Words pack_mode(const DI d, Fields c) {
   constexpr bptc::Bc7Mode Md = bptc::kBc7Modes[Mode];
   constexpr int ns = Md.subsets;
   const M swap_streams = Mode == 4 ? hn::Ne(c.isel, hn::Zero(d)) : hn::FirstN(d, 0);
-  const V color_L = hn::IfThenElse(swap_streams, hn::Set(d, (1 << Md.index2_bits) - 1), hn::Set(d, (1 << Md.index_bits) - 1));
+  const V color_L =
+      hn::IfThenElse(swap_streams, hn::Set(d, (1 << Md.index2_bits) - 1), hn::Set(d, (1 << Md.index_bits) - 1));
   V part = hn::Zero(d), anchor[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
   if (ns == 2) {
     part = hn::GatherIndex(d, reinterpret_cast<const std::int32_t*>(bptc::kPartitions2), c.partition);
@@ -129,7 +132,8 @@ HWY_INLINE Words pack_mode(const DI d, Fields c) {
     flip[s] = hn::Gt(at, half);
     for (int ch = 0; ch < color_channels; ++ch) {
       const V e0 = c.code[s][0][ch];
-      c.code[s][0][ch] = hn::IfThenElse(flip[s], c.code[s][1][ch], e0), c.code[s][1][ch] = hn::IfThenElse(flip[s], e0, c.code[s][1][ch]);
+      c.code[s][0][ch] = hn::IfThenElse(flip[s], c.code[s][1][ch], e0),
+      c.code[s][1][ch] = hn::IfThenElse(flip[s], e0, c.code[s][1][ch]);
     }
     const V p0 = c.pbit[s][0];
     c.pbit[s][0] = hn::IfThenElse(flip[s], c.pbit[s][1], p0), c.pbit[s][1] = hn::IfThenElse(flip[s], p0, c.pbit[s][1]);
@@ -144,7 +148,8 @@ HWY_INLINE Words pack_mode(const DI d, Fields c) {
     c.color[i] = hn::IfThenElse(m, hn::Sub(color_L, c.color[i]), c.color[i]);
   }
   if (Md.index2_bits) {
-    const V alpha_L = hn::IfThenElse(swap_streams, hn::Set(d, (1 << Md.index_bits) - 1), hn::Set(d, (1 << Md.index2_bits) - 1));
+    const V alpha_L =
+        hn::IfThenElse(swap_streams, hn::Set(d, (1 << Md.index_bits) - 1), hn::Set(d, (1 << Md.index2_bits) - 1));
     const M f = hn::Gt(c.alpha[0], hn::ShiftRight<1>(alpha_L));
     const V a0 = c.code[0][0][3];
     c.code[0][0][3] = hn::IfThenElse(f, c.code[0][1][3], a0), c.code[0][1][3] = hn::IfThenElse(f, a0, c.code[0][1][3]);
@@ -174,7 +179,8 @@ HWY_INLINE Words pack_mode(const DI d, Fields c) {
     for (int s = 0; s < ns; ++s) field(c.pbit[s][0], 1);
   V primary[16], secondary[16];
   for (int i = 0; i < 16; ++i)
-    primary[i] = hn::IfThenElse(swap_streams, c.alpha[i], c.color[i]), secondary[i] = hn::IfThenElse(swap_streams, c.color[i], c.alpha[i]);
+    primary[i] = hn::IfThenElse(swap_streams, c.alpha[i], c.color[i]),
+    secondary[i] = hn::IfThenElse(swap_streams, c.color[i], c.alpha[i]);
   U lo, hi;
   stream(d, primary, Md.index_bits, anchor, ns, lo, hi);
   put64(b, lo, hi, pos);
@@ -208,7 +214,8 @@ void Bc7PackLanes(const bc7::LaneChoices& t, int count, std::uint8_t out[][16]) 
         c.pbit[s][k] = hn::LoadU(d, t.pbit[s][k] + k0);
         for (int ch = 0; ch < 4; ++ch) c.code[s][k][ch] = hn::LoadU(d, t.code[s][k][ch] + k0);
       }
-    for (int i = 0; i < 16; ++i) c.color[i] = hn::LoadU(d, t.color_index[i] + k0), c.alpha[i] = hn::LoadU(d, t.alpha_index[i] + k0);
+    for (int i = 0; i < 16; ++i)
+      c.color[i] = hn::LoadU(d, t.color_index[i] + k0), c.alpha[i] = hn::LoadU(d, t.alpha_index[i] + k0);
     // One colour: bc7::solid_choice's mode 5 block.
     const M one = hn::Ne(hn::LoadU(d, t.solid + k0), hn::Zero(d));
     if (!hn::AllFalse(d, one)) {
@@ -220,7 +227,9 @@ void Bc7PackLanes(const bc7::LaneChoices& t, int count, std::uint8_t out[][16]) 
         c.code[0][0][ch] = hn::IfThenElse(one, hn::And(pair, hn::Set(d, 255)), c.code[0][0][ch]);
         c.code[0][1][ch] = hn::IfThenElse(one, hn::ShiftRight<8>(pair), c.code[0][1][ch]);
       }
-      for (int i = 0; i < 16; ++i) c.color[i] = hn::IfThenElse(one, hn::Set(d, 1), c.color[i]), c.alpha[i] = hn::IfThenElseZero(hn::Not(one), c.alpha[i]);
+      for (int i = 0; i < 16; ++i)
+        c.color[i] = hn::IfThenElse(one, hn::Set(d, 1), c.color[i]),
+        c.alpha[i] = hn::IfThenElseZero(hn::Not(one), c.alpha[i]);
     }
     Words b;
     for (auto& w : b.w) w = hn::Zero(du);

@@ -44,7 +44,8 @@ inline void copy_lane(const LaneChoices& from, int k, LaneChoices& to, int j) {
       to.pbit[s][e][j] = from.pbit[s][e][k];
       for (int c = 0; c < 4; ++c) to.code[s][e][c][j] = from.code[s][e][c][k];
     }
-  for (int i = 0; i < 16; ++i) to.color_index[i][j] = from.color_index[i][k], to.alpha_index[i][j] = from.alpha_index[i][k];
+  for (int i = 0; i < 16; ++i)
+    to.color_index[i][j] = from.color_index[i][k], to.alpha_index[i][j] = from.alpha_index[i][k];
 }
 // Lanes 0 to count - 1 packed, lane k into out[k]: block by block
 // (pack_lanes, the reference), or a SIMD lane a block (pack_lanes_simd,
@@ -112,14 +113,22 @@ Choice solid_choice(const int rgba[4]);
 // The encoder's view of BC7's modes: how each set of endpoints is stored.
 inline EndpointFormat color_format(int mode) {
   switch (mode) {
-    case 0: return {4, Pbit::unique};
-    case 1: return {6, Pbit::shared};
-    case 2: return {5, Pbit::none};
-    case 3: return {7, Pbit::unique};
-    case 4: return {5, Pbit::none};
-    case 5: return {7, Pbit::none};
-    case 6: return {7, Pbit::unique};
-    default: return {5, Pbit::unique};
+    case 0:
+      return {4, Pbit::unique};
+    case 1:
+      return {6, Pbit::shared};
+    case 2:
+      return {5, Pbit::none};
+    case 3:
+      return {7, Pbit::unique};
+    case 4:
+      return {5, Pbit::none};
+    case 5:
+      return {7, Pbit::none};
+    case 6:
+      return {7, Pbit::unique};
+    default:
+      return {5, Pbit::unique};
   }
 }
 

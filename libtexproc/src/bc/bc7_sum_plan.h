@@ -83,5 +83,6 @@ constexpr int residuals_computed(const ResidualReuse& r) {
     for (int s = 0; s < 3; ++s) n += r.two[p][s] < 0 && r.three[p][s] < 0;
   return n;
 }
-static_assert(2 * 64 + residuals_computed(kResidualReuse) == 242, "the estimate's distinct subsets, as the comment above counts them");
+static_assert(2 * 64 + residuals_computed(kResidualReuse) == 242,
+              "the estimate's distinct subsets, as the comment above counts them");
 }  // namespace texproc::bc7

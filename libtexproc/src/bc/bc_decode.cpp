@@ -12,7 +12,6 @@ namespace {
 
 std::uint16_t le16(const std::uint8_t* p) { return std::uint16_t(p[0] | p[1] << 8); }
 
-
 }  // namespace
 
 // The colour half of BC1/BC2/BC3 as RGBA8: the palette's integers (the
@@ -79,8 +78,8 @@ namespace {
 // n = r0 (d - k) + r1 k over d = 7 or 5, so each is a table entry, filled
 // once from the same expressions.
 struct Rgtc8Tables {
-  std::uint8_t end_u[256], end_s[256];  // an endpoint (SNORM indexed by its byte + 128)
-  std::uint8_t u7[1786], u5[1276];      // UNORM: n in [0, 255 d]
+  std::uint8_t end_u[256], end_s[256];            // an endpoint (SNORM indexed by its byte + 128)
+  std::uint8_t u7[1786], u5[1276];                // UNORM: n in [0, 255 d]
   std::uint8_t s7[2 * 889 + 1], s5[2 * 635 + 1];  // SNORM: n + 127 d
   Rgtc8Tables() {
     for (int r = 0; r < 256; ++r) {
@@ -131,7 +130,9 @@ inline __attribute__((always_inline)) void color_palette(const std::uint8_t* b, 
   auto rep6 = [](std::uint32_t v) { return v << 2 | v >> 4; };
   const std::uint32_t r0 = rep5(c0 >> 11), g0 = rep6(c0 >> 5 & 63), b0 = rep5(c0 & 31);
   const std::uint32_t r1 = rep5(c1 >> 11), g1 = rep6(c1 >> 5 & 63), b1 = rep5(c1 & 31);
-  auto pack = [](std::uint32_t r, std::uint32_t g, std::uint32_t bl, std::uint32_t a) { return r | g << 8 | bl << 16 | a << 24; };
+  auto pack = [](std::uint32_t r, std::uint32_t g, std::uint32_t bl, std::uint32_t a) {
+    return r | g << 8 | bl << 16 | a << 24;
+  };
   packed[0] = pack(r0, g0, b0, 255);
   packed[1] = pack(r1, g1, b1, 255);
   if (always_four || c0 > c1) {
@@ -156,8 +157,8 @@ namespace {
 // 4-byte store, left to right, the next texel's store overwriting the
 // previous one's fourth byte): where a block follows in the same run.
 template <bool spill = false>
-inline __attribute__((always_inline)) void color_rows(const std::uint8_t* b, bool always_four, bool punch_through, int channels,
-                                                      std::uint8_t* dst, std::size_t stride) {
+inline __attribute__((always_inline)) void color_rows(const std::uint8_t* b, bool always_four, bool punch_through,
+                                                      int channels, std::uint8_t* dst, std::size_t stride) {
   std::uint32_t pal[4];
   color_palette(b, always_four, punch_through, pal);
   std::uint32_t idx;
@@ -177,7 +178,8 @@ inline __attribute__((always_inline)) void color_rows(const std::uint8_t* b, boo
       std::memcpy(row + 6, &q2, 4);
       std::memcpy(row + 9, &q3, 4);
     } else {  // RGB: the four texels' 12 bytes
-      const std::uint64_t lo = std::uint64_t((q0 & 0xFFFFFF) | q1 << 24) | std::uint64_t((q1 >> 8 & 0xFFFF) | q2 << 16) << 32;
+      const std::uint64_t lo = std::uint64_t((q0 & 0xFFFFFF) | q1 << 24) | std::uint64_t((q1 >> 8 & 0xFFFF) | q2 << 16)
+                                                                               << 32;
       const std::uint32_t hi = (q2 >> 16 & 0xFF) | q3 << 8;
       std::memcpy(row, &lo, 8);
       std::memcpy(row + 8, &hi, 4);
@@ -185,8 +187,8 @@ inline __attribute__((always_inline)) void color_rows(const std::uint8_t* b, boo
   }
 }
 
-inline __attribute__((always_inline)) void rgtc_rows(const std::uint8_t* b, bool snorm, int channels, int ch, std::uint8_t* dst,
-                                                     std::size_t stride) {
+inline __attribute__((always_inline)) void rgtc_rows(const std::uint8_t* b, bool snorm, int channels, int ch,
+                                                     std::uint8_t* dst, std::size_t stride) {
   std::uint8_t u[8];
   rgtc_palette_u8(b, snorm, u);
   const std::uint64_t bits = rgtc_indices(b);
@@ -249,7 +251,8 @@ inline __attribute__((always_inline)) void bc2_rows(const std::uint8_t* b, std::
   std::memcpy(&idx, b + 12, 4);
   for (int r = 0; r < 4; ++r, idx >>= 8) {  // row r's alpha: bytes 2 r (texels 0, 1) and 2 r + 1 (texels 2, 3)
     const std::uint64_t lo = (pal[idx & 3] | std::uint64_t(pal[idx >> 2 & 3]) << 32) | kBc2AlphaPairs.v[b[2 * r]];
-    const std::uint64_t hi = (pal[idx >> 4 & 3] | std::uint64_t(pal[idx >> 6 & 3]) << 32) | kBc2AlphaPairs.v[b[2 * r + 1]];
+    const std::uint64_t hi =
+        (pal[idx >> 4 & 3] | std::uint64_t(pal[idx >> 6 & 3]) << 32) | kBc2AlphaPairs.v[b[2 * r + 1]];
     std::memcpy(dst + r * stride, &lo, 8);
     std::memcpy(dst + r * stride + 8, &hi, 8);
   }
@@ -265,29 +268,34 @@ void decode_bc3_run(const std::uint8_t* blocks, int count, std::uint8_t* dst, st
   for (int k = 0; k < count; ++k) bc3_rows(blocks + std::size_t(k) * 16, dst + 16 * k, stride);
 }
 
-void decode_color_run(const std::uint8_t* blocks, int count, int block_bytes, bool always_four, bool punch_through, int channels,
-                      std::uint8_t* dst, std::size_t stride) {
+void decode_color_run(const std::uint8_t* blocks, int count, int block_bytes, bool always_four, bool punch_through,
+                      int channels, std::uint8_t* dst, std::size_t stride) {
   // The channel count a constant in each loop.
   if (channels == 4) {
-    for (int k = 0; k < count; ++k) color_rows(blocks + std::size_t(k) * block_bytes, always_four, punch_through, 4, dst + 16 * k, stride);
+    for (int k = 0; k < count; ++k)
+      color_rows(blocks + std::size_t(k) * block_bytes, always_four, punch_through, 4, dst + 16 * k, stride);
   } else if (count > 0) {
     for (int k = 0; k + 1 < count; ++k)
       color_rows<true>(blocks + std::size_t(k) * block_bytes, always_four, punch_through, 3, dst + 12 * k, stride);
-    color_rows(blocks + std::size_t(count - 1) * block_bytes, always_four, punch_through, 3, dst + 12 * (count - 1), stride);
+    color_rows(blocks + std::size_t(count - 1) * block_bytes, always_four, punch_through, 3, dst + 12 * (count - 1),
+               stride);
   }
 }
 
-void decode_rgtc_run(const std::uint8_t* blocks, int count, int block_bytes, bool snorm, int channels, int ch, std::uint8_t* dst,
-                     std::size_t stride) {
+void decode_rgtc_run(const std::uint8_t* blocks, int count, int block_bytes, bool snorm, int channels, int ch,
+                     std::uint8_t* dst, std::size_t stride) {
   switch (channels) {
     case 1:
-      for (int k = 0; k < count; ++k) rgtc_rows(blocks + std::size_t(k) * block_bytes, snorm, 1, ch, dst + 4 * k, stride);
+      for (int k = 0; k < count; ++k)
+        rgtc_rows(blocks + std::size_t(k) * block_bytes, snorm, 1, ch, dst + 4 * k, stride);
       break;
     case 2:
-      for (int k = 0; k < count; ++k) rgtc_rows(blocks + std::size_t(k) * block_bytes, snorm, 2, ch, dst + 8 * k, stride);
+      for (int k = 0; k < count; ++k)
+        rgtc_rows(blocks + std::size_t(k) * block_bytes, snorm, 2, ch, dst + 8 * k, stride);
       break;
     default:
-      for (int k = 0; k < count; ++k) rgtc_rows(blocks + std::size_t(k) * block_bytes, snorm, 4, ch, dst + 16 * k, stride);
+      for (int k = 0; k < count; ++k)
+        rgtc_rows(blocks + std::size_t(k) * block_bytes, snorm, 4, ch, dst + 16 * k, stride);
   }
 }
 

@@ -36,8 +36,8 @@ inline std::uint8_t to_unorm8(float v) {
 // bytes a texel. The colour half as RGB (3) or RGBA (4, alpha as
 // decode_color_rgba8 gives it); BC4 into channel `ch` of 1, 2 or 4 (the same
 // bytes as decode_rgtc_u8).
-void decode_color_run(const std::uint8_t* blocks, int count, int block_bytes, bool always_four, bool punch_through, int channels,
-                      std::uint8_t* dst, std::size_t stride);
+void decode_color_run(const std::uint8_t* blocks, int count, int block_bytes, bool always_four, bool punch_through,
+                      int channels, std::uint8_t* dst, std::size_t stride);
 // `count` whole BC2 blocks side by side straight into RGBA8 rows: the colour
 // half as decode_color_run gives it (always four colours), alpha the 4-bit
 // value times 17.
@@ -46,8 +46,8 @@ void decode_bc2_run(const std::uint8_t* blocks, int count, std::uint8_t* dst, st
 // of decode_color_run (always four colours) and decode_rgtc_run (UNORM,
 // channel 3) together, in one pass.
 void decode_bc3_run(const std::uint8_t* blocks, int count, std::uint8_t* dst, std::size_t stride);
-void decode_rgtc_run(const std::uint8_t* blocks, int count, int block_bytes, bool snorm, int channels, int ch, std::uint8_t* dst,
-                     std::size_t stride);
+void decode_rgtc_run(const std::uint8_t* blocks, int count, int block_bytes, bool snorm, int channels, int ch,
+                     std::uint8_t* dst, std::size_t stride);
 
 // A BC7 block: RGBA8 texels, row by row (ARB_texture_compression_bptc; the
 // reserved mode decodes to 0 in every channel, as Direct3D's does).

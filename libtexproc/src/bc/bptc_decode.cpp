@@ -143,9 +143,11 @@ void bc7_words(const std::uint8_t* block, std::uint32_t out[16]) {
     for (int c = 0; c < 3; ++c) px[c] = bptc::interpolate(e[0][0][c], e[0][1][c], wc[j]);
     px[3] = 0;
     std::swap(px[3], px[ra]);  // ra == 3: nothing moves
-    cpal[j] = std::uint32_t(px[0]) | std::uint32_t(px[1]) << 8 | std::uint32_t(px[2]) << 16 | std::uint32_t(px[3]) << 24;
+    cpal[j] =
+        std::uint32_t(px[0]) | std::uint32_t(px[1]) << 8 | std::uint32_t(px[2]) << 16 | std::uint32_t(px[3]) << 24;
   }
-  for (int j = 0; j < 1 << alpha_bits; ++j) apal[j] = std::uint32_t(bptc::interpolate(e[0][0][3], e[0][1][3], wa[j])) << (8 * ra);
+  for (int j = 0; j < 1 << alpha_bits; ++j)
+    apal[j] = std::uint32_t(bptc::interpolate(e[0][0][3], e[0][1][3], wa[j])) << (8 * ra);
   for (int i = 0; i < 16; ++i) out[i] = cpal[swap ? secondary[i] : primary[i]] | apal[swap ? primary[i] : secondary[i]];
 }
 
@@ -227,12 +229,12 @@ inline __attribute__((always_inline)) bool bc6h_texels(const std::uint8_t* block
   return true;
 }
 
-
 // Subset s's palette as half bits (the specification's arithmetic).
 void bc6h_palette(const Bc6hTexels& t, int s, bool is_signed, std::uint16_t pal[16][3]) {
   const std::uint8_t* w = bptc::weights(t.index_bits);
   for (int j = 0; j < 1 << t.index_bits; ++j)
-    for (int c = 0; c < 3; ++c) pal[j][c] = bc6h::finish_bits(bptc::interpolate(t.e[2 * s][c], t.e[2 * s + 1][c], w[j]), is_signed);
+    for (int c = 0; c < 3; ++c)
+      pal[j][c] = bc6h::finish_bits(bptc::interpolate(t.e[2 * s][c], t.e[2 * s + 1][c], w[j]), is_signed);
 }
 
 #if defined(__SSE2__)
@@ -267,7 +269,9 @@ void bc6h_palette_f32(const Bc6hTexels& t, int s, bool is_signed, float pal[16][
   const int* e0 = t.e[2 * s];
   const int* e1 = t.e[2 * s + 1];
   const int off = is_signed ? 0 : 32768;
-  auto pair = [&](int c) { return std::int32_t(std::uint16_t(e0[c] - off) | std::uint32_t(std::uint16_t(e1[c] - off)) << 16); };
+  auto pair = [&](int c) {
+    return std::int32_t(std::uint16_t(e0[c] - off) | std::uint32_t(std::uint16_t(e1[c] - off)) << 16);
+  };
   const __m128i ends = _mm_setr_epi32(pair(0), pair(1), pair(2), 0);
   const __m128i round = _mm_set1_epi32(is_signed ? 32 : 64 * 32768 + 32);
   const __m128 scale = _mm_castsi128_ps(_mm_set1_epi32((127 + 112) << 23));
@@ -288,7 +292,8 @@ void bc6h_palette_f32(const Bc6hTexels& t, int s, bool is_signed, float pal[16][
       // The sign; and the one magnitude past the finite halves, 0x7C00 (mode
       // 14's endpoint -32768), an infinity: its product 65536 ORed with the
       // exponent's bits.
-      extra = _mm_or_si128(_mm_slli_epi32(m, 31), _mm_and_si128(_mm_cmpeq_epi32(mag, _mm_set1_epi32(0x7C00)), _mm_set1_epi32(0x7F800000)));
+      extra = _mm_or_si128(_mm_slli_epi32(m, 31),
+                           _mm_and_si128(_mm_cmpeq_epi32(mag, _mm_set1_epi32(0x7C00)), _mm_set1_epi32(0x7F800000)));
     }
     const __m128 f = _mm_mul_ps(_mm_castsi128_ps(_mm_slli_epi32(mag, 13)), scale);
     const __m128i sign = extra;

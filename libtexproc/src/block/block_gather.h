@@ -22,8 +22,10 @@ inline std::uint8_t texel8(const ConstImageView& img, int x, int y, int c) {
   if (c == 3) src = (C == 2 || C == 4) ? C - 1 : -1;
   if (src < 0) return 255;
   switch (img.type) {
-    case PixelType::u8: return img.row<const std::uint8_t>(y)[x * C + src];
-    case PixelType::u16: return std::uint8_t((img.row<const std::uint16_t>(y)[x * C + src] * 255 + 32767) / 65535);
+    case PixelType::u8:
+      return img.row<const std::uint8_t>(y)[x * C + src];
+    case PixelType::u16:
+      return std::uint8_t((img.row<const std::uint16_t>(y)[x * C + src] * 255 + 32767) / 65535);
     case PixelType::f32:
       return std::uint8_t(std::lround(std::clamp(img.row<const float>(y)[x * C + src], 0.0f, 1.0f) * 255.0f));
   }
@@ -34,9 +36,12 @@ inline std::uint8_t texel8(const ConstImageView& img, int x, int y, int c) {
 inline float texel_unit(const ConstImageView& img, int x, int y, int c) {
   if (c >= img.channels) return 0.0f;
   switch (img.type) {
-    case PixelType::u8: return img.row<const std::uint8_t>(y)[x * img.channels + c] / 255.0f;
-    case PixelType::u16: return img.row<const std::uint16_t>(y)[x * img.channels + c] / 65535.0f;
-    case PixelType::f32: return std::clamp(img.row<const float>(y)[x * img.channels + c], 0.0f, 1.0f);
+    case PixelType::u8:
+      return img.row<const std::uint8_t>(y)[x * img.channels + c] / 255.0f;
+    case PixelType::u16:
+      return img.row<const std::uint16_t>(y)[x * img.channels + c] / 65535.0f;
+    case PixelType::f32:
+      return std::clamp(img.row<const float>(y)[x * img.channels + c], 0.0f, 1.0f);
   }
   return 0.0f;
 }
@@ -75,7 +80,8 @@ inline void gather_rgba8(const ConstImageView& img, int bx, int by, std::uint8_t
 
 // Whether block k's texels (R | G << 8 | B << 16 | A << 24) hold exactly
 // two RGB colours, alpha aside; `a` gets texel 0's, `b` the other.
-inline bool two_colours(const std::uint32_t texel[16][kBlockBatch], int k, std::uint32_t* a = nullptr, std::uint32_t* b = nullptr) {
+inline bool two_colours(const std::uint32_t texel[16][kBlockBatch], int k, std::uint32_t* a = nullptr,
+                        std::uint32_t* b = nullptr) {
   const std::uint32_t first = texel[0][k] & 0xFFFFFF;
   std::uint32_t second = first;
   for (int i = 1; i < 16; ++i) {
@@ -106,7 +112,8 @@ inline std::uint32_t pack_texel(const std::uint8_t px[4]) {
 // The `count` blocks from (bx0, by) straight from the rows of an RGBA8
 // image. False, and nothing read, where that
 // does not apply: another layout, or a block past the image's edges.
-inline bool gather_rows_rgba8(const ConstImageView& img, int bx0, int by, int count, std::uint32_t texel[16][kBlockBatch]) {
+inline bool gather_rows_rgba8(const ConstImageView& img, int bx0, int by, int count,
+                              std::uint32_t texel[16][kBlockBatch]) {
   if (img.type != PixelType::u8 || img.channels != 4 || (bx0 + count) * 4 > img.width || by * 4 + 4 > img.height)
     return false;
   for (int y = 0; y < 4; ++y) {

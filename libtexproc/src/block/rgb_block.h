@@ -1,9 +1,7 @@
-// Shared block primitives for 16 RGB texels (BC1, BC2/BC3 colour, ETC2 T/H), SIMD and scalar twins with identical results: the
-// block's colour moments, the range of its colours along an axis, each
-// texel's nearest palette colour, and the sums of the least-squares endpoint
-// fit. Sums are of integers (exact in any order); the one float expression
-// (the projection onto an axis) is evaluated per texel in the same order by
-// both twins, without FMA.
+// Shared block primitives for 16 RGB texels (BC1, BC2/BC3 colour, ETC2 T/H), SIMD and scalar twins with identical
+// results: the block's colour moments, the range of its colours along an axis, each texel's nearest palette colour, and
+// the sums of the least-squares endpoint fit. Sums are of integers (exact in any order); the one float expression (the
+// projection onto an axis) is evaluated per texel in the same order by both twins, without FMA.
 #pragma once
 
 #include <cstdint>
@@ -28,7 +26,7 @@ RgbBlockKernels rgb_block_kernels();
 
 struct RgbBlock {
   std::int32_t r[16], g[16], b[16];
-  std::int32_t transparent[16];  // 1: takes index 3 (three-colour mode), no error
+  std::int32_t transparent[16];             // 1: takes index 3 (three-colour mode), no error
   RgbBlockKernels k = rgb_block_kernels();  // resolved once per block
 };
 

@@ -27,7 +27,8 @@ void Bc1Moments_(const RgbBlock& tx, RgbMoments& m) {
   V n = hn::Zero(d), sr = n, sg = n, sb = n, rr = n, rg = n, rb = n, gg = n, gb = n, bb = n;
   for (int i = 0; i < 16; i += lanes) {
     const auto opaque = hn::Eq(hn::LoadU(d, tx.transparent + i), hn::Zero(d));
-    const V r = hn::IfThenElseZero(opaque, hn::LoadU(d, tx.r + i)), g = hn::IfThenElseZero(opaque, hn::LoadU(d, tx.g + i)),
+    const V r = hn::IfThenElseZero(opaque, hn::LoadU(d, tx.r + i)),
+            g = hn::IfThenElseZero(opaque, hn::LoadU(d, tx.g + i)),
             b = hn::IfThenElseZero(opaque, hn::LoadU(d, tx.b + i));
     n = hn::Add(n, hn::IfThenElseZero(opaque, hn::Set(d, 1)));
     sr = hn::Add(sr, r), sg = hn::Add(sg, g), sb = hn::Add(sb, b);
@@ -125,8 +126,8 @@ HWY_EXPORT(Bc1LsSums_);
 
 RgbBlockKernels rgb_block_kernels() {
   if (force_scalar()) return {&ref::rgb_moments, &ref::rgb_project_range, &ref::rgb_palette_nearest, &ref::rgb_ls_sums};
-  return {&HWY_DYNAMIC_DISPATCH(Bc1Moments_), &HWY_DYNAMIC_DISPATCH(Bc1ProjectRange),
-          &HWY_DYNAMIC_DISPATCH(Bc1Nearest), &HWY_DYNAMIC_DISPATCH(Bc1LsSums_)};
+  return {&HWY_DYNAMIC_DISPATCH(Bc1Moments_), &HWY_DYNAMIC_DISPATCH(Bc1ProjectRange), &HWY_DYNAMIC_DISPATCH(Bc1Nearest),
+          &HWY_DYNAMIC_DISPATCH(Bc1LsSums_)};
 }
 
 void rgb_moments(const RgbBlock& tx, RgbMoments& m) {

@@ -1,5 +1,5 @@
-// Shared block primitive (BC4, BC5, BC3 alpha, EAC): 16 values scored against an 8-entry palette: the Highway twin of the scalar reference in value_palette.cpp (lanes over
-// the 16 values). Same operations, no FMA: identical results.
+// Shared block primitive (BC4, BC5, BC3 alpha, EAC): 16 values scored against an 8-entry palette: the Highway twin of
+// the scalar reference in value_palette.cpp (lanes over the 16 values). Same operations, no FMA: identical results.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "block/value_palette_simd.cpp"
 #include <hwy/foreach_target.h>  // must come before highway.h

@@ -63,7 +63,8 @@ bool cone_cell_clear(const ConeGeometry& g, const ConeCell& c, int bx0, int bx1,
     for (int l = 0; l < kConeCell; ++l) {
       const float hp = c.apex[r][l];
       if (!(M > hp)) continue;
-      int dx = cone_axis_distance(c.x0 + l, bx0, bx1, g.W, g.repeat), dy = cone_axis_distance(c.y0 + r, by0, by1, g.H, g.repeat);
+      int dx = cone_axis_distance(c.x0 + l, bx0, bx1, g.W, g.repeat),
+          dy = cone_axis_distance(c.y0 + r, by0, by1, g.H, g.repeat);
       dx = dx > g.shrink ? dx - g.shrink : 0;
       dy = dy > g.shrink ? dy - g.shrink : 0;
       const float vx = float(dx) / float(g.W), vy = float(dy) / float(g.H);

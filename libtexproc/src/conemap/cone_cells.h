@@ -58,7 +58,7 @@ inline bool cone_exits(const ConeGeometry& g, int px, int py, int qx, int qy) {
 }
 
 struct ConeCell {
-  int x0 = 0, y0 = 0;                       // apex texel of lane 0, row 0
+  int x0 = 0, y0 = 0;                            // apex texel of lane 0, row 0
   alignas(64) float apex[kConeCell][kConeCell];  // apex heights; +inf where no texel is
   alignas(64) float best[kConeCell][kConeCell];  // squared ratios so far
 };

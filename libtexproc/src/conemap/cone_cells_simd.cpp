@@ -96,7 +96,8 @@ HWY_INLINE bool Update(VF& best, VF& bdd, VF hp, VF d2, VF hq, VF dd, VF slack, 
     hn::Store(hn::IfThenElseZero(may_improve, hn::Set(d, 1.0f)), d, keep);
     for (int l = 0; l < N; ++l) {
       const int flat = ex.v * N + l;
-      if (keep[l] != 0.0f && !cone_exits(*ex.g, ex.c->x0 + (flat & (kConeCell - 1)), ex.c->y0 + (flat >> 3), ex.qx, ex.qy)) {
+      if (keep[l] != 0.0f &&
+          !cone_exits(*ex.g, ex.c->x0 + (flat & (kConeCell - 1)), ex.c->y0 + (flat >> 3), ex.qx, ex.qy)) {
         keep[l] = 0.0f;
       }
     }

@@ -19,8 +19,6 @@ struct Metric {
   double sx, sy, dd;  // 1 / W^2, 1 / H^2, depth^2
 };
 
-
-
 }  // namespace
 
 // `heights` must outlive the pyramid.
@@ -126,7 +124,8 @@ SlopePyramid build_slopes(const std::vector<float>& h, int W, int H, bool repeat
       }
   });
   for (int k = SlopePyramid::kBase + 1; k <= top; ++k) {
-    const int pw = pyr.w[std::size_t(k - 1)], ph = pyr.h[std::size_t(k - 1)], nw = pyr.w[std::size_t(k)], nh = pyr.h[std::size_t(k)];
+    const int pw = pyr.w[std::size_t(k - 1)], ph = pyr.h[std::size_t(k - 1)], nw = pyr.w[std::size_t(k)],
+              nh = pyr.h[std::size_t(k)];
     for (auto& r : sp.rise) {
       const std::vector<float>& prev = r.back();
       std::vector<float> next(std::size_t(nw) * nh, inf);
@@ -334,7 +333,8 @@ struct CellSearch {
         if (num > cell_max * kPruneSlack * den) continue;
         // Each apex with its own cone, where the child would be opened or
         // scanned (a --fast obstacle costs about as much as this test).
-        const bool obstacle = reach > 0 && std::max(gx, gy) >= kCell && std::max(gx, gy) >= std::max(reach << s, shrink + 1);
+        const bool obstacle =
+            reach > 0 && std::max(gx, gy) >= kCell && std::max(gx, gy) >= std::max(reach << s, shrink + 1);
         if (!obstacle) {
           // --fast's blocks are near the cell, where the cheaper cell-gap test does as well.
           if (reach > 0 ? num > double(detail::cone_cell_reach(c, Mc)) * x.m.dd * kPruneSlack
@@ -371,7 +371,8 @@ struct CellSearch {
         continue;
       }
       if (k <= kScanLevel && gap < kCell) {
-        if (select_rows(n.gx, by0, by1, M) && detail::cone_cell_texels(x.g, x.heights.data(), c, bx0, bx1, by0, by1, rows)) {
+        if (select_rows(n.gx, by0, by1, M) &&
+            detail::cone_cell_texels(x.g, x.heights.data(), c, bx0, bx1, by0, by1, rows)) {
           refresh();
         }
         continue;
@@ -443,17 +444,20 @@ void CellCones::rows(int cy0, int cy1, float* out, const std::function<void(doub
   const int W = context.W;
   const int cw = (W + kConeCell - 1) / kConeCell;
   const std::size_t first = std::size_t(cy0) * kConeCell;
-  for_each_row_block(cy1 - cy0, 1, [&](int r0, int r1) {
-    CellSearch cell(context);
-    for (int cy = cy0 + r0; cy < cy0 + r1; ++cy)
-      for (int cx = 0; cx < cw; ++cx) {
-        cell.begin(cx, cy);
-        cell.search();
-        for (int r = 0; r < cell.h; ++r)
-          for (int l = 0; l < cell.w; ++l)
-            out[(std::size_t(cell.c.y0 + r) - first) * W + std::size_t(cell.c.x0 + l)] = cell.c.best[r][l];
-      }
-  }, progress);
+  for_each_row_block(
+      cy1 - cy0, 1,
+      [&](int r0, int r1) {
+        CellSearch cell(context);
+        for (int cy = cy0 + r0; cy < cy0 + r1; ++cy)
+          for (int cx = 0; cx < cw; ++cx) {
+            cell.begin(cx, cy);
+            cell.search();
+            for (int r = 0; r < cell.h; ++r)
+              for (int l = 0; l < cell.w; ++l)
+                out[(std::size_t(cell.c.y0 + r) - first) * W + std::size_t(cell.c.x0 + l)] = cell.c.best[r][l];
+          }
+      },
+      progress);
 }
 
 std::vector<float> cell_cones(const std::vector<float>& heights, const std::vector<float>& apex, int W, int H,

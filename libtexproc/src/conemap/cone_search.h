@@ -79,7 +79,8 @@ RelaxedBounds relaxed_bounds(const std::vector<float>& heights, int W, int H, bo
 // minima for --bilinear-safe, with distances shrunk by `shrink`);
 // `relaxed`: relaxed cones (their exits and bound heights).
 std::vector<float> cell_cones(const std::vector<float>& heights, const std::vector<float>& apex, int W, int H,
-                           const ConeMapOptions& o, const Pyramid& pyr, int shrink, const RelaxedBounds* relaxed = nullptr);
+                              const ConeMapOptions& o, const Pyramid& pyr, int shrink,
+                              const RelaxedBounds* relaxed = nullptr);
 
 // cell_cones a band of cell rows at a time: the search's bounds are built
 // once, and each call fills the squared ratios of texel rows 8 cy0 up to

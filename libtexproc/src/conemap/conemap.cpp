@@ -34,12 +34,16 @@ void check(const std::vector<float>& heights, int width, int height, const ConeM
   if (width <= 0 || height <= 0 || heights.size() != std::size_t(width) * height) {
     throw Error(ErrorCode::bad_arguments, "heights do not match the size");
   }
-  if (!(o.depth > 0.0f) || !std::isfinite(o.depth)) throw Error(ErrorCode::bad_arguments, "ConeMapOptions::depth must be > 0");
-  if (!(o.max_ratio > 0.0f) || !std::isfinite(o.max_ratio)) throw Error(ErrorCode::bad_arguments, "ConeMapOptions::max_ratio must be > 0");
+  if (!(o.depth > 0.0f) || !std::isfinite(o.depth))
+    throw Error(ErrorCode::bad_arguments, "ConeMapOptions::depth must be > 0");
+  if (!(o.max_ratio > 0.0f) || !std::isfinite(o.max_ratio))
+    throw Error(ErrorCode::bad_arguments, "ConeMapOptions::max_ratio must be > 0");
   if (o.wrap == WrapMode::mirror) throw Error(ErrorCode::bad_arguments, "ConeMapOptions::wrap: valid: repeat, clamp");
-  if (o.fast_reach < 0) throw Error(ErrorCode::bad_arguments, "ConeMapOptions::fast_reach must be >= 1 (0: exact cones)");
+  if (o.fast_reach < 0)
+    throw Error(ErrorCode::bad_arguments, "ConeMapOptions::fast_reach must be >= 1 (0: exact cones)");
   if (o.bilinear_safe && o.mode == ConeMode::relaxed) {
-    throw Error(ErrorCode::bad_arguments, "ConeMapOptions::bilinear_safe makes conservative cones (use it without ConeMode::relaxed)");
+    throw Error(ErrorCode::bad_arguments,
+                "ConeMapOptions::bilinear_safe makes conservative cones (use it without ConeMode::relaxed)");
   }
 }
 
@@ -47,8 +51,6 @@ int texel_distance(int p, int q, int n, bool repeat) {
   const int d = p > q ? p - q : q - p;
   return repeat ? std::min(d, n - d) : d;
 }
-
-
 
 // --bilinear-safe. A renderer samples height and ratio bilinearly, so the
 // apex of a cone sits anywhere between texel centres, on the bilinear
@@ -130,7 +132,8 @@ void bilinear_local(const std::vector<float>& heights, const std::vector<float>&
 std::vector<float> square_roots(std::vector<float> r2) {
   const int rows = int((r2.size() + 4095) / 4096);
   for_each_row_block(rows, 16, [&](int r0, int r1) {
-    for (std::size_t i = std::size_t(r0) * 4096; i < std::min(r2.size(), std::size_t(r1) * 4096); ++i) r2[i] = std::sqrt(r2[i]);
+    for (std::size_t i = std::size_t(r0) * 4096; i < std::min(r2.size(), std::size_t(r1) * 4096); ++i)
+      r2[i] = std::sqrt(r2[i]);
   });
   return r2;
 }
@@ -159,22 +162,26 @@ std::vector<float> cone_ratios_brute_force(const std::vector<float>& heights, in
   const detail::ConeGeometry g = geometry(W, H, o, o.bilinear_safe ? kBilinearShrink : 0);
   const Behind behind{heights, W, H, repeat};
   std::vector<float> r2(heights.size());
-  for_each_row_block(H, 1, [&](int y0, int y1) {
-    for (int py = y0; py < y1; ++py)
-      for (int px = 0; px < W; ++px) {
-        const float hp = apex[std::size_t(py) * W + px];
-        float best = o.max_ratio * o.max_ratio;
-        for (int qy = 0; qy < H; ++qy)
-          for (int qx = 0; qx < W; ++qx) {
-            const float hq = heights[std::size_t(qy) * W + qx];
-            const float d2 = detail::cone_d2(g, texel_distance(px, qx, W, repeat), texel_distance(py, qy, H, repeat));
-            if (!(hq > hp && d2 > 0.0f)) continue;
-            if (relaxed && !behind.exits(px, py, qx, qy, hq)) continue;
-            best = std::min(best, detail::cone_r2(g, d2, hq - hp));
+  for_each_row_block(
+      H, 1,
+      [&](int y0, int y1) {
+        for (int py = y0; py < y1; ++py)
+          for (int px = 0; px < W; ++px) {
+            const float hp = apex[std::size_t(py) * W + px];
+            float best = o.max_ratio * o.max_ratio;
+            for (int qy = 0; qy < H; ++qy)
+              for (int qx = 0; qx < W; ++qx) {
+                const float hq = heights[std::size_t(qy) * W + qx];
+                const float d2 =
+                    detail::cone_d2(g, texel_distance(px, qx, W, repeat), texel_distance(py, qy, H, repeat));
+                if (!(hq > hp && d2 > 0.0f)) continue;
+                if (relaxed && !behind.exits(px, py, qx, qy, hq)) continue;
+                best = std::min(best, detail::cone_r2(g, d2, hq - hp));
+              }
+            r2[std::size_t(py) * W + px] = best;
           }
-        r2[std::size_t(py) * W + px] = best;
-      }
-  }, o.progress);
+      },
+      o.progress);
   if (o.bilinear_safe) bilinear_local(heights, apex, W, H, o, r2);
   return square_roots(std::move(r2));
 }
@@ -202,9 +209,15 @@ void quantize_rows(const float* heights, const float* ratios, int W, const ConeM
         if (channels > 3) p[3] = T(scale);
       };
       switch (type) {
-        case PixelType::u8: put(row + channels * x, 255.0, true); break;
-        case PixelType::u16: put(reinterpret_cast<std::uint16_t*>(row) + channels * x, 65535.0, true); break;
-        case PixelType::f32: put(reinterpret_cast<float*>(row) + channels * x, 1.0, false); break;
+        case PixelType::u8:
+          put(row + channels * x, 255.0, true);
+          break;
+        case PixelType::u16:
+          put(reinterpret_cast<std::uint16_t*>(row) + channels * x, 65535.0, true);
+          break;
+        case PixelType::f32:
+          put(reinterpret_cast<float*>(row) + channels * x, 1.0, false);
+          break;
       }
     }
   }
@@ -258,7 +271,8 @@ ConeRatioSearch::~ConeRatioSearch() = default;
 
 void ConeRatioSearch::rows(int y0, int y1, float* out) const {
   const State& s = *s_;
-  if (y0 < 0 || y1 > s.H || y0 > y1) throw Error(ErrorCode::bad_arguments, "ConeRatioSearch::rows: rows outside the map");
+  if (y0 < 0 || y1 > s.H || y0 > y1)
+    throw Error(ErrorCode::bad_arguments, "ConeRatioSearch::rows: rows outside the map");
   if (y0 == y1) return;
   const std::size_t W = std::size_t(s.W);
   if (!s.whole.empty()) {

@@ -196,11 +196,13 @@ Image render_preview(const std::vector<float>& heights, const std::vector<float>
     auto h = [&](int i, int j) {
       return heights[std::size_t(wrap_index(j, H, o.wrap)) * W + wrap_index(i, W, o.wrap)];
     };
-    const float gx = (h(x + 1, y) - h(x - 1, y)) * 0.5f * W * o.depth, gy = (h(x, y + 1) - h(x, y - 1)) * 0.5f * H * o.depth;
+    const float gx = (h(x + 1, y) - h(x - 1, y)) * 0.5f * W * o.depth,
+                gy = (h(x, y + 1) - h(x, y - 1)) * 0.5f * H * o.depth;
     const float len = std::sqrt(gx * gx + gy * gy + 1.0f);
     const float lambert = std::max(0.0f, (-gx * light[0] - gy * light[1] + light[2]) / len);
     const float base[3] = {0.55f + 0.4f * hit.height, 0.45f + 0.3f * hit.height, 0.35f};
-    for (int c = 0; c < 3; ++c) p[c] = std::uint8_t(std::clamp(255.0f * base[c] * (0.25f + 0.75f * lambert), 0.0f, 255.0f));
+    for (int c = 0; c < 3; ++c)
+      p[c] = std::uint8_t(std::clamp(255.0f * base[c] * (0.25f + 0.75f * lambert), 0.0f, 255.0f));
   };
   auto heat = [](int steps, std::uint8_t* p) {
     const float t = std::clamp(std::log2(float(std::max(steps, 1))) / 10.0f, 0.0f, 1.0f);  // 1 .. 1024 lookups

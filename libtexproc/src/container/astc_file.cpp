@@ -36,7 +36,8 @@ ByteWriter encode_astc_stream(const Texture& t) {
                 std::string(".astc holds ASTC blocks, not ") + fi.name + ": write .ktx2, .ktx or .dds");
   }
   if (t.levels != 1 || t.faces != 1 || t.layers != 1 || t.is_array) {
-    throw Error(ErrorCode::unsupported, ".astc holds one level of one image: write .ktx2 or .ktx for mips, cubemaps, arrays");
+    throw Error(ErrorCode::unsupported,
+                ".astc holds one level of one image: write .ktx2 or .ktx for mips, cubemaps, arrays");
   }
   if (t.width > 0xFFFFFF || t.height > 0xFFFFFF) throw Error(ErrorCode::unsupported, ".astc sizes are 24-bit");
   ByteWriter w;

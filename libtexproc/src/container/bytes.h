@@ -70,7 +70,8 @@ class ByteWriter {
     for (const Ref& r : refs_) {
       const std::size_t logical = r.owned_at + before;
       if (at + n <= logical) break;
-      if (at < logical + r.size) throw Error(ErrorCode::runtime, "container writer: a patch inside a referenced payload");
+      if (at < logical + r.size)
+        throw Error(ErrorCode::runtime, "container writer: a patch inside a referenced payload");
       before += r.size;
     }
     return at - before;
@@ -110,9 +111,7 @@ class ByteReader {
     std::memcpy(&v, at(offset, 2, field), 2);
     return v;
   }
-  [[noreturn]] void fail(const std::string& what) const {
-    throw Error(ErrorCode::invalid_file, name_ + ": " + what);
-  }
+  [[noreturn]] void fail(const std::string& what) const { throw Error(ErrorCode::invalid_file, name_ + ": " + what); }
   [[noreturn]] void unsupported(const std::string& what) const {
     throw Error(ErrorCode::unsupported, name_ + ": " + what);
   }

@@ -22,16 +22,22 @@ ContainerKind container_for_path(const std::string& path) {
   if (e == ".ktx") return ContainerKind::ktx1;
   if (e == ".pkm") return ContainerKind::pkm;
   if (e == ".astc") return ContainerKind::astc;
-  throw Error(ErrorCode::unsupported, path + ": not a texture container extension (valid: .dds, .ktx2, .ktx, .pkm, .astc)");
+  throw Error(ErrorCode::unsupported,
+              path + ": not a texture container extension (valid: .dds, .ktx2, .ktx, .pkm, .astc)");
 }
 
 const char* to_string(ContainerKind k) {
   switch (k) {
-    case ContainerKind::dds: return "dds";
-    case ContainerKind::ktx2: return "ktx2";
-    case ContainerKind::ktx1: return "ktx1";
-    case ContainerKind::pkm: return "pkm";
-    case ContainerKind::astc: return "astc";
+    case ContainerKind::dds:
+      return "dds";
+    case ContainerKind::ktx2:
+      return "ktx2";
+    case ContainerKind::ktx1:
+      return "ktx1";
+    case ContainerKind::pkm:
+      return "pkm";
+    case ContainerKind::astc:
+      return "astc";
   }
   return "?";
 }
@@ -40,11 +46,21 @@ void write_texture(const std::string& path, const Texture& t, DdsHeader dds_head
   ByteWriter stream;
   try {
     switch (container_for_path(path)) {
-      case ContainerKind::dds: stream = encode_dds_stream(t, dds_header); break;
-      case ContainerKind::ktx2: stream = encode_ktx2_stream(t, "", ktx2_zstd_level); break;
-      case ContainerKind::ktx1: stream = encode_ktx1_stream(t); break;
-      case ContainerKind::pkm: stream = encode_pkm_stream(t); break;
-      case ContainerKind::astc: stream = encode_astc_stream(t); break;
+      case ContainerKind::dds:
+        stream = encode_dds_stream(t, dds_header);
+        break;
+      case ContainerKind::ktx2:
+        stream = encode_ktx2_stream(t, "", ktx2_zstd_level);
+        break;
+      case ContainerKind::ktx1:
+        stream = encode_ktx1_stream(t);
+        break;
+      case ContainerKind::pkm:
+        stream = encode_pkm_stream(t);
+        break;
+      case ContainerKind::astc:
+        stream = encode_astc_stream(t);
+        break;
     }
   } catch (const Error& e) {
     const std::string msg = e.what();
@@ -100,12 +116,18 @@ std::vector<std::uint8_t> slurp(const std::string& path) {
 
 bool container_from_signature(const std::uint8_t* b, std::size_t n, ContainerKind& kind) {
   auto starts = [&](const char* sig, std::size_t len) { return n >= len && std::memcmp(b, sig, len) == 0; };
-  if (starts("DDS ", 4)) kind = ContainerKind::dds;
-  else if (starts("PKM ", 4)) kind = ContainerKind::pkm;
-  else if (n >= 12 && starts("\xABKTX 20\xBB", 8)) kind = ContainerKind::ktx2;  // the reader checks the rest
-  else if (n >= 12 && starts("\xABKTX 11\xBB", 8)) kind = ContainerKind::ktx1;
-  else if (starts("\x13\xAB\xA1\x5C", 4)) kind = ContainerKind::astc;
-  else return false;
+  if (starts("DDS ", 4))
+    kind = ContainerKind::dds;
+  else if (starts("PKM ", 4))
+    kind = ContainerKind::pkm;
+  else if (n >= 12 && starts("\xABKTX 20\xBB", 8))
+    kind = ContainerKind::ktx2;  // the reader checks the rest
+  else if (n >= 12 && starts("\xABKTX 11\xBB", 8))
+    kind = ContainerKind::ktx1;
+  else if (starts("\x13\xAB\xA1\x5C", 4))
+    kind = ContainerKind::astc;
+  else
+    return false;
   return true;
 }
 
@@ -123,11 +145,16 @@ Texture read_texture(const std::string& path, const ReadLimits& limits) {
   if (!container_from_signature(b.data(), b.size(), kind))
     throw Error(ErrorCode::invalid_file, path + ": not a DDS, KTX2, KTX1, PKM or .astc file (unknown signature)");
   switch (kind) {
-    case ContainerKind::dds: return decode_dds(b.data(), b.size(), path, limits);
-    case ContainerKind::ktx2: return decode_ktx2(b.data(), b.size(), path, limits);
-    case ContainerKind::ktx1: return decode_ktx1(b.data(), b.size(), path, limits);
-    case ContainerKind::pkm: return decode_pkm(b.data(), b.size(), path, limits);
-    case ContainerKind::astc: return decode_astc(b.data(), b.size(), path, limits);
+    case ContainerKind::dds:
+      return decode_dds(b.data(), b.size(), path, limits);
+    case ContainerKind::ktx2:
+      return decode_ktx2(b.data(), b.size(), path, limits);
+    case ContainerKind::ktx1:
+      return decode_ktx1(b.data(), b.size(), path, limits);
+    case ContainerKind::pkm:
+      return decode_pkm(b.data(), b.size(), path, limits);
+    case ContainerKind::astc:
+      return decode_astc(b.data(), b.size(), path, limits);
   }
   return {};
 }

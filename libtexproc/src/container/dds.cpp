@@ -80,9 +80,10 @@ ByteWriter encode_dds_stream(const Texture& t, DdsHeader header) {
   validate(t);
   const FormatInfo& info = format_info(t.format);
   if (info.dxgi_format == 0) {
-    throw Error(ErrorCode::unsupported, std::string("DDS cannot hold ") + info.name +
-                                            (is_astc(t.format) ? " (Direct3D has no ASTC formats): write .ktx2, .ktx or .astc"
-                                                               : " (Direct3D has no ETC formats): write .ktx2, .ktx or .pkm"));
+    throw Error(ErrorCode::unsupported,
+                std::string("DDS cannot hold ") + info.name +
+                    (is_astc(t.format) ? " (Direct3D has no ASTC formats): write .ktx2, .ktx or .astc"
+                                       : " (Direct3D has no ETC formats): write .ktx2, .ktx or .pkm"));
   }
   const LegacyFormat* legacy = legacy_for(t.format);
   // Asked for a legacy header: the D3DFMT codes that old readers take as FourCCs
@@ -155,12 +156,15 @@ ByteWriter encode_dds_stream(const Texture& t, DdsHeader header) {
   return w;
 }
 
-std::vector<std::uint8_t> encode_dds(const Texture& t, DdsHeader header) { return encode_dds_stream(t, header).bytes(); }
+std::vector<std::uint8_t> encode_dds(const Texture& t, DdsHeader header) {
+  return encode_dds_stream(t, header).bytes();
+}
 
 Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& limits) {
   ByteReader r(data, size, name);
   if (size < 4 || r.u32(0, "magic") != kMagic) r.fail("not a DDS file (no \"DDS \" magic)");
-  if (r.u32(4, "dwSize") != kHeaderSize) r.fail("header dwSize " + std::to_string(r.u32(4, "dwSize")) + " (valid: 124)");
+  if (r.u32(4, "dwSize") != kHeaderSize)
+    r.fail("header dwSize " + std::to_string(r.u32(4, "dwSize")) + " (valid: 124)");
   const std::uint32_t flags = r.u32(8, "dwFlags");
   const std::uint32_t height = r.u32(12, "dwHeight"), width = r.u32(16, "dwWidth");
   const std::uint32_t depth = r.u32(24, "dwDepth");
@@ -207,7 +211,8 @@ Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string
       r.unsupported("DXGI format " + std::to_string(dxgi) + (what.empty() ? "" : " (" + what + ")") +
                     " is not one texproc reads");
     }
-    if (dim != kDimensionTexture2D) r.unsupported("resource dimension " + std::to_string(dim) + " (texproc reads 2D textures)");
+    if (dim != kDimensionTexture2D)
+      r.unsupported("resource dimension " + std::to_string(dim) + " (texproc reads 2D textures)");
     if (array_size == 0 || array_size > limits.max_layers) r.fail("DX10 arraySize " + std::to_string(array_size));
     t.format = fi->format;
     t.layers = array_size;
@@ -232,8 +237,9 @@ Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string
     for (const auto& l : kLegacy) {
       if (l.flags & kFourCC) continue;
       const bool alpha = (pf_flags & kAlphaPixels) != 0;
-      if (l.bits == bits && l.r == rm && (l.g == gm || (l.flags & kLuminance)) && (l.b == bm || (l.flags & kLuminance)) &&
-          (l.a == am || !alpha) && ((l.flags & kLuminance) == (pf_flags & kLuminance))) {
+      if (l.bits == bits && l.r == rm && (l.g == gm || (l.flags & kLuminance)) &&
+          (l.b == bm || (l.flags & kLuminance)) && (l.a == am || !alpha) &&
+          ((l.flags & kLuminance) == (pf_flags & kLuminance))) {
         t.format = l.format;
         found = true;
         break;
@@ -250,8 +256,8 @@ Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string
   {
     const FormatInfo& info = format_info(t.format);
     const std::uint32_t pitch = r.u32(20, "dwPitchOrLinearSize");
-    const std::uint64_t want = info.compressed ? image_bytes(t.format, width, height)
-                                               : std::uint64_t(width) * std::uint32_t(info.block_bytes);
+    const std::uint64_t want =
+        info.compressed ? image_bytes(t.format, width, height) : std::uint64_t(width) * std::uint32_t(info.block_bytes);
     const bool says = (flags & (info.compressed ? kLinearSize : kPitch)) != 0;
     if (says && pitch != 0 && pitch != want) {
       r.fail(std::string(info.compressed ? "dwPitchOrLinearSize (linear size) " : "dwPitchOrLinearSize (pitch) ") +

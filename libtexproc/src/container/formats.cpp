@@ -20,35 +20,36 @@ constexpr std::uint32_t kGlRed = 0x1903, kGlRg = 0x8227, kGlRgba = 0x1908, kGlBg
 constexpr std::uint32_t kGlUByte = 0x1401, kGlUShort = 0x1403, kGlHalf = 0x140B, kGlFloat = 0x1406;
 
 using F = TexelFormat;
-// format, name, block w, h, bytes, channels, srgb, snorm, float, compressed, typeSize, vk, dxgi, gl internal, gl format, gl type
+// format, name, block w, h, bytes, channels, srgb, snorm, float, compressed, typeSize, vk, dxgi, gl internal, gl
+// format, gl type
 using Family = CodecFamily;
 const FormatInfo kFormats[] = {
-    {F::r8_unorm, "r8_unorm", Family::uncompressed,
-     1, 1, 1, 1, false, false, false, false, 1, 9, 61, 0x8229, kGlRed, kGlUByte},
-    {F::r8_srgb, "r8_srgb", Family::uncompressed,
-     1, 1, 1, 1, true, false, false, false, 1, 15, 0, 0x8FBD, kGlRed, kGlUByte},
-    {F::rg8_unorm, "rg8_unorm", Family::uncompressed,
-     1, 1, 2, 2, false, false, false, false, 1, 16, 49, 0x822B, kGlRg, kGlUByte},
-    {F::rg8_srgb, "rg8_srgb", Family::uncompressed,
-     1, 1, 2, 2, true, false, false, false, 1, 22, 0, 0x8FBE, kGlRg, kGlUByte},
-    {F::rgba8_unorm, "rgba8_unorm", Family::uncompressed,
-     1, 1, 4, 4, false, false, false, false, 1, 37, 28, 0x8058, kGlRgba, kGlUByte},
-    {F::rgba8_srgb, "rgba8_srgb", Family::uncompressed,
-     1, 1, 4, 4, true, false, false, false, 1, 43, 29, 0x8C43, kGlRgba, kGlUByte},
-    {F::bgra8_unorm, "bgra8_unorm", Family::uncompressed,
-     1, 1, 4, 4, false, false, false, false, 1, 44, 87, 0x93A1, kGlBgra, kGlUByte},
-    {F::bgra8_srgb, "bgra8_srgb", Family::uncompressed,
-     1, 1, 4, 4, true, false, false, false, 1, 50, 91, 0, kGlBgra, kGlUByte},
-    {F::r16_unorm, "r16_unorm", Family::uncompressed,
-     1, 1, 2, 1, false, false, false, false, 2, 70, 56, 0x822A, kGlRed, kGlUShort},
-    {F::rg16_unorm, "rg16_unorm", Family::uncompressed,
-     1, 1, 4, 2, false, false, false, false, 2, 77, 35, 0x822C, kGlRg, kGlUShort},
-    {F::rgba16_unorm, "rgba16_unorm", Family::uncompressed,
-     1, 1, 8, 4, false, false, false, false, 2, 91, 11, 0x805B, kGlRgba, kGlUShort},
-    {F::rgba16_float, "rgba16_float", Family::uncompressed,
-     1, 1, 8, 4, false, false, true, false, 2, 97, 10, 0x881A, kGlRgba, kGlHalf},
-    {F::rgba32_float, "rgba32_float", Family::uncompressed,
-     1, 1, 16, 4, false, false, true, false, 4, 109, 2, 0x8814, kGlRgba, kGlFloat},
+    {F::r8_unorm, "r8_unorm", Family::uncompressed, 1, 1, 1, 1, false, false, false, false, 1, 9, 61, 0x8229, kGlRed,
+     kGlUByte},
+    {F::r8_srgb, "r8_srgb", Family::uncompressed, 1, 1, 1, 1, true, false, false, false, 1, 15, 0, 0x8FBD, kGlRed,
+     kGlUByte},
+    {F::rg8_unorm, "rg8_unorm", Family::uncompressed, 1, 1, 2, 2, false, false, false, false, 1, 16, 49, 0x822B, kGlRg,
+     kGlUByte},
+    {F::rg8_srgb, "rg8_srgb", Family::uncompressed, 1, 1, 2, 2, true, false, false, false, 1, 22, 0, 0x8FBE, kGlRg,
+     kGlUByte},
+    {F::rgba8_unorm, "rgba8_unorm", Family::uncompressed, 1, 1, 4, 4, false, false, false, false, 1, 37, 28, 0x8058,
+     kGlRgba, kGlUByte},
+    {F::rgba8_srgb, "rgba8_srgb", Family::uncompressed, 1, 1, 4, 4, true, false, false, false, 1, 43, 29, 0x8C43,
+     kGlRgba, kGlUByte},
+    {F::bgra8_unorm, "bgra8_unorm", Family::uncompressed, 1, 1, 4, 4, false, false, false, false, 1, 44, 87, 0x93A1,
+     kGlBgra, kGlUByte},
+    {F::bgra8_srgb, "bgra8_srgb", Family::uncompressed, 1, 1, 4, 4, true, false, false, false, 1, 50, 91, 0, kGlBgra,
+     kGlUByte},
+    {F::r16_unorm, "r16_unorm", Family::uncompressed, 1, 1, 2, 1, false, false, false, false, 2, 70, 56, 0x822A, kGlRed,
+     kGlUShort},
+    {F::rg16_unorm, "rg16_unorm", Family::uncompressed, 1, 1, 4, 2, false, false, false, false, 2, 77, 35, 0x822C,
+     kGlRg, kGlUShort},
+    {F::rgba16_unorm, "rgba16_unorm", Family::uncompressed, 1, 1, 8, 4, false, false, false, false, 2, 91, 11, 0x805B,
+     kGlRgba, kGlUShort},
+    {F::rgba16_float, "rgba16_float", Family::uncompressed, 1, 1, 8, 4, false, false, true, false, 2, 97, 10, 0x881A,
+     kGlRgba, kGlHalf},
+    {F::rgba32_float, "rgba32_float", Family::uncompressed, 1, 1, 16, 4, false, false, true, false, 4, 109, 2, 0x8814,
+     kGlRgba, kGlFloat},
     {F::bc1_rgb_unorm, "bc1_rgb_unorm", Family::bc1, 4, 4, 8, 3, false, false, false, true, 1, 131, 71, 0x83F0, 0, 0},
     {F::bc1_rgb_srgb, "bc1_rgb_srgb", Family::bc1, 4, 4, 8, 3, true, false, false, true, 1, 132, 72, 0x8C4C, 0, 0},
     {F::bc1_rgba_unorm, "bc1_rgba_unorm", Family::bc1, 4, 4, 8, 4, false, false, false, true, 1, 133, 71, 0x83F1, 0, 0},
@@ -68,94 +69,94 @@ const FormatInfo kFormats[] = {
     {F::etc1_rgb, "etc1_rgb", Family::etc1, 4, 4, 8, 3, false, false, false, true, 1, 147, 0, 0x8D64, 0, 0},
     {F::etc2_rgb_unorm, "etc2_rgb_unorm", Family::etc2, 4, 4, 8, 3, false, false, false, true, 1, 147, 0, 0x9274, 0, 0},
     {F::etc2_rgb_srgb, "etc2_rgb_srgb", Family::etc2, 4, 4, 8, 3, true, false, false, true, 1, 148, 0, 0x9275, 0, 0},
-    {F::etc2_rgba1_unorm, "etc2_rgba1_unorm", Family::etc2,
-     4, 4, 8, 4, false, false, false, true, 1, 149, 0, 0x9276, 0, 0},
-    {F::etc2_rgba1_srgb, "etc2_rgba1_srgb", Family::etc2,
-     4, 4, 8, 4, true, false, false, true, 1, 150, 0, 0x9277, 0, 0},
-    {F::etc2_rgba8_unorm, "etc2_rgba8_unorm", Family::etc2,
-     4, 4, 16, 4, false, false, false, true, 1, 151, 0, 0x9278, 0, 0},
-    {F::etc2_rgba8_srgb, "etc2_rgba8_srgb", Family::etc2,
-     4, 4, 16, 4, true, false, false, true, 1, 152, 0, 0x9279, 0, 0},
+    {F::etc2_rgba1_unorm, "etc2_rgba1_unorm", Family::etc2, 4, 4, 8, 4, false, false, false, true, 1, 149, 0, 0x9276, 0,
+     0},
+    {F::etc2_rgba1_srgb, "etc2_rgba1_srgb", Family::etc2, 4, 4, 8, 4, true, false, false, true, 1, 150, 0, 0x9277, 0,
+     0},
+    {F::etc2_rgba8_unorm, "etc2_rgba8_unorm", Family::etc2, 4, 4, 16, 4, false, false, false, true, 1, 151, 0, 0x9278,
+     0, 0},
+    {F::etc2_rgba8_srgb, "etc2_rgba8_srgb", Family::etc2, 4, 4, 16, 4, true, false, false, true, 1, 152, 0, 0x9279, 0,
+     0},
     {F::eac_r11_unorm, "eac_r11_unorm", Family::eac, 4, 4, 8, 1, false, false, false, true, 1, 153, 0, 0x9270, 0, 0},
     {F::eac_r11_snorm, "eac_r11_snorm", Family::eac, 4, 4, 8, 1, false, true, false, true, 1, 154, 0, 0x9271, 0, 0},
     {F::eac_rg11_unorm, "eac_rg11_unorm", Family::eac, 4, 4, 16, 2, false, false, false, true, 1, 155, 0, 0x9272, 0, 0},
     {F::eac_rg11_snorm, "eac_rg11_snorm", Family::eac, 4, 4, 16, 2, false, true, false, true, 1, 156, 0, 0x9273, 0, 0},
-    {F::astc_4x4_unorm, "astc_4x4_unorm", Family::astc,
-     4, 4, 16, 4, false, false, false, true, 1, 157, 0, 0x93B0, 0, 0},
+    {F::astc_4x4_unorm, "astc_4x4_unorm", Family::astc, 4, 4, 16, 4, false, false, false, true, 1, 157, 0, 0x93B0, 0,
+     0},
     {F::astc_4x4_srgb, "astc_4x4_srgb", Family::astc, 4, 4, 16, 4, true, false, false, true, 1, 158, 0, 0x93D0, 0, 0},
-    {F::astc_4x4_sfloat, "astc_4x4_sfloat", Family::astc,
-     4, 4, 16, 4, false, false, true, true, 1, 1000066000u, 0, 0x93B0, 0, 0},
-    {F::astc_5x4_unorm, "astc_5x4_unorm", Family::astc,
-     5, 4, 16, 4, false, false, false, true, 1, 159, 0, 0x93B1, 0, 0},
+    {F::astc_4x4_sfloat, "astc_4x4_sfloat", Family::astc, 4, 4, 16, 4, false, false, true, true, 1, 1000066000u, 0,
+     0x93B0, 0, 0},
+    {F::astc_5x4_unorm, "astc_5x4_unorm", Family::astc, 5, 4, 16, 4, false, false, false, true, 1, 159, 0, 0x93B1, 0,
+     0},
     {F::astc_5x4_srgb, "astc_5x4_srgb", Family::astc, 5, 4, 16, 4, true, false, false, true, 1, 160, 0, 0x93D1, 0, 0},
-    {F::astc_5x4_sfloat, "astc_5x4_sfloat", Family::astc,
-     5, 4, 16, 4, false, false, true, true, 1, 1000066001u, 0, 0x93B1, 0, 0},
-    {F::astc_5x5_unorm, "astc_5x5_unorm", Family::astc,
-     5, 5, 16, 4, false, false, false, true, 1, 161, 0, 0x93B2, 0, 0},
+    {F::astc_5x4_sfloat, "astc_5x4_sfloat", Family::astc, 5, 4, 16, 4, false, false, true, true, 1, 1000066001u, 0,
+     0x93B1, 0, 0},
+    {F::astc_5x5_unorm, "astc_5x5_unorm", Family::astc, 5, 5, 16, 4, false, false, false, true, 1, 161, 0, 0x93B2, 0,
+     0},
     {F::astc_5x5_srgb, "astc_5x5_srgb", Family::astc, 5, 5, 16, 4, true, false, false, true, 1, 162, 0, 0x93D2, 0, 0},
-    {F::astc_5x5_sfloat, "astc_5x5_sfloat", Family::astc,
-     5, 5, 16, 4, false, false, true, true, 1, 1000066002u, 0, 0x93B2, 0, 0},
-    {F::astc_6x5_unorm, "astc_6x5_unorm", Family::astc,
-     6, 5, 16, 4, false, false, false, true, 1, 163, 0, 0x93B3, 0, 0},
+    {F::astc_5x5_sfloat, "astc_5x5_sfloat", Family::astc, 5, 5, 16, 4, false, false, true, true, 1, 1000066002u, 0,
+     0x93B2, 0, 0},
+    {F::astc_6x5_unorm, "astc_6x5_unorm", Family::astc, 6, 5, 16, 4, false, false, false, true, 1, 163, 0, 0x93B3, 0,
+     0},
     {F::astc_6x5_srgb, "astc_6x5_srgb", Family::astc, 6, 5, 16, 4, true, false, false, true, 1, 164, 0, 0x93D3, 0, 0},
-    {F::astc_6x5_sfloat, "astc_6x5_sfloat", Family::astc,
-     6, 5, 16, 4, false, false, true, true, 1, 1000066003u, 0, 0x93B3, 0, 0},
-    {F::astc_6x6_unorm, "astc_6x6_unorm", Family::astc,
-     6, 6, 16, 4, false, false, false, true, 1, 165, 0, 0x93B4, 0, 0},
+    {F::astc_6x5_sfloat, "astc_6x5_sfloat", Family::astc, 6, 5, 16, 4, false, false, true, true, 1, 1000066003u, 0,
+     0x93B3, 0, 0},
+    {F::astc_6x6_unorm, "astc_6x6_unorm", Family::astc, 6, 6, 16, 4, false, false, false, true, 1, 165, 0, 0x93B4, 0,
+     0},
     {F::astc_6x6_srgb, "astc_6x6_srgb", Family::astc, 6, 6, 16, 4, true, false, false, true, 1, 166, 0, 0x93D4, 0, 0},
-    {F::astc_6x6_sfloat, "astc_6x6_sfloat", Family::astc,
-     6, 6, 16, 4, false, false, true, true, 1, 1000066004u, 0, 0x93B4, 0, 0},
-    {F::astc_8x5_unorm, "astc_8x5_unorm", Family::astc,
-     8, 5, 16, 4, false, false, false, true, 1, 167, 0, 0x93B5, 0, 0},
+    {F::astc_6x6_sfloat, "astc_6x6_sfloat", Family::astc, 6, 6, 16, 4, false, false, true, true, 1, 1000066004u, 0,
+     0x93B4, 0, 0},
+    {F::astc_8x5_unorm, "astc_8x5_unorm", Family::astc, 8, 5, 16, 4, false, false, false, true, 1, 167, 0, 0x93B5, 0,
+     0},
     {F::astc_8x5_srgb, "astc_8x5_srgb", Family::astc, 8, 5, 16, 4, true, false, false, true, 1, 168, 0, 0x93D5, 0, 0},
-    {F::astc_8x5_sfloat, "astc_8x5_sfloat", Family::astc,
-     8, 5, 16, 4, false, false, true, true, 1, 1000066005u, 0, 0x93B5, 0, 0},
-    {F::astc_8x6_unorm, "astc_8x6_unorm", Family::astc,
-     8, 6, 16, 4, false, false, false, true, 1, 169, 0, 0x93B6, 0, 0},
+    {F::astc_8x5_sfloat, "astc_8x5_sfloat", Family::astc, 8, 5, 16, 4, false, false, true, true, 1, 1000066005u, 0,
+     0x93B5, 0, 0},
+    {F::astc_8x6_unorm, "astc_8x6_unorm", Family::astc, 8, 6, 16, 4, false, false, false, true, 1, 169, 0, 0x93B6, 0,
+     0},
     {F::astc_8x6_srgb, "astc_8x6_srgb", Family::astc, 8, 6, 16, 4, true, false, false, true, 1, 170, 0, 0x93D6, 0, 0},
-    {F::astc_8x6_sfloat, "astc_8x6_sfloat", Family::astc,
-     8, 6, 16, 4, false, false, true, true, 1, 1000066006u, 0, 0x93B6, 0, 0},
-    {F::astc_8x8_unorm, "astc_8x8_unorm", Family::astc,
-     8, 8, 16, 4, false, false, false, true, 1, 171, 0, 0x93B7, 0, 0},
+    {F::astc_8x6_sfloat, "astc_8x6_sfloat", Family::astc, 8, 6, 16, 4, false, false, true, true, 1, 1000066006u, 0,
+     0x93B6, 0, 0},
+    {F::astc_8x8_unorm, "astc_8x8_unorm", Family::astc, 8, 8, 16, 4, false, false, false, true, 1, 171, 0, 0x93B7, 0,
+     0},
     {F::astc_8x8_srgb, "astc_8x8_srgb", Family::astc, 8, 8, 16, 4, true, false, false, true, 1, 172, 0, 0x93D7, 0, 0},
-    {F::astc_8x8_sfloat, "astc_8x8_sfloat", Family::astc,
-     8, 8, 16, 4, false, false, true, true, 1, 1000066007u, 0, 0x93B7, 0, 0},
-    {F::astc_10x5_unorm, "astc_10x5_unorm", Family::astc,
-     10, 5, 16, 4, false, false, false, true, 1, 173, 0, 0x93B8, 0, 0},
-    {F::astc_10x5_srgb, "astc_10x5_srgb", Family::astc,
-     10, 5, 16, 4, true, false, false, true, 1, 174, 0, 0x93D8, 0, 0},
-    {F::astc_10x5_sfloat, "astc_10x5_sfloat", Family::astc,
-     10, 5, 16, 4, false, false, true, true, 1, 1000066008u, 0, 0x93B8, 0, 0},
-    {F::astc_10x6_unorm, "astc_10x6_unorm", Family::astc,
-     10, 6, 16, 4, false, false, false, true, 1, 175, 0, 0x93B9, 0, 0},
-    {F::astc_10x6_srgb, "astc_10x6_srgb", Family::astc,
-     10, 6, 16, 4, true, false, false, true, 1, 176, 0, 0x93D9, 0, 0},
-    {F::astc_10x6_sfloat, "astc_10x6_sfloat", Family::astc,
-     10, 6, 16, 4, false, false, true, true, 1, 1000066009u, 0, 0x93B9, 0, 0},
-    {F::astc_10x8_unorm, "astc_10x8_unorm", Family::astc,
-     10, 8, 16, 4, false, false, false, true, 1, 177, 0, 0x93BA, 0, 0},
-    {F::astc_10x8_srgb, "astc_10x8_srgb", Family::astc,
-     10, 8, 16, 4, true, false, false, true, 1, 178, 0, 0x93DA, 0, 0},
-    {F::astc_10x8_sfloat, "astc_10x8_sfloat", Family::astc,
-     10, 8, 16, 4, false, false, true, true, 1, 1000066010u, 0, 0x93BA, 0, 0},
-    {F::astc_10x10_unorm, "astc_10x10_unorm", Family::astc,
-     10, 10, 16, 4, false, false, false, true, 1, 179, 0, 0x93BB, 0, 0},
-    {F::astc_10x10_srgb, "astc_10x10_srgb", Family::astc,
-     10, 10, 16, 4, true, false, false, true, 1, 180, 0, 0x93DB, 0, 0},
-    {F::astc_10x10_sfloat, "astc_10x10_sfloat", Family::astc,
-     10, 10, 16, 4, false, false, true, true, 1, 1000066011u, 0, 0x93BB, 0, 0},
-    {F::astc_12x10_unorm, "astc_12x10_unorm", Family::astc,
-     12, 10, 16, 4, false, false, false, true, 1, 181, 0, 0x93BC, 0, 0},
-    {F::astc_12x10_srgb, "astc_12x10_srgb", Family::astc,
-     12, 10, 16, 4, true, false, false, true, 1, 182, 0, 0x93DC, 0, 0},
-    {F::astc_12x10_sfloat, "astc_12x10_sfloat", Family::astc,
-     12, 10, 16, 4, false, false, true, true, 1, 1000066012u, 0, 0x93BC, 0, 0},
-    {F::astc_12x12_unorm, "astc_12x12_unorm", Family::astc,
-     12, 12, 16, 4, false, false, false, true, 1, 183, 0, 0x93BD, 0, 0},
-    {F::astc_12x12_srgb, "astc_12x12_srgb", Family::astc,
-     12, 12, 16, 4, true, false, false, true, 1, 184, 0, 0x93DD, 0, 0},
-    {F::astc_12x12_sfloat, "astc_12x12_sfloat", Family::astc,
-     12, 12, 16, 4, false, false, true, true, 1, 1000066013u, 0, 0x93BD, 0, 0},
+    {F::astc_8x8_sfloat, "astc_8x8_sfloat", Family::astc, 8, 8, 16, 4, false, false, true, true, 1, 1000066007u, 0,
+     0x93B7, 0, 0},
+    {F::astc_10x5_unorm, "astc_10x5_unorm", Family::astc, 10, 5, 16, 4, false, false, false, true, 1, 173, 0, 0x93B8, 0,
+     0},
+    {F::astc_10x5_srgb, "astc_10x5_srgb", Family::astc, 10, 5, 16, 4, true, false, false, true, 1, 174, 0, 0x93D8, 0,
+     0},
+    {F::astc_10x5_sfloat, "astc_10x5_sfloat", Family::astc, 10, 5, 16, 4, false, false, true, true, 1, 1000066008u, 0,
+     0x93B8, 0, 0},
+    {F::astc_10x6_unorm, "astc_10x6_unorm", Family::astc, 10, 6, 16, 4, false, false, false, true, 1, 175, 0, 0x93B9, 0,
+     0},
+    {F::astc_10x6_srgb, "astc_10x6_srgb", Family::astc, 10, 6, 16, 4, true, false, false, true, 1, 176, 0, 0x93D9, 0,
+     0},
+    {F::astc_10x6_sfloat, "astc_10x6_sfloat", Family::astc, 10, 6, 16, 4, false, false, true, true, 1, 1000066009u, 0,
+     0x93B9, 0, 0},
+    {F::astc_10x8_unorm, "astc_10x8_unorm", Family::astc, 10, 8, 16, 4, false, false, false, true, 1, 177, 0, 0x93BA, 0,
+     0},
+    {F::astc_10x8_srgb, "astc_10x8_srgb", Family::astc, 10, 8, 16, 4, true, false, false, true, 1, 178, 0, 0x93DA, 0,
+     0},
+    {F::astc_10x8_sfloat, "astc_10x8_sfloat", Family::astc, 10, 8, 16, 4, false, false, true, true, 1, 1000066010u, 0,
+     0x93BA, 0, 0},
+    {F::astc_10x10_unorm, "astc_10x10_unorm", Family::astc, 10, 10, 16, 4, false, false, false, true, 1, 179, 0, 0x93BB,
+     0, 0},
+    {F::astc_10x10_srgb, "astc_10x10_srgb", Family::astc, 10, 10, 16, 4, true, false, false, true, 1, 180, 0, 0x93DB, 0,
+     0},
+    {F::astc_10x10_sfloat, "astc_10x10_sfloat", Family::astc, 10, 10, 16, 4, false, false, true, true, 1, 1000066011u,
+     0, 0x93BB, 0, 0},
+    {F::astc_12x10_unorm, "astc_12x10_unorm", Family::astc, 12, 10, 16, 4, false, false, false, true, 1, 181, 0, 0x93BC,
+     0, 0},
+    {F::astc_12x10_srgb, "astc_12x10_srgb", Family::astc, 12, 10, 16, 4, true, false, false, true, 1, 182, 0, 0x93DC, 0,
+     0},
+    {F::astc_12x10_sfloat, "astc_12x10_sfloat", Family::astc, 12, 10, 16, 4, false, false, true, true, 1, 1000066012u,
+     0, 0x93BC, 0, 0},
+    {F::astc_12x12_unorm, "astc_12x12_unorm", Family::astc, 12, 12, 16, 4, false, false, false, true, 1, 183, 0, 0x93BD,
+     0, 0},
+    {F::astc_12x12_srgb, "astc_12x12_srgb", Family::astc, 12, 12, 16, 4, true, false, false, true, 1, 184, 0, 0x93DD, 0,
+     0},
+    {F::astc_12x12_sfloat, "astc_12x12_sfloat", Family::astc, 12, 12, 16, 4, false, false, true, true, 1, 1000066013u,
+     0, 0x93BD, 0, 0},
 };
 
 }  // namespace
@@ -172,18 +173,30 @@ bool is_astc(TexelFormat f) { return format_info(f).family == CodecFamily::astc;
 
 const char* to_string(CodecFamily family) {
   switch (family) {
-    case CodecFamily::uncompressed: return "uncompressed";
-    case CodecFamily::bc1: return "bc1";
-    case CodecFamily::bc2: return "bc2";
-    case CodecFamily::bc3: return "bc3";
-    case CodecFamily::bc4: return "bc4";
-    case CodecFamily::bc5: return "bc5";
-    case CodecFamily::bc6h: return "bc6h";
-    case CodecFamily::bc7: return "bc7";
-    case CodecFamily::etc1: return "etc1";
-    case CodecFamily::etc2: return "etc2";
-    case CodecFamily::eac: return "eac";
-    case CodecFamily::astc: return "astc";
+    case CodecFamily::uncompressed:
+      return "uncompressed";
+    case CodecFamily::bc1:
+      return "bc1";
+    case CodecFamily::bc2:
+      return "bc2";
+    case CodecFamily::bc3:
+      return "bc3";
+    case CodecFamily::bc4:
+      return "bc4";
+    case CodecFamily::bc5:
+      return "bc5";
+    case CodecFamily::bc6h:
+      return "bc6h";
+    case CodecFamily::bc7:
+      return "bc7";
+    case CodecFamily::etc1:
+      return "etc1";
+    case CodecFamily::etc2:
+      return "etc2";
+    case CodecFamily::eac:
+      return "eac";
+    case CodecFamily::astc:
+      return "astc";
   }
   return "?";
 }
@@ -195,7 +208,10 @@ TexelFormat astc_format(int block_width, int block_height, bool srgb, bool hdr) 
       return i.format;
   }
   throw Error(ErrorCode::bad_arguments, "ASTC has no " + std::to_string(block_width) + "x" +
-                                            std::to_string(block_height) + (hdr ? " HDR" : srgb ? " sRGB" : "") +
+                                            std::to_string(block_height) +
+                                            (hdr    ? " HDR"
+                                             : srgb ? " sRGB"
+                                                    : "") +
                                             " footprint (valid: 4x4, 5x4, 5x5, 6x5, 6x6, 8x5, 8x6, 8x8, 10x5, "
                                             "10x6, 10x8, 10x10, 12x10, 12x12)");
 }
@@ -303,8 +319,12 @@ Texture from_levels(const std::vector<Image>& levels, std::vector<Image>* steal,
     case PixelType::u8:
       t.format = C == 1 ? F::r8_unorm : C == 2 ? F::rg8_unorm : srgb ? F::rgba8_srgb : F::rgba8_unorm;
       break;
-    case PixelType::u16: t.format = C == 1 ? F::r16_unorm : C == 2 ? F::rg16_unorm : F::rgba16_unorm; break;
-    case PixelType::f32: t.format = half ? F::rgba16_float : F::rgba32_float; break;
+    case PixelType::u16:
+      t.format = C == 1 ? F::r16_unorm : C == 2 ? F::rg16_unorm : F::rgba16_unorm;
+      break;
+    case PixelType::f32:
+      t.format = half ? F::rgba16_float : F::rgba32_float;
+      break;
   }
   const FormatInfo& info = format_info(t.format);
   for (const Image& im : levels) {
@@ -320,38 +340,38 @@ Texture from_levels(const std::vector<Image>& levels, std::vector<Image>* steal,
     }
     PixelBytes bytes(std::size_t(im.width()) * im.height() * info.block_bytes);
     for_each_row_block(im.height(), 64, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y)
-      for (int x = 0; x < im.width(); ++x) {
-        const std::size_t o = (std::size_t(y) * im.width() + x) * out_c;
-        for (int c = 0; c < out_c; ++c) {
-          // 3 -> 4 channels: alpha 1; float 1/2 channels: gray to RGB, alpha.
-          const bool have = c < C && !(C < 4 && out_c == 4 && c == 3 && C != 2);
-          switch (top.type()) {
-            case PixelType::u8: {
-              std::uint8_t v = have ? im.row<std::uint8_t>(y)[x * C + c] : 255;
-              bytes[o + c] = v;
-              break;
-            }
-            case PixelType::u16: {
-              std::uint16_t v = have ? im.row<std::uint16_t>(y)[x * C + c] : 65535;
-              std::memcpy(bytes.data() + (o + c) * 2, &v, 2);
-              break;
-            }
-            case PixelType::f32: {
-              const float* p = im.row<float>(y) + x * C;
-              float v = c == 3 ? (C == 2 || C == 4 ? p[C - 1] : 1.0f) : (C <= 2 ? p[0] : p[c]);
-              if (half) {
-                const Imath::half h(v);
-                const std::uint16_t bits = h.bits();
-                std::memcpy(bytes.data() + (o + c) * 2, &bits, 2);
-              } else {
-                std::memcpy(bytes.data() + (o + c) * 4, &v, 4);
+      for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < im.width(); ++x) {
+          const std::size_t o = (std::size_t(y) * im.width() + x) * out_c;
+          for (int c = 0; c < out_c; ++c) {
+            // 3 -> 4 channels: alpha 1; float 1/2 channels: gray to RGB, alpha.
+            const bool have = c < C && !(C < 4 && out_c == 4 && c == 3 && C != 2);
+            switch (top.type()) {
+              case PixelType::u8: {
+                std::uint8_t v = have ? im.row<std::uint8_t>(y)[x * C + c] : 255;
+                bytes[o + c] = v;
+                break;
               }
-              break;
+              case PixelType::u16: {
+                std::uint16_t v = have ? im.row<std::uint16_t>(y)[x * C + c] : 65535;
+                std::memcpy(bytes.data() + (o + c) * 2, &v, 2);
+                break;
+              }
+              case PixelType::f32: {
+                const float* p = im.row<float>(y) + x * C;
+                float v = c == 3 ? (C == 2 || C == 4 ? p[C - 1] : 1.0f) : (C <= 2 ? p[0] : p[c]);
+                if (half) {
+                  const Imath::half h(v);
+                  const std::uint16_t bits = h.bits();
+                  std::memcpy(bytes.data() + (o + c) * 2, &bits, 2);
+                } else {
+                  std::memcpy(bytes.data() + (o + c) * 4, &v, 4);
+                }
+                break;
+              }
             }
           }
         }
-      }
     });
     t.images.push_back(std::move(bytes));
   }
@@ -414,8 +434,12 @@ Image image_from_texture(const Texture& t, std::uint32_t level, std::uint32_t la
         const int sc = bgra && c < 3 ? 2 - c : c;
         const std::size_t i = (std::size_t(y) * w + x) * C + sc;
         switch (type) {
-          case PixelType::u8: out.row<std::uint8_t>(y)[x * C + c] = src[i]; break;
-          case PixelType::u16: std::memcpy(out.row<std::uint16_t>(y) + x * C + c, src.data() + 2 * i, 2); break;
+          case PixelType::u8:
+            out.row<std::uint8_t>(y)[x * C + c] = src[i];
+            break;
+          case PixelType::u16:
+            std::memcpy(out.row<std::uint16_t>(y) + x * C + c, src.data() + 2 * i, 2);
+            break;
           case PixelType::f32:
             if (t.format == F::rgba16_float) {
               std::uint16_t bits;

@@ -18,10 +18,14 @@ constexpr std::uint32_t kGlRed = 0x1903, kGlRg = 0x8227, kGlRgb = 0x1907, kGlRgb
 std::uint32_t base_format(const FormatInfo& i) {
   if (i.gl_format == kGlBgra) return kGlBgra;
   switch (i.channels) {
-    case 1: return kGlRed;
-    case 2: return kGlRg;
-    case 3: return kGlRgb;
-    default: return kGlRgba;
+    case 1:
+      return kGlRed;
+    case 2:
+      return kGlRg;
+    case 3:
+      return kGlRgb;
+    default:
+      return kGlRgba;
   }
 }
 
@@ -85,26 +89,29 @@ std::vector<std::uint8_t> encode_ktx1(const Texture& t) { return encode_ktx1_str
 
 Texture decode_ktx1(const std::uint8_t* data, std::size_t size, const std::string& name, const ReadLimits& limits) {
   ByteReader r(data, size, name);
-  if (size < 12 || std::memcmp(r.at(0, 12, "identifier"), kIdentifier, 12) != 0) r.fail("not a KTX1 file (bad identifier)");
+  if (size < 12 || std::memcmp(r.at(0, 12, "identifier"), kIdentifier, 12) != 0)
+    r.fail("not a KTX1 file (bad identifier)");
   if (r.u32(12, "endianness") != 0x04030201) r.unsupported("big-endian KTX1 files are not supported");
   const std::uint32_t internal = r.u32(28, "glInternalFormat");
-  const std::uint32_t width = r.u32(36, "pixelWidth"), height = r.u32(40, "pixelHeight"), depth = r.u32(44, "pixelDepth");
+  const std::uint32_t width = r.u32(36, "pixelWidth"), height = r.u32(40, "pixelHeight"),
+                      depth = r.u32(44, "pixelDepth");
   const std::uint32_t elements = r.u32(48, "numberOfArrayElements"), faces = r.u32(52, "numberOfFaces");
   const std::uint32_t levels = r.u32(56, "numberOfMipmapLevels"), kv = r.u32(60, "bytesOfKeyValueData");
   const FormatInfo* fi = find_format_by_gl(internal);
-  if (!fi) r.unsupported("glInternalFormat 0x" + [&] {
-    char b[16];
-    std::snprintf(b, sizeof b, "%X", internal);
-    return std::string(b);
-  }() + " is not one texproc reads");
+  if (!fi)
+    r.unsupported("glInternalFormat 0x" + [&] {
+      char b[16];
+      std::snprintf(b, sizeof b, "%X", internal);
+      return std::string(b);
+    }() + " is not one texproc reads");
   // The other GL fields must say the same format.
   auto hex = [](std::uint32_t v) {
     char b[16];
     std::snprintf(b, sizeof b, "0x%X", v);
     return std::string(b);
   };
-  const std::uint32_t gl_type = r.u32(16, "glType"), type_size = r.u32(20, "glTypeSize"), gl_format = r.u32(24, "glFormat"),
-                      base = r.u32(32, "glBaseInternalFormat");
+  const std::uint32_t gl_type = r.u32(16, "glType"), type_size = r.u32(20, "glTypeSize"),
+                      gl_format = r.u32(24, "glFormat"), base = r.u32(32, "glBaseInternalFormat");
   const std::uint32_t want_size = fi->compressed ? 1 : std::uint32_t(fi->type_size);
   const std::pair<const char*, std::pair<std::uint32_t, std::uint32_t>> fields[] = {
       {"glType", {gl_type, fi->gl_type}},
@@ -118,16 +125,19 @@ Texture decode_ktx1(const std::uint8_t* data, std::size_t size, const std::strin
     }
   }
   if (width == 0 || height == 0) r.fail("zero pixelWidth or pixelHeight");
-  if (width > limits.max_texture_dimension || height > limits.max_texture_dimension) r.unsupported("texture larger than the limit");
+  if (width > limits.max_texture_dimension || height > limits.max_texture_dimension)
+    r.unsupported("texture larger than the limit");
   if (depth > 1) r.unsupported("3D textures are not supported");
   if (faces != 1 && faces != 6) r.fail("numberOfFaces " + std::to_string(faces) + " (valid: 1, 6)");
   if (faces == 6 && width != height) {
-    r.fail("cubemap faces are " + std::to_string(width) + "x" + std::to_string(height) + " (cube faces must be square)");
+    r.fail("cubemap faces are " + std::to_string(width) + "x" + std::to_string(height) +
+           " (cube faces must be square)");
   }
   if (elements > limits.max_layers) r.fail("numberOfArrayElements " + std::to_string(elements));
   std::uint32_t max_levels = 1;
   for (std::uint32_t m = std::max(width, height); m > 1; m >>= 1) ++max_levels;
-  if (levels > max_levels) r.fail("numberOfMipmapLevels " + std::to_string(levels) + " (at most " + std::to_string(max_levels) + ")");
+  if (levels > max_levels)
+    r.fail("numberOfMipmapLevels " + std::to_string(levels) + " (at most " + std::to_string(max_levels) + ")");
   Texture t;
   t.format = fi->format;
   t.width = width;
@@ -147,7 +157,9 @@ Texture decode_ktx1(const std::uint8_t* data, std::size_t size, const std::strin
     const std::uint32_t image_size = r.u32(p, "imageSize");
     p += 4;
     const std::uint64_t want = cube_only ? one : one * t.layers * t.faces;
-    if (image_size != want) r.fail("level " + std::to_string(l) + " imageSize " + std::to_string(image_size) + " (expected " + std::to_string(want) + ")");
+    if (image_size != want)
+      r.fail("level " + std::to_string(l) + " imageSize " + std::to_string(image_size) + " (expected " +
+             std::to_string(want) + ")");
     for (std::uint32_t a = 0; a < t.layers; ++a)
       for (std::uint32_t f = 0; f < t.faces; ++f) {
         const std::uint8_t* src = r.at(p, one, "image data");
@@ -164,7 +176,8 @@ Texture decode_ktx1(const std::uint8_t* data, std::size_t size, const std::strin
       }
     p = (p + 3) & ~std::uint64_t(3);
   }
-  if (p != size) r.fail(p > size ? "truncated padding" : std::to_string(size - p) + " trailing bytes after the last level");
+  if (p != size)
+    r.fail(p > size ? "truncated padding" : std::to_string(size - p) + " trailing bytes after the last level");
   // GL has one code for LDR and HDR ASTC (the profile is the context's): a
   // texture with an HDR block is SFLOAT.
   if (is_astc(t.format) && !fi->srgb) {

@@ -40,7 +40,7 @@ ByteWriter encode_ktx2_stream(const Texture& t, const std::string& writer, int z
   w.u32(std::uint32_t(info.type_size));
   w.u32(t.width);
   w.u32(t.height);
-  w.u32(0);                                   // pixelDepth
+  w.u32(0);                                          // pixelDepth
   w.u32(t.is_array || t.layers > 1 ? t.layers : 0);  // layerCount: 0 for a non-array texture
   w.u32(t.faces);
   w.u32(t.levels);
@@ -84,7 +84,8 @@ ByteWriter encode_ktx2_stream(const Texture& t, const std::string& writer, int z
       // Within a level: layers, then faces (z slices, then rows); one frame for the level.
       std::vector<std::uint8_t> level;
       for (std::uint32_t a = 0; a < t.layers; ++a)
-        for (std::uint32_t f = 0; f < t.faces; ++f) level.insert(level.end(), t.image(l, a, f).begin(), t.image(l, a, f).end());
+        for (std::uint32_t f = 0; f < t.faces; ++f)
+          level.insert(level.end(), t.image(l, a, f).begin(), t.image(l, a, f).end());
       std::vector<std::uint8_t> packed(ZSTD_compressBound(level.size()));
       const std::size_t n = ZSTD_compress(packed.data(), packed.size(), level.data(), level.size(), zstd_level);
       if (ZSTD_isError(n)) throw Error(ErrorCode::runtime, std::string("Zstandard: ") + ZSTD_getErrorName(n));
@@ -124,14 +125,16 @@ std::vector<std::uint8_t> supercompressed_level(const ByteReader& r, std::uint32
     }
     const std::size_t n = ZSTD_decompress(out.data(), want, data, length);
     if (ZSTD_isError(n)) r.fail(where + "Zstandard data: " + ZSTD_getErrorName(n));
-    if (n != want) r.fail(where + "Zstandard data inflates to " + std::to_string(n) + " bytes (expected " + std::to_string(want) + ")");
+    if (n != want)
+      r.fail(where + "Zstandard data inflates to " + std::to_string(n) + " bytes (expected " + std::to_string(want) +
+             ")");
   } else {
     uLongf n = uLongf(want);
     const int rc = uncompress(out.data(), &n, data, uLong(length));
     if (rc != Z_OK || n != want) {
-      r.fail(where + "zlib data " + (rc == Z_OK ? "inflates to " + std::to_string(n) + " bytes (expected " +
-                                                      std::to_string(want) + ")"
-                                                : std::string(rc == Z_BUF_ERROR ? "larger than the level" : "corrupt")));
+      r.fail(where + "zlib data " +
+             (rc == Z_OK ? "inflates to " + std::to_string(n) + " bytes (expected " + std::to_string(want) + ")"
+                         : std::string(rc == Z_BUF_ERROR ? "larger than the level" : "corrupt")));
     }
   }
   return out;
@@ -145,7 +148,8 @@ struct Header {
 };
 
 Header read_header(const ByteReader& r, std::size_t size) {
-  if (size < 12 || std::memcmp(r.at(0, 12, "identifier"), kIdentifier, 12) != 0) r.fail("not a KTX2 file (bad identifier)");
+  if (size < 12 || std::memcmp(r.at(0, 12, "identifier"), kIdentifier, 12) != 0)
+    r.fail("not a KTX2 file (bad identifier)");
   Header h;
   h.vk = r.u32(12, "vkFormat"), h.type_size = r.u32(16, "typeSize");
   h.width = r.u32(20, "pixelWidth"), h.height = r.u32(24, "pixelHeight"), h.depth = r.u32(28, "pixelDepth");
@@ -166,8 +170,11 @@ const FormatInfo& check_header(const ByteReader& r, std::size_t size, const Head
   const std::uint64_t sgd_offset = h.sgd_offset, sgd_length = h.sgd_length;
   // Zstandard (2) and zlib (3) compress each level on its own; BasisLZ (1)
   // is a codec of its own, with global data.
-  if (scheme == 1) r.unsupported("supercompression scheme 1, BasisLZ (ETC1S), is not one texproc reads (valid: 0 none, 2 Zstandard, 3 zlib)");
-  if (scheme > 3) r.unsupported("supercompression scheme " + std::to_string(scheme) + " (valid: 0 none, 2 Zstandard, 3 zlib)");
+  if (scheme == 1)
+    r.unsupported(
+        "supercompression scheme 1, BasisLZ (ETC1S), is not one texproc reads (valid: 0 none, 2 Zstandard, 3 zlib)");
+  if (scheme > 3)
+    r.unsupported("supercompression scheme " + std::to_string(scheme) + " (valid: 0 none, 2 Zstandard, 3 zlib)");
   const FormatInfo* fi = find_format_by_vk(vk);
   if (!fi) {
     // Name what it is: Basis Universal's formats have vkFormat 0 and say which in the DFD's colour model.
@@ -181,7 +188,8 @@ const FormatInfo& check_header(const ByteReader& r, std::size_t size, const Head
                   " is not one texproc reads");
   }
   if (type_size != std::uint32_t(fi->type_size)) {
-    r.fail("typeSize " + std::to_string(type_size) + " (valid for " + fi->name + ": " + std::to_string(fi->type_size) + ")");
+    r.fail("typeSize " + std::to_string(type_size) + " (valid for " + fi->name + ": " + std::to_string(fi->type_size) +
+           ")");
   }
   if (width == 0 || height == 0) r.fail("zero pixelWidth or pixelHeight (1D textures are not supported)");
   if (width > limits.max_texture_dimension || height > limits.max_texture_dimension) {
@@ -214,7 +222,8 @@ void check_dfd(const ByteReader& r, const Header& h, const FormatInfo* fi) {
   const std::vector<std::uint8_t> want_dfd = ktx2_dfd(fi->format);
   if (dfd_offset < kHeaderEnd + 24ull * level_count) r.fail("dfdByteOffset overlaps the level index");
   const std::uint8_t* dfd = r.at(dfd_offset, dfd_length, "data format descriptor");
-  if (dfd_length < 4 || r.u32(dfd_offset, "dfdTotalSize") != dfd_length) r.fail("dfdTotalSize does not match dfdByteLength");
+  if (dfd_length < 4 || r.u32(dfd_offset, "dfdTotalSize") != dfd_length)
+    r.fail("dfdTotalSize does not match dfdByteLength");
   if (dfd_length != want_dfd.size() || std::memcmp(dfd, want_dfd.data(), dfd_length) != 0) {
     // Accept another writer's descriptor only if its transfer function agrees with the format.
     if (dfd_length < 28) r.fail("data format descriptor too short");
@@ -226,7 +235,8 @@ void check_dfd(const ByteReader& r, const Header& h, const FormatInfo* fi) {
 // The key/value data: every entry's length inside the block, keys
 // NUL-terminated; values without their trailing NULs.
 std::map<std::string, std::string> read_key_values(const ByteReader& r, const Header& h) {
-  const std::uint32_t kvd_offset = h.kvd_offset, kvd_length = h.kvd_length, dfd_offset = h.dfd_offset, dfd_length = h.dfd_length;
+  const std::uint32_t kvd_offset = h.kvd_offset, kvd_length = h.kvd_length, dfd_offset = h.dfd_offset,
+                      dfd_length = h.dfd_length;
   std::map<std::string, std::string> kv;
   if (!kvd_length) return kv;
   r.at(kvd_offset, kvd_length, "key/value data");
@@ -255,7 +265,8 @@ std::map<std::string, std::string> read_key_values(const ByteReader& r, const He
       kv[std::string(reinterpret_cast<const char*>(entry), reinterpret_cast<const char*>(key_end))] = value;
     }
     const std::uint64_t next = p + 4 + ((std::uint64_t(len) + 3) & ~std::uint64_t(3));
-    if (next > end) r.fail("key/value entry at byte " + std::to_string(p) + ": its padding runs past the key/value data");
+    if (next > end)
+      r.fail("key/value entry at byte " + std::to_string(p) + ": its padding runs past the key/value data");
     p = next;
   }
   return kv;
@@ -266,8 +277,8 @@ std::map<std::string, std::string> read_key_values(const ByteReader& r, const He
 // padding between them, and nothing after the last.
 void read_levels(const ByteReader& r, std::size_t size, const Header& h, const FormatInfo* fi, Texture& t,
                  const ReadLimits& limits) {
-  const std::uint32_t level_count = h.level_count, scheme = h.scheme, dfd_offset = h.dfd_offset, dfd_length = h.dfd_length,
-                      kvd_offset = h.kvd_offset, kvd_length = h.kvd_length;
+  const std::uint32_t level_count = h.level_count, scheme = h.scheme, dfd_offset = h.dfd_offset,
+                      dfd_length = h.dfd_length, kvd_offset = h.kvd_offset, kvd_length = h.kvd_length;
   const std::uint64_t sgd_offset = h.sgd_offset, sgd_length = h.sgd_length;
   // Supercompressed levels need no alignment (KTX2 specification, "mip level array").
   const std::uint32_t align = scheme ? 1 : level_alignment(*fi);
@@ -347,7 +358,8 @@ void read_levels(const ByteReader& r, std::size_t size, const Header& h, const F
 
 // KTXswizzle and KTXorientation: texproc hands texels over as stored, rows
 // top to bottom.
-void apply_key_values(const ByteReader& r, const std::map<std::string, std::string>& kv, const FormatInfo* fi, Texture& t) {
+void apply_key_values(const ByteReader& r, const std::map<std::string, std::string>& kv, const FormatInfo* fi,
+                      Texture& t) {
   // KTXswizzle: texproc hands texels over as stored, so only the identity is honest.
   if (auto sw = kv.find("KTXswizzle"); sw != kv.end() && sw->second != "rgba") {
     r.unsupported("KTXswizzle '" + sw->second + "' (texproc reads texels as stored: 'rgba' only)");
@@ -360,7 +372,8 @@ void apply_key_values(const ByteReader& r, const std::map<std::string, std::stri
       r.unsupported("KTXorientation '" + v + "' (texproc reads 'rd' and, uncompressed, 'ru')");
     }
     if (v[1] == 'u') {
-      if (fi->compressed) r.unsupported("KTXorientation 'ru' on block-compressed " + std::string(fi->name) + " (rows bottom to top)");
+      if (fi->compressed)
+        r.unsupported("KTXorientation 'ru' on block-compressed " + std::string(fi->name) + " (rows bottom to top)");
       for (std::uint32_t l = 0; l < t.levels; ++l) {
         const std::size_t row = std::size_t(t.level_width(l)) * std::uint32_t(fi->block_bytes);
         const std::uint32_t h = t.level_height(l);
@@ -400,11 +413,16 @@ Texture decode_ktx2(const std::uint8_t* data, std::size_t size, const std::strin
 
 const char* ktx2_scheme_name(std::uint32_t scheme) {
   switch (scheme) {
-    case 0: return "none";
-    case 1: return "BasisLZ";
-    case 2: return "Zstandard";
-    case 3: return "zlib";
-    default: return "unknown";
+    case 0:
+      return "none";
+    case 1:
+      return "BasisLZ";
+    case 2:
+      return "Zstandard";
+    case 3:
+      return "zlib";
+    default:
+      return "unknown";
   }
 }
 
@@ -416,15 +434,19 @@ Ktx2Storage ktx2_storage(const std::string& path) {
   if (in.gcount() != sizeof head || std::memcmp(head, "\xABKTX 20\xBB\r\n\x1A\n", 12) != 0) {
     throw Error(ErrorCode::invalid_file, path + ": not a KTX2 file");
   }
-  auto u32 = [](const std::uint8_t* p) { return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24; };
+  auto u32 = [](const std::uint8_t* p) {
+    return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
+  };
   auto u64 = [&](const std::uint8_t* p) { return std::uint64_t(u32(p)) | std::uint64_t(u32(p + 4)) << 32; };
   Ktx2Storage s;
   s.scheme = u32(head + 44);
   const std::uint32_t levels = std::max<std::uint32_t>(1, u32(head + 40));
-  if (levels > 32) throw Error(ErrorCode::invalid_file, path + ": levelCount " + std::to_string(levels) + " (at most 32)");
+  if (levels > 32)
+    throw Error(ErrorCode::invalid_file, path + ": levelCount " + std::to_string(levels) + " (at most 32)");
   std::vector<std::uint8_t> index(std::size_t(levels) * 24);
   in.read(reinterpret_cast<char*>(index.data()), std::streamsize(index.size()));
-  if (std::size_t(in.gcount()) != index.size()) throw Error(ErrorCode::invalid_file, path + ": the level index is cut short");
+  if (std::size_t(in.gcount()) != index.size())
+    throw Error(ErrorCode::invalid_file, path + ": the level index is cut short");
   for (std::uint32_t l = 0; l < levels; ++l) {
     s.stored_bytes.push_back(u64(index.data() + 24 * l + 8));
     s.inflated_bytes.push_back(u64(index.data() + 24 * l + 16));

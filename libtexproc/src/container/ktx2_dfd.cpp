@@ -17,8 +17,7 @@ namespace texproc {
 namespace {
 
 constexpr std::uint32_t kModelRgbsda = 1, kModelBc1a = 128, kModelBc2 = 129, kModelBc3 = 130, kModelBc4 = 131,
-                        kModelBc5 = 132, kModelBc6h = 133, kModelBc7 = 134, kModelEtc2 = 161,
-                        kModelAstc = 162;
+                        kModelBc5 = 132, kModelBc6h = 133, kModelBc7 = 134, kModelEtc2 = 161, kModelAstc = 162;
 constexpr std::uint32_t kPrimariesBt709 = 1, kTransferLinear = 1, kTransferSrgb = 2;
 constexpr std::uint32_t kLinear = 0x10, kSigned = 0x40, kFloat = 0x80;
 constexpr std::uint32_t kAlpha = 15;
@@ -101,7 +100,7 @@ std::vector<std::uint8_t> astc(const FormatInfo& i) {
 // BC6H and BC7 (createDFDCompressed): one 128-bit sample of channel 0;
 // BC6H is float (SFLOAT also signed) with libktx's bounds 0 (-1 signed) and 1.
 std::vector<std::uint8_t> bptc(const FormatInfo& i, bool signed_float) {
-  const Sample s = !i.is_float ? Sample{0, 128, 0, 0u, 0xFFFFFFFFu}
+  const Sample s = !i.is_float    ? Sample{0, 128, 0, 0u, 0xFFFFFFFFu}
                    : signed_float ? Sample{0, 128, kFloat | kSigned, float_bits(-1.0f), float_bits(1.0f)}
                                   : Sample{0, 128, kFloat, float_bits(0.0f), float_bits(1.0f)};
   return block(i.is_float ? kModelBc6h : kModelBc7, i.srgb, 0x0303, 16, {s});
@@ -115,35 +114,51 @@ std::vector<std::uint8_t> ktx2_dfd(TexelFormat f) {
   using F = TexelFormat;
   switch (f) {
     case F::bgra8_unorm:
-    case F::bgra8_srgb: return unpacked(i, true);
+    case F::bgra8_srgb:
+      return unpacked(i, true);
     case F::bc1_rgb_unorm:
-    case F::bc1_rgb_srgb: return compressed(i, kModelBc1a, {{0, 0}});
+    case F::bc1_rgb_srgb:
+      return compressed(i, kModelBc1a, {{0, 0}});
     case F::bc1_rgba_unorm:
-    case F::bc1_rgba_srgb: return compressed(i, kModelBc1a, {{1, 0}});
+    case F::bc1_rgba_srgb:
+      return compressed(i, kModelBc1a, {{1, 0}});
     case F::bc2_unorm:
-    case F::bc2_srgb: return compressed(i, kModelBc2, {{kAlpha, 0}, {0, 64}});
+    case F::bc2_srgb:
+      return compressed(i, kModelBc2, {{kAlpha, 0}, {0, 64}});
     case F::bc3_unorm:
-    case F::bc3_srgb: return compressed(i, kModelBc3, {{kAlpha, 0}, {0, 64}});
+    case F::bc3_srgb:
+      return compressed(i, kModelBc3, {{kAlpha, 0}, {0, 64}});
     case F::bc4_unorm:
-    case F::bc4_snorm: return compressed(i, kModelBc4, {{0, 0}});
+    case F::bc4_snorm:
+      return compressed(i, kModelBc4, {{0, 0}});
     case F::bc5_unorm:
-    case F::bc5_snorm: return compressed(i, kModelBc5, {{0, 0}, {1, 64}});
-    case F::bc6h_ufloat: return bptc(i, false);
-    case F::bc6h_sfloat: return bptc(i, true);
+    case F::bc5_snorm:
+      return compressed(i, kModelBc5, {{0, 0}, {1, 64}});
+    case F::bc6h_ufloat:
+      return bptc(i, false);
+    case F::bc6h_sfloat:
+      return bptc(i, true);
     case F::bc7_unorm:
-    case F::bc7_srgb: return bptc(i, false);
+    case F::bc7_srgb:
+      return bptc(i, false);
     case F::etc1_rgb:
     case F::etc2_rgb_unorm:
-    case F::etc2_rgb_srgb: return compressed(i, kModelEtc2, {{2, 0}});
+    case F::etc2_rgb_srgb:
+      return compressed(i, kModelEtc2, {{2, 0}});
     case F::etc2_rgba1_unorm:
-    case F::etc2_rgba1_srgb: return compressed(i, kModelEtc2, {{2, 0}, {kAlpha, 0}});
+    case F::etc2_rgba1_srgb:
+      return compressed(i, kModelEtc2, {{2, 0}, {kAlpha, 0}});
     case F::etc2_rgba8_unorm:
-    case F::etc2_rgba8_srgb: return compressed(i, kModelEtc2, {{kAlpha, 0}, {2, 64}});
+    case F::etc2_rgba8_srgb:
+      return compressed(i, kModelEtc2, {{kAlpha, 0}, {2, 64}});
     case F::eac_r11_unorm:
-    case F::eac_r11_snorm: return compressed(i, kModelEtc2, {{0, 0}});
+    case F::eac_r11_snorm:
+      return compressed(i, kModelEtc2, {{0, 0}});
     case F::eac_rg11_unorm:
-    case F::eac_rg11_snorm: return compressed(i, kModelEtc2, {{0, 0}, {1, 64}});
-    default: return unpacked(i, false);
+    case F::eac_rg11_snorm:
+      return compressed(i, kModelEtc2, {{0, 0}, {1, 64}});
+    default:
+      return unpacked(i, false);
   }
 }
 

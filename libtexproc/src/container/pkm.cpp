@@ -23,12 +23,14 @@ std::uint32_t get_be16(const ByteReader& r, std::size_t at, const char* field) {
 ByteWriter encode_pkm_stream(const Texture& t) {
   validate(t);
   if (t.format != TexelFormat::etc1_rgb && t.format != TexelFormat::etc2_rgb_unorm) {
-    throw Error(ErrorCode::unsupported, std::string("PKM holds ETC1 and ETC2 RGB only, not ") + format_info(t.format).name +
-                                            ": write .ktx2 or .ktx" +
-                                            (t.format == TexelFormat::etc2_rgb_srgb ? ", or add --linear (PKM has no sRGB)" : ""));
+    throw Error(ErrorCode::unsupported,
+                std::string("PKM holds ETC1 and ETC2 RGB only, not ") + format_info(t.format).name +
+                    ": write .ktx2 or .ktx" +
+                    (t.format == TexelFormat::etc2_rgb_srgb ? ", or add --linear (PKM has no sRGB)" : ""));
   }
   if (t.levels != 1 || t.faces != 1 || t.layers != 1) {
-    throw Error(ErrorCode::unsupported, "PKM holds one level of one image: write .ktx2 or .ktx for mips, cubemaps, arrays");
+    throw Error(ErrorCode::unsupported,
+                "PKM holds one level of one image: write .ktx2 or .ktx for mips, cubemaps, arrays");
   }
   if (t.width > 65535 || t.height > 65535) throw Error(ErrorCode::unsupported, "PKM sizes are 16-bit");
   const bool etc1 = t.format == TexelFormat::etc1_rgb;
@@ -64,14 +66,15 @@ Texture decode_pkm(const std::uint8_t* data, std::size_t size, const std::string
       std::snprintf(b, sizeof b, "\\x%02X", unsigned(c));
       return std::string(b);
     };
-    r.unsupported("PKM version '" + shown(version[0]) + shown(version[1]) + "' data type " +
-                  std::to_string(type) + " (texproc reads ETC1 \"10\"/0 and ETC2 RGB \"20\"/1)");
+    r.unsupported("PKM version '" + shown(version[0]) + shown(version[1]) + "' data type " + std::to_string(type) +
+                  " (texproc reads ETC1 \"10\"/0 and ETC2 RGB \"20\"/1)");
   }
   const std::uint32_t ew = get_be16(r, 8, "extended width"), eh = get_be16(r, 10, "extended height");
   t.width = get_be16(r, 12, "width");
   t.height = get_be16(r, 14, "height");
   if (t.width == 0 || t.height == 0) r.fail("zero width or height");
-  if (t.width > limits.max_texture_dimension || t.height > limits.max_texture_dimension) r.unsupported("texture larger than the limit");
+  if (t.width > limits.max_texture_dimension || t.height > limits.max_texture_dimension)
+    r.unsupported("texture larger than the limit");
   if (ew != ((t.width + 3) & ~3u) || eh != ((t.height + 3) & ~3u)) r.fail("extended size does not match the size");
   const std::uint64_t bytes = image_bytes(t.format, t.width, t.height);
   if (size - 16 != bytes) {

@@ -176,20 +176,20 @@ void AtomicFile::check_free() const {
   const CommitPolicy policy = policy_ >= 0 ? CommitPolicy(policy_) : CommitPolicy::replace;
   std::error_code ec;
   if (policy == CommitPolicy::no_replace && fs::exists(fs::symlink_status(path_, ec))) {
-    throw Error(ErrorCode::io, path_ + ": cannot write: the file appeared while this run was writing it (another "
-                                       "process?) and is kept; --force replaces it");
+    throw Error(ErrorCode::io, path_ +
+                                   ": cannot write: the file appeared while this run was writing it (another "
+                                   "process?) and is kept; --force replaces it");
   }
 }
 
 bool AtomicFile::commit_now() {
   std::lock_guard<std::mutex> lock(g_pending_mutex);
   const CommitPolicy policy = policy_ >= 0 ? CommitPolicy(policy_) : CommitPolicy::replace;
-  auto fail = [&](int err) -> bool {
-    throw Error(ErrorCode::io, path_ + ": cannot write: " + std::strerror(err));
-  };
+  auto fail = [&](int err) -> bool { throw Error(ErrorCode::io, path_ + ": cannot write: " + std::strerror(err)); };
   auto exists_now = [&]() -> bool {
-    throw Error(ErrorCode::io, path_ + ": cannot write: the file appeared while this run was writing it (another "
-                                       "process?) and is kept; --force replaces it");
+    throw Error(ErrorCode::io, path_ +
+                                   ": cannot write: the file appeared while this run was writing it (another "
+                                   "process?) and is kept; --force replaces it");
   };
   if (policy == CommitPolicy::keep_identical && same_bytes(temp_, path_)) {
     if (fd_ < 0) {

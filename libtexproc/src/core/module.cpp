@@ -70,7 +70,8 @@ const void* load_module(const ModuleSpec& spec, std::string& why) {
       continue;
     }
     void* entry = dlsym(handle, spec.entry);
-    if (const void* table = entry ? spec.call_entry(entry) : nullptr) return table;  // kept loaded: the libraries keep threads and caches
+    if (const void* table = entry ? spec.call_entry(entry) : nullptr)
+      return table;  // kept loaded: the libraries keep threads and caches
     note(file, std::string("no ") + spec.entry);
     dlclose(handle);
   }

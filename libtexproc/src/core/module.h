@@ -9,9 +9,9 @@
 namespace texproc {
 
 struct ModuleSpec {
-  const char* file;        // "texproc_oiio.so"
-  const char* env;         // a variable that names the file to use instead (and nowhere else)
-  const char* entry;       // the exported function that returns the module's table
+  const char* file;   // "texproc_oiio.so"
+  const char* env;    // a variable that names the file to use instead (and nowhere else)
+  const char* entry;  // the exported function that returns the module's table
   // Calls the entry `symbol` through its own type (a module's entry returns
   // its own table type; calling it through another is undefined behaviour,
   // which UBSan's function check reports) and returns the table.

@@ -76,22 +76,18 @@ std::size_t for_each_in_order(std::size_t count, std::size_t in_flight, const st
   std::atomic<bool> stop{false};  // set by the last stage, read by the first (they may run at once)
   tbb::parallel_pipeline(
       std::max<std::size_t>(1, in_flight),
-      tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
-                                          [&](tbb::flow_control& fc) -> std::size_t {
-                                            if (next == count || stop) {
-                                              fc.stop();
-                                              return 0;
-                                            }
-                                            return next++;
-                                          }) &
-          tbb::make_filter<std::size_t, std::size_t>(tbb::filter_mode::parallel,
-                                                     [&](std::size_t i) {
-                                                       work(i);
-                                                       return i;
-                                                     }) &
-          tbb::make_filter<std::size_t, void>(tbb::filter_mode::serial_in_order, [&](std::size_t i) {
-            if (!done(i)) stop = true;
-          }));
+      tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& fc) -> std::size_t {
+        if (next == count || stop) {
+          fc.stop();
+          return 0;
+        }
+        return next++;
+      }) & tbb::make_filter<std::size_t, std::size_t>(tbb::filter_mode::parallel, [&](std::size_t i) {
+        work(i);
+        return i;
+      }) & tbb::make_filter<std::size_t, void>(tbb::filter_mode::serial_in_order, [&](std::size_t i) {
+        if (!done(i)) stop = true;
+      }));
   return next;
 }
 

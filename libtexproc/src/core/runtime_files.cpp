@@ -30,9 +30,9 @@ std::vector<std::string> runtime_files() {
   }
   // Every runtime module a command may load (OpenEXR, OpenImageIO,
   // OpenColorIO), where it would be loaded from.
-  for (const auto& [file, env] : {std::pair{"texproc_exr.so", "TEXPROC_EXR_MODULE"},
-                                  std::pair{"texproc_oiio.so", "TEXPROC_OIIO_MODULE"},
-                                  std::pair{"texproc_ocio.so", "TEXPROC_OCIO_MODULE"}}) {
+  for (const auto& [file, env] :
+       {std::pair{"texproc_exr.so", "TEXPROC_EXR_MODULE"}, std::pair{"texproc_oiio.so", "TEXPROC_OIIO_MODULE"},
+        std::pair{"texproc_ocio.so", "TEXPROC_OCIO_MODULE"}}) {
     const std::string found = find_module(ModuleSpec{file, env, "", nullptr});
     if (!found.empty()) out.push_back(found);
   }

@@ -13,11 +13,16 @@ namespace texproc {
 
 const char* to_string(CubeLayout l) {
   switch (l) {
-    case CubeLayout::equirect: return "equirect";
-    case CubeLayout::cross_horizontal: return "hcross";
-    case CubeLayout::cross_vertical: return "vcross";
-    case CubeLayout::strip_horizontal: return "hstrip";
-    case CubeLayout::strip_vertical: return "vstrip";
+    case CubeLayout::equirect:
+      return "equirect";
+    case CubeLayout::cross_horizontal:
+      return "hcross";
+    case CubeLayout::cross_vertical:
+      return "vcross";
+    case CubeLayout::strip_horizontal:
+      return "hstrip";
+    case CubeLayout::strip_vertical:
+      return "vstrip";
   }
   return "?";
 }
@@ -56,12 +61,24 @@ CubeFlip parse_cube_flip(std::string_view name) {
 
 void cube_direction(int face, double u, double v, double d[3]) {
   switch (face) {
-    case 0: d[0] = 1, d[1] = -v, d[2] = -u; break;
-    case 1: d[0] = -1, d[1] = -v, d[2] = u; break;
-    case 2: d[0] = u, d[1] = 1, d[2] = v; break;
-    case 3: d[0] = u, d[1] = -1, d[2] = -v; break;
-    case 4: d[0] = u, d[1] = -v, d[2] = 1; break;
-    default: d[0] = -u, d[1] = -v, d[2] = -1; break;
+    case 0:
+      d[0] = 1, d[1] = -v, d[2] = -u;
+      break;
+    case 1:
+      d[0] = -1, d[1] = -v, d[2] = u;
+      break;
+    case 2:
+      d[0] = u, d[1] = 1, d[2] = v;
+      break;
+    case 3:
+      d[0] = u, d[1] = -1, d[2] = -v;
+      break;
+    case 4:
+      d[0] = u, d[1] = -v, d[2] = 1;
+      break;
+    default:
+      d[0] = -u, d[1] = -v, d[2] = -1;
+      break;
   }
 }
 
@@ -226,23 +243,36 @@ struct Cell {
 Cell layout_cell(CubeLayout l, int face) {
   static constexpr int kCross[6][2] = {{2, 1}, {0, 1}, {1, 0}, {1, 2}, {1, 1}, {3, 1}};
   switch (l) {
-    case CubeLayout::cross_horizontal: return {kCross[face][0], kCross[face][1], false};
+    case CubeLayout::cross_horizontal:
+      return {kCross[face][0], kCross[face][1], false};
     case CubeLayout::cross_vertical:
       if (face == 5) return {1, 3, true};
       return {kCross[face][0], kCross[face][1], false};
-    case CubeLayout::strip_horizontal: return {face, 0, false};
-    case CubeLayout::strip_vertical: return {0, face, false};
-    case CubeLayout::equirect: break;
+    case CubeLayout::strip_horizontal:
+      return {face, 0, false};
+    case CubeLayout::strip_vertical:
+      return {0, face, false};
+    case CubeLayout::equirect:
+      break;
   }
   return {0, 0, false};
 }
 void layout_grid(CubeLayout l, int& cols, int& rows) {
   switch (l) {
-    case CubeLayout::cross_horizontal: cols = 4, rows = 3; return;
-    case CubeLayout::cross_vertical: cols = 3, rows = 4; return;
-    case CubeLayout::strip_horizontal: cols = 6, rows = 1; return;
-    case CubeLayout::strip_vertical: cols = 1, rows = 6; return;
-    case CubeLayout::equirect: break;
+    case CubeLayout::cross_horizontal:
+      cols = 4, rows = 3;
+      return;
+    case CubeLayout::cross_vertical:
+      cols = 3, rows = 4;
+      return;
+    case CubeLayout::strip_horizontal:
+      cols = 6, rows = 1;
+      return;
+    case CubeLayout::strip_vertical:
+      cols = 1, rows = 6;
+      return;
+    case CubeLayout::equirect:
+      break;
   }
   cols = rows = 0;
 }
@@ -379,7 +409,8 @@ SeamStats measure_seams(const CubeLevel& level) {
     // Along each edge: the texel across it (one texel outward on the
     // extended plane) and the texel inward of the edge texel.
     for (int k = 0; k < n; ++k) {
-      const int pos[4][6] = {{0, k, -1, k, 1, k}, {n - 1, k, n, k, n - 2, k}, {k, 0, k, -1, k, 1}, {k, n - 1, k, n, k, n - 2}};
+      const int pos[4][6] = {
+          {0, k, -1, k, 1, k}, {n - 1, k, n, k, n - 2, k}, {k, 0, k, -1, k, 1}, {k, n - 1, k, n, k, n - 2}};
       for (const auto& p : pos) {
         if (n >= 2) near += step(at(p[0], p[1]), at(p[4], p[5])), ++nears;
         double d[3];

@@ -214,8 +214,13 @@ Cubemap cubemap_from_equirect(const ConstImageView& pano, int size, CubeFlip fli
   const double step = 2.0 / size;
   for_each_row_block(6 * size, cube::kRowBlock, [&](int r0, int r1) {
     std::vector<float> buf(std::size_t(size) * 7);
-    const cube::FaceRowMap map{buf.data(), buf.data() + size, buf.data() + 2 * size, buf.data() + 3 * size,
-                               buf.data() + 4 * size, buf.data() + 5 * size, buf.data() + 6 * size};
+    const cube::FaceRowMap map{buf.data(),
+                               buf.data() + size,
+                               buf.data() + 2 * size,
+                               buf.data() + 3 * size,
+                               buf.data() + 4 * size,
+                               buf.data() + 5 * size,
+                               buf.data() + 6 * size};
     for (int r = r0; r < r1; ++r) {
       const int f = r / size, j = r % size;
       double o[3], eu[3], ev[3];
@@ -481,7 +486,8 @@ Cubemap resize_cubemap(const Cubemap& cube, int size) {
 
 Image cubemap_to_equirect(const Cubemap& cube, int width, int level) {
   if (level < 0 || level >= int(cube.levels.size())) {
-    throw Error(ErrorCode::bad_arguments, "cubemap_to_equirect: level " + std::to_string(level) + " is not in the cube map");
+    throw Error(ErrorCode::bad_arguments,
+                "cubemap_to_equirect: level " + std::to_string(level) + " is not in the cube map");
   }
   if (width < 2) throw Error(ErrorCode::bad_arguments, "a panorama is at least 2 texels wide");
   Cubemap src;

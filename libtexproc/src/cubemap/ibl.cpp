@@ -20,8 +20,8 @@ struct PaddedSource {
     for (auto* v : {&set.x, &set.y, &set.z, &set.w, &set.r, &set.g, &set.b}) v->resize(n, 0.0f);
   }
   cube::ConvolveSource view() const {
-    return {set.x.data(), set.y.data(), set.z.data(), set.w.data(), set.r.data(), set.g.data(), set.b.data(),
-            set.size()};
+    return {set.x.data(), set.y.data(), set.z.data(), set.w.data(),
+            set.r.data(), set.g.data(), set.b.data(), set.size()};
   }
 };
 

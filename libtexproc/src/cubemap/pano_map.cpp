@@ -19,7 +19,8 @@ float atan2_poly(float y, float x) {
     base = kPi / 4;
   }
   const float z = t * t;
-  const float p = ((((0.0805374449538f * z - 0.138776856032f) * z + 0.199777106478f) * z - 0.333329491539f) * z) * t + t;
+  const float p =
+      ((((0.0805374449538f * z - 0.138776856032f) * z + 0.199777106478f) * z - 0.333329491539f) * z) * t + t;
   float a = base + p;
   if (ay > ax) a = kPi / 2 - a;
   if (x < 0.0f) a = kPi - a;

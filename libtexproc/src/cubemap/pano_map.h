@@ -16,14 +16,14 @@ struct FaceRowMap {
 // Row j of an n x n face. axes[0..2] = the face centre's direction, [3..5]
 // d/du, [6..8] d/dv (cube_direction's table, flips applied): each entry
 // -1, 0 or 1.
-void map_face_row(const float axes[9], int n, int j, int width, int height, const FaceRowMap& out);
+void map_face_row(const float axes[9], int n, int j, int width, int height, const FaceRowMap &out);
 
 // atan2 in float: Cephes' atanf polynomial after reducing to [0, tan(pi/8)]
 // (error below 2e-7 rad), written once for both twins.
 float atan2_poly(float y, float x);
 
 namespace ref {
-void map_face_row(const float axes[9], int n, int j, int width, int height, const FaceRowMap& out);
+void map_face_row(const float axes[9], int n, int j, int width, int height, const FaceRowMap &out);
 }  // namespace ref
 
 }  // namespace texproc::cube

@@ -17,7 +17,7 @@ void MapRow(const float axes[9], int n, int j, int width, int height, const Face
   ref::map_face_row(axes, n, j, width, height, out);
 }
 #else
-template <class D, class V = hn::Vec<D>>
+template <class D, class V = hn::Vec<D> >
 HWY_INLINE V Atan2(D d, V y, V x) {
   const V ax = hn::Abs(x), ay = hn::Abs(y), zero = hn::Zero(d);
   const V mx = hn::Max(hn::Max(ax, ay), hn::Set(d, 1e-30f)), mn = hn::Min(ax, ay);

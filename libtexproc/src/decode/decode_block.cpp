@@ -28,9 +28,13 @@ void decode_block(TexelFormat f, const std::uint8_t* b, float out[16][4]) {
   using F = TexelFormat;
   switch (f) {
     case F::bc1_rgb_unorm:
-    case F::bc1_rgb_srgb: decode_color(b, false, false, out); break;
+    case F::bc1_rgb_srgb:
+      decode_color(b, false, false, out);
+      break;
     case F::bc1_rgba_unorm:
-    case F::bc1_rgba_srgb: decode_color(b, false, true, out); break;
+    case F::bc1_rgba_srgb:
+      decode_color(b, false, true, out);
+      break;
     case F::bc2_unorm:
     case F::bc2_srgb: {
       decode_color(b + 8, true, false, out);
@@ -45,8 +49,12 @@ void decode_block(TexelFormat f, const std::uint8_t* b, float out[16][4]) {
       decode_color(b + 8, true, false, out);
       decode_rgtc(b, false, 3, out);
       break;
-    case F::bc4_unorm: decode_rgtc(b, false, 0, out); break;
-    case F::bc4_snorm: decode_rgtc(b, true, 0, out); break;
+    case F::bc4_unorm:
+      decode_rgtc(b, false, 0, out);
+      break;
+    case F::bc4_snorm:
+      decode_rgtc(b, true, 0, out);
+      break;
     case F::bc5_unorm:
       decode_rgtc(b, false, 0, out);
       decode_rgtc(b + 8, false, 1, out);
@@ -126,9 +134,13 @@ void decode_block_u8(TexelFormat f, const std::uint8_t* b, bool snorm, std::uint
   using F = TexelFormat;
   switch (f) {
     case F::bc1_rgb_unorm:
-    case F::bc1_rgb_srgb: bc::decode_color_rgba8(b, false, false, out); return;
+    case F::bc1_rgb_srgb:
+      bc::decode_color_rgba8(b, false, false, out);
+      return;
     case F::bc1_rgba_unorm:
-    case F::bc1_rgba_srgb: bc::decode_color_rgba8(b, false, true, out); return;
+    case F::bc1_rgba_srgb:
+      bc::decode_color_rgba8(b, false, true, out);
+      return;
     case F::bc2_unorm:
     case F::bc2_srgb:
       bc::decode_color_rgba8(b + 8, true, false, out);
@@ -140,19 +152,29 @@ void decode_block_u8(TexelFormat f, const std::uint8_t* b, bool snorm, std::uint
       bc::decode_rgtc_u8(b, false, 3, out);
       return;
     case F::bc4_unorm:
-    case F::bc4_snorm: bc::decode_rgtc_u8(b, f == F::bc4_snorm, 0, out); return;
+    case F::bc4_snorm:
+      bc::decode_rgtc_u8(b, f == F::bc4_snorm, 0, out);
+      return;
     case F::bc5_unorm:
     case F::bc5_snorm:
       bc::decode_rgtc_u8(b, f == F::bc5_snorm, 0, out);
       bc::decode_rgtc_u8(b + 8, f == F::bc5_snorm, 1, out);
       return;
     case F::bc7_unorm:
-    case F::bc7_srgb: bc::decode_bc7(b, out); return;
-    case F::etc1_rgb: etc::decode_etc1(b, out); return;
+    case F::bc7_srgb:
+      bc::decode_bc7(b, out);
+      return;
+    case F::etc1_rgb:
+      etc::decode_etc1(b, out);
+      return;
     case F::etc2_rgb_unorm:
-    case F::etc2_rgb_srgb: etc::decode_etc2(b, false, out); return;
+    case F::etc2_rgb_srgb:
+      etc::decode_etc2(b, false, out);
+      return;
     case F::etc2_rgba1_unorm:
-    case F::etc2_rgba1_srgb: etc::decode_etc2(b, true, out); return;
+    case F::etc2_rgba1_srgb:
+      etc::decode_etc2(b, true, out);
+      return;
     case F::etc2_rgba8_unorm:
     case F::etc2_rgba8_srgb: {
       etc::decode_etc2(b + 8, false, out);
@@ -243,7 +265,8 @@ bool decode_run(TexelFormat f, const std::uint8_t* b, int count, std::uint8_t* d
       etc::decode_eac11_u8_run(b, count, 16, f == F::eac_rg11_snorm, 2, 0, dst, stride);
       etc::decode_eac11_u8_run(b + 8, count, 16, f == F::eac_rg11_snorm, 2, 1, dst, stride);
       return true;
-    default: return false;
+    default:
+      return false;
   }
 }
 
@@ -263,7 +286,8 @@ Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t 
   }
   if (is_astc(t.format)) {
     const PixelBytes& data = t.image(level, layer, face);
-    Image decoded = astc::decode(data.data(), data.size(), int(t.level_width(level)), int(t.level_height(level)), t.format);
+    Image decoded =
+        astc::decode(data.data(), data.size(), int(t.level_width(level)), int(t.level_height(level)), t.format);
     if (decoded.type() == type) return decoded;
     Image out = Image::uninitialized(decoded.width(), decoded.height(), 4, type);
     for_each_row_block(decoded.height(), 64, [&](int y0, int y1) {
@@ -312,10 +336,18 @@ Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t 
       });
     };
     switch (C) {
-      case 1: rows(std::integral_constant<int, 1>{}); break;
-      case 2: rows(std::integral_constant<int, 2>{}); break;
-      case 3: rows(std::integral_constant<int, 3>{}); break;
-      default: rows(std::integral_constant<int, 4>{}); break;
+      case 1:
+        rows(std::integral_constant<int, 1>{});
+        break;
+      case 2:
+        rows(std::integral_constant<int, 2>{});
+        break;
+      case 3:
+        rows(std::integral_constant<int, 3>{});
+        break;
+      default:
+        rows(std::integral_constant<int, 4>{});
+        break;
     }
     return out;
   }
@@ -328,7 +360,8 @@ Image decode_texture_image(const Texture& t, std::uint32_t level, std::uint32_t 
           const std::uint8_t* block = data.data() + (std::size_t(by) * bw + bx) * info.block_bytes;
           const int nx = std::min(4, w - 4 * bx), ny = std::min(4, h - 4 * by);
           if (bc6h && C == 3 && nx == 4 && ny == 4) {  // a whole block's floats straight into the rows
-            bc::decode_bc6h_f32_rows(block, t.format == TexelFormat::bc6h_sfloat, out.row<float>(4 * by) + std::size_t(4 * bx) * 3,
+            bc::decode_bc6h_f32_rows(block, t.format == TexelFormat::bc6h_sfloat,
+                                     out.row<float>(4 * by) + std::size_t(4 * bx) * 3,
                                      out.row_stride() / sizeof(float));
             continue;
           }

@@ -10,8 +10,8 @@
 
 namespace texproc {
 
-void decode_texture_rows(const Texture& t, std::uint32_t level, std::uint32_t layer, std::uint32_t face,
-                         PixelType type, int y0, int y1, void* dst, std::size_t row_stride) {
+void decode_texture_rows(const Texture& t, std::uint32_t level, std::uint32_t layer, std::uint32_t face, PixelType type,
+                         int y0, int y1, void* dst, std::size_t row_stride) {
   const FormatInfo& info = format_info(t.format);
   const int w = int(t.level_width(level)), h = int(t.level_height(level));
   if (y0 < 0 || y1 > h || y0 >= y1) {
@@ -19,9 +19,9 @@ void decode_texture_rows(const Texture& t, std::uint32_t level, std::uint32_t la
                                               std::to_string(y1) + " of a level of " + std::to_string(h));
   }
   const int bh = info.block_height;
-  const std::size_t band_row_bytes =
-      info.compressed ? std::size_t((w + info.block_width - 1) / info.block_width) * info.block_bytes
-                      : std::size_t(w) * info.block_bytes;
+  const std::size_t band_row_bytes = info.compressed
+                                         ? std::size_t((w + info.block_width - 1) / info.block_width) * info.block_bytes
+                                         : std::size_t(w) * info.block_bytes;
   const int first = y0 / bh, last = (y1 + bh - 1) / bh;  // block rows
   const PixelBytes& data = t.image(level, layer, face);
   if (data.size() < band_row_bytes * std::size_t(last)) {

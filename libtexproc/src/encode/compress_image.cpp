@@ -18,15 +18,20 @@ Quality parse_quality(std::string_view n) {
   if (n == "normal") return Quality::normal;
   if (n == "high") return Quality::high;
   if (n == "max") return Quality::max;
-  throw Error(ErrorCode::bad_arguments, "unknown quality name '" + std::string(n) + "' (valid: fast, normal, high, max)");
+  throw Error(ErrorCode::bad_arguments,
+              "unknown quality name '" + std::string(n) + "' (valid: fast, normal, high, max)");
 }
 
 const char* to_string(Quality q) {
   switch (q) {
-    case Quality::fast: return "fast";
-    case Quality::normal: return "normal";
-    case Quality::high: return "high";
-    case Quality::max: return "max";
+    case Quality::fast:
+      return "fast";
+    case Quality::normal:
+      return "normal";
+    case Quality::high:
+      return "high";
+    case Quality::max:
+      return "max";
   }
   return "?";
 }
@@ -35,7 +40,8 @@ std::vector<std::uint8_t> compress_image(const ConstImageView& img, TexelFormat 
   return compress_image(img, format, q, EncodeOptions{});
 }
 
-int encode_block(TexelFormat format, const std::uint8_t rgba[16][4], Quality q, std::uint8_t* out, const EncodeOptions& options) {
+int encode_block(TexelFormat format, const std::uint8_t rgba[16][4], Quality q, std::uint8_t* out,
+                 const EncodeOptions& options) {
   std::uint8_t texels[16][4];
   std::memcpy(texels, rgba, sizeof texels);
   ImageView view;
@@ -49,20 +55,28 @@ int encode_block(TexelFormat format, const std::uint8_t rgba[16][4], Quality q, 
   return int(block.size());
 }
 
-std::vector<std::uint8_t> compress_image(const ConstImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
+std::vector<std::uint8_t> compress_image(const ConstImageView& img, TexelFormat format, Quality q,
+                                         const EncodeOptions& options) {
   switch (format_info(format).family) {
     case CodecFamily::bc1:
     case CodecFamily::bc2:
-    case CodecFamily::bc3: return compress_bc13(img, format, q, options);
+    case CodecFamily::bc3:
+      return compress_bc13(img, format, q, options);
     case CodecFamily::bc4:
-    case CodecFamily::bc5: return compress_bc45(img, format, q, options);
-    case CodecFamily::bc6h: return compress_bc6h(img, format == TexelFormat::bc6h_sfloat, q, options);
-    case CodecFamily::bc7: return compress_bc7(img, q, options);
+    case CodecFamily::bc5:
+      return compress_bc45(img, format, q, options);
+    case CodecFamily::bc6h:
+      return compress_bc6h(img, format == TexelFormat::bc6h_sfloat, q, options);
+    case CodecFamily::bc7:
+      return compress_bc7(img, q, options);
     case CodecFamily::etc1:
     case CodecFamily::etc2:
-    case CodecFamily::eac: return etc::compress_etc(img, format, q, options);
-    case CodecFamily::astc: return astc::encode(img, format, q, options);
-    case CodecFamily::uncompressed: break;
+    case CodecFamily::eac:
+      return etc::compress_etc(img, format, q, options);
+    case CodecFamily::astc:
+      return astc::encode(img, format, q, options);
+    case CodecFamily::uncompressed:
+      break;
   }
   throw Error(ErrorCode::unsupported, std::string("encoding ") + format_info(format).name + " is not supported");
 }

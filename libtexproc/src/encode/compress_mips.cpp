@@ -60,8 +60,8 @@ class BlockRowSink final : public MipRowSink {
     const int b = y / bh;
     std::lock_guard<std::mutex> lock(m_);
     if (!lv.strips[b]) {
-      lv.strips[b] = std::make_unique<Image>(
-          Image::uninitialized(lv.width, std::min(bh, lv.height - b * bh), channels_, type_));
+      lv.strips[b] =
+          std::make_unique<Image>(Image::uninitialized(lv.width, std::min(bh, lv.height - b * bh), channels_, type_));
     }
     return lv.strips[b]->row<void>(y - b * bh);
   }
@@ -91,8 +91,8 @@ class BlockRowSink final : public MipRowSink {
   struct Level {
     int width = 0, height = 0, block_rows = 0;
     std::size_t row_bytes = 0;
-    std::vector<std::unique_ptr<Image>> strips;          // per block row, while its rows arrive
-    std::unique_ptr<std::atomic<int>[]> rows_in;         // per block row, rows written
+    std::vector<std::unique_ptr<Image>> strips;   // per block row, while its rows arrive
+    std::unique_ptr<std::atomic<int>[]> rows_in;  // per block row, rows written
   };
   Texture& t_;
   std::size_t surface_, surfaces_;

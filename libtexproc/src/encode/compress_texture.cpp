@@ -31,10 +31,12 @@ Texture compress_texture(std::vector<std::vector<Image>>& chains, const SurfaceL
     throw Error(ErrorCode::bad_arguments, "compress_texture needs faces * layers chains of at least one level");
   }
   for (const auto& c : chains) {
-    if (c.size() != chains[0].size()) throw Error(ErrorCode::bad_arguments, "compress_texture: the chains differ in length");
+    if (c.size() != chains[0].size())
+      throw Error(ErrorCode::bad_arguments, "compress_texture: the chains differ in length");
     for (std::size_t l = 0; l < c.size(); ++l)
       if (c[l].width() != chains[0][l].width() || c[l].height() != chains[0][l].height()) {
-        throw Error(ErrorCode::bad_arguments, "compress_texture: the chains differ in size at level " + std::to_string(l));
+        throw Error(ErrorCode::bad_arguments,
+                    "compress_texture: the chains differ in size at level " + std::to_string(l));
       }
   }
   const FormatInfo& info = format_info(format);

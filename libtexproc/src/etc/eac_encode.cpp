@@ -18,9 +18,12 @@ namespace {
 
 int eac_value(EacKind kind, int base, int mult, int m) {
   switch (kind) {
-    case EacKind::alpha8: return clamp255(base + m * mult);
-    case EacKind::r11: return std::clamp(base * 8 + 4 + (mult ? m * mult * 8 : m), 0, 2047);
-    case EacKind::r11_signed: return std::clamp(base * 8 + (mult ? m * mult * 8 : m), -1023, 1023);
+    case EacKind::alpha8:
+      return clamp255(base + m * mult);
+    case EacKind::r11:
+      return std::clamp(base * 8 + 4 + (mult ? m * mult * 8 : m), 0, 2047);
+    case EacKind::r11_signed:
+      return std::clamp(base * 8 + (mult ? m * mult * 8 : m), -1023, 1023);
   }
   return 0;
 }
@@ -48,7 +51,7 @@ void eac_try(const double t[16], EacKind kind, int base, int mult, int table, Ea
 
 double encode_eac_block(const float targets[16], EacKind kind, Quality q, std::uint8_t out[8]) {
   const EacLevel& level = eac_level(q);  // eac_levels.h
-  if (level.lanes) {  // as whole images do: eac_lanes.h
+  if (level.lanes) {                     // as whole images do: eac_lanes.h
     float v[16][kEacBatch] = {};
     for (int i = 0; i < 16; ++i) v[i][0] = targets[i];
     std::uint8_t block[1][8];
@@ -59,7 +62,9 @@ double encode_eac_block(const float targets[16], EacKind kind, Quality q, std::u
   }
   // Block by block (`max`): the level's window around each table's
   // estimate (every multiplier and +-8 bases).
-  const double lo_end = kind == EacKind::r11_signed ? -1023 : 0, hi_end = kind == EacKind::alpha8 ? 255 : kind == EacKind::r11 ? 2047 : 1023;
+  const double lo_end = kind == EacKind::r11_signed ? -1023 : 0, hi_end = kind == EacKind::alpha8 ? 255
+                                                                          : kind == EacKind::r11  ? 2047
+                                                                                                  : 1023;
   double t[16], lo = hi_end, hi = lo_end;
   for (int i = 0; i < 16; ++i) {
     t[i] = std::clamp(double(targets[i]), lo_end, hi_end);
@@ -81,7 +86,8 @@ double encode_eac_block(const float targets[16], EacKind kind, Quality q, std::u
       const double step = mult == 0 ? (kind == EacKind::alpha8 ? 0.0 : 1.0) : mult * unit;
       const double bf = (centre - offset - (mn + mx) / 2.0 * step) / unit;
       const int b0 = std::clamp(int(std::lround(bf)), base_lo, base_hi);
-      for (int base = std::max(base_lo, b0 - window.base_radius); base <= std::min(base_hi, b0 + window.base_radius); ++base) {
+      for (int base = std::max(base_lo, b0 - window.base_radius); base <= std::min(base_hi, b0 + window.base_radius);
+           ++base) {
         eac_try(t, kind, base, mult, table, best);
       }
     }

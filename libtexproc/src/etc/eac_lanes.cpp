@@ -11,7 +11,8 @@
 namespace texproc::etc {
 namespace ref {
 
-void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, const EacWindow& window, std::uint8_t out[][8], float error[]) {
+void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, const EacWindow& window,
+                      std::uint8_t out[][8], float error[]) {
   const eac::Kind K = eac::kind_of(kind);
   for (int k = 0; k < count; ++k) {
     float t[16], lo = K.hi_end, hi = K.lo_end;

@@ -29,10 +29,12 @@ constexpr int kEacBatch = kBlockBatch;  // core/block_batch.h
 // v[i][k]: value i (row by row) of block k in the format's units (see
 // encode_eac_block; clamped here). window: the level's (eac_levels.h).
 // error[k]: the block's squared error in those units.
-void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, const EacWindow& window, std::uint8_t out[][8], float error[]);
+void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, const EacWindow& window,
+                      std::uint8_t out[][8], float error[]);
 
 namespace ref {
-void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, const EacWindow& window, std::uint8_t out[][8], float error[]);
+void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, const EacWindow& window,
+                      std::uint8_t out[][8], float error[]);
 }  // namespace ref
 
 }  // namespace texproc::etc

@@ -25,9 +25,12 @@ struct Kind {
 };
 inline Kind kind_of(EacKind k) {
   switch (k) {
-    case EacKind::alpha8: return {0.0f, 255.0f, 1.0f, 0.0f, 0, 255, 1, 0, 0};
-    case EacKind::r11: return {0.0f, 2047.0f, 8.0f, 4.0f, 0, 255, 8, 4, 1};
-    case EacKind::r11_signed: return {-1023.0f, 1023.0f, 8.0f, 0.0f, -127, 127, 8, 0, 1};
+    case EacKind::alpha8:
+      return {0.0f, 255.0f, 1.0f, 0.0f, 0, 255, 1, 0, 0};
+    case EacKind::r11:
+      return {0.0f, 2047.0f, 8.0f, 4.0f, 0, 255, 8, 4, 1};
+    case EacKind::r11_signed:
+      return {-1023.0f, 1023.0f, 8.0f, 0.0f, -127, 127, 8, 0, 1};
   }
   return {};
 }

@@ -19,7 +19,8 @@ namespace texproc::etc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
-void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, const EacWindow& window, std::uint8_t out[][8], float error[]) {
+void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, const EacWindow& window,
+                    std::uint8_t out[][8], float error[]) {
   using DF = hn::CappedTag<float, kEacBatch>;
   const DF df;
   const hn::RebindToSigned<DF> d;
@@ -65,7 +66,8 @@ void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, const
     };
     for (int table = 0; table < 16; ++table) {
       const int mn = kEacModifiers[table][3], mx = kEacModifiers[table][7];
-      const V m0 = hn::ConvertTo(d, hn::Floor(hn::Add(hn::Div(hn::Sub(hi, lo), hn::Set(df, float(mx - mn) * K.unit)), half)));
+      const V m0 =
+          hn::ConvertTo(d, hn::Floor(hn::Add(hn::Div(hn::Sub(hi, lo), hn::Set(df, float(mx - mn) * K.unit)), half)));
       for (int dm = -window.mult_below; dm <= window.mult_above; ++dm) {
         const V mult = hn::Add(m0, hn::Set(d, dm));
         auto valid = hn::And(hn::Not(hn::Lt(mult, hn::Zero(d))), hn::Not(hn::Gt(mult, hn::Set(d, 15))));
@@ -73,18 +75,22 @@ void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, const
         const auto zero_mult = hn::Eq(mult, hn::Zero(d));
         const VF step = hn::IfThenElse(hn::RebindMask(df, zero_mult), hn::Set(df, float(K.zero_step)),
                                        hn::Mul(hn::ConvertTo(df, mult), hn::Set(df, K.unit)));
-        const VF bf = hn::Div(hn::Sub(hn::Sub(centre, hn::Set(df, K.offset)), hn::Mul(hn::Set(df, float(mn + mx) * 0.5f), step)),
-                              hn::Set(df, K.unit));
-        const V b0 = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(bf, half))), hn::Set(d, K.base_lo)), hn::Set(d, K.base_hi));
+        const VF bf =
+            hn::Div(hn::Sub(hn::Sub(centre, hn::Set(df, K.offset)), hn::Mul(hn::Set(df, float(mn + mx) * 0.5f), step)),
+                    hn::Set(df, K.unit));
+        const V b0 = hn::Min(hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(bf, half))), hn::Set(d, K.base_lo)),
+                             hn::Set(d, K.base_hi));
         // Per modifier: what it adds (multiplier 0: the modifier unscaled).
         const V scale = hn::IfThenElse(zero_mult, hn::Set(d, K.zero_step), hn::Mul(mult, hn::Set(d, K.unit_i)));
         for (int db = -window.base_radius; db <= window.base_radius; ++db) {
           const V base = hn::Add(b0, hn::Set(d, db));
-          const auto ok = hn::And(valid, hn::And(hn::Not(hn::Lt(base, hn::Set(d, K.base_lo))), hn::Not(hn::Gt(base, hn::Set(d, K.base_hi)))));
+          const auto ok = hn::And(valid, hn::And(hn::Not(hn::Lt(base, hn::Set(d, K.base_lo))),
+                                                 hn::Not(hn::Gt(base, hn::Set(d, K.base_hi)))));
           if (hn::AllFalse(d, ok)) continue;
           const V at = hn::Add(hn::Mul(base, hn::Set(d, K.unit_i)), hn::Set(d, K.offset_i));
           const VF err = candidate_error(at, scale, table);
-          take_where(hn::And(ok, hn::RebindMask(d, hn::Or(hn::Lt(best, hn::Zero(df)), hn::Lt(err, best)))), err, base, mult, table);
+          take_where(hn::And(ok, hn::RebindMask(d, hn::Or(hn::Lt(best, hn::Zero(df)), hn::Lt(err, best)))), err, base,
+                     mult, table);
         }
       }
     }
@@ -121,7 +127,8 @@ HWY_AFTER_NAMESPACE();
 namespace texproc::etc {
 HWY_EXPORT(EacEncodeLanes);
 
-void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, const EacWindow& window, std::uint8_t out[][8], float error[]) {
+void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, const EacWindow& window,
+                      std::uint8_t out[][8], float error[]) {
   if (force_scalar()) return ref::eac_encode_lanes(v, count, kind, window, out, error);
   HWY_DYNAMIC_DISPATCH(EacEncodeLanes)(v, count, kind, window, out, error);
 }

@@ -102,7 +102,8 @@ HalfFit fit_half(const Texels& tx, int h, int bits, const Etc1BlockSearch& searc
     spread /= visible;
     int t0 = 0;
     for (int t = 1; t < 8; ++t) {
-      const double mid = (kModifiers[t][0] + kModifiers[t][1]) / 2.0, best_mid = (kModifiers[t0][0] + kModifiers[t0][1]) / 2.0;
+      const double mid = (kModifiers[t][0] + kModifiers[t][1]) / 2.0,
+                   best_mid = (kModifiers[t0][0] + kModifiers[t0][1]) / 2.0;
       if (std::fabs(mid - spread) < std::fabs(best_mid - spread)) t0 = t;
     }
     for (int t = std::max(0, t0 - 1); t <= std::min(7, t0 + 1); ++t) order[tables++] = t;
@@ -210,8 +211,8 @@ void keep_pair(Candidate& best, const HalfFit& a, const HalfFit& b, bool flip, b
 }
 
 // Individual and differential modes, both flips.
-void search_etc1_modes(const Texels& tx, const Etc1BlockSearch& search, bool allow_individual, bool non_opaque, int bit33_diff,
-                       Candidate& best) {
+void search_etc1_modes(const Texels& tx, const Etc1BlockSearch& search, bool allow_individual, bool non_opaque,
+                       int bit33_diff, Candidate& best) {
   HalfFit h4[4], h5[4];
   for (int h = 0; h < 4; ++h) h5[h] = fit_half(tx, h, 5, search, non_opaque);
   for (int flip = 0; flip < 2; ++flip) {
@@ -236,7 +237,8 @@ void search_etc1_modes(const Texels& tx, const Etc1BlockSearch& search, bool all
       int qm[3];
       for (int c = 0; c < 3; ++c) {
         const int other = (moved ? h5[b] : h5[a]).q[c];
-        qm[c] = moved ? std::clamp(other, fixed.q[c] - 4, fixed.q[c] + 3) : std::clamp(other, fixed.q[c] - 3, fixed.q[c] + 4);
+        qm[c] = moved ? std::clamp(other, fixed.q[c] - 4, fixed.q[c] + 3)
+                      : std::clamp(other, fixed.q[c] - 3, fixed.q[c] + 4);
       }
       const HalfFit refit = fit_fixed(tx, mh, qm, non_opaque);
       const HalfFit& first = moved ? fixed : refit;

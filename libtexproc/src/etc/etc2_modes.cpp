@@ -147,7 +147,9 @@ struct THSearch {
   int d_lo, d_hi;
   Candidate& best;
   long th_min = kNone;
-  int opaque_bit() const { return non_opaque ? 0 : 1; }  // bit 33: the differential flag, or punch-through's opaque flag
+  int opaque_bit() const {
+    return non_opaque ? 0 : 1;
+  }  // bit 33: the differential flag, or punch-through's opaque flag
 
   // Scores four paint colours: each texel's nearest (first of equals).
   long score(const int paint[4][3], std::uint8_t idx[16]) const {

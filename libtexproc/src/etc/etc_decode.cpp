@@ -71,11 +71,11 @@ void sub_block_palette_scalar(const int c[3], int table, std::uint32_t out[4]) {
 
 void sub_block_palette(const int c[3], int table, std::uint32_t out[4]) {
 #if defined(__SSE2__)
-  const __m128i base = _mm_setr_epi16(std::int16_t(c[0]), std::int16_t(c[1]), std::int16_t(c[2]), 255, std::int16_t(c[0]),
-                                      std::int16_t(c[1]), std::int16_t(c[2]), 255);
+  const __m128i base = _mm_setr_epi16(std::int16_t(c[0]), std::int16_t(c[1]), std::int16_t(c[2]), 255,
+                                      std::int16_t(c[0]), std::int16_t(c[1]), std::int16_t(c[2]), 255);
   const __m128i* m = reinterpret_cast<const __m128i*>(kModifierLanes.v[table]);
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(out),
-                   _mm_packus_epi16(_mm_add_epi16(base, _mm_load_si128(m)), _mm_add_epi16(base, _mm_load_si128(m + 1))));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_packus_epi16(_mm_add_epi16(base, _mm_load_si128(m)),
+                                                                     _mm_add_epi16(base, _mm_load_si128(m + 1))));
 #else
   sub_block_palette_scalar(c, table, out);
 #endif
@@ -88,7 +88,8 @@ namespace {
 // them (the index bits transposed from column order to row order).
 // `put(y, q0, q1, q2, q3)` takes row y's four texels.
 template <class Put>
-inline __attribute__((always_inline)) void sub_block_rows(std::uint64_t v, const int c1[3], const int c2[3], bool non_opaque, Put put) {
+inline __attribute__((always_inline)) void sub_block_rows(std::uint64_t v, const int c1[3], const int c2[3],
+                                                          bool non_opaque, Put put) {
   const int table[2] = {bits(v, 39, 3), bits(v, 36, 3)};
   const bool flip = bits(v, 32, 1) != 0;
   std::uint32_t pal[8];
@@ -114,15 +115,17 @@ inline __attribute__((always_inline)) void sub_block_rows(std::uint64_t v, const
 }
 
 void decode_sub_blocks(std::uint64_t v, const int c1[3], const int c2[3], bool non_opaque, std::uint32_t out[16]) {
-  sub_block_rows(v, c1, c2, non_opaque, [out](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
-    std::uint32_t* row = out + 4 * y;
-    row[0] = q0, row[1] = q1, row[2] = q2, row[3] = q3;
-  });
+  sub_block_rows(v, c1, c2, non_opaque,
+                 [out](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
+                   std::uint32_t* row = out + 4 * y;
+                   row[0] = q0, row[1] = q1, row[2] = q2, row[3] = q3;
+                 });
 }
 
 void decode_paint(std::uint64_t v, const int paint[4][3], bool non_opaque, std::uint32_t out[16]) {
   std::uint32_t pal[4];
-  for (int idx = 0; idx < 4; ++idx) pal[idx] = non_opaque && idx == 2 ? 0u : word(paint[idx][0], paint[idx][1], paint[idx][2]);
+  for (int idx = 0; idx < 4; ++idx)
+    pal[idx] = non_opaque && idx == 2 ? 0u : word(paint[idx][0], paint[idx][1], paint[idx][2]);
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 4; ++x) out[y * 4 + x] = pal[pixel_index(v, x, y)];
 }
@@ -202,8 +205,8 @@ void etc1_words(const std::uint8_t* block, std::uint32_t out[16]) {
 // kChannels 0: RGB as four 4-byte stores left to right, one byte past the
 // 12 written (as bc_decode.cpp's color_rows: where another block follows).
 template <int kChannels>
-inline __attribute__((always_inline)) void store_row(std::uint8_t* row, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2,
-                                                     std::uint32_t q3) {
+inline __attribute__((always_inline)) void store_row(std::uint8_t* row, std::uint32_t q0, std::uint32_t q1,
+                                                     std::uint32_t q2, std::uint32_t q3) {
   if constexpr (kChannels == 0) {
     std::memcpy(row, &q0, 4);
     std::memcpy(row + 3, &q1, 4);
@@ -214,7 +217,8 @@ inline __attribute__((always_inline)) void store_row(std::uint8_t* row, std::uin
     std::memcpy(row, &lo, 8);
     std::memcpy(row + 8, &hi, 8);
   } else {
-    const std::uint64_t lo = std::uint64_t((q0 & 0xFFFFFF) | q1 << 24) | std::uint64_t((q1 >> 8 & 0xFFFF) | q2 << 16) << 32;
+    const std::uint64_t lo = std::uint64_t((q0 & 0xFFFFFF) | q1 << 24) | std::uint64_t((q1 >> 8 & 0xFFFF) | q2 << 16)
+                                                                             << 32;
     const std::uint32_t hi = (q2 >> 16 & 0xFF) | q3 << 8;
     std::memcpy(row, &lo, 8);
     std::memcpy(row + 8, &hi, 4);
@@ -262,10 +266,11 @@ inline __attribute__((always_inline)) void etc2_rows(std::uint64_t v, bool punch
 }
 
 void etc2_words(const std::uint8_t* block, bool punchthrough, std::uint32_t out[16]) {
-  etc2_rows(load_be64(block), punchthrough, [out](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
-    std::uint32_t* row = out + 4 * y;
-    row[0] = q0, row[1] = q1, row[2] = q2, row[3] = q3;
-  });
+  etc2_rows(load_be64(block), punchthrough,
+            [out](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
+              std::uint32_t* row = out + 4 * y;
+              row[0] = q0, row[1] = q1, row[2] = q2, row[3] = q3;
+            });
 }
 }  // namespace
 
@@ -281,7 +286,8 @@ void decode_etc2(const std::uint8_t* block, bool punchthrough, Rgba8Block out) {
   std::memcpy(out, w, 64);
 }
 
-void decode_etc_run(const std::uint8_t* blocks, int count, int block_bytes, EtcRun kind, std::uint8_t* dst, std::size_t stride) {
+void decode_etc_run(const std::uint8_t* blocks, int count, int block_bytes, EtcRun kind, std::uint8_t* dst,
+                    std::size_t stride) {
   if (kind == EtcRun::etc1_rgb) {  // ETC1: the texels straight from the palette into the rows
     for (int k = 0; k < count; ++k) {
       const std::uint64_t v = load_be64(blocks + std::size_t(k) * block_bytes);
@@ -289,13 +295,15 @@ void decode_etc_run(const std::uint8_t* blocks, int count, int block_bytes, EtcR
       etc1_colors(v, c1, c2);
       std::uint8_t* out = dst + std::size_t(k) * 12;
       const bool last = k + 1 == count;
-      sub_block_rows(v, c1, c2, false, [out, stride, last](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
-        if (last) {
-          store_row<3>(out + y * stride, q0, q1, q2, q3);
-        } else {
-          store_row<0>(out + y * stride, q0, q1, q2, q3);
-        }
-      });
+      sub_block_rows(
+          v, c1, c2, false,
+          [out, stride, last](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
+            if (last) {
+              store_row<3>(out + y * stride, q0, q1, q2, q3);
+            } else {
+              store_row<0>(out + y * stride, q0, q1, q2, q3);
+            }
+          });
     }
     return;
   }
@@ -304,18 +312,20 @@ void decode_etc_run(const std::uint8_t* blocks, int count, int block_bytes, EtcR
     if (kind == EtcRun::etc2_rgb) {
       std::uint8_t* out = dst + std::size_t(k) * 12;
       const bool last = k + 1 == count;
-      etc2_rows(load_be64(b), false, [out, stride, last](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
-        if (last) {
-          store_row<3>(out + y * stride, q0, q1, q2, q3);
-        } else {
-          store_row<0>(out + y * stride, q0, q1, q2, q3);
-        }
-      });
+      etc2_rows(load_be64(b), false,
+                [out, stride, last](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
+                  if (last) {
+                    store_row<3>(out + y * stride, q0, q1, q2, q3);
+                  } else {
+                    store_row<0>(out + y * stride, q0, q1, q2, q3);
+                  }
+                });
     } else if (kind == EtcRun::etc2_rgba1) {
       std::uint8_t* out = dst + std::size_t(k) * 16;
-      etc2_rows(load_be64(b), true, [out, stride](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
-        store_row<4>(out + y * stride, q0, q1, q2, q3);
-      });
+      etc2_rows(load_be64(b), true,
+                [out, stride](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
+                  store_row<4>(out + y * stride, q0, q1, q2, q3);
+                });
     } else {  // ETC2 + EAC: the alpha block first
       std::uint8_t alpha[16];
       decode_eac8(b, alpha);
@@ -323,7 +333,9 @@ void decode_etc_run(const std::uint8_t* blocks, int count, int block_bytes, EtcR
       etc2_rows(load_be64(b + 8), false,
                 [out, stride, &alpha](int y, std::uint32_t q0, std::uint32_t q1, std::uint32_t q2, std::uint32_t q3) {
                   const std::uint8_t* a = alpha + 4 * y;
-                  auto with = [](std::uint32_t q, std::uint8_t av) { return (q & 0xFFFFFFu) | std::uint32_t(av) << 24; };
+                  auto with = [](std::uint32_t q, std::uint8_t av) {
+                    return (q & 0xFFFFFFu) | std::uint32_t(av) << 24;
+                  };
                   store_row<4>(out + y * stride, with(q0, a[0]), with(q1, a[1]), with(q2, a[2]), with(q3, a[3]));
                 });
     }
@@ -380,8 +392,8 @@ const Eac8Tables& eac8_tables() {
 }
 
 template <int kChannels>
-inline __attribute__((always_inline)) void eac11_u8_rows(const std::uint8_t* block, bool snorm, int ch, const Eac8Tables& T,
-                                                         std::uint8_t* dst, std::size_t stride) {
+inline __attribute__((always_inline)) void eac11_u8_rows(const std::uint8_t* block, bool snorm, int ch,
+                                                         const Eac8Tables& T, std::uint8_t* dst, std::size_t stride) {
   const std::uint64_t v = load_be64(block);
   const int mult = bits(v, 55, 4);
   const int* mods = kEacModifiers[bits(v, 51, 4)];
@@ -409,11 +421,12 @@ inline __attribute__((always_inline)) void eac11_u8_rows(const std::uint8_t* blo
 }
 }  // namespace
 
-void decode_eac11_u8_run(const std::uint8_t* blocks, int count, int block_bytes, bool snorm, int channels, int ch, std::uint8_t* dst,
-                         std::size_t stride) {
+void decode_eac11_u8_run(const std::uint8_t* blocks, int count, int block_bytes, bool snorm, int channels, int ch,
+                         std::uint8_t* dst, std::size_t stride) {
   const Eac8Tables& T = eac8_tables();
   if (channels == 1) {
-    for (int k = 0; k < count; ++k) eac11_u8_rows<1>(blocks + std::size_t(k) * block_bytes, snorm, ch, T, dst + 4 * k, stride);
+    for (int k = 0; k < count; ++k)
+      eac11_u8_rows<1>(blocks + std::size_t(k) * block_bytes, snorm, ch, T, dst + 4 * k, stride);
   } else {
     for (int k = 0; k < count; ++k)
       eac11_u8_rows<2>(blocks + std::size_t(k) * block_bytes, snorm, ch, T, dst + 8 * k, stride);

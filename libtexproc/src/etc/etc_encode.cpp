@@ -74,8 +74,8 @@ long block_error(const std::uint8_t rgba[16][4], const std::uint8_t block[8], Et
 
 // The lanes' ETC1 blocks at `lane`; `error` gets their squared RGB errors
 // (not at `fast`, whose kernel does not count them).
-void etc1_lanes(Etc1Lanes lane, const std::uint32_t texel[16][kEtcBatch], int count, bool punch,
-                std::uint8_t out[][8], std::int32_t error[]) {
+void etc1_lanes(Etc1Lanes lane, const std::uint32_t texel[16][kEtcBatch], int count, bool punch, std::uint8_t out[][8],
+                std::int32_t error[]) {
   if (lane == Etc1Lanes::fast) {
     etc1_fast_lanes(texel, count, punch, out);
   } else {
@@ -105,7 +105,8 @@ Texels lane_texels(const std::uint32_t texel[16][kEtcBatch], int k) {
 // ETC2 above `fast`: the planar mode, and the T and H modes (only where the
 // lanes' ETC1 block, its error `err`, leaves more than modes.t_h_above per
 // texel, squared RGB), tried against it; the block is replaced if one wins.
-long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err, const Etc2Modes& modes, std::uint8_t block[8]) {
+long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err, const Etc2Modes& modes,
+                       std::uint8_t block[8]) {
   const Texels tx = lane_texels(texel, k);
   Candidate best;
   best.err = err;
@@ -123,7 +124,7 @@ long finish_etc2_block(const std::uint32_t texel[16][kEtcBatch], int k, long err
 // nearest level (a slightly tilted plane rounds to values on both sides of
 // the colour, less error in all than one flat level).
 struct FlatTables {
-  int err[2][32][256], base[2][32][256];  // [bits 4, 5][table * 4 + index][value]
+  int err[2][32][256], base[2][32][256];          // [bits 4, 5][table * 4 + index][value]
   int planar_err[2][256], planar_ohv[2][256][3];  // [6 bits, 7 bits][value]
 };
 const FlatTables& flat_tables() {
@@ -152,10 +153,12 @@ const FlatTables& flat_tables() {
             for (int w = std::max(0, q0 - 2); w <= std::min(top, q0 + 2); ++w) {
               int e = 0;
               for (int i = 0; i < 16; ++i) {  // as the decoder's plane
-                const int d = clamp255(((i & 3) * (ex(h) - ex(o)) + (i >> 2) * (ex(w) - ex(o)) + 4 * ex(o) + 2) >> 2) - v;
+                const int d =
+                    clamp255(((i & 3) * (ex(h) - ex(o)) + (i >> 2) * (ex(w) - ex(o)) + 4 * ex(o) + 2) >> 2) - v;
                 e += d * d;
               }
-              if (e < best) best = e, f->planar_ohv[b][v][0] = o, f->planar_ohv[b][v][1] = h, f->planar_ohv[b][v][2] = w;
+              if (e < best)
+                best = e, f->planar_ohv[b][v][0] = o, f->planar_ohv[b][v][1] = h, f->planar_ohv[b][v][2] = w;
             }
         f->planar_err[b][v] = best;
       }
@@ -255,7 +258,8 @@ long best_flat_holes_block(const std::uint8_t rgba[16][4], const int rgb[3], std
 // ETC1 block shares one base and table between the halves' texels and
 // leaves such blocks far off (44 times the error of `normal` on random
 // pairs). The block is replaced where one wins.
-void two_colour_t_h(const std::uint32_t texel[16][kEtcBatch], int k, EtcMode mode, const Etc2Modes& modes, std::uint8_t block[8]) {
+void two_colour_t_h(const std::uint32_t texel[16][kEtcBatch], int k, EtcMode mode, const Etc2Modes& modes,
+                    std::uint8_t block[8]) {
   if (!two_colours(texel, k)) return;
   const Texels tx = lane_texels(texel, k);
   std::uint8_t rgba[16][4];
@@ -285,7 +289,7 @@ long encode_color_block(const std::uint8_t rgba[16][4], EtcMode mode, Quality q,
   std::uint32_t texel[16][kEtcBatch] = {};  // lane 0: this block, for the lanes
   for (int i = 0; i < 16; ++i) texel[i][0] = pack_texel(rgba[i]);
   const EtcLevel& level = etc_level(q);  // etc_levels.h
-  if (level.lanes && opaque) {  // as whole images do: etc_lanes.h
+  if (level.lanes && opaque) {           // as whole images do: etc_lanes.h
     std::uint8_t block[1][8];
     std::int32_t e[1] = {};
     etc1_lanes(level.lane, texel, 1, punch, block, e);
@@ -304,7 +308,8 @@ long encode_color_block(const std::uint8_t rgba[16][4], EtcMode mode, Quality q,
   }
   const Texels tx = make_texels(rgba, mode);
   Candidate best;
-  if (level.lane_candidate && opaque && level.lane != Etc1Lanes::fast) {  // never below the lanes: their block is the first candidate
+  if (level.lane_candidate && opaque &&
+      level.lane != Etc1Lanes::fast) {  // never below the lanes: their block is the first candidate
     std::uint8_t block[1][8];
     std::int32_t e[1];
     etc1_lanes(level.lane, texel, 1, punch, block, e);
@@ -330,7 +335,8 @@ long encode_color_block(const std::uint8_t rgba[16][4], EtcMode mode, Quality q,
     while (first < 16 && rgba[first][3] < 128) ++first;
     bool one = first < 16;
     for (int i = first; i < 16 && one; ++i)
-      one = rgba[i][3] < 128 || (rgba[i][0] == rgba[first][0] && rgba[i][1] == rgba[first][1] && rgba[i][2] == rgba[first][2]);
+      one = rgba[i][3] < 128 ||
+            (rgba[i][0] == rgba[first][0] && rgba[i][1] == rgba[first][1] && rgba[i][2] == rgba[first][2]);
     if (one) {
       const int c[3] = {rgba[first][0], rgba[first][1], rgba[first][2]};
       return best_flat_holes_block(rgba, c, out);
@@ -339,7 +345,8 @@ long encode_color_block(const std::uint8_t rgba[16][4], EtcMode mode, Quality q,
   return best.err;
 }
 
-std::vector<std::uint8_t> compress_etc(const ConstImageView& img, TexelFormat format, Quality q, const EncodeOptions& options) {
+std::vector<std::uint8_t> compress_etc(const ConstImageView& img, TexelFormat format, Quality q,
+                                       const EncodeOptions& options) {
   using F = TexelFormat;
   const FormatInfo& info = format_info(format);
   const int bw = (img.width + 3) / 4, bh = (img.height + 3) / 4;
@@ -349,86 +356,93 @@ std::vector<std::uint8_t> compress_etc(const ConstImageView& img, TexelFormat fo
   const int eac_channels = format == F::eac_rg11_unorm || format == F::eac_rg11_snorm ? 2 : 1;
   const bool rgba8 = format == F::etc2_rgba8_unorm || format == F::etc2_rgba8_srgb;
   const EtcMode mode = format == F::etc1_rgb                                           ? EtcMode::etc1
-                         : format == F::etc2_rgba1_unorm || format == F::etc2_rgba1_srgb ? EtcMode::etc2_punch
-                                                                                         : EtcMode::etc2;
+                       : format == F::etc2_rgba1_unorm || format == F::etc2_rgba1_srgb ? EtcMode::etc2_punch
+                                                                                       : EtcMode::etc2;
   // Opaque colour: sixteen blocks at a time (etc_lanes.h); ETC2 then tries
   // its planar, T and H modes block by block.
-  const EtcLevel& level = etc_level(q);  // etc_levels.h
+  const EtcLevel& level = etc_level(q);   // etc_levels.h
   const EacLevel& eac_lv = eac_level(q);  // eac_levels.h
   const bool batched = level.lanes;
   const bool punch = mode == EtcMode::etc2_punch;
   const bool finish = batched && level.etc2.search && mode != EtcMode::etc1;  // ETC2: planar, T, H per block
   const bool eac_lanes = eac_lv.lanes;
-  for_each_row_block(bh, 4, [&](int by0, int by1) {
-    std::int32_t errors[kEtcBatch];
-    std::uint8_t rgba[kEtcBatch][16][4];
-    std::uint32_t texel[16][kEtcBatch] = {};
-    std::uint8_t color[kEtcBatch][8];
-    float values[16];
-    float eac_values[16][kEacBatch];  // EAC: sixteen blocks at a time below `max` (eac_lanes.h)
-    std::uint8_t eac_out[kEacBatch][8];
-    float eac_err[kEacBatch];
-    // The EAC blocks of eac_values, written `offset` bytes into their blocks.
-    auto eac_encode = [&](int by, int bx0, int count, EacKind kind, int offset) {
-      if (eac_lanes) {
-        eac_encode_lanes(eac_values, count, kind, eac_lv.lanes_window, eac_out, eac_err);
-      } else {
-        for (int k = 0; k < count; ++k) {
-          for (int i = 0; i < 16; ++i) values[i] = eac_values[i][k];
-          encode_eac_block(values, kind, q, eac_out[k]);
-        }
-      }
-      for (int k = 0; k < count; ++k)
-        std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + offset, eac_out[k], 8);
-    };
-    for (int by = by0; by < by1; ++by)
-      for (int bx0 = 0; bx0 < bw; bx0 += kEtcBatch) {
-        const int count = std::min(kEtcBatch, bw - bx0);
-        if (eac) {
-          for (int c = 0; c < eac_channels; ++c) {
-            for (int k = 0; k < count; ++k)
-              for (int i = 0; i < 16; ++i) {
-                // Partial blocks: the edge texels repeat into the missing ones.
-                const int x = std::min((bx0 + k) * 4 + i % 4, img.width - 1), y = std::min(by * 4 + i / 4, img.height - 1);
-                const float u = texel_unit(img, x, y, c);
-                eac_values[i][k] = snorm ? (u * 2.0f - 1.0f) * 1023.0f : u * 2047.0f;
+  for_each_row_block(
+      bh, 4,
+      [&](int by0, int by1) {
+        std::int32_t errors[kEtcBatch];
+        std::uint8_t rgba[kEtcBatch][16][4];
+        std::uint32_t texel[16][kEtcBatch] = {};
+        std::uint8_t color[kEtcBatch][8];
+        float values[16];
+        float eac_values[16][kEacBatch];  // EAC: sixteen blocks at a time below `max` (eac_lanes.h)
+        std::uint8_t eac_out[kEacBatch][8];
+        float eac_err[kEacBatch];
+        // The EAC blocks of eac_values, written `offset` bytes into their blocks.
+        auto eac_encode = [&](int by, int bx0, int count, EacKind kind, int offset) {
+          if (eac_lanes) {
+            eac_encode_lanes(eac_values, count, kind, eac_lv.lanes_window, eac_out, eac_err);
+          } else {
+            for (int k = 0; k < count; ++k) {
+              for (int i = 0; i < 16; ++i) values[i] = eac_values[i][k];
+              encode_eac_block(values, kind, q, eac_out[k]);
+            }
+          }
+          for (int k = 0; k < count; ++k)
+            std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + offset,
+                        eac_out[k], 8);
+        };
+        for (int by = by0; by < by1; ++by)
+          for (int bx0 = 0; bx0 < bw; bx0 += kEtcBatch) {
+            const int count = std::min(kEtcBatch, bw - bx0);
+            if (eac) {
+              for (int c = 0; c < eac_channels; ++c) {
+                for (int k = 0; k < count; ++k)
+                  for (int i = 0; i < 16; ++i) {
+                    // Partial blocks: the edge texels repeat into the missing ones.
+                    const int x = std::min((bx0 + k) * 4 + i % 4, img.width - 1),
+                              y = std::min(by * 4 + i / 4, img.height - 1);
+                    const float u = texel_unit(img, x, y, c);
+                    eac_values[i][k] = snorm ? (u * 2.0f - 1.0f) * 1023.0f : u * 2047.0f;
+                  }
+                eac_encode(by, bx0, count, snorm ? EacKind::r11_signed : EacKind::r11, 8 * c);
               }
-            eac_encode(by, bx0, count, snorm ? EacKind::r11_signed : EacKind::r11, 8 * c);
+              continue;
+            }
+            // RGBA8 texels straight from the rows where they can be.
+            const bool rows_direct = batched && !rgba8 && !punch && gather_rows_rgba8(img, bx0, by, count, texel);
+            bool lanes_block[kEtcBatch];  // punch-through: only opaque blocks take the lanes' block
+            for (int k = 0; k < count && !rows_direct; ++k) {
+              const int bx = bx0 + k;
+              std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx) * std::size_t(info.block_bytes);
+              gather_rgba8(img, bx, by, rgba[k]);
+              if (rgba8)
+                for (int i = 0; i < 16; ++i) eac_values[i][k] = rgba[k][i][3];
+              lanes_block[k] = batched && !(punch && any_transparent(rgba[k]));
+              if (batched)
+                for (int i = 0; i < 16; ++i) texel[i][k] = pack_texel(rgba[k][i]);
+              if (!lanes_block[k]) encode_color_block(rgba[k], mode, q, dst + (rgba8 ? 8 : 0));
+            }
+            if (rgba8) eac_encode(by, bx0, count, EacKind::alpha8, 0);
+            if (!batched) continue;
+            if (rows_direct) std::fill(lanes_block, lanes_block + count, true);
+            etc1_lanes(level.lane, texel, count, punch, color, errors);
+            for (int k = 0; k < count && finish; ++k)
+              if (lanes_block[k]) finish_etc2_block(texel, k, errors[k], level.etc2, color[k]);
+            for (int k = 0; k < count; ++k) {
+              if (!lanes_block[k]) continue;
+              int rgb[3];
+              if (flat_colour(texel, k, mode, rgb)) {
+                best_flat_block(rgb, mode, color[k]);  // one colour: the format's best
+              } else if (level.etc2.two_colour_t_h && mode != EtcMode::etc1) {
+                two_colour_t_h(texel, k, mode, level.etc2, color[k]);
+              }
+              std::memcpy(
+                  out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + (rgba8 ? 8 : 0),
+                  color[k], 8);
+            }
           }
-          continue;
-        }
-        // RGBA8 texels straight from the rows where they can be.
-        const bool rows_direct = batched && !rgba8 && !punch && gather_rows_rgba8(img, bx0, by, count, texel);
-        bool lanes_block[kEtcBatch];  // punch-through: only opaque blocks take the lanes' block
-        for (int k = 0; k < count && !rows_direct; ++k) {
-          const int bx = bx0 + k;
-          std::uint8_t* dst = out.data() + (std::size_t(by) * bw + bx) * std::size_t(info.block_bytes);
-          gather_rgba8(img, bx, by, rgba[k]);
-          if (rgba8)
-            for (int i = 0; i < 16; ++i) eac_values[i][k] = rgba[k][i][3];
-          lanes_block[k] = batched && !(punch && any_transparent(rgba[k]));
-          if (batched)
-            for (int i = 0; i < 16; ++i) texel[i][k] = pack_texel(rgba[k][i]);
-          if (!lanes_block[k]) encode_color_block(rgba[k], mode, q, dst + (rgba8 ? 8 : 0));
-        }
-        if (rgba8) eac_encode(by, bx0, count, EacKind::alpha8, 0);
-        if (!batched) continue;
-        if (rows_direct) std::fill(lanes_block, lanes_block + count, true);
-        etc1_lanes(level.lane, texel, count, punch, color, errors);
-        for (int k = 0; k < count && finish; ++k)
-          if (lanes_block[k]) finish_etc2_block(texel, k, errors[k], level.etc2, color[k]);
-        for (int k = 0; k < count; ++k) {
-          if (!lanes_block[k]) continue;
-          int rgb[3];
-          if (flat_colour(texel, k, mode, rgb)) {
-            best_flat_block(rgb, mode, color[k]);  // one colour: the format's best
-          } else if (level.etc2.two_colour_t_h && mode != EtcMode::etc1) {
-            two_colour_t_h(texel, k, mode, level.etc2, color[k]);
-          }
-          std::memcpy(out.data() + (std::size_t(by) * bw + bx0 + k) * std::size_t(info.block_bytes) + (rgba8 ? 8 : 0), color[k], 8);
-        }
-      }
-  }, options.progress);
+      },
+      options.progress);
   return out;
 }
 

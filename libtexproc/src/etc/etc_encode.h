@@ -10,9 +10,9 @@
 namespace texproc::etc {
 
 enum class EtcMode {
-  etc1,         // individual and differential modes
-  etc2,         // + T, H and planar
-  etc2_punch,   // ETC2 with punch-through alpha: no individual mode; alpha < 128 is transparent
+  etc1,        // individual and differential modes
+  etc2,        // + T, H and planar
+  etc2_punch,  // ETC2 with punch-through alpha: no individual mode; alpha < 128 is transparent
 };
 
 // Encodes 16 RGBA8 texels (row by row) into an 8-byte ETC1/ETC2 colour block,
@@ -28,6 +28,7 @@ enum class EacKind { alpha8, r11, r11_signed };
 double encode_eac_block(const float targets[16], EacKind kind, Quality q, std::uint8_t out[8]);
 
 // A whole image in an ETC or EAC format (compress_image's ETC half).
-std::vector<std::uint8_t> compress_etc(const ConstImageView& img, TexelFormat format, Quality q, const EncodeOptions& options);
+std::vector<std::uint8_t> compress_etc(const ConstImageView& img, TexelFormat format, Quality q,
+                                       const EncodeOptions& options);
 
 }  // namespace texproc::etc

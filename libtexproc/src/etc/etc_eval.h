@@ -17,8 +17,8 @@ EvalHalfFn eval_half_kernel();
 
 struct HalfTexels {
   std::int32_t r[8], g[8], b[8];
-  std::int32_t sum[8];          // r + g + b
-  std::int32_t transparent[8];  // 1: punch-through transparent (index 2, no error)
+  std::int32_t sum[8];                   // r + g + b
+  std::int32_t transparent[8];           // 1: punch-through transparent (index 2, no error)
   EvalHalfFn eval = eval_half_kernel();  // resolved once per block
 };
 

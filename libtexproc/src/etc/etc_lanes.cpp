@@ -45,7 +45,8 @@ HalfFit fit(const int rgb[16][3], int h, int bits, int t0, const int* fixed_q = 
   for (int t = 1; t < 8; ++t)
     if (std::abs(3 * kModifiers[t][1] - reach) < std::abs(3 * kModifiers[t_far][1] - reach)) t_far = t;
   for (int dt = -1; dt <= 1; ++dt) {
-    const int t = dt == -1 && t_far > t0 + 1 ? t_far : std::clamp(t0 + dt, 0, 7), a = kModifiers[t][0], b = kModifiers[t][1];
+    const int t = dt == -1 && t_far > t0 + 1 ? t_far : std::clamp(t0 + dt, 0, 7), a = kModifiers[t][0],
+              b = kModifiers[t][1];
     int err = 0, idx[8];
     for (int i = 0; i < 8; ++i) {
       const bool up = dl[i] >= 0, far = up ? 2 * dl[i] > 3 * (a + b) : 2 * dl[i] < -3 * (a + b);
@@ -87,7 +88,8 @@ HalfFit eval_exact(const int rgb[16][3], int h, const int q[3], int bits, int t)
 
 }  // namespace
 
-void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool differential_only, std::uint8_t out[][8]) {
+void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool differential_only,
+                     std::uint8_t out[][8]) {
   for (int k = 0; k < count; ++k) {
     int rgb[16][3];
     for (int i = 0; i < 16; ++i) {
@@ -97,7 +99,8 @@ void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool d
     int t0[4];
     for (int h = 0; h < 4; ++h) {
       int total = 0, spread = 0;
-      for (int i = 0; i < 8; ++i) total += rgb[fast::kHalf[h][i]][0] + rgb[fast::kHalf[h][i]][1] + rgb[fast::kHalf[h][i]][2];
+      for (int i = 0; i < 8; ++i)
+        total += rgb[fast::kHalf[h][i]][0] + rgb[fast::kHalf[h][i]][1] + rgb[fast::kHalf[h][i]][2];
       for (int i = 0; i < 8; ++i) {
         const int* px = rgb[fast::kHalf[h][i]];
         spread += std::abs(8 * (px[0] + px[1] + px[2]) - total);
@@ -163,7 +166,8 @@ HalfFit fit_normal(const int rgb[16][3], int h, int bits, bool high, HalfFit* pe
   int sum[3] = {};
   for (int i = 0; i < 8; ++i)
     for (int c = 0; c < 3; ++c) sum[c] += rgb[fast::kHalf[h][i]][c];
-  const int q0[3] = {fast::quantize_sum(sum[0], bits), fast::quantize_sum(sum[1], bits), fast::quantize_sum(sum[2], bits)};
+  const int q0[3] = {fast::quantize_sum(sum[0], bits), fast::quantize_sum(sum[1], bits),
+                     fast::quantize_sum(sum[2], bits)};
   auto recentre = [&](HalfFit cur, int passes) {
     for (int pass = 0; pass < passes; ++pass) {
       int centre[3] = {};
@@ -233,7 +237,8 @@ HalfFit fit_normal(const int rgb[16][3], int h, int bits, bool high, HalfFit* pe
   HalfFit refined[8];
   for (int t = 0; t < 8; ++t) {
     HalfFit start = at_mean[t];
-    const int seeds[4][2] = {{bright, kModifiers[t][1]}, {dark, -kModifiers[t][1]}, {bright, kModifiers[t][0]}, {dark, -kModifiers[t][0]}};
+    const int seeds[4][2] = {
+        {bright, kModifiers[t][1]}, {dark, -kModifiers[t][1]}, {bright, kModifiers[t][0]}, {dark, -kModifiers[t][0]}};
     for (const auto& sd : seeds) seed(start, sd[0], sd[1], t);
     refined[t] = recentre(start, 3), err[t] = refined[t].err;
     if (best.err < 0 || refined[t].err < best.err) best = refined[t];
@@ -317,13 +322,18 @@ void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool
       if (!high) continue;
       // `high`: the pulled base's neighbours that the delta still reaches,
       // with the table found for it.
-      auto in_range = [](const int q[3]) { return std::min({q[0], q[1], q[2]}) >= 0 && std::max({q[0], q[1], q[2]}) <= 31; };
+      auto in_range = [](const int q[3]) {
+        return std::min({q[0], q[1], q[2]}) >= 0 && std::max({q[0], q[1], q[2]}) <= 31;
+      };
       for (int n = 0; n < 27; ++n) {
         const int dd[3] = {n / 9 - 1, n / 3 % 3 - 1, n % 3 - 1};
         if (n == 13) continue;
-        const int na[3] = {qa[0] + dd[0], qa[1] + dd[1], qa[2] + dd[2]}, nb[3] = {qb[0] + dd[0], qb[1] + dd[1], qb[2] + dd[2]};
-        if (in_range(na) && fast::delta_reaches(na, f5[b].q)) consider(flip, true, eval_exact(rgb, a, na, 5, pa.table), f5[b]);
-        if (in_range(nb) && fast::delta_reaches(f5[a].q, nb)) consider(flip, true, f5[a], eval_exact(rgb, b, nb, 5, pb.table));
+        const int na[3] = {qa[0] + dd[0], qa[1] + dd[1], qa[2] + dd[2]},
+                  nb[3] = {qb[0] + dd[0], qb[1] + dd[1], qb[2] + dd[2]};
+        if (in_range(na) && fast::delta_reaches(na, f5[b].q))
+          consider(flip, true, eval_exact(rgb, a, na, 5, pa.table), f5[b]);
+        if (in_range(nb) && fast::delta_reaches(f5[a].q, nb))
+          consider(flip, true, f5[a], eval_exact(rgb, b, nb, 5, pb.table));
       }
     }
     fast::pack(best, out[k]);

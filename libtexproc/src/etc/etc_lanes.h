@@ -30,7 +30,8 @@ constexpr int kEtcBatch = kBlockBatch;  // core/block_batch.h
 // bit 33 is the opaque flag: these are its opaque blocks); where the halves'
 // bases are too far apart, the second is pulled within the delta of the
 // first (`fast`) or either is (`normal`, `high`).
-void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool differential_only, std::uint8_t out[][8]);
+void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool differential_only,
+                     std::uint8_t out[][8]);
 
 // `normal`: per half every table at the mean, exactly (the decoder's
 // clamping, each texel at its best modifier); the best two tables also
@@ -51,7 +52,8 @@ void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool
                        std::uint8_t out[][8], std::int32_t error[]);
 
 namespace ref {
-void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool differential_only, std::uint8_t out[][8]);
+void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool differential_only,
+                     std::uint8_t out[][8]);
 void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, bool differential_only,
                        std::uint8_t out[][8], std::int32_t error[]);
 }  // namespace ref

@@ -46,9 +46,7 @@ inline void pack(const Params& p, std::uint8_t out[8]) {
 }
 
 // The quantized mean of 8 values summing to `sum`: 5 or 4 bits.
-inline int quantize_sum(int sum, int bits) {
-  return int(float((bits == 5 ? 62 : 30) * sum + 2040) / 4080.0f);
-}
+inline int quantize_sum(int sum, int bits) { return int(float((bits == 5 ? 62 : 30) * sum + 2040) / 4080.0f); }
 
 // The same for a sum that may leave [0, 2040] (texels minus modifiers): clamped.
 inline int quantize_centre(int sum, int bits) {

@@ -18,11 +18,11 @@ enum class Etc1Lanes {
 // The ETC1 modes block by block (etc1_encode.cpp: fit_half, search_etc1_modes):
 // punch-through blocks with transparent texels at every level, and `max`.
 struct Etc1BlockSearch {
-  bool all_tables;     // every table scored at the mean; else the three nearest the half's spread
-  int refined_tables;  // the best of them seeded from the extremes and re-centred
-  int seeds;           // seeds a refined table: 2 (+-its far modifier), 4 (+-both)
+  bool all_tables;                         // every table scored at the mean; else the three nearest the half's spread
+  int refined_tables;                      // the best of them seeded from the extremes and re-centred
+  int seeds;                               // seeds a refined table: 2 (+-its far modifier), 4 (+-both)
   int neighbour_tables, neighbour_radius;  // the best tables' bases searched within +-radius per channel
-  bool individual_always;  // the individual mode tried even where the differential delta reaches
+  bool individual_always;                  // the individual mode tried even where the differential delta reaches
 };
 
 // ETC2's planar, T and H modes (etc2_modes.cpp).
@@ -32,7 +32,7 @@ struct Etc2Modes {
   // squared RGB error per texel (`normal`: 120 against 75 costs 0.005 dB for
   // a fifth more speed); 0: always.
   int t_h_above;
-  int planar_radius;       // O, H and V searched within +-radius of the least-squares plane
+  int planar_radius;        // O, H and V searched within +-radius of the least-squares plane
   bool t_h_every_distance;  // all eight T/H distances; else the three nearest the clusters' spread
   // Where T or H come within a quarter of the other modes' error, each
   // centre also rounded down and up (+0.09 dB at `high`).

@@ -29,8 +29,8 @@ struct Texels {
   int rgb[16][3];
   bool transparent[16];  // punch-through: alpha < 128
   bool any_transparent = false;
-  HalfTexels half[4];    // the texels of each half block, as planes (for eval_half)
-  RgbBlock planes;      // all 16 as planes (for rgb_palette_nearest: T and H of opaque blocks)
+  HalfTexels half[4];  // the texels of each half block, as planes (for eval_half)
+  RgbBlock planes;     // all 16 as planes (for rgb_palette_nearest: T and H of opaque blocks)
 };
 
 struct HalfFit {
@@ -84,8 +84,8 @@ HalfFit fit_half(const Texels& tx, int h, int bits, const Etc1BlockSearch& searc
 HalfFit fit_fixed(const Texels& tx, int h, const int q[3], bool non_opaque);
 std::uint64_t pack_halves(const HalfFit& a, const HalfFit& b, bool flip, bool differential, int bit33);
 void keep_pair(Candidate& best, const HalfFit& a, const HalfFit& b, bool flip, bool differential, int bit33);
-void search_etc1_modes(const Texels& tx, const Etc1BlockSearch& search, bool allow_individual, bool non_opaque, int bit33_diff,
-                       Candidate& best);
+void search_etc1_modes(const Texels& tx, const Etc1BlockSearch& search, bool allow_individual, bool non_opaque,
+                       int bit33_diff, Candidate& best);
 
 // etc2_modes.cpp
 void search_planar(const Texels& tx, const Etc2Modes& modes, Candidate& best);

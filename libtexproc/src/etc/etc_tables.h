@@ -23,10 +23,10 @@ inline constexpr int kDistances[8] = {3, 6, 11, 16, 23, 32, 41, 64};
 // pixel index.
 inline constexpr int kEacModifiers[16][8] = {
     {-3, -6, -9, -15, 2, 5, 8, 14}, {-3, -7, -10, -13, 2, 6, 9, 12}, {-2, -5, -8, -13, 1, 4, 7, 12},
-    {-2, -4, -6, -13, 1, 3, 5, 12}, {-3, -6, -8, -12, 2, 5, 7, 11}, {-3, -7, -9, -11, 2, 6, 8, 10},
-    {-4, -7, -8, -11, 3, 6, 7, 10}, {-3, -5, -8, -11, 2, 4, 7, 10}, {-2, -6, -8, -10, 1, 5, 7, 9},
-    {-2, -5, -8, -10, 1, 4, 7, 9},  {-2, -4, -8, -10, 1, 3, 7, 9},  {-2, -5, -7, -10, 1, 4, 6, 9},
-    {-3, -4, -7, -10, 2, 3, 6, 9},  {-1, -2, -3, -10, 0, 1, 2, 9},  {-4, -6, -8, -9, 3, 5, 7, 8},
+    {-2, -4, -6, -13, 1, 3, 5, 12}, {-3, -6, -8, -12, 2, 5, 7, 11},  {-3, -7, -9, -11, 2, 6, 8, 10},
+    {-4, -7, -8, -11, 3, 6, 7, 10}, {-3, -5, -8, -11, 2, 4, 7, 10},  {-2, -6, -8, -10, 1, 5, 7, 9},
+    {-2, -5, -8, -10, 1, 4, 7, 9},  {-2, -4, -8, -10, 1, 3, 7, 9},   {-2, -5, -7, -10, 1, 4, 6, 9},
+    {-3, -4, -7, -10, 2, 3, 6, 9},  {-1, -2, -3, -10, 0, 1, 2, 9},   {-4, -6, -8, -9, 3, 5, 7, 8},
     {-3, -5, -7, -9, 2, 4, 6, 8}};
 
 inline int extend4(int v) { return v << 4 | v; }
@@ -68,7 +68,8 @@ void sub_block_palette(const int c[3], int table, std::uint32_t out[4]);
 // (3 bytes a texel), ETC2 with punch-through alpha and ETC2 + EAC alpha as
 // RGBA; the texels decode_etc1 / decode_etc2 / decode_eac8 give.
 enum class EtcRun { etc1_rgb, etc2_rgb, etc2_rgba1, etc2_rgba8 };
-void decode_etc_run(const std::uint8_t* blocks, int count, int block_bytes, EtcRun kind, std::uint8_t* dst, std::size_t stride);
+void decode_etc_run(const std::uint8_t* blocks, int count, int block_bytes, EtcRun kind, std::uint8_t* dst,
+                    std::size_t stride);
 // EAC with 11-bit results: unsigned 0..2047, signed -1023..1023.
 void decode_eac11(const std::uint8_t* block, bool snorm, int out[16]);
 // EAC with 8-bit results (ETC2's alpha).
@@ -76,7 +77,7 @@ void decode_eac8(const std::uint8_t* block, std::uint8_t out[16]);
 // `count` whole EAC R11 blocks (`block_bytes` apart) straight into channel
 // `ch` of an 8-bit image's rows (`channels` bytes a texel): each 11-bit value
 // v as Image::set stores v / 2047 (SNORM: v / 1023, biased to [0, 1]).
-void decode_eac11_u8_run(const std::uint8_t* blocks, int count, int block_bytes, bool snorm, int channels, int ch, std::uint8_t* dst,
-                         std::size_t stride);
+void decode_eac11_u8_run(const std::uint8_t* blocks, int count, int block_bytes, bool snorm, int channels, int ch,
+                         std::uint8_t* dst, std::size_t stride);
 
 }  // namespace texproc::etc

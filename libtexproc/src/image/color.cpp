@@ -13,13 +13,9 @@
 
 namespace texproc {
 
-double srgb_to_linear(double v) {
-  return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
-}
+double srgb_to_linear(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); }
 
-double linear_to_srgb(double v) {
-  return v <= 0.0031308 ? v * 12.92 : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
-}
+double linear_to_srgb(double v) { return v <= 0.0031308 ? v * 12.92 : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055; }
 
 namespace {
 
@@ -126,9 +122,7 @@ inline std::uint8_t encode_srgb8(const Srgb8Encoder& e, float x) {
 }
 
 inline std::uint8_t encode_unorm8(float x) { return static_cast<std::uint8_t>(clamp01(x) * 255.0f + 0.5f); }
-inline std::uint16_t encode_unorm16(float x) {
-  return static_cast<std::uint16_t>(clamp01(x) * 65535.0f + 0.5f);
-}
+inline std::uint16_t encode_unorm16(float x) { return static_cast<std::uint16_t>(clamp01(x) * 65535.0f + 0.5f); }
 
 bool is_color_channel(int c, int channels) { return !((channels == 2 || channels == 4) && c == channels - 1); }
 
@@ -250,9 +244,7 @@ void ColorSpace::decode_row(const void* src, PixelType type, int channels, int w
     case PixelType::f32: {
       const auto* s = static_cast<const float*>(src);
       for (int i = 0; i < n; ++i) {
-        dst[i] = srgb && is_color_channel(i % channels, channels)
-                     ? static_cast<float>(srgb_to_linear(s[i]))
-                     : s[i];
+        dst[i] = srgb && is_color_channel(i % channels, channels) ? static_cast<float>(srgb_to_linear(s[i])) : s[i];
       }
       break;
     }
@@ -298,8 +290,7 @@ void ColorSpace::encode_row(float* src, int channels, int width, void* dst, Pixe
     case PixelType::f32: {
       auto* d = static_cast<float*>(dst);
       for (int i = 0; i < n; ++i) {
-        d[i] = srgb && is_color_channel(i % channels, channels) ? static_cast<float>(linear_to_srgb(src[i]))
-                                                                : src[i];
+        d[i] = srgb && is_color_channel(i % channels, channels) ? static_cast<float>(linear_to_srgb(src[i])) : src[i];
       }
       break;
     }

@@ -144,9 +144,12 @@ void PixelBytes::clear() noexcept {
 
 const char* to_string(PixelType t) {
   switch (t) {
-    case PixelType::u8: return "u8";
-    case PixelType::u16: return "u16";
-    case PixelType::f32: return "f32";
+    case PixelType::u8:
+      return "u8";
+    case PixelType::u16:
+      return "u16";
+    case PixelType::f32:
+      return "f32";
   }
   return "?";
 }
@@ -172,9 +175,12 @@ float Image::get(int x, int y, int c) const {
   assert(x >= 0 && x < width_ && y >= 0 && y < height_ && c >= 0 && c < channels_);
   const std::size_t i = std::size_t(x) * channels_ + c;
   switch (type_) {
-    case PixelType::u8: return row<std::uint8_t>(y)[i] / 255.0f;
-    case PixelType::u16: return row<std::uint16_t>(y)[i] / 65535.0f;
-    case PixelType::f32: return row<float>(y)[i];
+    case PixelType::u8:
+      return row<std::uint8_t>(y)[i] / 255.0f;
+    case PixelType::u16:
+      return row<std::uint16_t>(y)[i] / 65535.0f;
+    case PixelType::f32:
+      return row<float>(y)[i];
   }
   return 0.0f;
 }
@@ -184,9 +190,15 @@ void Image::set(int x, int y, int c, float v) {
   const std::size_t i = std::size_t(x) * channels_ + c;
   const float cl = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
   switch (type_) {
-    case PixelType::u8: row<std::uint8_t>(y)[i] = static_cast<std::uint8_t>(cl * 255.0f + 0.5f); break;
-    case PixelType::u16: row<std::uint16_t>(y)[i] = static_cast<std::uint16_t>(cl * 65535.0f + 0.5f); break;
-    case PixelType::f32: row<float>(y)[i] = v; break;
+    case PixelType::u8:
+      row<std::uint8_t>(y)[i] = static_cast<std::uint8_t>(cl * 255.0f + 0.5f);
+      break;
+    case PixelType::u16:
+      row<std::uint16_t>(y)[i] = static_cast<std::uint16_t>(cl * 65535.0f + 0.5f);
+      break;
+    case PixelType::f32:
+      row<float>(y)[i] = v;
+      break;
   }
 }
 

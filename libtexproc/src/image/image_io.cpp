@@ -49,9 +49,8 @@ Kind sniff(const std::string& path, const codecs::FileBytes& f, ImageIoPath io_p
   // second to load and then refuse it too).
   if (n == 0) throw Error(ErrorCode::invalid_file, path + ": empty file (0 bytes)");
   static const std::pair<const char*, const char*> kSigned[] = {
-      {".png", "PNG"},     {".jpg", "JPEG"}, {".jpeg", "JPEG"}, {".exr", "OpenEXR"}, {".tif", "TIFF"},
-      {".tiff", "TIFF"},   {".dds", "DDS"},  {".ktx2", "KTX2"},  {".ktx", "KTX"},      {".pkm", "PKM"},
-      {".astc", ".astc"}};
+      {".png", "PNG"}, {".jpg", "JPEG"},  {".jpeg", "JPEG"}, {".exr", "OpenEXR"}, {".tif", "TIFF"},  {".tiff", "TIFF"},
+      {".dds", "DDS"}, {".ktx2", "KTX2"}, {".ktx", "KTX"},   {".pkm", "PKM"},     {".astc", ".astc"}};
   for (const auto& [ext, name] : kSigned) {
     if (e == ext) {
       throw Error(ErrorCode::invalid_file, path + ": the extension says " + std::string(name) +
@@ -117,13 +116,20 @@ ImageFileInfo probe_image(const std::string& path, const ReadOptions& options) {
         path,
         [&]() -> ImageFileInfo {
           switch (kind) {
-            case Kind::png: return codecs::png_probe(path, f, limits);
-            case Kind::jpeg: return codecs::jpeg_probe(path, f, limits);
-            case Kind::tga: return codecs::tga_probe(path, f, limits);
-            case Kind::exr: return modules::probe(Module::exr, path, limits);
-            case Kind::tiff: return codecs::tiff_probe(path, limits);
-            case Kind::container: return codecs::container_probe(path, limits);
-            case Kind::module: throw codecs::LeaveToModule{"no direct reader"};
+            case Kind::png:
+              return codecs::png_probe(path, f, limits);
+            case Kind::jpeg:
+              return codecs::jpeg_probe(path, f, limits);
+            case Kind::tga:
+              return codecs::tga_probe(path, f, limits);
+            case Kind::exr:
+              return modules::probe(Module::exr, path, limits);
+            case Kind::tiff:
+              return codecs::tiff_probe(path, limits);
+            case Kind::container:
+              return codecs::container_probe(path, limits);
+            case Kind::module:
+              throw codecs::LeaveToModule{"no direct reader"};
           }
           throw codecs::LeaveToModule{""};
         },
@@ -147,13 +153,20 @@ Image read_image(const std::string& path, ImageFileInfo* info_out, const ReadOpt
           path,
           [&]() -> Image {
             switch (kind) {
-              case Kind::png: return codecs::png_read(path, f, info, limits);
-              case Kind::jpeg: return codecs::jpeg_read(path, f, info, limits);
-              case Kind::tga: return codecs::tga_read(path, f, info, limits);
-              case Kind::exr: return modules::read(Module::exr, path, info, limits);
-              case Kind::tiff: return codecs::tiff_read(path, info, limits);
-              case Kind::container: return codecs::container_read(path, info, limits);
-              case Kind::module: throw codecs::LeaveToModule{"no direct reader"};
+              case Kind::png:
+                return codecs::png_read(path, f, info, limits);
+              case Kind::jpeg:
+                return codecs::jpeg_read(path, f, info, limits);
+              case Kind::tga:
+                return codecs::tga_read(path, f, info, limits);
+              case Kind::exr:
+                return modules::read(Module::exr, path, info, limits);
+              case Kind::tiff:
+                return codecs::tiff_read(path, info, limits);
+              case Kind::container:
+                return codecs::container_read(path, info, limits);
+              case Kind::module:
+                throw codecs::LeaveToModule{"no direct reader"};
             }
             throw codecs::LeaveToModule{""};
           },
@@ -198,16 +211,15 @@ void write_image(const std::string& path, const ConstImageView& given, const Wri
     const std::size_t bpc = bytes_per_channel(given.type);
     for (int y = 0; y < given.height; ++y)
       for (int x = 0; x < given.width; ++x)
-        std::memcpy(rgb.row<std::uint8_t>(y) + std::size_t(x) * 3 * bpc, given.row<std::uint8_t>(y) + std::size_t(x) * 2 * bpc,
-                    2 * bpc);
+        std::memcpy(rgb.row<std::uint8_t>(y) + std::size_t(x) * 3 * bpc,
+                    given.row<std::uint8_t>(y) + std::size_t(x) * 2 * bpc, 2 * bpc);
     image = rgb.view();
   }
   if (e == ".hdr" && image.channels != 3) {
     // Radiance HDR holds RGB: grey is spread to RGB, alpha has no place.
     if (image.channels != 1) {
       throw Error(ErrorCode::unsupported, path + ": a Radiance .hdr file holds RGB without alpha, and this image has " +
-                                              std::to_string(image.channels) +
-                                              " channels: write .exr to keep alpha");
+                                              std::to_string(image.channels) + " channels: write .exr to keep alpha");
     }
     rgb = Image::uninitialized(image.width, image.height, 3, image.type);
     const std::size_t bpc = bytes_per_channel(image.type);
@@ -259,12 +271,15 @@ bool holds_mip_levels(const std::string& path) {
 void write_mip_file(const std::string& path, const std::vector<Image>& levels, const WriteOptions& options) {
   if (levels.empty()) throw Error(ErrorCode::bad_arguments, path + ": no levels to write");
   if (!holds_mip_levels(path)) {
-    throw Error(ErrorCode::unsupported, path + ": this format holds one level (valid for a MIP file: .tif, .tiff, .exr)");
+    throw Error(ErrorCode::unsupported,
+                path + ": this format holds one level (valid for a MIP file: .tif, .tiff, .exr)");
   }
   const bool exr = lower_ext(path) == ".exr";
   if (exr) {
     int full = 1;
-    for (int w = levels[0].width(), h = levels[0].height(); w > 1 || h > 1; w = std::max(1, w / 2), h = std::max(1, h / 2)) ++full;
+    for (int w = levels[0].width(), h = levels[0].height(); w > 1 || h > 1;
+         w = std::max(1, w / 2), h = std::max(1, h / 2))
+      ++full;
     if (int(levels.size()) != full) {
       throw Error(ErrorCode::unsupported,
                   path + ": an OpenEXR MIP file holds every level down to 1x1; drop --levels/--min-size or write .tif");

@@ -223,7 +223,8 @@ std::vector<double> gaussian_blur(const std::vector<double>& in, int w, int h) {
           const int at = along_x ? x : y;
           const std::size_t base = std::size_t(y) * w + x - std::size_t(at) * step;
           double acc = 0;
-          for (int i = -kRadius; i <= kRadius; ++i) acc += k[i + kRadius] * src[base + std::size_t(std::clamp(at + i, 0, n - 1)) * step];
+          for (int i = -kRadius; i <= kRadius; ++i)
+            acc += k[i + kRadius] * src[base + std::size_t(std::clamp(at + i, 0, n - 1)) * step];
           dst[std::size_t(y) * w + x] = acc;
         }
     });
@@ -254,8 +255,7 @@ std::vector<double> ssim_per_channel(const ConstImageView& a, const ConstImageVi
     double sum = 0;
     for (std::size_t i = 0; i < x.size(); ++i) {
       const double vx = sxx[i] - mx[i] * mx[i], vy = syy[i] - my[i] * my[i], cov = sxy[i] - mx[i] * my[i];
-      sum += ((2 * mx[i] * my[i] + c1) * (2 * cov + c2)) /
-             ((mx[i] * mx[i] + my[i] * my[i] + c1) * (vx + vy + c2));
+      sum += ((2 * mx[i] * my[i] + c1) * (2 * cov + c2)) / ((mx[i] * mx[i] + my[i] * my[i] + c1) * (vx + vy + c2));
     }
     result.push_back(x.empty() ? 1.0 : sum / double(x.size()));
   }

@@ -29,8 +29,8 @@ std::string lower_extension(const std::string& path) {
 struct MipFileWriter::Impl {
   struct Level {
     int width = 0, height = 0, bands = 0;
-    std::vector<std::unique_ptr<float[]>> staged;     // per band, while its rows arrive
-    std::unique_ptr<std::atomic<int>[]> rows_done;    // per band
+    std::vector<std::unique_ptr<float[]>> staged;   // per band, while its rows arrive
+    std::unique_ptr<std::atomic<int>[]> rows_done;  // per band
   };
   AtomicFile file;
   int channels = 0;
@@ -39,7 +39,8 @@ struct MipFileWriter::Impl {
   modules::MipBands bands;
 
   Impl(const std::string& path, int width, int height, int channels_, const WriteOptions& o)
-      : file(path), channels(channels_),
+      : file(path),
+        channels(channels_),
         bands(modules::Module::exr, file.temp_path(), path, width, height, channels_, o) {
     for (int w = width, h = height;; w = std::max(1, w / 2), h = std::max(1, h / 2)) {
       Level l;
@@ -78,7 +79,8 @@ float* MipFileWriter::row(int level, int y) {
   const int b = y / kBand;
   std::lock_guard<std::mutex> lock(impl_->staging);
   std::unique_ptr<float[]>& band = l.staged.at(std::size_t(b));
-  if (!band) band = std::make_unique_for_overwrite<float[]>(impl_->row_floats(l) * std::min(kBand, l.height - b * kBand));
+  if (!band)
+    band = std::make_unique_for_overwrite<float[]>(impl_->row_floats(l) * std::min(kBand, l.height - b * kBand));
   return band.get() + impl_->row_floats(l) * std::size_t(y - b * kBand);
 }
 

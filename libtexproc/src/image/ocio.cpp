@@ -30,7 +30,8 @@ const TpOcioModule& ocio_module() {
   if (!module) {
     throw Error(ErrorCode::unsupported,
                 "colour spaces other than linear and srgb come from OpenColorIO, and texproc's OpenColorIO module "
-                "could not be loaded (" + why + ")");
+                "could not be loaded (" +
+                    why + ")");
   }
   return *module;
 }
@@ -40,7 +41,9 @@ class ModuleTransform final : public OcioTransform {
   ModuleTransform(const TpOcioModule& m, void* t, std::string path) : m_(m), t_(t), path_(std::move(path)) {}
   ~ModuleTransform() override { m_.destroy(t_); }
   void to_linear(float* pixels, int channels, int width) const override { m_.to_linear(t_, pixels, channels, width); }
-  void from_linear(float* pixels, int channels, int width) const override { m_.from_linear(t_, pixels, channels, width); }
+  void from_linear(float* pixels, int channels, int width) const override {
+    m_.from_linear(t_, pixels, channels, width);
+  }
   const std::string& config_path() const override { return path_; }
 
  private:

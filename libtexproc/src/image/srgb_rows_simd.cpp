@@ -13,8 +13,12 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 #if HWY_TARGET == HWY_SCALAR
-void DecodeRgba(const std::uint8_t* src, int pixels, float* dst) { ref::decode_srgb8_rgba_premultiplied(src, pixels, dst); }
-void EncodeRgba(const float* src, int pixels, std::uint8_t* dst) { ref::encode_srgb8_rgba_unpremultiplied(src, pixels, dst); }
+void DecodeRgba(const std::uint8_t* src, int pixels, float* dst) {
+  ref::decode_srgb8_rgba_premultiplied(src, pixels, dst);
+}
+void EncodeRgba(const float* src, int pixels, std::uint8_t* dst) {
+  ref::encode_srgb8_rgba_unpremultiplied(src, pixels, dst);
+}
 #else
 void DecodeRgba(const std::uint8_t* src, int pixels, float* dst) {
   const hn::ScalableTag<float> df;

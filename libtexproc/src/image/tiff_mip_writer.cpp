@@ -103,8 +103,8 @@ bool tiff_levels_supported(const std::string& compression) {
   return other_compression(compression) >= 0 || deflate_level(compression) >= 0;
 }
 
-void write_tiff_levels(const std::string& file, const std::string& error_path, const std::vector<ConstImageView>& levels,
-                       bool mip_file, const std::string& compression) {
+void write_tiff_levels(const std::string& file, const std::string& error_path,
+                       const std::vector<ConstImageView>& levels, bool mip_file, const std::string& compression) {
   const int other = other_compression(compression);
   const int level_of_deflate = other >= 0 ? -1 : deflate_level(compression);
   codecs::quiet_libtiff();
@@ -134,7 +134,8 @@ void write_tiff_levels(const std::string& file, const std::string& error_path, c
         for (int tx = 0; tx < tiles_x; ++tx) {
           fill_tile(raw, tx, ty);
           const ttile_t index = TIFFComputeTile(tif.get(), std::uint32_t(tx * kTile), std::uint32_t(ty * kTile), 0, 0);
-          if (TIFFWriteEncodedTile(tif.get(), index, raw.data(), tmsize_t(tile_bytes)) < 0) fail(error_path, "tile write failed");
+          if (TIFFWriteEncodedTile(tif.get(), index, raw.data(), tmsize_t(tile_bytes)) < 0)
+            fail(error_path, "tile write failed");
         }
       }
       if (!TIFFWriteDirectory(tif.get())) fail(error_path, "directory write failed");
@@ -176,8 +177,10 @@ void write_tiff_levels(const std::string& file, const std::string& error_path, c
           const int ty = int(row);
           for (int tx = 0; tx < tiles_x; ++tx) {
             auto& t = out[row][std::size_t(tx)];
-            const ttile_t index = TIFFComputeTile(tif.get(), std::uint32_t(tx * kTile), std::uint32_t(ty * kTile), 0, 0);
-            if (TIFFWriteRawTile(tif.get(), index, t.data(), tmsize_t(t.size())) < 0) fail(error_path, "tile write failed");
+            const ttile_t index =
+                TIFFComputeTile(tif.get(), std::uint32_t(tx * kTile), std::uint32_t(ty * kTile), 0, 0);
+            if (TIFFWriteRawTile(tif.get(), index, t.data(), tmsize_t(t.size())) < 0)
+              fail(error_path, "tile write failed");
           }
           out[row] = {};  // freed
           return true;

@@ -21,7 +21,7 @@ bool tiff_levels_supported(const std::string& compression);
 // zip, written 4x faster; measured on the bench_mip image).
 // Throws Error{io}.
 inline constexpr int kDefaultZipLevel = 1;
-void write_tiff_levels(const std::string& file, const std::string& error_path, const std::vector<ConstImageView>& levels,
-                       bool mip_file, const std::string& compression);
+void write_tiff_levels(const std::string& file, const std::string& error_path,
+                       const std::vector<ConstImageView>& levels, bool mip_file, const std::string& compression);
 
 }  // namespace texproc

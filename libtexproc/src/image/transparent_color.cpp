@@ -71,8 +71,9 @@ void apply_transparent_color(Image& img, TransparentColor policy) {
             ++n;
           }
         if (n == 0) continue;
-        updates.push_back({i, {std::uint8_t((acc[0] + n / 2) / n), std::uint8_t((acc[1] + n / 2) / n),
-                               std::uint8_t((acc[2] + n / 2) / n)}});
+        updates.push_back({i,
+                           {std::uint8_t((acc[0] + n / 2) / n), std::uint8_t((acc[1] + n / 2) / n),
+                            std::uint8_t((acc[2] + n / 2) / n)}});
         next[i] = 1;
       }
     for (const auto& [i, rgb] : updates) {

@@ -89,8 +89,7 @@ struct CascadeLevel {
 // Computes `rows` of level k (>= 1) into `held` (when a next level reads
 // them) and the sink.
 void compute_rows(const ChainSetup& s, const ConstImageView& input, std::vector<CascadeLevel>& L,
-                  std::vector<std::unique_ptr<HeldRows>>& held, int k, const std::vector<int>& rows,
-                  MipRowSink& sink) {
+                  std::vector<std::unique_ptr<HeldRows>>& held, int k, const std::vector<int>& rows, MipRowSink& sink) {
   const int C = s.channels;
   CascadeLevel& lv = L[k];
   const int sw = k == 1 ? input.width : L[k - 1].width;

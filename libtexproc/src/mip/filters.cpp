@@ -72,8 +72,10 @@ double filter_support(const Filter& f) {
 double filter_eval(const Filter& f, double x) {
   const double ax = std::abs(x);
   switch (f.kind) {
-    case FilterKind::box: return ax <= 0.5 ? 1.0 : 0.0;
-    case FilterKind::triangle: return ax < 1.0 ? 1.0 - ax : 0.0;
+    case FilterKind::box:
+      return ax <= 0.5 ? 1.0 : 0.0;
+    case FilterKind::triangle:
+      return ax < 1.0 ? 1.0 - ax : 0.0;
     case FilterKind::gaussian: {
       if (ax > 4.0 * f.sigma) return 0.0;
       return std::exp(-x * x / (2.0 * double(f.sigma) * f.sigma));
@@ -83,8 +85,10 @@ double filter_eval(const Filter& f, double x) {
       const double t = ax / 3.0;
       return sinc(x) * bessel_i0(kKaiserAlpha * std::sqrt(1.0 - t * t)) / bessel_i0(kKaiserAlpha);
     }
-    case FilterKind::lanczos3: return ax < 3.0 ? sinc(x) * sinc(x / 3.0) : 0.0;
-    case FilterKind::mitchell: return mitchell(x, kMitchellB, kMitchellC);
+    case FilterKind::lanczos3:
+      return ax < 3.0 ? sinc(x) * sinc(x / 3.0) : 0.0;
+    case FilterKind::mitchell:
+      return mitchell(x, kMitchellB, kMitchellC);
   }
   return 0.0;
 }
@@ -142,7 +146,8 @@ const char* to_string(WrapMode w) {
 int wrap_index(int i, int n, WrapMode wrap) {
   if (i >= 0 && i < n) return i;
   switch (wrap) {
-    case WrapMode::clamp: return i < 0 ? 0 : n - 1;
+    case WrapMode::clamp:
+      return i < 0 ? 0 : n - 1;
     case WrapMode::repeat: {
       const int m = i % n;
       return m < 0 ? m + n : m;

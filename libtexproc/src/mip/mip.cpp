@@ -126,7 +126,7 @@ using namespace mip_rows;
 // Level 0 is decoded from the input on demand; later levels are stored.
 struct LevelRows {
   const ConstImageView* input = nullptr;  // level 0
-  const float* stored = nullptr;     // levels >= 1
+  const float* stored = nullptr;          // levels >= 1
   int width = 0, height = 0;
 };
 
@@ -144,8 +144,8 @@ void encode_level(const ChainSetup& s, const float* src, int level, int w, int h
 // Filters `src` down to dw x dh. With `encoded`, each row is also encoded
 // into it while still in cache (when no whole-level statistic such as alpha
 // coverage must be known first).
-FloatBuffer downsample(const ChainSetup& s, const LevelRows& src, int dw, int dh, const Filter& filter,
-                       int level, MipRowSink* encoded) {
+FloatBuffer downsample(const ChainSetup& s, const LevelRows& src, int dw, int dh, const Filter& filter, int level,
+                       MipRowSink* encoded) {
   const int C = s.channels;
   const int sw = src.width, sh = src.height;
   const AxisWeights wx = compute_axis_weights(sw, dw, filter);
@@ -268,9 +268,15 @@ float alpha_coverage(const ConstImageView& image, float ref, float scale) {
     for (int x = 0; x < image.width; ++x) {
       float a = 0.0f;
       switch (image.type) {
-        case PixelType::u8: a = image.row<std::uint8_t>(y)[x * C + C - 1] / 255.0f; break;
-        case PixelType::u16: a = image.row<std::uint16_t>(y)[x * C + C - 1] / 65535.0f; break;
-        case PixelType::f32: a = image.row<float>(y)[x * C + C - 1]; break;
+        case PixelType::u8:
+          a = image.row<std::uint8_t>(y)[x * C + C - 1] / 255.0f;
+          break;
+        case PixelType::u16:
+          a = image.row<std::uint16_t>(y)[x * C + C - 1] / 65535.0f;
+          break;
+        case PixelType::f32:
+          a = image.row<float>(y)[x * C + C - 1];
+          break;
       }
       n += a * scale >= ref;
     }
@@ -316,17 +322,16 @@ void stream_levels(const ChainSetup& s, const ConstImageView& image, int levels,
 ChainSetup setup_chain(const ConstImageView& image, const MipOptions& o) {
   assert(image.data && image.width > 0 && image.height > 0);
   if (image.channels < 1 || image.channels > 4) {
-    throw Error(ErrorCode::unsupported, "images with " + std::to_string(image.channels) +
-                                            " channels are not supported (valid: 1 to 4)");
+    throw Error(ErrorCode::unsupported,
+                "images with " + std::to_string(image.channels) + " channels are not supported (valid: 1 to 4)");
   }
   if (o.filter.kind == FilterKind::gaussian && !(o.filter.sigma > 0.0f && o.filter.sigma <= 4.0f)) {
-    throw Error(ErrorCode::bad_arguments,
-                "MipOptions::filter.sigma " + std::to_string(o.filter.sigma) + " is out of range (valid: 0 < sigma <= 4)");
+    throw Error(ErrorCode::bad_arguments, "MipOptions::filter.sigma " + std::to_string(o.filter.sigma) +
+                                              " is out of range (valid: 0 < sigma <= 4)");
   }
   if (o.normal_map && image.channels < 3) {
-    throw Error(ErrorCode::bad_arguments,
-                "MipOptions::normal_map needs an RGB or RGBA image, this one has " + std::to_string(image.channels) +
-                    " channel(s)");
+    throw Error(ErrorCode::bad_arguments, "MipOptions::normal_map needs an RGB or RGBA image, this one has " +
+                                              std::to_string(image.channels) + " channel(s)");
   }
   if (o.alpha_coverage_ref && !(*o.alpha_coverage_ref > 0.0f && *o.alpha_coverage_ref <= 1.0f)) {
     throw Error(ErrorCode::bad_arguments, "MipOptions::alpha_coverage_ref " + std::to_string(*o.alpha_coverage_ref) +
@@ -344,9 +349,9 @@ ChainSetup setup_chain(const ConstImageView& image, const MipOptions& o) {
   if (o.normal_map) {
     s.in_cs = s.out_cs = ColorSpace::linear();
   } else {
-    s.in_cs = !o.color_space.empty()     ? ColorSpace::from_name(o.color_space)
-              : is_float(image.type)     ? ColorSpace::linear()
-                                         : ColorSpace::srgb();
+    s.in_cs = !o.color_space.empty() ? ColorSpace::from_name(o.color_space)
+              : is_float(image.type) ? ColorSpace::linear()
+                                     : ColorSpace::srgb();
     if (!o.output_color_space.empty()) {
       s.out_cs = ColorSpace::from_name(o.output_color_space);
     } else if (is_float(s.out_type) && !is_float(image.type)) {
@@ -355,8 +360,8 @@ ChainSetup setup_chain(const ConstImageView& image, const MipOptions& o) {
       s.out_cs = s.in_cs;
     }
   }
-  s.rgba8_srgb_fast = s.channels == 4 && s.premultiply && image.type == PixelType::u8 &&
-                      s.out_type == PixelType::u8 && s.in_cs.is_srgb() && s.out_cs.is_srgb();
+  s.rgba8_srgb_fast = s.channels == 4 && s.premultiply && image.type == PixelType::u8 && s.out_type == PixelType::u8 &&
+                      s.in_cs.is_srgb() && s.out_cs.is_srgb();
   return s;
 }
 

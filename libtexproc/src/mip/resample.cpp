@@ -90,8 +90,8 @@ void vertical_pass(const float* const* rows, const float* weights, int taps, int
   }
 }
 
-void horizontal_pass(const float* src, int channels, const int* first, const float* weights, int taps,
-                     int out_width, float* out) {
+void horizontal_pass(const float* src, int channels, const int* first, const float* weights, int taps, int out_width,
+                     float* out) {
   for (int i = 0; i < out_width; ++i) {
     const float* s = src + std::ptrdiff_t(first[i]) * channels;
     const float* w = weights + std::size_t(i) * taps;

@@ -36,13 +36,13 @@ void vertical_pass(const float* const* rows, const float* weights, int taps, int
 // For each destination texel i and channel c:
 // out[i*channels+c] = sum_k weights[i*taps+k] * src[(first[i]+k)*channels+c].
 // `src` points at texel 0 of a row padded by the weights' pad_before/after.
-void horizontal_pass(const float* src, int channels, const int* first, const float* weights, int taps,
-                     int out_width, float* out);
+void horizontal_pass(const float* src, int channels, const int* first, const float* weights, int taps, int out_width,
+                     float* out);
 
 namespace ref {
 void vertical_pass(const float* const* rows, const float* weights, int taps, int n, float* out);
-void horizontal_pass(const float* src, int channels, const int* first, const float* weights, int taps,
-                     int out_width, float* out);
+void horizontal_pass(const float* src, int channels, const int* first, const float* weights, int taps, int out_width,
+                     float* out);
 }  // namespace ref
 
 }  // namespace texproc

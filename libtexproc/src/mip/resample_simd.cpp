@@ -36,8 +36,8 @@ void VerticalPass(const float* const* rows, const float* weights, int taps, int 
   }
 }
 
-void HorizontalPass(const float* src, int channels, const int* first, const float* weights, int taps,
-                    int out_width, float* out) {
+void HorizontalPass(const float* src, int channels, const int* first, const float* weights, int taps, int out_width,
+                    float* out) {
   const hn::CappedTag<float, 4> d;
   if (channels != 4 || hn::Lanes(d) != 4) {
     ref::horizontal_pass(src, channels, first, weights, taps, out_width, out);
@@ -66,8 +66,8 @@ void vertical_pass(const float* const* rows, const float* weights, int taps, int
   HWY_DYNAMIC_DISPATCH(VerticalPass)(rows, weights, taps, n, out);
 }
 
-void horizontal_pass(const float* src, int channels, const int* first, const float* weights, int taps,
-                     int out_width, float* out) {
+void horizontal_pass(const float* src, int channels, const int* first, const float* weights, int taps, int out_width,
+                     float* out) {
   if (force_scalar()) return ref::horizontal_pass(src, channels, first, weights, taps, out_width, out);
   HWY_DYNAMIC_DISPATCH(HorizontalPass)(src, channels, first, weights, taps, out_width, out);
 }

@@ -57,11 +57,13 @@ SeparableKernel make_kernel(GradientKernel kind, const std::vector<float>& weigh
   // Multiscale: sum_i w_i * (h[x + 2^i] - h[x - 2^i]) / (2 * 2^i), weights
   // normalized to 1, so each term and the sum estimate the true gradient.
   if (weights.empty() || weights.size() > 6) {
-    throw Error(ErrorCode::bad_arguments, "NormalMapOptions::multiscale_weights needs 1 to 6 weights (scales 1, 2, 4, ... 32)");
+    throw Error(ErrorCode::bad_arguments,
+                "NormalMapOptions::multiscale_weights needs 1 to 6 weights (scales 1, 2, 4, ... 32)");
   }
   double wsum = 0.0;
   for (float w : weights) {
-    if (!(w >= 0.0f)) throw Error(ErrorCode::bad_arguments, "NormalMapOptions::multiscale_weights must not be negative");
+    if (!(w >= 0.0f))
+      throw Error(ErrorCode::bad_arguments, "NormalMapOptions::multiscale_weights must not be negative");
     wsum += w;
   }
   if (wsum <= 0.0) throw Error(ErrorCode::bad_arguments, "NormalMapOptions::multiscale_weights must not all be zero");
@@ -125,9 +127,12 @@ NormalChannels parse_normal_channels(std::string_view n) {
 
 int channel_count(NormalChannels c) {
   switch (c) {
-    case NormalChannels::xyz: return 3;
-    case NormalChannels::xy: return 2;
-    case NormalChannels::xyzh: return 4;
+    case NormalChannels::xyz:
+      return 3;
+    case NormalChannels::xy:
+      return 2;
+    case NormalChannels::xyzh:
+      return 4;
   }
   return 3;
 }

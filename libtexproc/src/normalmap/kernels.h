@@ -11,9 +11,9 @@ namespace texproc {
 // gy the same with the axes swapped. `norm` makes a unit ramp give gradient 1:
 // norm = (sum_i deriv[i] * (first + i)) * (sum_j smooth[j]).
 struct SeparableKernel {
-  int first = 0;               // offset of tap 0 from the texel
-  std::vector<float> deriv;    // derivative taps, already divided by norm
-  std::vector<float> smooth;   // smoothing taps (same length, same offset)
+  int first = 0;              // offset of tap 0 from the texel
+  std::vector<float> deriv;   // derivative taps, already divided by norm
+  std::vector<float> smooth;  // smoothing taps (same length, same offset)
 };
 
 SeparableKernel make_kernel(GradientKernel kind, const std::vector<float>& multiscale_weights);

@@ -85,20 +85,26 @@ int height_source_channel(const ConstImageView& img, HeightChannel ch) {
   const int c = img.channels;
   auto need = [&](int index, const char* name) {
     if (index >= c) {
-      throw Error(ErrorCode::bad_arguments, std::string("NormalMapOptions::height_channel ") + name + ": the image has only " +
-                                                std::to_string(c) + " channel(s)");
+      throw Error(ErrorCode::bad_arguments, std::string("NormalMapOptions::height_channel ") + name +
+                                                ": the image has only " + std::to_string(c) + " channel(s)");
     }
     return index;
   };
   switch (ch) {
-    case HeightChannel::automatic: return c <= 2 ? 0 : -1;  // -1: luma
-    case HeightChannel::r: return need(0, "r");
-    case HeightChannel::g: return need(1, "g");
-    case HeightChannel::b: return need(2, "b");
+    case HeightChannel::automatic:
+      return c <= 2 ? 0 : -1;  // -1: luma
+    case HeightChannel::r:
+      return need(0, "r");
+    case HeightChannel::g:
+      return need(1, "g");
+    case HeightChannel::b:
+      return need(2, "b");
     case HeightChannel::a:
-      if (c != 2 && c != 4) throw Error(ErrorCode::bad_arguments, "NormalMapOptions::height_channel a: the image has no alpha");
+      if (c != 2 && c != 4)
+        throw Error(ErrorCode::bad_arguments, "NormalMapOptions::height_channel a: the image has no alpha");
       return c - 1;
-    case HeightChannel::luma: return c >= 3 ? -1 : 0;
+    case HeightChannel::luma:
+      return c >= 3 ? -1 : 0;
   }
   return 0;
 }
@@ -124,8 +130,7 @@ void extract_row(const ConstImageView& img, int y, int source, bool invert, floa
       extract_row_t(img.row<const std::uint8_t>(y), img.width, img.channels, source, invert, 1.0f / 255.0f, dst);
       break;
     case PixelType::u16:
-      extract_row_t(img.row<const std::uint16_t>(y), img.width, img.channels, source, invert, 1.0f / 65535.0f,
-                    dst);
+      extract_row_t(img.row<const std::uint16_t>(y), img.width, img.channels, source, invert, 1.0f / 65535.0f, dst);
       break;
     case PixelType::f32:
       extract_row_t(img.row<const float>(y), img.width, img.channels, source, invert, 1.0f, dst);
@@ -204,7 +209,8 @@ struct Scratch {
 std::vector<float> extract_height(const ConstImageView& image, HeightChannel channel, bool invert) {
   const int source = height_source_channel(image, channel);
   std::vector<float> out(std::size_t(image.width) * image.height);
-  for (int y = 0; y < image.height; ++y) extract_row(image, y, source, invert, out.data() + std::size_t(y) * image.width);
+  for (int y = 0; y < image.height; ++y)
+    extract_row(image, y, source, invert, out.data() + std::size_t(y) * image.width);
   return out;
 }
 

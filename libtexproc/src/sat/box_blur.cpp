@@ -17,9 +17,12 @@ namespace {
 
 float map_value(const ConstImageView& m, int x, int y) {
   switch (m.type) {
-    case PixelType::u8: return m.row<const std::uint8_t>(y)[x * m.channels] / 255.0f;
-    case PixelType::u16: return m.row<const std::uint16_t>(y)[x * m.channels] / 65535.0f;
-    case PixelType::f32: return m.row<const float>(y)[x * m.channels];
+    case PixelType::u8:
+      return m.row<const std::uint8_t>(y)[x * m.channels] / 255.0f;
+    case PixelType::u16:
+      return m.row<const std::uint16_t>(y)[x * m.channels] / 65535.0f;
+    case PixelType::f32:
+      return m.row<const float>(y)[x * m.channels];
   }
   return 0.0f;
 }
@@ -38,7 +41,7 @@ Image box_blur(const ConstImageView& img, const BoxBlurOptions& o) {
   }
   const int W = img.width, H = img.height, C = img.channels;
   const bool alpha = C == 2 || C == 4;
-  const ColorSpace cs = !o.color_space.empty()  ? ColorSpace::from_name(o.color_space)
+  const ColorSpace cs = !o.color_space.empty() ? ColorSpace::from_name(o.color_space)
                         : is_float(img.type)   ? ColorSpace::linear()
                                                : ColorSpace::srgb();
   // Radii past twice the image's size change nothing that matters; capping

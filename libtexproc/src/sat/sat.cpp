@@ -45,10 +45,14 @@ void sat_row_rgba16_u32(const std::uint16_t* in, int width, const std::uint32_t*
 
 const char* to_string(SatPrecision p) {
   switch (p) {
-    case SatPrecision::u32: return "u32";
-    case SatPrecision::u64: return "u64";
-    case SatPrecision::f32: return "f32";
-    case SatPrecision::f64: return "f64";
+    case SatPrecision::u32:
+      return "u32";
+    case SatPrecision::u64:
+      return "u64";
+    case SatPrecision::f32:
+      return "f32";
+    case SatPrecision::f64:
+      return "f64";
   }
   return "?";
 }
@@ -69,10 +73,14 @@ std::uint64_t sat_max_exact_box(SatPrecision p, PixelType input) {
   if (input == PixelType::f32) return 0;
   const std::uint64_t m = max_code(input);
   switch (p) {
-    case SatPrecision::u32: return 0xFFFFFFFFull / m;
-    case SatPrecision::u64: return std::numeric_limits<std::uint64_t>::max() / m;
-    case SatPrecision::f64: return (std::uint64_t(1) << 53) / m;
-    case SatPrecision::f32: return 0;
+    case SatPrecision::u32:
+      return 0xFFFFFFFFull / m;
+    case SatPrecision::u64:
+      return std::numeric_limits<std::uint64_t>::max() / m;
+    case SatPrecision::f64:
+      return (std::uint64_t(1) << 53) / m;
+    case SatPrecision::f32:
+      return 0;
   }
   return 0;
 }
@@ -130,13 +138,17 @@ void SummedAreaTable::box_sum(int x0, int y0, int x1, int y1, double* out) const
       continue;
     }
     switch (precision) {
-      case SatPrecision::u32: out[c] = integer_box<std::uint32_t>(*this, x0, y0, x1, y1, c); break;
-      case SatPrecision::u64: out[c] = integer_box<std::uint64_t>(*this, x0, y0, x1, y1, c); break;
+      case SatPrecision::u32:
+        out[c] = integer_box<std::uint32_t>(*this, x0, y0, x1, y1, c);
+        break;
+      case SatPrecision::u64:
+        out[c] = integer_box<std::uint64_t>(*this, x0, y0, x1, y1, c);
+        break;
       case SatPrecision::f32: {
         const double r = entry<float>(*this, x1 - 1, y1 - 1, c) - entry<float>(*this, x0 - 1, y1 - 1, c) -
                          entry<float>(*this, x1 - 1, y0 - 1, c) + entry<float>(*this, x0 - 1, y0 - 1, c);
-        const double m = model(x1 - 1, y1 - 1, c) - model(x0 - 1, y1 - 1, c) - model(x1 - 1, y0 - 1, c) +
-                         model(x0 - 1, y0 - 1, c);
+        const double m =
+            model(x1 - 1, y1 - 1, c) - model(x0 - 1, y1 - 1, c) - model(x1 - 1, y0 - 1, c) + model(x0 - 1, y0 - 1, c);
         out[c] = r + m;
         break;
       }
@@ -151,8 +163,10 @@ void SummedAreaTable::box_sum(int x0, int y0, int x1, int y1, double* out) const
 double SummedAreaTable::error_bound() const {
   switch (precision) {
     case SatPrecision::u32:
-    case SatPrecision::u64: return 0.0;
-    case SatPrecision::f32: return 4.0 * ulp_of(max_abs_entry, 24) / 2.0 + 8.0 * ulp_of(max_abs_model, 53);
+    case SatPrecision::u64:
+      return 0.0;
+    case SatPrecision::f32:
+      return 4.0 * ulp_of(max_abs_entry, 24) / 2.0 + 8.0 * ulp_of(max_abs_model, 53);
     case SatPrecision::f64:
       // Integer input: every entry is an integer below 2^53, held exactly.
       if (source != PixelType::f32 && max_abs_entry < 9007199254740992.0) return 0.0;
@@ -249,10 +263,14 @@ void table_row_any(int channels, const In* in, int width, const Acc* prev, Acc* 
     if (channels == 4) return sat_row_rgba16_u32(in, width, prev, cur);
   }
   switch (channels) {
-    case 1: return table_row<1>(in, width, prev, cur);
-    case 2: return table_row<2>(in, width, prev, cur);
-    case 3: return table_row<3>(in, width, prev, cur);
-    default: return table_row<4>(in, width, prev, cur);
+    case 1:
+      return table_row<1>(in, width, prev, cur);
+    case 2:
+      return table_row<2>(in, width, prev, cur);
+    case 3:
+      return table_row<3>(in, width, prev, cur);
+    default:
+      return table_row<4>(in, width, prev, cur);
   }
 }
 
@@ -418,7 +436,9 @@ void build_typed(const ConstImageView& img, SummedAreaTable& t, PrepareModel&& p
       prepare_model();
       build_float<In, Exact, float>(img, t);
       break;
-    case SatPrecision::f64: build_float<In, Exact, double>(img, t); break;
+    case SatPrecision::f64:
+      build_float<In, Exact, double>(img, t);
+      break;
   }
 }
 
@@ -433,8 +453,9 @@ SummedAreaTable build_sat(const ConstImageView& img, SatPrecision p) {
 void build_sat(const ConstImageView& img, SatPrecision p, SummedAreaTable& t) {
   assert(img.data && img.width > 0 && img.height > 0 && img.channels >= 1 && img.channels <= 4);
   if (img.type == PixelType::f32 && (p == SatPrecision::u32 || p == SatPrecision::u64)) {
-    throw Error(ErrorCode::bad_arguments, std::string("SatPrecision ") + to_string(p) +
-                                              " needs 8- or 16-bit integer input; this image is float (valid: f32, f64)");
+    throw Error(ErrorCode::bad_arguments,
+                std::string("SatPrecision ") + to_string(p) +
+                    " needs 8- or 16-bit integer input; this image is float (valid: f32, f64)");
   }
   t.block = 0;
   t.block_means.clear();
@@ -448,9 +469,15 @@ void build_sat(const ConstImageView& img, SatPrecision p, SummedAreaTable& t) {
   t.data.resize(std::size_t(img.width) * img.height * img.channels * t.element_bytes());
   const auto prepare = [&t] { t.prepare_model(); };
   switch (img.type) {
-    case PixelType::u8: build_typed<std::uint8_t>(img, t, prepare); break;
-    case PixelType::u16: build_typed<std::uint16_t>(img, t, prepare); break;
-    case PixelType::f32: build_typed<float>(img, t, prepare); break;
+    case PixelType::u8:
+      build_typed<std::uint8_t>(img, t, prepare);
+      break;
+    case PixelType::u16:
+      build_typed<std::uint16_t>(img, t, prepare);
+      break;
+    case PixelType::f32:
+      build_typed<float>(img, t, prepare);
+      break;
   }
 }
 

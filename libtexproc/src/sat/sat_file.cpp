@@ -103,21 +103,25 @@ SummedAreaTable read_sat_file(const std::string& path) {
     bad(path, "an integer table of float input");
   }
   t.max_abs_entry = get<double>(in, 32);
-  if (!(t.max_abs_entry >= 0.0) || !std::isfinite(t.max_abs_entry)) bad(path, "max |entry| is not a finite number >= 0");
+  if (!(t.max_abs_entry >= 0.0) || !std::isfinite(t.max_abs_entry))
+    bad(path, "max |entry| is not a finite number >= 0");
   const std::uint64_t data_bytes = get<std::uint64_t>(in, 40);
   // w, h <= 2^20 and c <= 4, element <= 8: the product fits in 64 bits.
   const std::uint64_t want = std::uint64_t(w) * h * c * t.element_bytes();
-  if (data_bytes != want) bad(path, "data size " + std::to_string(data_bytes) + " (expected " + std::to_string(want) + ")");
+  if (data_bytes != want)
+    bad(path, "data size " + std::to_string(data_bytes) + " (expected " + std::to_string(want) + ")");
   const std::uint32_t block = get<std::uint32_t>(in, 48);
   const std::uint32_t want_block = t.precision == SatPrecision::f32 ? SummedAreaTable::kBlock : 0;
-  if (block != want_block) bad(path, "block " + std::to_string(block) + " (valid for this type: " + std::to_string(want_block) + ")");
+  if (block != want_block)
+    bad(path, "block " + std::to_string(block) + " (valid for this type: " + std::to_string(want_block) + ")");
   t.block = int(block);
   t.max_abs_model = get<double>(in, 56);
-  if (!(t.max_abs_model >= 0.0) || !std::isfinite(t.max_abs_model)) bad(path, "max |model| is not a finite number >= 0");
-  const std::uint64_t means =
-      block ? std::uint64_t((w + block - 1) / block) * ((h + block - 1) / block) * c : 0;
+  if (!(t.max_abs_model >= 0.0) || !std::isfinite(t.max_abs_model))
+    bad(path, "max |model| is not a finite number >= 0");
+  const std::uint64_t means = block ? std::uint64_t((w + block - 1) / block) * ((h + block - 1) / block) * c : 0;
   const std::uint64_t total = kHeaderBytes + 8 * means + want;
-  if (in.size() < total) bad(path, "truncated data (" + std::to_string(in.size()) + " of " + std::to_string(total) + " bytes)");
+  if (in.size() < total)
+    bad(path, "truncated data (" + std::to_string(in.size()) + " of " + std::to_string(total) + " bytes)");
   if (in.size() > total) bad(path, std::to_string(in.size() - total) + " trailing bytes");
   t.block_means.resize(means);
   for (std::uint64_t i = 0; i < means; ++i) {

@@ -31,7 +31,9 @@ HWY_INLINE void Row(const In* in, int width, const std::uint32_t* prev, std::uin
     hn::StoreU(hn::Add(hn::LoadU(d, prev + 4 * x), run), d, cur + 4 * x);
   }
 }
-void Row8(const std::uint8_t* in, int width, const std::uint32_t* prev, std::uint32_t* cur) { Row(in, width, prev, cur); }
+void Row8(const std::uint8_t* in, int width, const std::uint32_t* prev, std::uint32_t* cur) {
+  Row(in, width, prev, cur);
+}
 void Row16(const std::uint16_t* in, int width, const std::uint32_t* prev, std::uint32_t* cur) {
   Row(in, width, prev, cur);
 }

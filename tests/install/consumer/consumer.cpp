@@ -16,8 +16,8 @@ static_assert(TEXPROC_VERSION == TEXPROC_VERSION_MAJOR * 10000 + TEXPROC_VERSION
 
 int main(int argc, char** argv) {
   using namespace texproc;
-  const std::string header = std::to_string(TEXPROC_VERSION_MAJOR) + "." + std::to_string(TEXPROC_VERSION_MINOR) +
-                             "." + std::to_string(TEXPROC_VERSION_PATCH);
+  const std::string header = std::to_string(TEXPROC_VERSION_MAJOR) + "." + std::to_string(TEXPROC_VERSION_MINOR) + "." +
+                             std::to_string(TEXPROC_VERSION_PATCH);
   if (header != version_string()) {
     std::printf("headers %s, library %s\n", header.c_str(), version_string());
     return 1;

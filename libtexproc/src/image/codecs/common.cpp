@@ -130,7 +130,8 @@ FileBytes::FileBytes(const std::string& path, bool read_ahead) {
   if (!owned_) fail("cannot read: out of memory");
   for (;;) {
     if (n == cap) {
-      if (cap >= kMaxStreamBytes) fail("more than " + std::to_string(kMaxStreamBytes >> 20) + " MiB from a pipe: refused");
+      if (cap >= kMaxStreamBytes)
+        fail("more than " + std::to_string(kMaxStreamBytes >> 20) + " MiB from a pipe: refused");
       auto* grown = static_cast<std::uint8_t*>(std::realloc(owned_, std::min(cap * 2, kMaxStreamBytes)));
       if (!grown) fail("cannot read: out of memory");
       owned_ = grown;
@@ -172,7 +173,8 @@ void FileBytes::check_intact(const std::string& path) const {
 
 std::uint8_t sample_u8(const ConstImageView& v, int y, std::size_t i) {
   if (v.type == PixelType::u8) return v.row<const std::uint8_t>(y)[i];
-  if (v.type == PixelType::u16) return std::uint8_t((unsigned(v.row<const std::uint16_t>(y)[i]) * 255u + 32767u) / 65535u);
+  if (v.type == PixelType::u16)
+    return std::uint8_t((unsigned(v.row<const std::uint16_t>(y)[i]) * 255u + 32767u) / 65535u);
   float f = v.row<const float>(y)[i];
   f = f != f ? 0.0f : f < 0.0f ? 0.0f : f > 1.0f ? 1.0f : f;
   return std::uint8_t(f * 255.0f + 0.5f);

@@ -31,8 +31,10 @@ PixelType natural_type(TexelFormat f) {
     case TexelFormat::eac_r11_unorm:
     case TexelFormat::eac_r11_snorm:
     case TexelFormat::eac_rg11_unorm:
-    case TexelFormat::eac_rg11_snorm: return PixelType::u16;
-    default: return PixelType::u8;
+    case TexelFormat::eac_rg11_snorm:
+      return PixelType::u16;
+    default:
+      return PixelType::u8;
   }
 }
 
@@ -49,7 +51,8 @@ ImageFileInfo info_of(const std::string& path, const Texture& t, const char* nam
   info.color_space_tagged = true;  // the format itself says
   info.subimages = int(t.faces * t.layers);
   info.mip_levels = int(t.levels);
-  for (std::uint32_t l = 0; l < t.levels; ++l) info.level_sizes.emplace_back(int(t.level_width(l)), int(t.level_height(l)));
+  for (std::uint32_t l = 0; l < t.levels; ++l)
+    info.level_sizes.emplace_back(int(t.level_width(l)), int(t.level_height(l)));
   check_size(path, info.width, info.height, info.channels, limits);
   return info;
 }

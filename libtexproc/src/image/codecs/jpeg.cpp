@@ -130,7 +130,8 @@ ImageFileInfo info_of(const std::string& path, const Header& h, const ReadLimits
 ImageFileInfo jpeg_probe(const std::string& path, const FileBytes& f, const ReadLimits& limits) {
   Header h;
   char message[JMSG_LENGTH_MAX] = {};
-  if (!decode(f, h, nullptr, 0, true, limits.max_jpeg_scans, message)) invalid(path, std::string("not a valid JPEG: ") + message);
+  if (!decode(f, h, nullptr, 0, true, limits.max_jpeg_scans, message))
+    invalid(path, std::string("not a valid JPEG: ") + message);
   return info_of(path, h, limits);
 }
 
@@ -188,15 +189,16 @@ void jpeg_write(const std::string& file, const std::string& path, const ConstIma
   for (int y = 0; y < v.height; ++y) {
     std::uint8_t* d = rows.data() + std::size_t(y) * v.width * channels;
     for (int x = 0; x < v.width; ++x) {
-      for (int c = 0; c < channels; ++c) d[std::size_t(x) * channels + c] = sample_u8(v, y, std::size_t(x) * v.channels + c);
+      for (int c = 0; c < channels; ++c)
+        d[std::size_t(x) * channels + c] = sample_u8(v, y, std::size_t(x) * v.channels + c);
     }
   }
   unsigned char* out = nullptr;
   unsigned long size = 0;
   char message[JMSG_LENGTH_MAX] = {};
   const int quality = o.quality < 1 ? 1 : o.quality > 100 ? 100 : o.quality;
-  const bool ok = encode(rows.data(), std::size_t(v.width) * channels, v.width, v.height, channels, quality, &out, &size,
-                         message);
+  const bool ok =
+      encode(rows.data(), std::size_t(v.width) * channels, v.width, v.height, channels, quality, &out, &size, message);
   if (!ok) {
     std::free(out);
     write_error(path, std::string("JPEG encoder: ") + message);

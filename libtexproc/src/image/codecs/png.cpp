@@ -37,7 +37,7 @@ struct PngLayout {
   spng_ihdr ihdr{};
   int channels = 0;  // after palette expansion and tRNS
   bool sixteen = false;
-  int fmt = 0;       // spng_format to decode to
+  int fmt = 0;  // spng_format to decode to
 };
 
 Spng open_png(const std::string& path, const FileBytes& f, PngLayout& L) {
@@ -196,10 +196,18 @@ void filter_row(const std::uint8_t* row, const std::uint8_t* prev, std::size_t n
     o[i] = std::uint8_t(best == 0 || best == 1 ? x : best == 3 ? x - (b >> 1) : x - b);
   }
   switch (best) {
-    case 0: std::memcpy(o + head, row + head, n - head); break;
-    case 1: for (std::size_t i = B; i < n; ++i) o[i] = std::uint8_t(row[i] - row[i - B]); break;
-    case 2: for (std::size_t i = B; i < n; ++i) o[i] = std::uint8_t(row[i] - prev[i]); break;
-    case 3: for (std::size_t i = B; i < n; ++i) o[i] = std::uint8_t(row[i] - ((row[i - B] + prev[i]) >> 1)); break;
+    case 0:
+      std::memcpy(o + head, row + head, n - head);
+      break;
+    case 1:
+      for (std::size_t i = B; i < n; ++i) o[i] = std::uint8_t(row[i] - row[i - B]);
+      break;
+    case 2:
+      for (std::size_t i = B; i < n; ++i) o[i] = std::uint8_t(row[i] - prev[i]);
+      break;
+    case 3:
+      for (std::size_t i = B; i < n; ++i) o[i] = std::uint8_t(row[i] - ((row[i - B] + prev[i]) >> 1));
+      break;
     default:
       for (std::size_t i = B; i < n; ++i) o[i] = std::uint8_t(row[i] - paeth(row[i - B], prev[i], prev[i - B]));
       break;

@@ -28,7 +28,8 @@ struct TgaHeader {
 int le16(const std::uint8_t* p) { return p[0] | (p[1] << 8); }
 
 TgaHeader parse(const std::string& path, const FileBytes& f) {
-  if (f.size() < 18) invalid(path, "not a TGA file: " + std::to_string(f.size()) + " bytes, shorter than its 18-byte header");
+  if (f.size() < 18)
+    invalid(path, "not a TGA file: " + std::to_string(f.size()) + " bytes, shorter than its 18-byte header");
   const std::uint8_t* b = f.data();
   TgaHeader h{b[0], b[1], b[2], le16(b + 3), le16(b + 5), b[7], le16(b + 12), le16(b + 14), b[16], b[17]};
   const int t = h.image_type;
@@ -38,7 +39,8 @@ TgaHeader parse(const std::string& path, const FileBytes& f) {
   if (h.cmap_type > 1) invalid(path, "TGA colour map type " + std::to_string(h.cmap_type) + " (valid: 0, 1)");
   if (h.base_type() == 1) {
     if (h.cmap_type != 1) invalid(path, "colour-mapped TGA without a colour map");
-    if (h.bits != 8 && h.bits != 16) invalid(path, "colour-mapped TGA with " + std::to_string(h.bits) + "-bit indices (valid: 8, 16)");
+    if (h.bits != 8 && h.bits != 16)
+      invalid(path, "colour-mapped TGA with " + std::to_string(h.bits) + "-bit indices (valid: 8, 16)");
     if (h.cmap_bits != 15 && h.cmap_bits != 16 && h.cmap_bits != 24 && h.cmap_bits != 32) {
       invalid(path, "TGA colour map entries of " + std::to_string(h.cmap_bits) + " bits (valid: 15, 16, 24, 32)");
     }
@@ -49,15 +51,19 @@ TgaHeader parse(const std::string& path, const FileBytes& f) {
   } else if (h.bits != 8 && h.bits != 16) {
     invalid(path, "grey TGA of " + std::to_string(h.bits) + " bits a pixel (valid: 8, 16)");
   }
-  if (h.width == 0 || h.height == 0) invalid(path, "TGA of " + std::to_string(h.width) + "x" + std::to_string(h.height) + " pixels");
+  if (h.width == 0 || h.height == 0)
+    invalid(path, "TGA of " + std::to_string(h.width) + "x" + std::to_string(h.height) + " pixels");
   return h;
 }
 
 int channels_of(const TgaHeader& h) {
   switch (h.base_type()) {
-    case 3: return h.bits == 16 ? 2 : 1;
-    case 1: return h.cmap_bits == 32 || (h.cmap_bits == 16 && h.alpha_bits() > 0) ? 4 : 3;
-    default: return h.bits == 32 || (h.bits == 16 && h.alpha_bits() > 0) ? 4 : 3;
+    case 3:
+      return h.bits == 16 ? 2 : 1;
+    case 1:
+      return h.cmap_bits == 32 || (h.cmap_bits == 16 && h.alpha_bits() > 0) ? 4 : 3;
+    default:
+      return h.bits == 32 || (h.bits == 16 && h.alpha_bits() > 0) ? 4 : 3;
   }
 }
 
@@ -112,7 +118,8 @@ Image tga_read(const std::string& path, const FileBytes& f, ImageFileInfo& info,
     if (h.base_type() == 1) {
       palette.resize(std::size_t(h.cmap_length) * C);
       for (int i = 0; i < h.cmap_length; ++i) {
-        unpack(f.data() + pos + entry * std::size_t(i), h.cmap_bits, C, h.alpha_bits() > 0, &palette[std::size_t(i) * C]);
+        unpack(f.data() + pos + entry * std::size_t(i), h.cmap_bits, C, h.alpha_bits() > 0,
+               &palette[std::size_t(i) * C]);
       }
     }
     pos += bytes;
@@ -126,12 +133,15 @@ Image tga_read(const std::string& path, const FileBytes& f, ImageFileInfo& info,
     expanded.resize(count * stored);
     std::size_t n = 0;
     while (n < count) {
-      if (pos >= f.size()) invalid(path, "TGA run-length data ends after " + std::to_string(n) + " of " + std::to_string(count) + " pixels");
+      if (pos >= f.size())
+        invalid(path,
+                "TGA run-length data ends after " + std::to_string(n) + " of " + std::to_string(count) + " pixels");
       const int packet = f.data()[pos++];
       const std::size_t run = std::min<std::size_t>(std::size_t(packet & 0x7f) + 1, count - n);
       if (packet & 0x80) {
         if (pos + stored > f.size()) invalid(path, "TGA run-length data ends inside a packet");
-        for (std::size_t i = 0; i < run; ++i) std::memcpy(&expanded[(n + i) * stored], f.data() + pos, std::size_t(stored));
+        for (std::size_t i = 0; i < run; ++i)
+          std::memcpy(&expanded[(n + i) * stored], f.data() + pos, std::size_t(stored));
         pos += std::size_t(stored);
       } else {
         if (pos + run * stored > f.size()) invalid(path, "TGA run-length data ends inside a packet");

@@ -32,7 +32,6 @@ void on_error(const char* module, const char* fmt, va_list ap) {
 }
 void on_warning(const char*, const char*, va_list) {}
 
-
 }  // namespace
 
 void quiet_libtiff() {
@@ -69,7 +68,8 @@ Tiff open_tiff(const std::string& path) {
   quiet_libtiff();
   t_last_error.clear();
   Tiff tif(TIFFOpen(path.c_str(), "rm"));
-  if (!tif) invalid(path, "not a valid TIFF: " + (t_last_error.empty() ? std::string("libtiff cannot open it") : t_last_error));
+  if (!tif)
+    invalid(path, "not a valid TIFF: " + (t_last_error.empty() ? std::string("libtiff cannot open it") : t_last_error));
   return tif;
 }
 
@@ -80,7 +80,8 @@ Layout layout_of(const std::string& path, TIFF* t, const ReadLimits& limits) {
   TIFFGetFieldDefaulted(t, TIFFTAG_SAMPLESPERPIXEL, &L.spp);
   TIFFGetFieldDefaulted(t, TIFFTAG_BITSPERSAMPLE, &L.bits);
   TIFFGetFieldDefaulted(t, TIFFTAG_SAMPLEFORMAT, &L.format);
-  if (!TIFFGetField(t, TIFFTAG_PHOTOMETRIC, &L.photometric)) L.photometric = L.spp >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK;
+  if (!TIFFGetField(t, TIFFTAG_PHOTOMETRIC, &L.photometric))
+    L.photometric = L.spp >= 3 ? PHOTOMETRIC_RGB : PHOTOMETRIC_MINISBLACK;
   TIFFGetFieldDefaulted(t, TIFFTAG_PLANARCONFIG, &L.planar);
   TIFFGetFieldDefaulted(t, TIFFTAG_ORIENTATION, &L.orientation);
   TIFFGetFieldDefaulted(t, TIFFTAG_COMPRESSION, &L.compression);
@@ -123,7 +124,9 @@ ImageFileInfo info_of(const Layout& L) {
   info.width = int(L.width);
   info.height = int(L.height);
   info.channels = L.spp;
-  info.file_type = L.format == SAMPLEFORMAT_IEEEFP ? (L.bits == 16 ? "half" : "float") : L.bits == 8 ? "uint8" : "uint16";
+  info.file_type = L.format == SAMPLEFORMAT_IEEEFP ? (L.bits == 16 ? "half" : "float")
+                   : L.bits == 8                   ? "uint8"
+                                                   : "uint16";
   info.type = L.format == SAMPLEFORMAT_IEEEFP ? PixelType::f32 : L.bits == 8 ? PixelType::u8 : PixelType::u16;
   return info;  // no colour-space tag: OpenImageIO gives TIFF none
 }
@@ -262,14 +265,16 @@ Image tiff_read(const std::string& path, ImageFileInfo& info, const ReadLimits& 
       for (std::uint32_t x = 0; x < L.width; x += cw) chunks.push_back({x, y, cw, ch, planes > 1 ? p : -1});
   const std::size_t count = L.tiled ? std::size_t(TIFFNumberOfTiles(t)) : std::size_t(TIFFNumberOfStrips(t));
   if (count != chunks.size()) {
-    invalid(path, "TIFF holds " + std::to_string(count) + " chunks, its size and layout need " + std::to_string(chunks.size()));
+    invalid(path, "TIFF holds " + std::to_string(count) + " chunks, its size and layout need " +
+                      std::to_string(chunks.size()));
   }
   const std::size_t spp_chunk = planes > 1 ? 1 : L.spp;
   const std::size_t chunk_bytes = std::size_t(cw) * ch * spp_chunk * L.bytes();
 
-  const bool parallel = (L.compression == COMPRESSION_ADOBE_DEFLATE || L.compression == COMPRESSION_DEFLATE ||
-                         L.compression == COMPRESSION_NONE) &&
-                        (L.predictor == PREDICTOR_NONE || (L.predictor == PREDICTOR_HORIZONTAL && L.format == SAMPLEFORMAT_UINT));
+  const bool parallel =
+      (L.compression == COMPRESSION_ADOBE_DEFLATE || L.compression == COMPRESSION_DEFLATE ||
+       L.compression == COMPRESSION_NONE) &&
+      (L.predictor == PREDICTOR_NONE || (L.predictor == PREDICTOR_HORIZONTAL && L.format == SAMPLEFORMAT_UINT));
   if (!parallel) {
     std::vector<std::uint8_t> buf(chunk_bytes);
     for (std::size_t i = 0; i < chunks.size(); ++i) {
@@ -295,7 +300,8 @@ Image tiff_read(const std::string& path, ImageFileInfo& info, const ReadLimits& 
   for (std::size_t i = 0; i < count; ++i) {
     if (off[i] > file.size() || len[i] > file.size() - off[i]) {
       invalid(path, "TIFF chunk " + std::to_string(i) + " at byte " + std::to_string(off[i]) + " (" +
-                        std::to_string(len[i]) + " bytes) runs past the end of the file (" + std::to_string(file.size()) + " bytes)");
+                        std::to_string(len[i]) + " bytes) runs past the end of the file (" +
+                        std::to_string(file.size()) + " bytes)");
     }
   }
   std::string failure;

@@ -99,7 +99,8 @@ void write(Module m, const std::string& file, const std::string& path, const std
            bool mip_file, const WriteOptions& options) {
   const TpImageModule& t = module_for(m, path);
   std::vector<TpImageLevel> tl;
-  for (const ConstImageView& v : levels) tl.push_back({v.data, v.width, v.height, v.channels, to_tp(v.type), v.row_stride});
+  for (const ConstImageView& v : levels)
+    tl.push_back({v.data, v.width, v.height, v.channels, to_tp(v.type), v.row_stride});
   const TpWriteOptions o{options.half ? 1 : 0, options.compression.c_str(), options.color_space.c_str(),
                          options.quality, options.red_green ? 1 : 0};
   char err[1024] = {};

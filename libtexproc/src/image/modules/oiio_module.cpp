@@ -58,9 +58,12 @@ std::string lower_ext(const std::string& path) {
 
 TypeDesc to_typedesc(int t, bool half) {
   switch (t) {
-    case TP_U8: return TypeDesc::UINT8;
-    case TP_U16: return TypeDesc::UINT16;
-    default: return half ? TypeDesc::HALF : TypeDesc::FLOAT;
+    case TP_U8:
+      return TypeDesc::UINT8;
+    case TP_U16:
+      return TypeDesc::UINT16;
+    default:
+      return half ? TypeDesc::HALF : TypeDesc::FLOAT;
   }
 }
 
@@ -82,7 +85,8 @@ std::unique_ptr<ImageInput> open_input(const std::string& path) {
     throw Failure{kInvalidFile, path + ": cannot read image: " + msg};
   }
   const ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) throw Failure{kInvalidFile, path + ": image has no pixels"};
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    throw Failure{kInvalidFile, path + ": image has no pixels"};
   if (spec.depth > 1) throw Failure{kUnsupported, path + ": volume images are not supported"};
   return in;
 }
@@ -203,7 +207,8 @@ void probe(const std::string& path, TpImageSpec& out) {
 
 void read(const std::string& path, int channels, int type, void* data, size_t row_stride) {
   auto in = open_input(path);
-  if (!in->read_image(0, 0, 0, channels, to_typedesc(type, false), data, OIIO::AutoStride, OIIO::stride_t(row_stride))) {
+  if (!in->read_image(0, 0, 0, channels, to_typedesc(type, false), data, OIIO::AutoStride,
+                      OIIO::stride_t(row_stride))) {
     const std::string msg = in->geterror();
     throw Failure{kInvalidFile, path + ": cannot decode image: " + (msg.empty() ? "corrupt data" : msg)};
   }
@@ -260,7 +265,9 @@ void write_levels(ImageOutput* out, const std::string& file, const std::string& 
       spec.attribute("openexr:levelmode", 1);     // MIPMAP_LEVELS
       spec.attribute("openexr:roundingmode", 0);  // ROUND_DOWN: floor(n / 2), as texproc's levels
     }
-    const auto mode = l == 0 ? ImageOutput::Create : native_mips ? ImageOutput::AppendMIPLevel : ImageOutput::AppendSubimage;
+    const auto mode = l == 0        ? ImageOutput::Create
+                      : native_mips ? ImageOutput::AppendMIPLevel
+                                    : ImageOutput::AppendSubimage;
     if (!out->open(file, spec, mode)) write_failed(path, *out);
     if (exr) {
       if (!out->write_image(to_typedesc(v.type, false), v.data, OIIO::AutoStride, OIIO::stride_t(v.row_stride))) {

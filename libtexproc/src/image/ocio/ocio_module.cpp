@@ -132,7 +132,8 @@ const ActiveConfig& active_config() {
 
 class Transform {
  public:
-  Transform(OCIO::ConstCPUProcessorRcPtr to, OCIO::ConstCPUProcessorRcPtr from) : to_(std::move(to)), from_(std::move(from)) {}
+  Transform(OCIO::ConstCPUProcessorRcPtr to, OCIO::ConstCPUProcessorRcPtr from)
+      : to_(std::move(to)), from_(std::move(from)) {}
   void to_linear(float* pixels, int channels, int width) const { apply(*to_, pixels, channels, width); }
   void from_linear(float* pixels, int channels, int width) const { apply(*from_, pixels, channels, width); }
 
