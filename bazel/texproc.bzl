@@ -36,13 +36,18 @@ texproc_tool = rule(
     },
 )
 
-def _tool_repository_impl(rctx):
+def _find_texproc(rctx, rule):
+    # The texproc binary: the rule's `texproc`, else $TEXPROC, else PATH.
     texproc = rctx.attr.texproc or rctx.os.environ.get("TEXPROC", "")
-    if not texproc:
-        found = rctx.which("texproc")
-        if not found:
-            fail("texproc_tool_repository: name the texproc binary (texproc = ..., or $TEXPROC), or put it on PATH")
-        texproc = str(found)
+    if texproc:
+        return texproc
+    found = rctx.which("texproc")
+    if not found:
+        fail("%s: name the texproc binary (texproc = ..., or $TEXPROC), or put it on PATH" % rule)
+    return str(found)
+
+def _tool_repository_impl(rctx):
+    texproc = _find_texproc(rctx, "texproc_tool_repository")
     listed = rctx.execute([texproc, "--runtime-files"])
     if listed.return_code != 0:
         fail("%s --runtime-files failed: %s" % (texproc, listed.stderr))
@@ -187,12 +192,7 @@ def _label_of(recipe, path):
 _OUTPUT_OPTIONS = ["-o", "--preview"]
 
 def _recipe_impl(rctx):
-    texproc = rctx.attr.texproc or rctx.os.environ.get("TEXPROC", "")
-    if not texproc:
-        found = rctx.which("texproc")
-        if not found:
-            fail("texproc_recipe: name the texproc binary (texproc = ..., or $TEXPROC), or put it on PATH")
-        texproc = str(found)
+    texproc = _find_texproc(rctx, "texproc_recipe")
     recipe = rctx.path(rctx.attr.recipe)
     result = rctx.execute([texproc, "build", str(recipe), "--emit-actions"])
     if result.return_code != 0:

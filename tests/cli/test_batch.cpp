@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "support/images.h"
+#include "support/json.h"
 #include "support/run.h"
 #include "texproc/image_io.h"
 
@@ -19,15 +20,6 @@ using namespace texproc::test;
 namespace fs = std::filesystem;
 
 namespace {
-
-Json::Value parse_json(const std::string& text) {
-  Json::CharReaderBuilder b;
-  std::unique_ptr<Json::CharReader> reader(b.newCharReader());
-  Json::Value v;
-  std::string errors;
-  EXPECT_TRUE(reader->parse(text.data(), text.data() + text.size(), &v, &errors)) << errors << "\n" << text;
-  return v;
-}
 
 // A folder of small textures: a/b.png, a/c.png, a/sub/d.png, a/sub/deeper/e.tga.
 std::string make_tree(const std::string& name) {

@@ -12,6 +12,7 @@
 #include <fstream>
 
 #include "support/images.h"
+#include "support/json.h"
 #include "support/run.h"
 #include "texproc/block_decode.h"
 #include "texproc/container.h"
@@ -527,24 +528,6 @@ std::string read_text(const std::string& path) {
 }
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
-// A small OpenColorIO config with one extra space, to show that the config a
-// run read is listed as a dependency.
-const char* kGammaConfig = R"(ocio_profile_version: 2
-roles:
-  default: lin
-  scene_linear: lin
-file_rules:
-  - !<Rule> {name: Default, colorspace: default}
-displays:
-  sRGB:
-    - !<View> {name: Raw, colorspace: lin}
-colorspaces:
-  - !<ColorSpace>
-    name: lin
-  - !<ColorSpace>
-    name: gamma22
-    to_scene_reference: !<ExponentTransform> {value: 2.2}
-)";
 }  // namespace
 
 // --depfile: a Make rule "outputs: inputs", with spaces and '#' escaped as
@@ -553,7 +536,7 @@ TEST(Cli, DepfileListsOutputsAndInputs) {
   const std::string dir = temp_dir("cli_depfile");
   fs::create_directories(dir + "/in put");
   write_image(dir + "/in put/a#1.png", random_image(8, 8, 3, PixelType::u8, 5).view());
-  write_text(dir + "/cfg.ocio", kGammaConfig);
+  write_text(dir + "/cfg.ocio", kTestOcioConfig);
   RunResult r = run_texproc("mip '" + dir + "/in put/a#1.png' -o " + dir + "/out/a.png --levels 2 --depfile " + dir +
                             "/deps/a.d -q");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -588,7 +571,7 @@ TEST(Cli, DepfileDrivesMake) {
   if (std::system("command -v make >/dev/null 2>&1") != 0) GTEST_SKIP() << "no make";
   const std::string dir = temp_dir("cli_depfile_make");
   write_image(dir + "/h.png", random_image(8, 8, 3, PixelType::u8, 5).view());
-  write_text(dir + "/cfg.ocio", kGammaConfig);
+  write_text(dir + "/cfg.ocio", kTestOcioConfig);
   write_text(dir + "/Makefile", std::string("out.tif:\n\tOCIO=cfg.ocio ") + TEXPROC_CLI_PATH +
                                     " mip h.png -o out.tif --colorspace gamma22 -f -q --depfile out.d\n"
                                     "-include out.d\n");

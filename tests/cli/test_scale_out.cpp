@@ -12,6 +12,7 @@
 #include <set>
 
 #include "support/images.h"
+#include "support/json.h"
 #include "support/run.h"
 #include "texproc/image_io.h"
 
@@ -22,15 +23,6 @@ namespace fs = std::filesystem;
 namespace {
 
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
-
-Json::Value parse_json(const std::string& text) {
-  Json::CharReaderBuilder b;
-  std::unique_ptr<Json::CharReader> reader(b.newCharReader());
-  Json::Value v;
-  std::string errors;
-  EXPECT_TRUE(reader->parse(text.data(), text.data() + text.size(), &v, &errors)) << errors << "\n" << text;
-  return v;
-}
 
 // Heightmaps in nested folders (and one in a hidden folder, one to exclude).
 std::string make_tree(const std::string& name) {
@@ -286,20 +278,8 @@ TEST(ScaleOut, SummariesAreReproducibleAndTheOcioConfigIsAnInput) {
   RunResult t = run_texproc("normalmap src/h1.png -o o.png --json --force --timings", dir);
   EXPECT_NE(t.out.find("\"seconds\""), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("\"phases\""), std::string::npos) << t.out;
-  write_text(dir + "/cfg.ocio", R"(ocio_profile_version: 2
-roles:
-  default: lin
-  scene_linear: lin
-displays:
-  sRGB:
-    - !<View> {name: Raw, colorspace: lin}
-colorspaces:
-  - !<ColorSpace>
-    name: lin
-  - !<ColorSpace>
-    name: curve22
-    to_scene_reference: !<ExponentTransform> {value: 2.2}
-)");
+  write_text(dir + "/cfg.ocio", kTestOcioConfig);
+
   RunResult m = run_texproc(
       "mip src/h1.png -o g.tif --colorspace curve22 --ocio-config cfg.ocio --json "
       "--depfile g.d",
