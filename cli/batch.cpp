@@ -3,7 +3,6 @@
 
 #include "texproc/tools.h"
 
-#include <json/writer.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -25,8 +24,8 @@ namespace fs = std::filesystem;
 
 namespace texproc::cli {
 
-SessionOptions& session_options() {
-  static SessionOptions s;
+BatchSession& batch_session() {
+  static BatchSession s;
   return s;
 }
 
@@ -166,7 +165,7 @@ std::vector<std::string> name_outputs(const BatchCommand& c, const BatchInputs& 
 
 // Every failure of a file: in the command line's terms, the file in front.
 void fail(FileReport& r, ErrorCode code, const std::string& message) {
-  r.status = "failed";
+  r.status = FileStatus::failed;
   r.code = code;
   r.error = about(r.input, in_cli_terms(message));
 }
@@ -217,8 +216,8 @@ std::vector<FileReport> plan_files(const BatchCommand& c, const std::vector<Inpu
     try {
       if (!fs::is_regular_file(r.input, ec)) {
         // --dry-run of a recipe: made by an earlier job first.
-        const auto made = session_options().pending.find(absolute_path(r.input));
-        if (made != session_options().pending.end()) {
+        const auto made = batch_session().pending.find(absolute_path(r.input));
+        if (made != batch_session().pending.end()) {
           r.outputs = {outputs[i]};
           r.details["reason"] = "input made by job " + made->second;
           continue;
@@ -288,7 +287,7 @@ void check_one_writer(const std::vector<FileReport>& reports, const std::vector<
 
 // Up to date: every output exists and none is older than any input (the
 // file's, an OCIO config among them, and the recipe's).
-bool up_to_date(const FileReport& r, const SessionOptions& s) {
+bool up_to_date(const FileReport& r, const BatchSession& s) {
   std::error_code ec;
   fs::file_time_type newest_input = fs::file_time_type::min();
   bool inputs_known = true;
@@ -310,7 +309,7 @@ bool up_to_date(const FileReport& r, const SessionOptions& s) {
 
 // --dry-run of a recipe: "input X rebuilt by job Y" when an earlier job
 // would rewrite one of the file's inputs.
-std::string rebuilt_input(const FileReport& r, const SessionOptions& s) {
+std::string rebuilt_input(const FileReport& r, const BatchSession& s) {
   if (s.pending.empty()) return "";
   for (const std::string& in : r.inputs) {
     const auto it = s.pending.find(absolute_path(in));
@@ -321,39 +320,38 @@ std::string rebuilt_input(const FileReport& r, const SessionOptions& s) {
 
 // The files to run: not failed, not skipped (--incremental, --skip-existing),
 // their outputs free to write.
-std::vector<std::size_t> select_work(std::vector<FileReport>& reports, const SessionOptions& s,
-                                     const CommonOptions& common) {
+std::vector<std::size_t> select_work(std::vector<FileReport>& reports, const BatchSession& s, const RunOptions& o) {
   std::error_code ec;
   std::vector<std::size_t> todo;
   for (std::size_t i = 0; i < reports.size(); ++i) {
     FileReport& r = reports[i];
-    if (r.status == "failed") continue;
+    if (r.status == FileStatus::failed) continue;
     if (r.details.isMember("reason")) {
       // decided while planning
     } else if (const std::string by = rebuilt_input(r, s); !by.empty()) {
       r.details["reason"] = by;
-    } else if (s.incremental && !common.force) {
+    } else if (s.incremental && !o.force) {
       if (s.why_rebuild) {
         const std::string why = s.why_rebuild(r);
         if (why.empty()) {
-          r.status = "skipped";
+          r.status = FileStatus::skipped;
           continue;
         }
         r.details["reason"] = why;
       } else if (up_to_date(r, s)) {
-        r.status = "skipped";
+        r.status = FileStatus::skipped;
         continue;
       }
     }
-    if (s.skip_existing &&
+    if (o.skip_existing &&
         std::all_of(r.outputs.begin(), r.outputs.end(), [&](const std::string& f) { return fs::exists(f, ec); })) {
-      r.status = "skipped";
+      r.status = FileStatus::skipped;
       continue;
     }
     try {
       for (const auto& out : r.outputs) {
         // An incremental build replaces only what it made itself.
-        const bool replace = common.force || (s.incremental && s.owned_outputs.count(output_key(out)));
+        const bool replace = o.force || (s.incremental && s.owned_outputs.count(output_key(out)));
         if (s.incremental && !replace && fs::exists(out, ec)) {
           throw Error(ErrorCode::bad_arguments, out +
                                                     ": output exists and was not written by this recipe; --force "
@@ -405,11 +403,10 @@ void report_kept(FileReport& r, const std::vector<Identity>& before) {
   r.line.insert(nl == std::string::npos ? r.line.size() : nl, note);
 }
 
-void run_file(const BatchCommand& c, FileReport& r, const std::string& output, const CommonOptions& common,
-              CommitPolicy policy) {
+void run_file(const BatchCommand& c, FileReport& r, const std::string& output, CommitPolicy policy) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<Identity> before;
-  if (write_if_changed()) {
+  if (run_options().write_if_changed) {
     for (const std::string& o : r.outputs) before.push_back(identity(o));
   }
   try {
@@ -418,7 +415,7 @@ void run_file(const BatchCommand& c, FileReport& r, const std::string& output, c
     CommitGroup outputs(policy);
     c.run(r.input, output, r);
     outputs.commit();
-    if (write_if_changed()) report_kept(r, before);
+    if (run_options().write_if_changed) report_kept(r, before);
   } catch (const Error& e) {
     fail(r, e.code(), e.what());
   } catch (const std::bad_alloc&) {
@@ -438,7 +435,7 @@ void run_file(const BatchCommand& c, FileReport& r, const std::string& output, c
     ph["compute_ms"] = r.phases.compute;
     ph["write_ms"] = r.phases.write;
     r.details["phases"] = ph;
-    if (common.verbose && !r.line.empty()) {
+    if (run_options().verbose && !r.line.empty()) {
       char buf[160];
       std::snprintf(buf, sizeof buf, "\n  read %.1f ms, compute %.1f ms, write %.1f ms", r.phases.read,
                     r.phases.compute, r.phases.write);
@@ -450,41 +447,41 @@ void run_file(const BatchCommand& c, FileReport& r, const std::string& output, c
 
 }  // namespace
 
-int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& common) {
-  const SessionOptions& s = session_options();
-  ThreadLimit threads(common.threads);
+int run_batch(const BatchCommand& c, const BatchInputs& b) {
+  const RunOptions& o = run_options();
+  BatchSession& s = batch_session();
+  ThreadLimit threads(o.threads);
   // Files the options name (an OpenColorIO config, a radius map) are inputs
   // of every output.
   const std::size_t recorded_before = recorded_inputs().size();
   if (c.validate) c.validate();
   const std::vector<std::string> all_recorded = recorded_inputs();
   std::vector<std::string> shared_inputs(all_recorded.begin() + std::ptrdiff_t(recorded_before), all_recorded.end());
-  if (!s.ocio_config.empty() &&
-      std::find(shared_inputs.begin(), shared_inputs.end(), s.ocio_config) == shared_inputs.end()) {
-    shared_inputs.push_back(s.ocio_config);
-    record_input(s.ocio_config);
+  if (!o.ocio_config.empty() &&
+      std::find(shared_inputs.begin(), shared_inputs.end(), o.ocio_config) == shared_inputs.end()) {
+    shared_inputs.push_back(o.ocio_config);
+    record_input(o.ocio_config);
   }
   std::vector<InputFile> files = expand_inputs(b, c.input_extensions);
-  SessionOptions& session = session_options();
-  if (session.select) {
-    files.erase(std::remove_if(files.begin(), files.end(), [&](const InputFile& f) { return !session.select(f.path); }),
+  if (s.select) {
+    files.erase(std::remove_if(files.begin(), files.end(), [&](const InputFile& f) { return !s.select(f.path); }),
                 files.end());
   }
-  if (session.shard_count > 0 && !s.check_only) {
+  if (o.shard_count > 0 && !s.check_only) {
     std::vector<InputFile> mine;
     for (const InputFile& f : files) {
-      if (int(session.shard_counter++ % std::size_t(session.shard_count)) == session.shard_index) mine.push_back(f);
+      if (int(s.shard_counter++ % std::size_t(o.shard_count)) == o.shard_index) mine.push_back(f);
     }
     files = std::move(mine);
   }
-  if (files.empty() && (session.select || session.shard_count > 0)) return 0;  // none of them is this run's
+  if (files.empty() && (s.select || o.shard_count > 0)) return 0;  // none of them is this run's
   const std::vector<std::string> outputs = name_outputs(c, b, files);
   if (s.check_only) {
     if (s.plans) {
       const std::vector<FileReport> planned = plan_files(c, files, outputs, shared_inputs);
       for (std::size_t i = 0; i < planned.size(); ++i) {
         s.plans->push_back({files[i].path, outputs[i], planned[i].inputs, claimed_outputs(planned[i], outputs[i]),
-                            planned[i].status != "failed" && !planned[i].outputs.empty()});
+                            planned[i].status != FileStatus::failed && !planned[i].outputs.empty()});
       }
     }
     return 0;
@@ -493,32 +490,32 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
   // Without --force (or --write-if-changed), an output that appears between
   // the check below and the end of the work is not replaced either: the
   // final rename refuses it atomically (two processes, one output).
-  const CommitPolicy policy = write_if_changed()              ? CommitPolicy::keep_identical
-                              : common.force || s.incremental ? CommitPolicy::replace
-                                                              : CommitPolicy::no_replace;
+  const CommitPolicy policy = o.write_if_changed         ? CommitPolicy::keep_identical
+                              : o.force || s.incremental ? CommitPolicy::replace
+                                                         : CommitPolicy::no_replace;
   std::vector<FileReport> reports = plan_files(c, files, outputs, shared_inputs);
   check_no_input_overwritten(reports, outputs);
   check_one_writer(reports, outputs);
-  const std::vector<std::size_t> todo = select_work(reports, s, common);
+  const std::vector<std::size_t> todo = select_work(reports, s, o);
   auto finish = [&]() {
     int rc = 0;
     for (const auto& r : reports) {
-      if (r.status == "failed" && rc == 0) rc = int(r.code);
+      if (r.status == FileStatus::failed && rc == 0) rc = int(r.code);
       session_reports().push_back(r);
     }
     return rc;
   };
 
-  if (dry_run()) {
+  if (o.dry_run) {
     for (const auto& r : reports) {
-      if (r.status == "failed") {
+      if (r.status == FileStatus::failed) {
         print_error(c.name, r.error);
-      } else if (r.status == "skipped") {
+      } else if (r.status == FileStatus::skipped) {
         continue;  // up to date: --dry-run lists what would be written
-      } else if (!s.json) {
+      } else if (!o.json) {
         // With change tracking (a recipe), why each file would be rebuilt.
         const std::string why = r.details.isMember("reason") ? " (" + r.details["reason"].asString() + ")" : "";
-        for (const auto& o : r.outputs) std::cout << o << why << "\n";
+        for (const auto& out : r.outputs) std::cout << out << why << "\n";
       }
     }
     return finish();
@@ -527,18 +524,18 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
   // Plan failures are reported now; the work goes on for the others unless --fail-fast.
   bool failed = false;
   for (const auto& r : reports) {
-    if (r.status != "failed") continue;
+    if (r.status != FileStatus::failed) continue;
     failed = true;
     print_error(c.name, r.error);
   }
-  if (failed && s.fail_fast) {
-    for (std::size_t i : todo) reports[i].status = "not_run";
+  if (failed && o.fail_fast) {
+    for (std::size_t i : todo) reports[i].status = FileStatus::not_run;
     return finish();
   }
 
-  Progress progress(c.name, todo.size(), !common.quiet && (s.progress || ::isatty(2)));
+  Progress progress(c.name, todo.size(), !o.quiet && (o.progress || ::isatty(2)));
   const int hw = hardware_threads();
-  const std::size_t tokens = std::size_t(std::max(1, s.jobs > 0 ? s.jobs : (common.threads > 0 ? common.threads : hw)));
+  const std::size_t tokens = std::size_t(std::max(1, o.jobs > 0 ? o.jobs : (o.threads > 0 ? o.threads : hw)));
   // Files in parallel, reported in input order as each and those before it finish.
   const std::size_t started = for_each_in_order(
       todo.size(), tokens,
@@ -546,24 +543,24 @@ int run_batch(const BatchCommand& c, const BatchInputs& b, const CommonOptions& 
         FileReport& r = reports[todo[k]];
         progress.started(r.input);
         r.progress = [&progress, &r](double done) { progress.fraction(r.input, done); };
-        run_file(c, r, outputs[todo[k]], common, policy);
+        run_file(c, r, outputs[todo[k]], policy);
       },
       [&](std::size_t k) {
         FileReport& r = reports[todo[k]];
         progress.finished(r.input, [&] {
-          if (!common.quiet && !s.json) {
+          if (!o.quiet && !o.json) {
             for (const std::string& w : r.warnings) print_warning(c.name, w);
           }
-          if (r.status == "failed") {
+          if (r.status == FileStatus::failed) {
             print_error(c.name, r.error);
-          } else if (!common.quiet && !s.json && !r.line.empty()) {
+          } else if (!o.quiet && !o.json && !r.line.empty()) {
             std::cout << r.line << "\n" << std::flush;
           }
         });
-        return !(r.status == "failed" && s.fail_fast);
+        return !(r.status == FileStatus::failed && o.fail_fast);
       });
   progress.close();
-  for (std::size_t k = started; k < todo.size(); ++k) reports[todo[k]].status = "not_run";
+  for (std::size_t k = started; k < todo.size(); ++k) reports[todo[k]].status = FileStatus::not_run;
   return finish();
 }
 

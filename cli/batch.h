@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "common.h"
+#include "json.h"
 #include "texproc/error.h"
 
 namespace texproc::cli {
@@ -54,13 +55,19 @@ std::vector<InputFile> expand_inputs(const BatchInputs& b, const std::vector<std
 std::string expand_template(const std::string& pattern, const InputFile& in);
 bool is_template(const std::string& output);
 
+// How far a file got: ok, failed, skipped (--skip-existing or up to
+// date), not_run (a failure before it, with --fail-fast).
+enum class FileStatus { ok, failed, skipped, not_run };
+// "ok", "failed", "skipped", "not_run": the summary's spelling.
+const char* to_string(FileStatus s);
+
 // What a run produced for one input.
 struct FileReport {
   std::string input;
   std::vector<std::string> inputs;   // every file the outputs depend on: input, OCIO config, radius map...
   std::vector<std::string> outputs;  // the files written (or, with --dry-run, to be written)
-  std::string status = "ok";         // ok, failed, skipped (--skip-existing), not_run (--fail-fast)
-  std::string error;                 // the message, when failed
+  FileStatus status = FileStatus::ok;
+  std::string error;  // the message, when failed
   ErrorCode code = ErrorCode::success;
   std::string line;                        // the human summary ("a.png -> a.dds: ..."), printed unless --quiet
   std::vector<std::string> warnings;       // "FILE: what", printed on stderr unless --quiet, in --json too
@@ -116,17 +123,11 @@ struct BatchCommand {
 // Runs `c` over the inputs; returns 0, or the exit code of the first failed
 // file in input order. Throws Error for problems of the whole run (options,
 // an -o that cannot name several files, two inputs naming one output).
-int run_batch(const BatchCommand& c, const BatchInputs& in, const CommonOptions& common);
+int run_batch(const BatchCommand& c, const BatchInputs& in);
 
-// Options of the whole process (the top-level command): set by
-// add_common_options, read by run_batch and main.
-struct SessionOptions {
-  int jobs = 0;  // files in flight (0: as many as threads)
-  bool fail_fast = false;
-  bool skip_existing = false;
-  bool json = false;
-  bool timings = false;   // --timings: --json reports seconds and phases (without: the summary is reproducible)
-  bool progress = false;  // --progress: draw progress even when stderr is not a terminal
+// What the batches of one process share beyond the options: set by
+// `build`, which runs several, and read by run_batch.
+struct BatchSession {
   // Set by `build` for a first pass over its jobs: run_batch checks the
   // options, inputs and output names, and returns before planning files.
   bool check_only = false;
@@ -151,9 +152,7 @@ struct SessionOptions {
   // Set by `build`: which of a job's files this run takes (its excludes,
   // the files of one override); null: all.
   std::function<bool(const std::string& input)> select;
-  // --shard I/N: of the files selected (counted over the whole process, in
-  // order), only those whose number is I modulo N are run. count 0: all.
-  int shard_index = 0, shard_count = 0;
+  // Files selected so far, over the whole process (RunOptions::shard_count).
   std::size_t shard_counter = 0;
   // Set by `build` unless --force: per-file change tracking. Returns "" when
   // the file's outputs are up to date, else why it is to be rebuilt; used
@@ -163,13 +162,11 @@ struct SessionOptions {
   // normalized) and the job writing each. A file reading one of them is
   // listed as rebuilt, even while that input does not exist yet.
   std::map<std::string, std::string> pending;
-  // --ocio-config FILE: the OpenColorIO config (set as $OCIO for this process).
-  std::string ocio_config;
 };
 // The key a file is known by in owned_outputs: its absolute, normalized
 // path with symlinks in its folders resolved.
 std::string output_key(const std::string& path);
-SessionOptions& session_options();
+BatchSession& batch_session();
 // `path` made absolute (from the working folder) and normalized (no "." or
 // ".."; symlinks kept): how a recipe compares the paths its jobs name.
 std::string absolute_path(const std::string& path);
@@ -182,8 +179,5 @@ std::vector<FileReport>& session_reports();
 void print_json_summary(const std::string& command, int exit_code, const std::string& error = "");
 // After several files, a closing line on stderr listing the failures.
 void print_failure_summary(const std::string& command);
-
-// Writes a Json::Value as the summaries and `info --json` do.
-std::string to_json(const Json::Value& v);
 
 }  // namespace texproc::cli

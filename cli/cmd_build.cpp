@@ -32,7 +32,6 @@ namespace texproc::cli {
 namespace {
 
 struct BuildArgs {
-  CommonOptions common;
   std::string recipe, out_dir;
   std::vector<std::string> only;
   bool emit_actions = false;
@@ -158,8 +157,7 @@ std::vector<std::string> command_words(const RecipeJob& j) {
   return j.command == "sat blur" ? std::vector<std::string>{"sat", "blur"} : std::vector<std::string>{j.command};
 }
 
-PreparedJob prepare(const Recipe& r, const Unit& u, const std::vector<std::string>& inputs,
-                    const CommonOptions& common) {
+PreparedJob prepare(const Recipe& r, const Unit& u, const std::vector<std::string>& inputs) {
   const RecipeJob& j = *u.job;
   PreparedJob p;
   p.job = &j;
@@ -178,11 +176,8 @@ PreparedJob prepare(const Recipe& r, const Unit& u, const std::vector<std::strin
   if (j.recursive) args.push_back("-r");
   const std::vector<std::string> opts = option_args(r, u, p.command);
   args.insert(args.end(), opts.begin(), opts.end());
-  // The run-level options each job's own parser holds.
-  if (common.threads > 0) args.insert(args.end(), {"--threads", std::to_string(common.threads)});
-  if (common.force) args.push_back("--force");
-  if (common.quiet) args.push_back("--quiet");
-  if (common.verbose) args.push_back("--verbose");
+  // The run-level options (--threads, --force...) are the build's own:
+  // RunOptions, which the job's parser shares.
   std::reverse(args.begin(), args.end());  // CLI11 takes the arguments last first
   try {
     p.app->parse(args);
@@ -246,8 +241,8 @@ struct OwnedOutputs {
 struct JobPlan {
   std::vector<std::string> inputs;  // the job's inputs as arguments, globs expanded
   std::vector<const InputSpec*> unmatched;
-  std::vector<std::vector<SessionOptions::PlannedFile>> units;  // per unit
-  std::set<std::string> outputs;                                // absolute
+  std::vector<std::vector<BatchSession::PlannedFile>> units;  // per unit
+  std::set<std::string> outputs;                              // absolute
 };
 
 struct Plan {
@@ -258,11 +253,11 @@ struct Plan {
 };
 
 // Checks the units' options, inputs and output names and plans their files
-// (SessionOptions::check_only), with globs expanded against the files on
+// (BatchSession::check_only), with globs expanded against the files on
 // disk and `planned`.
 std::vector<JobPlan> plan_pass(const Recipe& r, const std::vector<std::vector<Unit>>& units,
-                               const std::vector<std::string>& planned, const CommonOptions& common) {
-  SessionOptions& s = session_options();
+                               const std::vector<std::string>& planned) {
+  BatchSession& s = batch_session();
   std::vector<JobPlan> out(units.size());
   for (std::size_t j = 0; j < units.size(); ++j) {
     const RecipeJob& job = *units[j].front().job;
@@ -271,7 +266,7 @@ std::vector<JobPlan> plan_pass(const Recipe& r, const std::vector<std::vector<Un
     jp.units.resize(units[j].size());
     if (jp.inputs.empty()) continue;
     for (std::size_t k = 0; k < units[j].size(); ++k) {
-      PreparedJob p = prepare(r, units[j][k], jp.inputs, common);
+      PreparedJob p = prepare(r, units[j][k], jp.inputs);
       s.check_only = true;
       s.plans = &jp.units[k];
       s.select = selector(units[j][k]);
@@ -319,12 +314,12 @@ bool reads_from(const RecipeJob& consumer, const JobPlan& c, const JobPlan& prod
 // outputs until nothing new appears, the jobs are ordered producers first
 // (recipe order among independent jobs), and cycles and patterns that match
 // nothing are refused.
-Plan plan_recipe(const Recipe& r, const CommonOptions& common) {
+Plan plan_recipe(const Recipe& r) {
   Plan plan;
   for (const RecipeJob& j : r.jobs) plan.units.push_back(units_of(j));
   const std::size_t n = r.jobs.size();
   for (std::size_t pass = 0; pass <= n + 1; ++pass) {
-    plan.jobs = plan_pass(r, plan.units, plan.planned, common);
+    plan.jobs = plan_pass(r, plan.units, plan.planned);
     std::set<std::string> all;
     for (const JobPlan& jp : plan.jobs) all.insert(jp.outputs.begin(), jp.outputs.end());
     std::vector<std::string> next(all.begin(), all.end());
@@ -429,7 +424,7 @@ std::string action_path(const fs::path& base, const std::string& p) {
 Json::Value emit_actions(const Recipe& r, const Plan& plan, const std::vector<std::string>& only) {
   const fs::path base = fs::path(
       absolute_path(fs::path(r.path).parent_path().string().empty() ? "." : fs::path(r.path).parent_path().string()));
-  const std::string ocio = session_options().ocio_config;
+  const std::string ocio = run_options().ocio_config;
   Json::Value actions(Json::arrayValue);
   for (std::size_t j : plan.order) {
     const RecipeJob& job = r.jobs[j];
@@ -483,7 +478,7 @@ int run_build(const BuildArgs& a) {
   }
   // Every job is parsed and planned before any runs: a mistake anywhere
   // stops the build before it writes anything.
-  const Plan plan = plan_recipe(recipe, a.common);
+  const Plan plan = plan_recipe(recipe);
   if (a.emit_actions) {
     std::cout << to_json(emit_actions(recipe, plan, a.only));
     return 0;
@@ -496,8 +491,8 @@ int run_build(const BuildArgs& a) {
   // Incremental unless --force: a file is rebuilt when its job's settings,
   // its inputs' bytes or texproc changed; only outputs this recipe made may
   // be replaced.
-  SessionOptions& s = session_options();
-  s.incremental = !a.common.force;
+  BatchSession& s = batch_session();
+  s.incremental = !run_options().force;
   s.owned_outputs = owned.keys;
   const Unit* current = nullptr;
   s.why_rebuild = [&](const FileReport& r) { return state.why_rebuild(r, current->signature); };
@@ -512,7 +507,7 @@ int run_build(const BuildArgs& a) {
       current = &u;
       const std::size_t unit_first = session_reports().size();
       try {
-        PreparedJob p = prepare(recipe, u, inputs, a.common);
+        PreparedJob p = prepare(recipe, u, inputs);
         s.select = selector(u);
         const int unit_rc = (*runner_of(*top_command(p)))();
         if (unit_rc != 0 && job_rc == 0) job_rc = unit_rc;
@@ -521,26 +516,26 @@ int run_build(const BuildArgs& a) {
         if (job_rc == 0) job_rc = int(e.code());
       }
       s.select = nullptr;
-      if (dry_run()) continue;
+      if (run_options().dry_run) continue;
       for (std::size_t i = unit_first; i < session_reports().size(); ++i) {
         const FileReport& fr = session_reports()[i];
-        if (fr.status == "ok") state.record(fr, u.signature);
+        if (fr.status == FileStatus::ok) state.record(fr, u.signature);
       }
-      if (job_rc != 0 && s.fail_fast) break;
+      if (job_rc != 0 && run_options().fail_fast) break;
     }
     bool wrote = false;
     for (std::size_t i = first; i < session_reports().size(); ++i) {
       FileReport& fr = session_reports()[i];
       fr.details["job"] = job_name(job);
-      if (fr.status != "ok") continue;
-      if (dry_run()) {
+      if (fr.status != FileStatus::ok) continue;
+      if (run_options().dry_run) {
         for (const std::string& o : fr.outputs) s.pending[absolute_path(o)] = "'" + job_name(job) + "'";
         continue;
       }
       for (const std::string& o : fr.outputs) owned.add(o);
       wrote = true;
     }
-    if (!dry_run() && (wrote || state.dirty())) {
+    if (!run_options().dry_run && (wrote || state.dirty())) {
       std::error_code ec;
       fs::create_directories(root, ec);
       FileLock lock((root / ("." + fs::path(a.recipe).filename().string() + ".lock")).string());
@@ -549,7 +544,7 @@ int run_build(const BuildArgs& a) {
       s.owned_outputs = owned.keys;
     }
     if (job_rc != 0 && rc == 0) rc = job_rc;
-    if (job_rc != 0 && s.fail_fast) break;
+    if (job_rc != 0 && run_options().fail_fast) break;
   }
   s.why_rebuild = nullptr;
   return rc;
@@ -572,7 +567,7 @@ void add_build_command(CLI::App& app) {
   cmd->add_flag("--emit-actions", args->emit_actions,
                 "Print the recipe's actions as JSON and run nothing: per file, the argv, inputs and outputs (paths "
                 "relative to the recipe's folder) and the tool digest, for build systems (docs/scale-out.md)");
-  add_common_options(*cmd, args->common);
+  add_common_options(*cmd);
   set_runner(*cmd, [args] { return run_build(*args); });
 }
 

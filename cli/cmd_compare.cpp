@@ -22,7 +22,6 @@ namespace texproc::cli {
 namespace {
 
 struct CompareArgs {
-  CommonOptions common;
   std::string a, b;
   int level = 0;
   double min_psnr = -1, max_error = -1, min_ssim = -1, max_log_rmse = -1;
@@ -119,7 +118,7 @@ bool below(double value, double limit) { return !(value >= limit); }
 bool above(double value, double limit) { return !(value <= limit); }
 
 int run_compare(const CompareArgs& a) {
-  ThreadLimit threads(a.common.threads);
+  ThreadLimit threads(run_options().threads);
   const Loaded la = load(a.a, a.level), lb = load(a.b, a.level);
   const ConstImageView& ia = la.shape;
   const ConstImageView& ib = lb.shape;
@@ -198,7 +197,7 @@ int run_compare(const CompareArgs& a) {
     j["identical"] = d.differing_texels == 0;
     j["within_limits"] = failed.empty();
     std::cout << to_json(j) << "\n";
-  } else if (!a.common.quiet) {
+  } else if (!run_options().quiet) {
     std::ostringstream s;
     s << a.a << " vs " << a.b << ": " << d.width << "x" << d.height << "x" << n << ", PSNR " << db(d.psnr()) << " dB";
     if (n >= 3) s << " (RGB " << db(d.psnr_rgb()) << " dB)";
@@ -243,8 +242,9 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("--min-ssim", args->min_ssim, "Exit 7 when the mean SSIM is below this (0..1)")
       ->check(in_range(-1, 1));
   cmd->add_flag("--ssim", args->ssim, "Also compute SSIM (11x11 Gaussian window)");
-  cmd->add_option("--threads", args->common.threads, "Worker threads (default 0: all cores)")->check(in_range(0, 4096));
-  cmd->add_flag("-q,--quiet", args->common.quiet, "Print nothing; the exit code tells");
+  cmd->add_option("--threads", run_options().threads, "Worker threads (default 0: all cores)")
+      ->check(in_range(0, 4096));
+  cmd->add_flag("-q,--quiet", run_options().quiet, "Print nothing; the exit code tells");
   cmd->add_flag("--json", args->json, "Print the figures as one JSON object");
   set_runner(*cmd, [args] { return run_compare(*args); });
 }

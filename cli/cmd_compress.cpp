@@ -30,7 +30,6 @@ namespace texproc::cli {
 namespace {
 
 struct CompressArgs {
-  CommonOptions common;
   BatchInputs io;
   ChainArgs chain;
   std::string format, quality = "normal", wrap = "clamp", dds_header = "auto";
@@ -406,7 +405,7 @@ void add_compress_command(CLI::App& app) {
                 "bc1: dark texels may take the three-colour mode's black where that lowers the error (Direct3D "
                 "reads alpha 0 there: for KTX2/Vulkan/OpenGL BC1 RGB, or shaders that ignore alpha)");
   cmd->add_flag("--report", args->report, "Decode level 0 again and report its PSNR (all channels, RGB, each channel)");
-  add_common_options(*cmd, args->common);
+  add_common_options(*cmd);
   set_runner(*cmd, [args] {
     BatchCommand c;
     c.name = "compress";
@@ -425,7 +424,7 @@ void add_compress_command(CLI::App& app) {
       return std::vector<std::string>{out};
     };
     c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_compress(*args, in, out, r); };
-    return run_batch(c, args->io, args->common);
+    return run_batch(c, args->io);
   });
 }
 

@@ -18,7 +18,6 @@ namespace texproc::cli {
 namespace {
 
 struct ConeArgs {
-  CommonOptions common;
   BatchInputs io;
   std::string preview;
   std::string height_channel = "auto";
@@ -207,7 +206,7 @@ void add_conemap_command(CLI::App& app) {
   cmd->add_option("--view-angle", args->view_angle, "Preview view angle from the normal, degrees")
       ->check(in_range(0, 89))
       ->capture_default_str();
-  add_common_options(*cmd, args->common);
+  add_common_options(*cmd);
   set_runner(*cmd, [args] {
     BatchCommand c;
     c.name = "conemap";
@@ -220,7 +219,7 @@ void add_conemap_command(CLI::App& app) {
       return outs;
     };
     c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_conemap(*args, in, out, r); };
-    return run_batch(c, args->io, args->common);
+    return run_batch(c, args->io);
   });
 }
 

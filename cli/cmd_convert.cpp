@@ -15,7 +15,6 @@ namespace texproc::cli {
 namespace {
 
 struct ConvertArgs {
-  CommonOptions common;
   BatchInputs io;
   std::string dds_header = "auto";
   int zstd = 0;
@@ -68,7 +67,7 @@ void add_convert_command(CLI::App& app) {
   cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")
       ->check(in_range(1, 22));
   cmd->add_option("--dds-header", args->dds_header, "DDS output: auto, dx9, dx10")->capture_default_str();
-  add_common_options(*cmd, args->common);
+  add_common_options(*cmd);
   set_runner(*cmd, [args] {
     BatchCommand c;
     c.name = "convert";
@@ -89,7 +88,7 @@ void add_convert_command(CLI::App& app) {
     };
     c.plan = [](const InputFile&, const std::string& out) { return std::vector<std::string>{out}; };
     c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_convert(*args, in, out, r); };
-    return run_batch(c, args->io, args->common);
+    return run_batch(c, args->io);
   });
 }
 

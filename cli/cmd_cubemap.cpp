@@ -3,7 +3,6 @@
 // image-based lighting; spherical harmonics; a preview.
 #include <filesystem>
 #include <fstream>
-#include <iomanip>
 #include <sstream>
 
 #include "batch.h"
@@ -28,7 +27,6 @@ enum class Target { automatic, cube, cross, vcross, strip, vstrip, equirect, fac
 enum class Ibl { none, specular, irradiance, both };
 
 struct CubemapArgs {
-  CommonOptions common;
   BatchInputs io;
   std::vector<std::string> faces;
   std::string layout = "auto", to = "auto", format, color_space, flip = "none", ibl = "none";
@@ -415,20 +413,23 @@ void write_environment(const CubemapArgs& a, const Source& s, const Cubemap& c, 
 void write_sh(const std::string& path, const SphericalHarmonics9& sh) {
   static const char* kNames[9] = {"Y00", "Y1-1", "Y10", "Y11", "Y2-2", "Y2-1", "Y20", "Y21", "Y22"};
   static constexpr double kBand[9] = {1.0, 2.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0, 0.25, 0.25, 0.25, 0.25, 0.25};
-  std::ostringstream o;
-  o << std::setprecision(9);
-  o << "{\n  \"basis\": \"real spherical harmonics, Ramamoorthi and Hanrahan 2001, texproc axes (docs/cubemap.md)\",\n";
-  o << "  \"order\": [";
-  for (int k = 0; k < 9; ++k) o << (k ? ", " : "") << '"' << kNames[k] << '"';
-  o << "],\n  \"radiance\": [";
-  for (int k = 0; k < 9; ++k)
-    o << (k ? ", " : "") << "[" << sh.radiance[k][0] << ", " << sh.radiance[k][1] << ", " << sh.radiance[k][2] << "]";
-  o << "],\n  \"irradiance_over_pi\": [";
-  for (int k = 0; k < 9; ++k)
-    o << (k ? ", " : "") << "[" << kBand[k] * sh.radiance[k][0] << ", " << kBand[k] * sh.radiance[k][1] << ", "
-      << kBand[k] * sh.radiance[k][2] << "]";
-  o << "]\n}\n";
-  write_file_atomic(path, o.str());
+  Json::Value order(Json::arrayValue), radiance(Json::arrayValue), irradiance(Json::arrayValue);
+  for (int k = 0; k < 9; ++k) {
+    Json::Value r(Json::arrayValue), e(Json::arrayValue);
+    for (int c = 0; c < 3; ++c) {
+      r.append(sh.radiance[k][c]);
+      e.append(kBand[k] * sh.radiance[k][c]);
+    }
+    order.append(kNames[k]);
+    radiance.append(r);
+    irradiance.append(e);
+  }
+  Json::Value j(Json::objectValue);
+  j["basis"] = "real spherical harmonics, Ramamoorthi and Hanrahan 2001, texproc axes (docs/cubemap.md)";
+  j["order"] = order;
+  j["radiance"] = radiance;
+  j["irradiance_over_pi"] = irradiance;
+  write_file_atomic(path, to_json(j, kExactDigits) + "\n");
 }
 
 void run_cubemap(const CubemapArgs& a, const std::string& input, const std::string& output, FileReport& r) {
@@ -570,7 +571,7 @@ void add_cubemap_command(CLI::App& app) {
       ->check(in_range(1, 22))
       ->group("Container");
   cmd->add_flag("--report", args->report, "With --json: seam figures per level (steps across edges and inside)");
-  add_common_options(*cmd, args->common);
+  add_common_options(*cmd);
   set_runner(*cmd, [args] {
     BatchCommand c;
     c.name = "cubemap";
@@ -585,7 +586,7 @@ void add_cubemap_command(CLI::App& app) {
     };
     c.plan = [args](const InputFile& in, const std::string& out) { return make_plan(*args, in.path, out).all(); };
     c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_cubemap(*args, in, out, r); };
-    return run_batch(c, args->io, args->common);
+    return run_batch(c, args->io);
   });
 }
 

@@ -19,7 +19,6 @@ namespace texproc::cli {
 namespace {
 
 struct DecompressArgs {
-  CommonOptions common;
   BatchInputs io;
   std::string type;
   int level = 0, layer = 0, face = 0;
@@ -138,7 +137,7 @@ void add_decompress_command(CLI::App& app) {
   cmd->add_option("--layer", args->layer, "Array layer (default 0)")->check(in_range(0, 65535));
   cmd->add_option("--face", args->face, "Cubemap face 0-5: +X, -X, +Y, -Y, +Z, -Z (default 0)")->check(in_range(0, 5));
   cmd->add_option("--type", args->type, "Output element type: u8, u16, f16, f32 (default u8; f16 for .exr)");
-  add_common_options(*cmd, args->common);
+  add_common_options(*cmd);
   set_runner(*cmd, [args] {
     BatchCommand c;
     c.name = "decompress";
@@ -147,7 +146,7 @@ void add_decompress_command(CLI::App& app) {
     c.validate = [args] { args->type_choice = parse_output_type(args->type, args->write); };
     c.plan = [args](const InputFile& in, const std::string& out) { return plan(*args, in.path, out); };
     c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_decompress(*args, in, out, r); };
-    return run_batch(c, args->io, args->common);
+    return run_batch(c, args->io);
   });
 }
 

@@ -25,21 +25,6 @@ struct InfoArgs {
   bool json = false;
 };
 
-std::string quoted(const std::string& s) {
-  std::string o = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\';
-    if (static_cast<unsigned char>(c) < 0x20) {
-      char b[8];
-      std::snprintf(b, sizeof b, "\\u%04x", c);
-      o += b;
-      continue;
-    }
-    o += c;
-  }
-  return o + "\"";
-}
-
 std::string num(double v) {
   char b[64];
   std::snprintf(b, sizeof b, "%.17g", v);
@@ -48,14 +33,20 @@ std::string num(double v) {
 
 // One file as a JSON object (the stable form, documented in docs/cli.md) and
 // as text.
-void describe(const std::string& path, std::ostringstream& json, std::ostringstream& text) {
+void describe(const std::string& path, Json::Value& json, std::ostringstream& text) {
   if (fs::path(path).extension() == ".sat") {
     const SummedAreaTable t = read_sat_file(path);
-    json << "{\"file\": " << quoted(path) << ", \"container\": \"sat\", \"width\": " << t.width
-         << ", \"height\": " << t.height << ", \"channels\": " << t.channels << ", \"precision\": \""
-         << to_string(t.precision) << "\", \"source_type\": \"" << to_string(t.source) << "\", \"block\": " << t.block
-         << ", \"max_exact_box\": " << t.max_exact_box() << ", \"error_bound\": " << num(t.error_bound())
-         << ", \"data_bytes\": " << t.data.size() << "}";
+    json["file"] = path;
+    json["container"] = "sat";
+    json["width"] = t.width;
+    json["height"] = t.height;
+    json["channels"] = t.channels;
+    json["precision"] = to_string(t.precision);
+    json["source_type"] = to_string(t.source);
+    json["block"] = t.block;
+    json["max_exact_box"] = Json::UInt64(t.max_exact_box());
+    json["error_bound"] = t.error_bound();
+    json["data_bytes"] = Json::UInt64(t.data.size());
     text << path << ": summed-area table, " << t.width << "x" << t.height << ", " << t.channels << " channel(s), "
          << to_string(t.precision) << " sums of " << to_string(t.source) << " values";
     if (t.max_exact_box()) text << ", exact for boxes up to " << t.max_exact_box() << " texels";
@@ -76,29 +67,41 @@ void describe(const std::string& path, std::ostringstream& json, std::ostringstr
       container_from_signature(reinterpret_cast<const std::uint8_t*>(h), std::size_t(in.gcount()), kind);
     }
     const std::string container = to_string(kind);
-    json << "{\"file\": " << quoted(path) << ", \"container\": \"" << container << "\", \"format\": \"" << f.name
-         << "\", \"vk_format\": " << f.vk_format << ", \"dxgi_format\": " << f.dxgi_format << ", \"color_space\": \""
-         << (f.srgb ? "srgb" : "linear") << "\", \"width\": " << t.width << ", \"height\": " << t.height
-         << ", \"faces\": " << t.faces << ", \"layers\": " << t.layers
-         << ", \"is_array\": " << (t.is_array ? "true" : "false") << ", \"levels\": [";
+    json["file"] = path;
+    json["container"] = container;
+    json["format"] = f.name;
+    json["vk_format"] = f.vk_format;
+    json["dxgi_format"] = f.dxgi_format;
+    json["color_space"] = f.srgb ? "srgb" : "linear";
+    json["width"] = t.width;
+    json["height"] = t.height;
+    json["faces"] = t.faces;
+    json["layers"] = t.layers;
+    json["is_array"] = t.is_array;
+    Json::Value levels(Json::arrayValue);
     std::uint64_t total = 0;
     for (std::uint32_t l = 0; l < t.levels; ++l) {
       const std::uint64_t bytes = image_bytes(t.format, t.level_width(l), t.level_height(l)) * t.layers * t.faces;
       total += bytes;
-      json << (l ? ", " : "") << "{\"width\": " << t.level_width(l) << ", \"height\": " << t.level_height(l)
-           << ", \"bytes\": " << bytes << "}";
+      Json::Value level(Json::objectValue);
+      level["width"] = t.level_width(l);
+      level["height"] = t.level_height(l);
+      level["bytes"] = Json::UInt64(bytes);
+      levels.append(level);
     }
-    json << "], \"data_bytes\": " << total;
+    json["levels"] = levels;
+    json["data_bytes"] = Json::UInt64(total);
     Ktx2Storage storage;
     if (kind == ContainerKind::ktx2) {
       storage = ktx2_storage(path);
       std::uint64_t stored = 0;
       for (std::uint64_t b : storage.stored_bytes) stored += b;
-      json << ", \"supercompression\": \"" << ktx2_scheme_name(storage.scheme) << "\", \"stored_level_bytes\": [";
-      for (std::size_t l = 0; l < storage.stored_bytes.size(); ++l) json << (l ? ", " : "") << storage.stored_bytes[l];
-      json << "], \"stored_bytes\": " << stored;
+      Json::Value stored_levels(Json::arrayValue);
+      for (std::uint64_t b : storage.stored_bytes) stored_levels.append(Json::UInt64(b));
+      json["supercompression"] = ktx2_scheme_name(storage.scheme);
+      json["stored_level_bytes"] = stored_levels;
+      json["stored_bytes"] = Json::UInt64(stored);
     }
-    json << "}";
     const bool packed = storage.scheme != 0 && storage.stored_bytes.size() == t.levels;
     text << path << ": " << container << ", " << f.name << " (" << (f.srgb ? "sRGB" : "linear") << "), " << t.width
          << "x" << t.height << ", " << t.levels << " level(s)";
@@ -123,16 +126,23 @@ void describe(const std::string& path, std::ostringstream& json, std::ostringstr
     return;
   }
   const ImageFileInfo i = probe_image(path, cli_read_options());
-  json << "{\"file\": " << quoted(path) << ", \"container\": " << quoted(i.format) << ", \"width\": " << i.width
-       << ", \"height\": " << i.height << ", \"channels\": " << i.channels << ", \"type\": " << quoted(i.file_type)
-       << ", \"color_space_tag\": " << quoted(i.color_space_tag)
-       << ", \"color_space_tagged\": " << (i.color_space_tagged ? "true" : "false")
-       << ", \"subimages\": " << i.subimages << ", \"levels\": [";
-  for (std::size_t l = 0; l < i.level_sizes.size(); ++l) {
-    json << (l ? ", " : "") << "{\"width\": " << i.level_sizes[l].first << ", \"height\": " << i.level_sizes[l].second
-         << "}";
+  json["file"] = path;
+  json["container"] = i.format;
+  json["width"] = i.width;
+  json["height"] = i.height;
+  json["channels"] = i.channels;
+  json["type"] = i.file_type;
+  json["color_space_tag"] = i.color_space_tag;
+  json["color_space_tagged"] = i.color_space_tagged;
+  json["subimages"] = i.subimages;
+  Json::Value levels(Json::arrayValue);
+  for (const auto& [width, height] : i.level_sizes) {
+    Json::Value level(Json::objectValue);
+    level["width"] = width;
+    level["height"] = height;
+    levels.append(level);
   }
-  json << "]}";
+  json["levels"] = levels;
   text << path << ": " << i.format << ", " << i.width << "x" << i.height << ", " << i.channels << " channel(s) of "
        << i.file_type;
   if (!i.color_space_tag.empty()) {
@@ -151,25 +161,31 @@ int run_info(const InfoArgs& args) {
     if (std::find(extensions.begin(), extensions.end(), e) == extensions.end()) extensions.push_back(e);
   extensions.push_back(".sat");
   for (const InputFile& f : expand_inputs(args.io, extensions)) files.push_back(f.path);
-  std::ostringstream json, text;
-  json << "[";
+  std::ostringstream text;
+  Json::Value json(Json::arrayValue);
   int failures = 0;
   ErrorCode last = ErrorCode::success;
   for (std::size_t k = 0; k < files.size(); ++k) {
     try {
-      std::ostringstream j;
+      Json::Value j(Json::objectValue);
       describe(files[k], j, text);
-      json << (k && json.str().size() > 1 ? ", " : "") << j.str();
+      json.append(j);
     } catch (const Error& e) {
       print_error("info", about(files[k], e.what()));
-      json << (json.str().size() > 1 ? ", " : "") << "{\"file\": " << quoted(files[k])
-           << ", \"error\": " << quoted(about(files[k], e.what())) << ", \"exit_code\": " << int(e.code()) << "}";
+      Json::Value j(Json::objectValue);
+      j["file"] = files[k];
+      j["error"] = about(files[k], e.what());
+      j["exit_code"] = int(e.code());
+      json.append(j);
       ++failures;
       last = e.code();
     }
   }
-  json << "]\n";
-  std::cout << (args.json ? json.str() : text.str());
+  if (args.json) {
+    std::cout << to_json(json, kExactDigits) << "\n";
+  } else {
+    std::cout << text.str();
+  }
   return failures ? int(last) : 0;
 }
 

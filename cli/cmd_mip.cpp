@@ -20,7 +20,6 @@ namespace texproc::cli {
 namespace {
 
 struct MipArgs {
-  CommonOptions common;
   BatchInputs io;
   ChainArgs chain;
   std::string wrap = "clamp";
@@ -154,7 +153,7 @@ void report_mip(const MipArgs& a, const std::string& input, const std::string& o
   line << input << " -> " << (r.outputs.size() == 1 ? output : r.outputs[0] + " ...") << ": " << level_count
        << " levels, " << info.width << "x" << info.height << " " << to_string(level_type) << " " << chain.color_space
        << ", filter " << a.chain.filter << ", wrap " << a.wrap;
-  if (a.common.verbose) {
+  if (run_options().verbose) {
     for (std::size_t l = 0; l < chain.alpha_coverage.size(); ++l) {
       line << "\n  level " << l << ": alpha coverage " << chain.alpha_coverage[l] << " (alpha x "
            << chain.alpha_scale[l] << ")";
@@ -215,7 +214,7 @@ void add_mip_command(CLI::App& app) {
       ->check(in_range(1, 22))
       ->group("Container");
   cmd->add_flag("--report", args->report, "With --json: alpha coverage and its scale per level (--alpha-coverage)");
-  add_common_options(*cmd, args->common);
+  add_common_options(*cmd);
   set_runner(*cmd, [args] {
     BatchCommand c;
     c.name = "mip";
@@ -224,7 +223,7 @@ void add_mip_command(CLI::App& app) {
     c.validate = [args] { validate(*args); };
     c.plan = [args](const InputFile& in, const std::string& out) { return plan(*args, in.path, out); };
     c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_mip(*args, in, out, r); };
-    return run_batch(c, args->io, args->common);
+    return run_batch(c, args->io);
   });
 }
 

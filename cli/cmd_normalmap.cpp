@@ -18,7 +18,6 @@ namespace texproc::cli {
 namespace {
 
 struct NormalMapArgs {
-  CommonOptions common;
   BatchInputs io;
   ChainArgs chain;
   std::string kernel = "sobel3";
@@ -186,7 +185,7 @@ void add_normalmap_command(CLI::App& app) {
   cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")
       ->check(in_range(1, 22))
       ->group("Container");
-  add_common_options(*cmd, args->common);
+  add_common_options(*cmd);
   set_runner(*cmd, [args] {
     BatchCommand c;
     c.name = "normalmap";
@@ -195,7 +194,7 @@ void add_normalmap_command(CLI::App& app) {
     c.validate = [args] { validate(*args); };
     c.plan = [args](const InputFile& in, const std::string& out) { return plan(*args, in.path, out); };
     c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_normalmap(*args, in, out, r); };
-    return run_batch(c, args->io, args->common);
+    return run_batch(c, args->io);
   });
 }
 

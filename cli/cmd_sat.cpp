@@ -19,7 +19,6 @@ namespace texproc::cli {
 namespace {
 
 struct SatArgs {
-  CommonOptions common;
   BatchInputs io;
   std::string precision;
   // query
@@ -111,12 +110,19 @@ int run_query(const SatArgs& a) {
   t.box_sum(int(a.x0), int(a.y0), int(a.x1), int(a.y1), sum.data());
   // Integer tables sum integer codes; means are reported in those units too.
   if (a.json) {
-    std::cout << "{\"box\": [" << a.x0 << ", " << a.y0 << ", " << a.x1 << ", " << a.y1 << "], \"texels\": " << area
-              << ", \"sum\": [";
-    for (int c = 0; c < t.channels; ++c) std::cout << (c ? ", " : "") << number(sum[c]);
-    std::cout << "], \"mean\": [";
-    for (int c = 0; c < t.channels; ++c) std::cout << (c ? ", " : "") << number(sum[c] / double(area));
-    std::cout << "], \"error_bound\": " << number(t.error_bound()) << "}\n";
+    Json::Value box(Json::arrayValue), sums(Json::arrayValue), means(Json::arrayValue);
+    for (long long v : {a.x0, a.y0, a.x1, a.y1}) box.append(Json::Int64(v));
+    for (int c = 0; c < t.channels; ++c) {
+      sums.append(sum[c]);
+      means.append(sum[c] / double(area));
+    }
+    Json::Value j(Json::objectValue);
+    j["box"] = box;
+    j["texels"] = Json::UInt64(area);
+    j["sum"] = sums;
+    j["mean"] = means;
+    j["error_bound"] = t.error_bound();
+    std::cout << to_json(j, kExactDigits) << "\n";
   } else {
     for (int c = 0; c < t.channels; ++c) {
       std::cout << "channel " << c << ": sum " << number(sum[c]) << ", mean " << number(sum[c] / double(area)) << "\n";
@@ -173,7 +179,7 @@ void add_sat_command(CLI::App& app) {
   cmd->add_option("--precision", args->precision,
                   "Element type: u32, u64 (wrapping integers), f32 (mean subtracted), f64; default: the smallest "
                   "that is exact for every box of the input");
-  add_common_options(*cmd, args->common);
+  add_common_options(*cmd);
 
   CLI::App* q = cmd->add_subcommand("query", "Sum and mean over a box [X0, X1) x [Y0, Y1) of a .sat table.");
   q->add_option("table", args->table, "A .sat file")->required();
@@ -193,11 +199,11 @@ void add_sat_command(CLI::App& app) {
   b->add_option("--wrap", args->wrap, "Texels past the edges: clamp, repeat")->capture_default_str();
   b->add_option("--colorspace", args->color_space, "Source color space (default: srgb for 8/16-bit, linear for float)");
   b->add_flag("--linear", args->linear, "The input is data: no transfer function");
-  add_common_options(*b, args->common);
+  add_common_options(*b);
 
   set_runner(*cmd, [args, cmd, q, b] {
     if (q->parsed()) {
-      ThreadLimit threads(args->common.threads);
+      ThreadLimit threads(run_options().threads);
       return run_query(*args);
     }
     BatchCommand c;
@@ -208,7 +214,7 @@ void add_sat_command(CLI::App& app) {
       c.validate = [args] { validate_blur(*args); };
       c.plan = [](const InputFile&, const std::string& out) { return std::vector<std::string>{out}; };
       c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_blur(*args, in, out, r); };
-      return run_batch(c, args->blur_io, args->common);
+      return run_batch(c, args->blur_io);
     }
     if (args->io.inputs.empty() && args->io.file_list.empty()) {
       throw Error(ErrorCode::bad_arguments,
@@ -223,7 +229,7 @@ void add_sat_command(CLI::App& app) {
     };
     c.plan = [](const InputFile&, const std::string& out) { return plan_build(out); };
     c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_build(*args, in, out, r); };
-    return run_batch(c, args->io, args->common);
+    return run_batch(c, args->io);
   });
 }
 

@@ -144,13 +144,13 @@ int run_selected(CLI::App& app) {
       const int rc = (*run)();
       if (rc == 0) write_depfile_if_requested();
       print_failure_summary(cmd);
-      if (session_options().json) print_json_summary(cmd, rc);
+      if (run_options().json) print_json_summary(cmd, rc);
       return rc;
     } catch (const texproc::Error& e) {
       const std::string message = in_cli_terms(e.what());
       print_error(cmd, message);
       if (e.code() == ErrorCode::bad_arguments) print_note("See 'texproc " + cmd + " --help'.");
-      if (session_options().json) print_json_summary(cmd, int(e.code()), message);
+      if (run_options().json) print_json_summary(cmd, int(e.code()), message);
       return int(e.code());
     } catch (const std::bad_alloc&) {
       print_error(cmd, "out of memory");

@@ -22,12 +22,8 @@ namespace fs = std::filesystem;
 namespace texproc::cli {
 
 namespace {
-// What --depfile, --dry-run and --write-if-changed need, for the one
-// command a process runs: the options, and the files check_output() saw.
+// The files check_output() saw and commands recorded, for --depfile.
 struct BuildState {
-  std::string path;  // --depfile
-  bool write_if_changed = false;
-  bool dry_run = false;
   std::vector<std::string> outputs, inputs;
   std::mutex mutex;  // commands record inputs from worker threads
 };
@@ -49,9 +45,14 @@ void refuse_overwriting_input(const std::string& output, const std::vector<std::
 }
 }  // namespace
 
-void add_common_options(CLI::App& cmd, CommonOptions& o) {
-  SessionOptions& s = session_options();
-  cmd.add_option("--threads", o.threads, "Worker threads (default 0: all cores). Output is identical for any value.")
+RunOptions& run_options() {
+  static RunOptions o;
+  return o;
+}
+
+void add_common_options(CLI::App& cmd) {
+  RunOptions& s = run_options();
+  cmd.add_option("--threads", s.threads, "Worker threads (default 0: all cores). Output is identical for any value.")
       ->check(in_range(0, 4096))
       ->group("Common");
   cmd.add_option("-j,--jobs", s.jobs,
@@ -97,22 +98,19 @@ void add_common_options(CLI::App& cmd, CommonOptions& o) {
          "manifests, actions), so that builds that clear the environment see it")
       ->group("Common");
   cmd.add_flag("--progress", s.progress, "Draw progress on stderr even when it is not a terminal")->group("Common");
-  cmd.add_flag("-f,--force", o.force, "Overwrite outputs that already exist")->group("Common");
-  cmd.add_flag("-q,--quiet", o.quiet, "Print nothing but errors")->group("Common");
-  cmd.add_flag("-v,--verbose", o.verbose, "Print details of the work")->group("Common");
-  cmd.add_option("--depfile", build_state().path,
+  cmd.add_flag("-f,--force", s.force, "Overwrite outputs that already exist")->group("Common");
+  cmd.add_flag("-q,--quiet", s.quiet, "Print nothing but errors")->group("Common");
+  cmd.add_flag("-v,--verbose", s.verbose, "Print details of the work")->group("Common");
+  cmd.add_option("--depfile", s.depfile,
                  "After success, write a Make-style dependency file (outputs: inputs) for Make and Ninja")
       ->group("Common");
-  cmd.add_flag("-n,--dry-run", build_state().dry_run,
+  cmd.add_flag("-n,--dry-run", s.dry_run,
                "Check the arguments and inputs, print the outputs that would be written, one a line; write nothing")
       ->group("Common");
-  cmd.add_flag("--write-if-changed", build_state().write_if_changed,
+  cmd.add_flag("--write-if-changed", s.write_if_changed,
                "Overwrite outputs, but leave an output untouched (time stamp too) when its bytes would not change")
       ->group("Common");
 }
-
-bool write_if_changed() { return build_state().write_if_changed; }
-bool dry_run() { return build_state().dry_run; }
 
 std::vector<std::string> recorded_inputs() {
   std::lock_guard lock(build_state().mutex);
@@ -189,13 +187,14 @@ void check_depfile_folder(const std::string& path) {
 
 void write_depfile_if_requested() {
   const BuildState& d = build_state();
-  if (d.path.empty() || d.dry_run) return;
-  if (d.outputs.empty()) throw Error(ErrorCode::bad_arguments, d.path + ": --depfile: this command writes no files");
-  refuse_overwriting_input(d.path, d.inputs, "--depfile");  // again: commands record inputs late (a config)
+  const std::string& depfile = run_options().depfile;
+  if (depfile.empty() || run_options().dry_run) return;
+  if (d.outputs.empty()) throw Error(ErrorCode::bad_arguments, depfile + ": --depfile: this command writes no files");
+  refuse_overwriting_input(depfile, d.inputs, "--depfile");  // again: commands record inputs late (a config)
   std::error_code ec;
-  const fs::path parent = fs::path(d.path).parent_path();
+  const fs::path parent = fs::path(depfile).parent_path();
   if (!parent.empty()) fs::create_directories(parent, ec);  // a failure is reported by the write
-  write_file_atomic(d.path, make_rule(d.outputs, d.inputs),
+  write_file_atomic(depfile, make_rule(d.outputs, d.inputs),
                     CommitPolicy::replace);  // the rule of this run replaces the last
 }
 
@@ -214,28 +213,29 @@ CommandRunner* runner_of(CLI::App& cmd) {
 
 void check_output(const std::string& output, const std::vector<std::string>& inputs, bool force) {
   BuildState& d = build_state();
+  const RunOptions& o = run_options();
   if (std::find(d.outputs.begin(), d.outputs.end(), output) == d.outputs.end()) d.outputs.push_back(output);
   for (const auto& in : inputs) record_input(in);
   refuse_overwriting_input(output, inputs, "output");
-  if (!d.path.empty()) {  // --depfile, checked before any work
-    check_depfile_folder(d.path);
+  if (!o.depfile.empty()) {  // --depfile, checked before any work
+    check_depfile_folder(o.depfile);
     check_depfile_name(output);
     for (const auto& in : inputs) check_depfile_name(in);
-    refuse_overwriting_input(d.path, inputs, "--depfile");
-    if (fs::path(output).lexically_normal() == fs::path(d.path).lexically_normal()) {
-      throw Error(ErrorCode::bad_arguments, d.path + ": --depfile names an output of the command");
+    refuse_overwriting_input(o.depfile, inputs, "--depfile");
+    if (fs::path(output).lexically_normal() == fs::path(o.depfile).lexically_normal()) {
+      throw Error(ErrorCode::bad_arguments, o.depfile + ": --depfile names an output of the command");
     }
   }
   std::error_code ec;
   if (fs::exists(output, ec)) {
     if (fs::is_directory(output, ec)) throw Error(ErrorCode::bad_arguments, output + ": output is a directory");
-    if (!force && !d.write_if_changed) {
+    if (!force && !o.write_if_changed) {
       throw Error(ErrorCode::bad_arguments,
                   output + ": output exists (use --force or --write-if-changed to replace it)");
     }
   }
   const fs::path parent = fs::path(output).parent_path();
-  if (!d.dry_run && !parent.empty() && !fs::exists(parent, ec)) {
+  if (!o.dry_run && !parent.empty() && !fs::exists(parent, ec)) {
     fs::create_directories(parent, ec);
     if (ec) throw Error(ErrorCode::io, parent.string() + ": cannot create folder: " + ec.message());
   }

@@ -14,16 +14,35 @@
 
 namespace texproc::cli {
 
-// --threads, --force, --quiet, --verbose: one struct, one registration,
-// with the options of the whole run (--depfile, --dry-run, --write-if-changed,
-// --jobs, --fail-fast, --skip-existing, --json, --progress).
-struct CommonOptions {
-  int threads = 0;
+// The options of the run, in one object. A process runs one command, so
+// there is one: add_common_options registers its fields on a command, and
+// everything reads them through run_options().
+struct RunOptions {
+  int threads = 0;  // --threads: worker threads (0: all cores)
   bool force = false;
   bool quiet = false;
   bool verbose = false;
+  int jobs = 0;  // --jobs: files in flight (0: as many as threads)
+  bool fail_fast = false;
+  bool skip_existing = false;
+  bool json = false;
+  bool timings = false;   // --timings: --json reports seconds and phases (without: the summary is reproducible)
+  bool progress = false;  // --progress: draw progress even when stderr is not a terminal
+  bool dry_run = false;
+  // --write-if-changed: existing outputs may be replaced, and are kept
+  // (bytes and time stamp) when the new bytes are the same.
+  bool write_if_changed = false;
+  std::string depfile;
+  // --shard I/N: of the files selected (counted over the whole process, in
+  // order), only those whose number is I modulo N are run. count 0: all.
+  int shard_index = 0;
+  int shard_count = 0;
+  // --ocio-config FILE: the OpenColorIO config (set as $OCIO for this process).
+  std::string ocio_config;
 };
-void add_common_options(CLI::App& cmd, CommonOptions& o);
+RunOptions& run_options();
+// Registers every option of RunOptions on `cmd`, in the "Common" group.
+void add_common_options(CLI::App& cmd);
 
 // Build-system dependencies of this run. check_output() records each output
 // and its inputs; commands record other files they read (an OpenColorIO
@@ -33,11 +52,6 @@ void add_common_options(CLI::App& cmd, CommonOptions& o);
 void record_input(const std::string& path);
 // Every input recorded so far, in order.
 std::vector<std::string> recorded_inputs();
-// --write-if-changed was given: existing outputs may be replaced, and are
-// kept (bytes and time stamp) when the new bytes are the same.
-bool write_if_changed();
-// --dry-run was given.
-bool dry_run();
 // Writes the depfile if --depfile was given (atomically). Throws Error.
 void write_depfile_if_requested();
 

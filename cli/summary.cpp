@@ -1,7 +1,5 @@
 // The end of a run: the --json summary of every file and the closing
 // line that lists the failures.
-#include <json/writer.h>
-
 #include <filesystem>
 #include <iostream>
 
@@ -12,12 +10,18 @@ namespace fs = std::filesystem;
 
 namespace texproc::cli {
 
-std::string to_json(const Json::Value& v) {
-  Json::StreamWriterBuilder w;
-  w["indentation"] = "  ";
-  w["precision"] = 6;
-  w["emitUTF8"] = true;
-  return Json::writeString(w, v);
+const char* to_string(FileStatus s) {
+  switch (s) {
+    case FileStatus::ok:
+      return "ok";
+    case FileStatus::failed:
+      return "failed";
+    case FileStatus::skipped:
+      return "skipped";
+    case FileStatus::not_run:
+      return "not_run";
+  }
+  return "ok";
 }
 
 void print_json_summary(const std::string& command, int exit_code, const std::string& error) {
@@ -26,7 +30,7 @@ void print_json_summary(const std::string& command, int exit_code, const std::st
   root["exit_code"] = exit_code;
   if (!error.empty()) root["error"] = error;
   Json::Value files(Json::arrayValue);
-  int ok = 0, failed = 0, skipped = 0, not_run = 0;
+  int count[4] = {};  // by FileStatus
   for (const auto& r : session_reports()) {
     Json::Value f(Json::objectValue);
     f["input"] = r.input;
@@ -36,12 +40,12 @@ void print_json_summary(const std::string& command, int exit_code, const std::st
     Json::Value outs(Json::arrayValue);
     for (const auto& o : r.outputs) outs.append(o);
     f["outputs"] = outs;
-    f["status"] = r.status;
-    if (r.status == "failed") {
+    f["status"] = to_string(r.status);
+    if (r.status == FileStatus::failed) {
       f["error"] = r.error;
       f["exit_code"] = int(r.code);
     }
-    if (r.status == "ok") {
+    if (r.status == FileStatus::ok) {
       std::error_code ec;
       const auto in_bytes = fs::file_size(r.input, ec);
       if (!ec) f["input_bytes"] = Json::UInt64(in_bytes);
@@ -50,26 +54,25 @@ void print_json_summary(const std::string& command, int exit_code, const std::st
         const auto n = fs::file_size(o, ec);
         if (!ec) out_bytes += n;
       }
-      if (!dry_run()) {
+      if (!run_options().dry_run) {
         f["output_bytes"] = out_bytes;
-        if (session_options().timings) f["seconds"] = r.seconds;
+        if (run_options().timings) f["seconds"] = r.seconds;
       }
       for (const auto& key : r.details.getMemberNames()) {
         // Times differ from run to run: only with --timings, so that a
         // summary can be a build's (cached) output.
         const bool timing = key == "phases" || (key.size() > 8 && key.compare(key.size() - 8, 8, "_seconds") == 0);
-        if (!timing || session_options().timings) f[key] = r.details[key];
+        if (!timing || run_options().timings) f[key] = r.details[key];
       }
     }
-    (r.status == "ok" ? ok : r.status == "failed" ? failed : r.status == "skipped" ? skipped : not_run)++;
+    ++count[int(r.status)];
     files.append(f);
   }
   root["files"] = files;
-  root["ok"] = ok;
-  root["failed"] = failed;
-  root["skipped"] = skipped;
-  root["not_run"] = not_run;
-  root["dry_run"] = dry_run();
+  for (FileStatus st : {FileStatus::ok, FileStatus::failed, FileStatus::skipped, FileStatus::not_run}) {
+    root[to_string(st)] = count[int(st)];
+  }
+  root["dry_run"] = run_options().dry_run;
   std::cout << to_json(root) << "\n";
 }
 
@@ -78,8 +81,8 @@ void print_failure_summary(const std::string& command) {
   std::vector<const FileReport*> failed;
   std::size_t not_run = 0;
   for (const auto& r : reports) {
-    if (r.status == "failed") failed.push_back(&r);
-    if (r.status == "not_run") ++not_run;
+    if (r.status == FileStatus::failed) failed.push_back(&r);
+    if (r.status == FileStatus::not_run) ++not_run;
   }
   if (reports.size() < 2 || failed.empty()) return;
   std::string head = "texproc " + command + ": " + std::to_string(failed.size()) + " of " +

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "support/images.h"
+#include "support/json.h"
 #include "support/run.h"
 #include "texproc/image_io.h"
 
@@ -168,7 +169,10 @@ TEST(Recipe, SampleRecipeCooksTheSamples) {
         "previews/height_stein_256_cones_preview.png"}) {
     EXPECT_TRUE(fs::exists(dir + "/" + f)) << f;
   }
-  EXPECT_NE(r.out.find("\"job\" : \"heights-to-normals\""), std::string::npos) << r.out;
+  const Json::Value summary = parse_json(r.out);
+  EXPECT_TRUE(std::any_of(summary["files"].begin(), summary["files"].end(), [](const Json::Value& f) {
+    return f["job"].asString() == "heights-to-normals";
+  })) << r.out;
   fs::remove_all(dir);
 }
 
@@ -184,12 +188,9 @@ TEST(Recipe, SecondRunIsIncremental) {
     const RunResult r = run_texproc("build '" + dir + "/r.toml' --json" + extra);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     std::vector<std::string> ok;
-    for (std::size_t p = 0; (p = r.out.find("\"outputs\" : ", p)) != std::string::npos; ++p) {
-      const std::size_t name = r.out.find('"', r.out.find('[', p)) + 1;
-      const std::size_t status = r.out.find("\"status\" : \"", p) + 12;
-      if (r.out.compare(status, 2, "ok") == 0) {
-        ok.push_back(fs::path(r.out.substr(name, r.out.find('"', name) - name)).filename().string());
-      }
+    const Json::Value summary = parse_json(r.out);
+    for (const Json::Value& f : summary["files"]) {
+      if (f["status"].asString() == "ok") ok.push_back(fs::path(f["outputs"][0].asString()).filename().string());
     }
     std::sort(ok.begin(), ok.end());
     return ok;
