@@ -108,7 +108,9 @@ std::vector<Bc7Level> grid(const std::string& name) {
               for (int ws : {0, 3, 4})
                 if (winner > 0 || !ew) {
                   Bc7Level l = level(p2, false, 1, 1, false, false, 1, false, winner, false, false, ew);
-                  l.joint = joint, l.seeds = seeds, l.winner_seeds = ws ? ws : seeds;
+                  l.joint = joint;
+                  l.seeds = seeds;
+                  l.winner_seeds = ws ? ws : seeds;
                   g.push_back(l);
                 }
   } else if (name == "seeds-high") {  // and around `high`
@@ -119,7 +121,9 @@ std::vector<Bc7Level> grid(const std::string& name) {
             for (bool joint : {false, true})
               for (int seeds : {2, 3, 4}) {
                 Bc7Level l = level(p2, m3, p3, 4, true, true, refine, false, 2, true, false, true);
-                l.joint = joint, l.seeds = seeds, l.winner_seeds = 4;
+                l.joint = joint;
+                l.seeds = seeds;
+                l.winner_seeds = 4;
                 g.push_back(l);
               }
   } else if (name == "high") {
@@ -165,8 +169,10 @@ int main(int argc, char** argv) {
   if (rows.empty()) rows.assign(std::begin(kBc7Levels), std::end(kBc7Levels) - 1);  // max: too slow to repeat
   std::vector<Crop> crops;
   double pixels = 0;
-  for (const Image& img : bench::centred_crops())
-    crops.push_back(gather(img)), pixels += double(img.width()) * img.height();
+  for (const Image& img : bench::centred_crops()) {
+    crops.push_back(gather(img));
+    pixels += double(img.width()) * img.height();
+  }
   std::vector<std::vector<double>> seconds(rows.size());
   std::vector<double> se(rows.size(), 0);
   for (int r = 0; r < reps; ++r)

@@ -98,7 +98,8 @@ Errors squared_errors(const Crop& c, const std::vector<std::uint8_t>& blocks) {
         for (int ch = 0; ch < 3; ++ch) {
           const double v = c.img.row<const float>(4 * by + i / 4)[3 * (4 * bx + i % 4) + ch];
           const double d = log_value(t[i][ch]) - log_value(v), dt = tone_mapped(t[i][ch]) - tone_mapped(v);
-          e.log_se += d * d, e.tm_se += dt * dt;
+          e.log_se += d * d;
+          e.tm_se += dt * dt;
         }
     }
   return e;
@@ -170,7 +171,8 @@ void run(benchmark::State& state, const std::string& who, Quality q, int threads
       benchmark::DoNotOptimize(blocks.data());
       state.PauseTiming();
       const Errors e = squared_errors(c, blocks);
-      se += e.log_se, tm += e.tm_se;
+      se += e.log_se;
+      tm += e.tm_se;
       samples += 3.0 * c.img.width() * c.img.height();
       state.ResumeTiming();
     }

@@ -44,7 +44,8 @@ std::vector<std::uint8_t> bc7enc_image(const Image& img, int uber, int partition
   bc7enc_compress_block_params p;
   bc7enc_compress_block_params_init(&p);
   bc7enc_compress_block_params_init_linear_weights(&p);
-  p.m_uber_level = std::uint32_t(uber), p.m_max_partitions = std::uint32_t(partitions);
+  p.m_uber_level = std::uint32_t(uber);
+  p.m_max_partitions = std::uint32_t(partitions);
   const int bw = img.width() / 4, bh = img.height() / 4;
   std::vector<std::uint8_t> out(std::size_t(bw) * bh * 16);
   std::uint8_t px[16][4];

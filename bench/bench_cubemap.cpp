@@ -89,7 +89,10 @@ void report_seams() {
     for (std::size_t k = 1; k < c.levels.size() && c.levels[k].size >= 2; ++k) {
       CubeLevel g, b;
       g.size = b.size = c.levels[k].size;
-      for (int f = 0; f < 6; ++f) g.faces[f] = gauss[f].levels[k], b.faces[f] = box[f].levels[k];
+      for (int f = 0; f < 6; ++f) {
+        g.faces[f] = gauss[f].levels[k];
+        b.faces[f] = box[f].levels[k];
+      }
       const SeamStats s = measure_seams(c.levels[k]), sg = measure_seams(g), sb = measure_seams(b);
       const SeamStats sd = measure_seams(cubemap_from_equirect(p.view(), c.levels[k].size).levels[0]);
       std::printf("%-17s %5zu %5d | %.4f %.4f %.4f %s | %.4f (%4.2fx) | %.4f (%4.2fx) | %.4f (%4.2fx)\n", path + 17, k,

@@ -23,7 +23,10 @@ const Image& rgba4096() {
       for (int x = 0; x < 4096; ++x) {
         const std::uint8_t* s = src.row<std::uint8_t>(y % 2048) + (x % 2048) * 3;
         std::uint8_t* d = out.row<std::uint8_t>(y) + x * 4;
-        d[0] = s[0], d[1] = s[1], d[2] = s[2], d[3] = std::uint8_t((x ^ y) & 255);
+        d[0] = s[0];
+        d[1] = s[1];
+        d[2] = s[2];
+        d[3] = std::uint8_t((x ^ y) & 255);
       }
     return out;
   }();

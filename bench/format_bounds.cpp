@@ -160,13 +160,20 @@ long box_bound(const int px[16][3], const EndpointBox& b, bool four, bool black)
   for (int c = 0; c < 3; ++c) {
     const int l0 = expand(c, b.lo[c]), h0 = expand(c, b.hi[c]), l1 = expand(c, b.lo[3 + c]),
               h1 = expand(c, b.hi[3 + c]);
-    lo[0][c] = l0, hi[0][c] = h0, lo[1][c] = l1, hi[1][c] = h1;
+    lo[0][c] = l0;
+    hi[0][c] = h0;
+    lo[1][c] = l1;
+    hi[1][c] = h1;
     if (four) {
-      lo[2][c] = (2 * l0 + l1 + 1) / 3, hi[2][c] = (2 * h0 + h1 + 1) / 3;
-      lo[3][c] = (l0 + 2 * l1 + 1) / 3, hi[3][c] = (h0 + 2 * h1 + 1) / 3;
+      lo[2][c] = (2 * l0 + l1 + 1) / 3;
+      hi[2][c] = (2 * h0 + h1 + 1) / 3;
+      lo[3][c] = (l0 + 2 * l1 + 1) / 3;
+      hi[3][c] = (h0 + 2 * h1 + 1) / 3;
     } else {
-      lo[2][c] = (l0 + l1 + 1) / 2, hi[2][c] = (h0 + h1 + 1) / 2;
-      lo[3][c] = black ? 0 : lo[2][c], hi[3][c] = black ? 0 : hi[2][c];
+      lo[2][c] = (l0 + l1 + 1) / 2;
+      hi[2][c] = (h0 + h1 + 1) / 2;
+      lo[3][c] = black ? 0 : lo[2][c];
+      hi[3][c] = black ? 0 : hi[2][c];
     }
   }
   long sum = 0;
@@ -207,8 +214,10 @@ long best_bc1(const int px[16][3], long known, bool black) {
         continue;
       }
       EndpointBox low = b, high = b;
-      low.hi[dim] = (b.lo[dim] + b.hi[dim]) / 2, high.lo[dim] = low.hi[dim] + 1;
-      low.bound = box_bound(px, low, four, black), high.bound = box_bound(px, high, four, black);
+      low.hi[dim] = (b.lo[dim] + b.hi[dim]) / 2;
+      high.lo[dim] = low.hi[dim] + 1;
+      low.bound = box_bound(px, low, four, black);
+      high.bound = box_bound(px, high, four, black);
       if (low.bound > high.bound) std::swap(low, high);
       if (high.bound < best) stack.push_back(high);
       if (low.bound < best) stack.push_back(low);

@@ -203,7 +203,10 @@ void warn_if_clipped(const std::string& input, const ImageArray& in, TexelFormat
   for (const Image& img : in.images) {
     const float* p = reinterpret_cast<const float*>(img.data());
     const std::size_t n = img.byte_size() / sizeof(float);
-    for (std::size_t i = 0; i < n; ++i) lo = std::min(lo, p[i]), hi = std::max(hi, p[i]);
+    for (std::size_t i = 0; i < n; ++i) {
+      lo = std::min(lo, p[i]);
+      hi = std::max(hi, p[i]);
+    }
   }
   if (lo >= 0.0f && hi <= 1.0f) return;
   char range[96];

@@ -102,7 +102,10 @@ std::pair<std::string, std::string> unknown_option(CLI::App& app, int argc, cons
     std::size_t best_d = 4;  // suggest only a near miss
     for (const std::string& k : known) {
       const std::size_t d = edit_distance(name, k);
-      if (d < best_d) best_d = d, best = k;
+      if (d < best_d) {
+        best_d = d;
+        best = k;
+      }
     }
     return {name, best};
   }

@@ -796,7 +796,9 @@ TEST(Cli, CompressBc3NormalMapIsDxt5nm) {
     for (int x = 0; x < 32; ++x) {
       const float nx = 0.6f * std::sin(x * 0.3f), ny = 0.5f * std::cos(y * 0.2f);
       const float nz = std::sqrt(std::max(0.0f, 1.0f - nx * nx - ny * ny));
-      n.set(x, y, 0, nx * 0.5f + 0.5f), n.set(x, y, 1, ny * 0.5f + 0.5f), n.set(x, y, 2, nz * 0.5f + 0.5f);
+      n.set(x, y, 0, nx * 0.5f + 0.5f);
+      n.set(x, y, 1, ny * 0.5f + 0.5f);
+      n.set(x, y, 2, nz * 0.5f + 0.5f);
     }
   write_image(dir + "/n.png", n.view());
   RunResult r = run_texproc("compress " + dir + "/n.png -o " + dir + "/n.dds --format bc3 --normal-map -q");
@@ -824,7 +826,9 @@ TEST(Cli, CompressKeepsAlphaCoverage) {
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x) {
       std::uint8_t* p = img.row<std::uint8_t>(y) + 4 * x;
-      p[0] = 60, p[1] = 140, p[2] = 40;
+      p[0] = 60;
+      p[1] = 140;
+      p[2] = 40;
       p[3] = (x % 8 == 0 || (x + y) % 11 == 0) ? 255 : 0;  // thin strokes
     }
   write_image(dir + "/leaves.png", img.view());
@@ -865,7 +869,10 @@ TEST(Cli, CompressNoPremultiply) {
     for (int x = 0; x < 8; ++x) {
       std::uint8_t* p = img.row<std::uint8_t>(y) + 4 * x;
       const bool left = x < 4;
-      p[0] = left ? 255 : 0, p[1] = 0, p[2] = left ? 0 : 255, p[3] = left ? 255 : 0;
+      p[0] = left ? 255 : 0;
+      p[1] = 0;
+      p[2] = left ? 0 : 255;
+      p[3] = left ? 255 : 0;
     }
   write_image(dir + "/data.png", img.view());
   double blue[2] = {};

@@ -263,7 +263,10 @@ TEST(Faults, KtxValidateAcceptsEveryKtx2) {
        {TexelFormat::bc6h_ufloat, TexelFormat::bc6h_sfloat, TexelFormat::bc7_unorm, TexelFormat::bc7_srgb}) {
     Texture t;
     t.format = bf;
-    t.width = 12, t.height = 8, t.levels = 3, t.layers = t.faces = 1;
+    t.width = 12;
+    t.height = 8;
+    t.levels = 3;
+    t.layers = t.faces = 1;
     std::uint32_t seed = 17;
     for (std::uint32_t l = 0; l < 3; ++l) {
       std::vector<std::uint8_t> level(image_bytes(bf, t.level_width(l), t.level_height(l)));

@@ -21,7 +21,7 @@
 #include <jpeglib.h>
 #include <sys/resource.h>
 
-#include "image/codecs/codecs.h"
+#include "io/codecs/codecs.h"
 #include "support/disks.h"
 #include "support/images.h"
 #include "support/run.h"

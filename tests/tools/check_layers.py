@@ -12,13 +12,79 @@ import sys
 ROOT = sys.argv[1] if len(sys.argv) > 1 and sys.argv[1] != "--self-test" else os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
 
-# What makes a header an encoder's: the block searches and their kernels.
-ENCODER = re.compile(r'(^|/)(\w*_encode|\w*_lanes|\w*_eval|bc1_cluster|rgb_block|value_palette|block_gather)\.h$|^texproc/block_encode\.h$')
+# The layers of docs/architecture.md, bottom up. Each may include its own
+# headers and those of the layers it lists, internal or public, and nothing
+# else of texproc's.
+LAYERS = {
+    "core": [],
+    "images": ["core"],
+    "formats": ["core", "images"],
+    "block": ["core", "images"],
+    "decoders": ["core", "images", "formats"],
+    "containers": ["core", "images", "formats", "decoders"],
+    "encoders": ["core", "images", "formats", "block", "decoders"],
+    "io": ["core", "images", "formats", "decoders", "containers"],
+}
+
+# Internal files by folder under libtexproc/src; the decoders sit beside
+# their encoders in bc/, etc/ and astc/ and are named here one by one.
+FOLDERS = {
+    "core": "core", "image": "images", "mip": "images", "normalmap": "images", "sat": "images",
+    "conemap": "images", "cubemap": "images", "format": "formats", "block": "block", "decode": "decoders",
+    "container": "containers", "bc": "encoders", "etc": "encoders", "astc": "encoders", "encode": "encoders",
+    "io": "io",
+}
+DECODERS = re.compile(r"^(bc/(bc_decode\.(cpp|h)|bptc_decode\.cpp|bptc_tables\.h|bc6h_shared\.h)|"
+                      r"etc/(etc_decode\.cpp|etc_tables\.h)|astc/astc_decode\.h)$")
+
+# Each public header belongs to the layer that implements it.
+PUBLIC = {
+    "error.h": "core", "runtime.h": "core", "read_limits.h": "core", "tools.h": "core", "version.h": "core",
+    "image.h": "images", "color.h": "images", "filters.h": "images", "metrics.h": "images",
+    "transparent_color.h": "images", "mip.h": "images", "normalmap.h": "images", "sat.h": "images",
+    "conemap.h": "images", "cubemap.h": "images",
+    "texture.h": "formats",
+    "block_decode.h": "decoders",
+    "container.h": "containers",
+    "block_encode.h": "encoders",
+    "image_io.h": "io",
+}
+
+
+def layer_of(header):
+    """The layer of a header or source named as an include names it (\"bc/bc1_encode.h\",
+    \"texproc/image.h\"); None for what is not texproc's."""
+    if header.startswith("texproc/"):
+        name = header[len("texproc/"):]
+        return PUBLIC.get(name.replace(".h.in", ".h"), "unmapped public header")
+    if DECODERS.match(header):
+        return "decoders"
+    return FOLDERS.get(header.split("/")[0]) if "/" in header else None
 
 
 def includes(path):
     with open(path, encoding="utf-8", errors="replace") as f:
         return [(m.group(1), m.group(2)) for m in INCLUDE.finditer(f.read())]
+
+
+def layer_rule(rel):
+    """The allow-list of the layer `rel` (a path under the source root) is in."""
+    if rel.startswith("libtexproc/include/"):
+        own = layer_of(rel[len("libtexproc/include/"):])
+    elif rel.startswith("libtexproc/src/"):
+        own = layer_of(rel[len("libtexproc/src/"):])
+    else:
+        return None
+    if own not in LAYERS:
+        return ("every file belongs to a layer (tests/tools/check_layers.py: FOLDERS, PUBLIC)", lambda k, h: True)
+    allowed = set(LAYERS[own]) | {own}
+
+    def broken(kind, header, allowed=allowed):
+        if kind != '"':
+            return False
+        target = layer_of(header)
+        return target is not None and target not in allowed
+    return (f"{own} may include {', '.join(sorted(allowed))} only", broken)
 
 
 def rules(rel):
@@ -36,24 +102,14 @@ def rules(rel):
         out.append(("public headers include the standard library and texproc/ only",
                     lambda k, h: (k == '"' and not h.startswith("texproc/")) or
                     (k == "<" and (h.startswith("hwy/") or h.startswith("tbb/") or h.startswith("OpenImageIO/")))))
-    base = os.path.basename(rel)
-    if re.search(r"_decode\.(cpp|h)$", base) or re.match(r"libtexproc/src/(container|decode)/", rel):
-        out.append(("decoders and containers include no encoder", lambda k, h: k == '"' and bool(ENCODER.search(h))))
-    if re.match(r"libtexproc/src/(image|mip|normalmap|sat|conemap|cubemap)/", rel):
-        out.append(("the image layers (image, mip, normalmap, sat, conemap, cubemap) include no encoder or codec internals",
-                    lambda k, h: k == '"' and (bool(ENCODER.search(h)) or
-                                               re.match(r"(bc|etc|astc|encode|container)/", h) is not None)))
+    rule = layer_rule(rel)
+    if rule:
+        out.append(rule)
     codec = re.match(r"libtexproc/src/(bc|etc|astc)/", rel)
     if codec:
         out.append(("a codec includes no other codec's internals (what they share is in block/)",
                     lambda k, h, own=codec.group(1): k == '"' and re.match(r"(bc|etc|astc)/", h) is not None
                     and not h.startswith(own + "/")))
-    if rel.startswith("libtexproc/src/block/"):
-        out.append(("block/ (the primitives every codec shares) includes core/, block/ and texproc/ only",
-                    lambda k, h: k == '"' and not re.match(r"(core|block|texproc)/", h)))
-    if rel.startswith("libtexproc/src/core/"):
-        out.append(("core/ is the bottom layer: core/ and texproc/ only",
-                    lambda k, h: k == '"' and not (h.startswith("core/") or h.startswith("texproc/"))))
     return out
 
 
@@ -84,14 +140,18 @@ def self_test():
         "cli/cmd_x.cpp": "#include <tbb/parallel_for.h>\n",
         "cli/cmd_y.cpp": '#include "bc/bc1_lanes.h"\n',
         "python/src/x.cpp": '#include "core/module.h"\n',
-        "libtexproc/include/texproc/x.h": "#include <hwy/highway.h>\n",
+        "libtexproc/include/texproc/tools.h": "#include <hwy/highway.h>\n",
+        "libtexproc/include/texproc/image.h": '#include "texproc/image_io.h"\n',
         "libtexproc/src/bc/bc_decode.cpp": '#include "bc/bc1_encode.h"\n',
         "libtexproc/src/container/ktx9.cpp": '#include "texproc/block_encode.h"\n',
         "libtexproc/src/core/x.cpp": '#include "image/ocio.h"\n',
         "libtexproc/src/cubemap/x.cpp": '#include "bc/bc_images.h"\n',
+        "libtexproc/src/image/y.cpp": '#include "texproc/container.h"\n',
+        "libtexproc/src/format/x.cpp": '#include "io/codecs/codecs.h"\n',
         "libtexproc/src/etc/x.cpp": '#include "bc/bc1_lanes.h"\n',
         "libtexproc/src/decode/x.cpp": '#include "etc/etc_encode.h"\n',
         "libtexproc/src/block/x.cpp": '#include "etc/etc_tables.h"\n',
+        "libtexproc/src/newdir/x.cpp": '#include "texproc/error.h"\n',
     }
     with tempfile.TemporaryDirectory() as tmp:
         for rel, text in breaks.items():

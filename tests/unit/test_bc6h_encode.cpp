@@ -152,7 +152,8 @@ TEST(Bc6hEncode, EveryModeAndPartitionPacksWhatTheDecoderReads) {
       for (int part = 0; part < partitions; ++part)
         for (int rep = 0; rep < 4; ++rep) {
           bc6h::Choice c;
-          c.mode = k, c.partition = part;
+          c.mode = k;
+          c.partition = part;
           const int eb = M.endpoint_bits, mask = (1 << eb) - 1;
           for (int ch = 0; ch < 3; ++ch) {
             c.code[0][ch] = random_code(rng, eb, is_signed);

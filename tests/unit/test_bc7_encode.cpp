@@ -102,7 +102,10 @@ TEST(Bc7Encode, EveryModeAndPartitionPacksWhatTheDecoderReads) {
       for (int rot = 0; rot < (M.rotation_bits ? 4 : 1); ++rot)
         for (int isel = 0; isel < (M.index_selection_bits ? 2 : 1); ++isel) {
           bc7::Choice c;
-          c.mode = mode, c.partition = part, c.rotation = rot, c.index_selection = isel;
+          c.mode = mode;
+          c.partition = part;
+          c.rotation = rot;
+          c.index_selection = isel;
           for (int s = 0; s < M.subsets; ++s)
             for (int k = 0; k < 2; ++k) {
               for (int ch = 0; ch < 4; ++ch) {
@@ -143,8 +146,10 @@ TEST(Bc7Encode, SimdPackerGivesTheReferenceBytes) {
       const bptc::Bc7Mode& M = bptc::kBc7Modes[mode];
       t.solid[k] = rng() % 8 == 0;
       for (int ch = 0; ch < 4; ++ch) t.x0[ch][k] = int(rng() & 255);
-      t.mode[k] = mode, t.partition[k] = int(rng() % (1u << M.partition_bits));
-      t.rotation[k] = M.rotation_bits ? int(rng() % 4) : 0, t.isel[k] = M.index_selection_bits ? int(rng() & 1) : 0;
+      t.mode[k] = mode;
+      t.partition[k] = int(rng() % (1u << M.partition_bits));
+      t.rotation[k] = M.rotation_bits ? int(rng() % 4) : 0;
+      t.isel[k] = M.index_selection_bits ? int(rng() & 1) : 0;
       for (int s = 0; s < 3; ++s)
         for (int e = 0; e < 2; ++e) {
           for (int ch = 0; ch < 4; ++ch) {

@@ -175,7 +175,8 @@ TEST(BlockDecode, Bc4EightBitTablesMatchTheFloatDecoderForEveryEndpointPair) {
   for (bool snorm : {false, true})
     for (int r0 = 0; r0 < 256; ++r0)
       for (int r1 = 0; r1 < 256; ++r1) {
-        block[0] = std::uint8_t(r0), block[1] = std::uint8_t(r1);
+        block[0] = std::uint8_t(r0);
+        block[1] = std::uint8_t(r1);
         float f[16][4] = {};
         std::uint8_t u[16][4] = {}, rows[4][4];
         bc::decode_rgtc(block, snorm, 0, f);

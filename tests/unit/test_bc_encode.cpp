@@ -282,8 +282,12 @@ TEST(Bc1Encode, SingleColourBlocksAreOptimal) {
     int rgb[3] = {int(rng() % 256), int(rng() % 256), int(rng() % 256)};
     if (n < 6) rgb[0] = rgb[1] = rgb[2] = n * 51;  // greys, black and white
     std::uint8_t px[16][4];
-    for (auto& p : px)
-      p[0] = std::uint8_t(rgb[0]), p[1] = std::uint8_t(rgb[1]), p[2] = std::uint8_t(rgb[2]), p[3] = 255;
+    for (auto& p : px) {
+      p[0] = std::uint8_t(rgb[0]);
+      p[1] = std::uint8_t(rgb[1]);
+      p[2] = std::uint8_t(rgb[2]);
+      p[3] = 255;
+    }
     std::uint8_t block[8];
     encode_bc1_color(px, Bc1Mode::bc1, Quality::fast, block);
     ASSERT_EQ(bc1_error(block, px), best_single_color_error(rgb)) << rgb[0] << "," << rgb[1] << "," << rgb[2];
@@ -303,7 +307,9 @@ TEST(Bc1Encode, PunchThroughOneColourIsOptimal) {
     std::uint8_t px[16][4];
     int opaque = 0;
     for (int i = 0; i < 16; ++i) {
-      px[i][0] = std::uint8_t(c[0]), px[i][1] = std::uint8_t(c[1]), px[i][2] = std::uint8_t(c[2]);
+      px[i][0] = std::uint8_t(c[0]);
+      px[i][1] = std::uint8_t(c[1]);
+      px[i][2] = std::uint8_t(c[2]);
       px[i][3] = (i * 7 + n) % 5 == 0 ? 0 : 255;
       opaque += px[i][3] == 255;
     }
@@ -402,12 +408,18 @@ TEST(Bc1Encode, TwoGridColoursAreLossless) {
   std::mt19937 rng(7);
   for (int n = 0; n < 200; ++n) {
     int c[2][3];
-    for (auto& col : c)
-      col[0] = expand(int(rng() % 32), 5), col[1] = expand(int(rng() % 64), 6), col[2] = expand(int(rng() % 32), 5);
+    for (auto& col : c) {
+      col[0] = expand(int(rng() % 32), 5);
+      col[1] = expand(int(rng() % 64), 6);
+      col[2] = expand(int(rng() % 32), 5);
+    }
     std::uint8_t px[16][4];
     for (int i = 0; i < 16; ++i) {
       const int* col = c[(i * 7 + n) % 3 == 0 ? 1 : 0];
-      px[i][0] = std::uint8_t(col[0]), px[i][1] = std::uint8_t(col[1]), px[i][2] = std::uint8_t(col[2]), px[i][3] = 255;
+      px[i][0] = std::uint8_t(col[0]);
+      px[i][1] = std::uint8_t(col[1]);
+      px[i][2] = std::uint8_t(col[2]);
+      px[i][3] = 255;
     }
     for (Quality q : {Quality::fast, Quality::normal}) {
       std::uint8_t block[8];
@@ -430,7 +442,8 @@ TEST(Bc1Encode, BlackIndexOptIn) {
     const bool ink = i % 4 == i / 4 || i % 4 == 3 - i / 4;  // the two diagonals
     px[0] = ink ? 0 : std::uint8_t(180 + 12 * (i % 4));
     px[1] = ink ? 0 : std::uint8_t(60 + 20 * (i / 4));
-    px[2] = ink ? 0 : 40, px[3] = 255;
+    px[2] = ink ? 0 : 40;
+    px[3] = 255;
   }
   std::uint8_t rgba[16][4];
   std::memcpy(rgba, img.data(), 64);

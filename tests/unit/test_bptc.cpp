@@ -63,7 +63,8 @@ TEST(Bc7Decode, Mode6ByHand) {
   for (int c = 0; c < 4; ++c)
     for (int k = 0; k < 2; ++k) w.put(std::uint32_t(e[k][c]), 7);
   const int p[2] = {1, 0};
-  w.put(std::uint32_t(p[0]), 1), w.put(std::uint32_t(p[1]), 1);
+  w.put(std::uint32_t(p[0]), 1);
+  w.put(std::uint32_t(p[1]), 1);
   int idx[16];
   for (int i = 0; i < 16; ++i) idx[i] = (i * 7) % 16;
   idx[0] = 5;  // the anchor: 3 bits (its top bit 0)
@@ -93,8 +94,12 @@ TEST(Bc7Decode, Mode4RotationAndIndexSelectionByHand) {
         for (int k = 0; k < 2; ++k) w.put(std::uint32_t(col[k][c]), 5);
       for (int k = 0; k < 2; ++k) w.put(std::uint32_t(alpha[k]), 6);
       int i2[16], i3[16];
-      for (int i = 0; i < 16; ++i) i2[i] = (i * 3) % 4, i3[i] = (i * 5) % 8;
-      i2[0] = 1, i3[0] = 2;  // anchors one bit shorter
+      for (int i = 0; i < 16; ++i) {
+        i2[i] = (i * 3) % 4;
+        i3[i] = (i * 5) % 8;
+      }
+      i2[0] = 1;
+      i3[0] = 2;  // anchors one bit shorter
       for (int i = 0; i < 16; ++i) w.put(std::uint32_t(i2[i]), i == 0 ? 1 : 2);
       for (int i = 0; i < 16; ++i) w.put(std::uint32_t(i3[i]), i == 0 ? 2 : 3);
       ASSERT_EQ(w.pos, 128);
@@ -124,11 +129,13 @@ TEST(Bc7Decode, Mode1PartitionsAndSharedPbitsByHand) {
     for (int s = 0; s < 2; ++s)
       for (int k = 0; k < 2; ++k) w.put(std::uint32_t(e[s][k][c]), 6);
   const int p[2] = {1, 0};
-  w.put(std::uint32_t(p[0]), 1), w.put(std::uint32_t(p[1]), 1);
+  w.put(std::uint32_t(p[0]), 1);
+  w.put(std::uint32_t(p[1]), 1);
   // Indices 0 (endpoint 0) or 7 (endpoint 1); texel 0 and 15 are anchors (2 bits).
   int idx[16];
   for (int i = 0; i < 16; ++i) idx[i] = i % 3 == 0 ? 0 : 7;
-  idx[0] = 0, idx[15] = 3;
+  idx[0] = 0;
+  idx[15] = 3;
   for (int i = 0; i < 16; ++i) w.put(std::uint32_t(idx[i]), i == 0 || i == 15 ? 2 : 3);
   ASSERT_EQ(w.pos, 128);
   static const int kW3[8] = {0, 9, 18, 27, 37, 46, 55, 64};
@@ -250,7 +257,8 @@ std::string pillow_pixels(const std::string& dir, TexelFormat f, const std::vect
                           int h) {
   Texture t;
   t.format = f;
-  t.width = std::uint32_t(w), t.height = std::uint32_t(h);
+  t.width = std::uint32_t(w);
+  t.height = std::uint32_t(h);
   t.levels = t.layers = t.faces = 1;
   t.images = {blocks};
   write_texture(dir + "/b.dds", t);
@@ -370,7 +378,8 @@ TEST(Bc6hDecode, SignedTransformedEndpointsByHand) {
   w.put(partition, 5);
   int idx[16];
   for (int i = 0; i < 16; ++i) idx[i] = (i * 5) % 8;
-  idx[0] = 2, idx[15] = 3;
+  idx[0] = 2;
+  idx[15] = 3;
   for (int i = 0; i < 16; ++i) w.put(std::uint32_t(idx[i]), i == 0 || i == 15 ? 2 : 3);
   ASSERT_EQ(w.pos, 128);
   auto unq_s = [](int x, int bits) {
@@ -411,7 +420,10 @@ TEST(BptcContainers, RoundTripEveryContainer) {
        {TexelFormat::bc6h_ufloat, TexelFormat::bc6h_sfloat, TexelFormat::bc7_unorm, TexelFormat::bc7_srgb}) {
     Texture t;
     t.format = f;
-    t.width = 9, t.height = 6, t.levels = 2, t.layers = t.faces = 1;
+    t.width = 9;
+    t.height = 6;
+    t.levels = 2;
+    t.layers = t.faces = 1;
     t.images = {random_blocks(f != TexelFormat::bc7_unorm && f != TexelFormat::bc7_srgb, 6, 3),
                 random_blocks(false, 1, 4)};
     for (const char* ext : {".dds", ".ktx2", ".ktx"}) {

@@ -211,7 +211,10 @@ int bilinear_violations(const std::vector<float>& f, const std::vector<float>& r
         const double hy = bilinear(f, W, H, o.wrap, x, y);
         if (hy <= ha) continue;
         double dx = std::abs(x - ax), dy = std::abs(y - ay);
-        if (o.wrap == WrapMode::repeat) dx = std::min(dx, W - dx), dy = std::min(dy, H - dy);
+        if (o.wrap == WrapMode::repeat) {
+          dx = std::min(dx, W - dx);
+          dy = std::min(dy, H - dy);
+        }
         const double dist = std::hypot(dx / W, dy / H);
         if (dist < o.depth * r * (hy - ha) * (1 - 1e-5)) ++bad;
       }
@@ -405,7 +408,10 @@ TEST(ConeMap, RelaxedConesOpenAroundADome) {
   o.mode = ConeMode::relaxed;
   const std::vector<float> r = cone_ratios(f, 64, 64, o);
   double sc = 0, sr = 0;
-  for (std::size_t i = 0; i < f.size(); ++i) sc += c[i], sr += r[i];
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    sc += c[i];
+    sr += r[i];
+  }
   EXPECT_GT(sr, 1.05 * sc);
 }
 

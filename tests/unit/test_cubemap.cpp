@@ -37,7 +37,10 @@ Image panorama_of(int w, F f) {
       float rgb[3];
       f(d, rgb);
       float* t = p.row<float>(y) + 4 * x;
-      t[0] = rgb[0], t[1] = rgb[1], t[2] = rgb[2], t[3] = 1.0f;
+      t[0] = rgb[0];
+      t[1] = rgb[1];
+      t[2] = rgb[2];
+      t[3] = 1.0f;
     }
   return p;
 }
@@ -249,7 +252,12 @@ TEST(CubeFromPanorama, ABrightDirectionLandsOnItsTexel) {
       for (int i = 0; i < n; ++i) {
         const float t = cube.levels[0].faces[f].row<float>(j)[4 * i];
         total += t * cube_texel_solid_angle(n, i, j);
-        if (t > best) best = t, best_f = f, best_i = i, best_j = j;
+        if (t > best) {
+          best = t;
+          best_f = f;
+          best_i = i;
+          best_j = j;
+        }
       }
   EXPECT_EQ(best_f, face);
   EXPECT_EQ(best_i, ei);

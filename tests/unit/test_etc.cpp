@@ -212,9 +212,18 @@ void expect_rgba(TexelFormat f, const std::vector<std::uint8_t>& block, const st
 // side; every index 0 (+a) but texel (1, 2), index 3 (-b).
 TEST(EtcDecode, IndividualModeByHand) {
   Bits b;
-  b.put(63, 4, 0xA), b.put(59, 4, 0x5), b.put(55, 4, 0x3), b.put(51, 4, 0xC), b.put(47, 4, 0), b.put(43, 4, 0);
-  b.put(39, 3, 1), b.put(36, 3, 6), b.put(33, 1, 0), b.put(32, 1, 0);
-  b.put(1 * 4 + 2 + 16, 1, 1), b.put(1 * 4 + 2, 1, 1);
+  b.put(63, 4, 0xA);
+  b.put(59, 4, 0x5);
+  b.put(55, 4, 0x3);
+  b.put(51, 4, 0xC);
+  b.put(47, 4, 0);
+  b.put(43, 4, 0);
+  b.put(39, 3, 1);
+  b.put(36, 3, 6);
+  b.put(33, 1, 0);
+  b.put(32, 1, 0);
+  b.put(1 * 4 + 2 + 16, 1, 1);
+  b.put(1 * 4 + 2, 1, 1);
   std::vector<Px> want(16);
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 4; ++x) {
@@ -230,8 +239,16 @@ TEST(EtcDecode, IndividualModeByHand) {
 // table 0 (+-2, +-8) below, every index 1 (+b): clamping at 255 and 0.
 TEST(EtcDecode, DifferentialModeByHand) {
   Bits b;
-  b.put(63, 5, 31), b.put(58, 3, 5 /* -3 */), b.put(55, 5, 0), b.put(50, 3, 3), b.put(47, 5, 16), b.put(42, 3, 0);
-  b.put(39, 3, 7), b.put(36, 3, 0), b.put(33, 1, 1), b.put(32, 1, 1);
+  b.put(63, 5, 31);
+  b.put(58, 3, 5 /* -3 */);
+  b.put(55, 5, 0);
+  b.put(50, 3, 3);
+  b.put(47, 5, 16);
+  b.put(42, 3, 0);
+  b.put(39, 3, 7);
+  b.put(36, 3, 0);
+  b.put(33, 1, 1);
+  b.put(32, 1, 1);
   b.put(15, 16, 0xFFFF);  // LSBs 1, MSBs 0: index 1 everywhere
   auto e5 = [](int v) { return v << 3 | v >> 2; };
   std::vector<Px> want(16);
@@ -249,14 +266,23 @@ TEST(EtcDecode, DifferentialModeByHand) {
 // (x, y) takes index (x + y) % 4.
 TEST(EtcDecode, TModeByHand) {
   Bits b;
-  b.put(60, 2, 3), b.put(57, 2, 3);  // R1 = 0xF: R1a + R1b > 3, so R = 28.. with dR >= 0 overflows
-  b.put(63, 3, 7), b.put(58, 1, 0);
-  b.put(55, 4, 0x8), b.put(51, 4, 0x0), b.put(47, 4, 0x4), b.put(43, 4, 0x0), b.put(39, 4, 0x2);
-  b.put(35, 2, 1), b.put(32, 1, 0), b.put(33, 1, 1);
+  b.put(60, 2, 3);
+  b.put(57, 2, 3);  // R1 = 0xF: R1a + R1b > 3, so R = 28.. with dR >= 0 overflows
+  b.put(63, 3, 7);
+  b.put(58, 1, 0);
+  b.put(55, 4, 0x8);
+  b.put(51, 4, 0x0);
+  b.put(47, 4, 0x4);
+  b.put(43, 4, 0x0);
+  b.put(39, 4, 0x2);
+  b.put(35, 2, 1);
+  b.put(32, 1, 0);
+  b.put(33, 1, 1);
   for (int x = 0; x < 4; ++x)
     for (int y = 0; y < 4; ++y) {
       const int i = (x + y) % 4;
-      b.put(x * 4 + y + 16, 1, i >> 1), b.put(x * 4 + y, 1, i & 1);
+      b.put(x * 4 + y + 16, 1, i >> 1);
+      b.put(x * 4 + y, 1, i & 1);
     }
   const Px paint[4] = {
       {0xFF, 0x88, 0x00, 255}, {0x44 + 11, 11, 0x22 + 11, 255}, {0x44, 0, 0x22, 255}, {0x44 - 11, 0, 0x22 - 11, 255}};
@@ -278,13 +304,25 @@ TEST(EtcDecode, TModeByHand) {
 TEST(EtcDecode, HModeByHand) {
   Bits b;
   // R1 = 1 (62-59); G1 = 2: G1a = 1 (58-56), G1b = 0 (52); B1 = 15: B1a = 1 (51), B1b = 3 (49-48), B1c = 1 (47).
-  b.put(62, 4, 1), b.put(58, 3, 1), b.put(52, 1, 0), b.put(51, 1, 1), b.put(49, 2, 3), b.put(47, 1, 1);
+  b.put(62, 4, 1);
+  b.put(58, 3, 1);
+  b.put(52, 1, 0);
+  b.put(51, 1, 1);
+  b.put(49, 2, 3);
+  b.put(47, 1, 1);
   // R2 = 9 (46-43), G2 = 8: G2a = 4 (42-40), G2b = 0 (39); B2 = 7 (38-35).
-  b.put(46, 4, 9), b.put(42, 3, 4), b.put(39, 1, 0), b.put(38, 4, 7);
-  b.put(34, 1, 1), b.put(32, 1, 1), b.put(33, 1, 1);
+  b.put(46, 4, 9);
+  b.put(42, 3, 4);
+  b.put(39, 1, 0);
+  b.put(38, 4, 7);
+  b.put(34, 1, 1);
+  b.put(32, 1, 1);
+  b.put(33, 1, 1);
   // The mode: R = (bit 63 = 0, R1) = 1 plus dR = G1a = +1 stays in range; G = (bits 55-53 = 111, G1b,
   // B1a) = 29 plus dG = (bit 50 = 0, B1b) = +3 is 32: out of range.
-  b.put(63, 1, 0), b.put(55, 3, 7), b.put(50, 1, 0);
+  b.put(63, 1, 0);
+  b.put(55, 3, 7);
+  b.put(50, 1, 0);
   const int c1[3] = {0x11, 0x22, 0xFF}, c2[3] = {0x99, 0x88, 0x77};
   ASSERT_LT(1 * 256 + 2 * 16 + 15, 9 * 256 + 8 * 16 + 7);
   const int d = kDist[6];
@@ -295,7 +333,8 @@ TEST(EtcDecode, HModeByHand) {
   for (int x = 0; x < 4; ++x)
     for (int y = 0; y < 4; ++y) {
       const int i = (x * 3 + y) % 4;
-      b.put(x * 4 + y + 16, 1, i >> 1), b.put(x * 4 + y, 1, i & 1);
+      b.put(x * 4 + y + 16, 1, i >> 1);
+      b.put(x * 4 + y, 1, i & 1);
     }
   std::vector<Px> want(16);
   for (int y = 0; y < 4; ++y)
@@ -303,7 +342,8 @@ TEST(EtcDecode, HModeByHand) {
   expect_rgba(TexelFormat::etc2_rgb_unorm, b.bytes(), want, "H");
   // Swapping the colours flips the order bit: distance index 7 (64).
   Bits s = b;
-  s.put(62, 4, 9), s.put(46, 4, 1);
+  s.put(62, 4, 9);
+  s.put(46, 4, 1);
   const Bits plain = s;
   const auto got = plain_etc2(plain, false);
   EXPECT_EQ(got[0].r, clamp8(0x99 + 64));
@@ -314,17 +354,30 @@ TEST(EtcDecode, HModeByHand) {
 TEST(EtcDecode, PlanarModeByHand) {
   const int RO = 0x20, GO = 0x40, BO = 0x10, RH = 0x3F, GH = 0, BH = 0x20, RV = 0, GV = 0x7F, BV = 0x3F;
   Bits b;
-  b.put(62, 6, RO), b.put(56, 1, GO >> 6), b.put(54, 6, GO & 63);
-  b.put(48, 1, BO >> 5), b.put(44, 2, BO >> 3 & 3), b.put(41, 2, BO >> 1 & 3), b.put(39, 1, BO & 1);
-  b.put(38, 5, RH >> 1), b.put(32, 1, RH & 1), b.put(31, 7, GH), b.put(24, 1, BH >> 5), b.put(23, 5, BH & 31);
-  b.put(18, 6, RV), b.put(12, 7, GV), b.put(5, 6, BV);
+  b.put(62, 6, RO);
+  b.put(56, 1, GO >> 6);
+  b.put(54, 6, GO & 63);
+  b.put(48, 1, BO >> 5);
+  b.put(44, 2, BO >> 3 & 3);
+  b.put(41, 2, BO >> 1 & 3);
+  b.put(39, 1, BO & 1);
+  b.put(38, 5, RH >> 1);
+  b.put(32, 1, RH & 1);
+  b.put(31, 7, GH);
+  b.put(24, 1, BH >> 5);
+  b.put(23, 5, BH & 31);
+  b.put(18, 6, RV);
+  b.put(12, 7, GV);
+  b.put(5, 6, BV);
   b.put(33, 1, 1);
   // Dummy bits: R (63, RO's top 4) + dR (RO's low 2, GO1) in range; G in range; B overflows.
   const int B = (BO >> 3 & 3), dB = (BO >> 1 & 3);  // BO2 and BO3a
   if (B + dB > 3) {
-    b.put(47, 3, 7), b.put(42, 1, 0);
+    b.put(47, 3, 7);
+    b.put(42, 1, 0);
   } else {
-    b.put(47, 3, 0), b.put(42, 1, 1);
+    b.put(47, 3, 0);
+    b.put(42, 1, 1);
   }
   const Bits check = b;
   const int R = check.range(63, 59) + sext3(check.range(58, 56));
@@ -349,7 +402,9 @@ TEST(EtcDecode, PlanarModeByHand) {
 // multiplier 0 adds the modifier unscaled; 8-bit alpha clamps.
 TEST(EtcDecode, EacByHand) {
   Bits b;
-  b.put(63, 8, 100), b.put(55, 4, 3), b.put(51, 4, 13);
+  b.put(63, 8, 100);
+  b.put(55, 4, 3);
+  b.put(51, 4, 13);
   for (int k = 0; k < 16; ++k) b.put(47 - 3 * k, 3, k % 8);  // texel k (column-major) takes index k % 8
   const int mods[8] = {-1, -2, -3, -10, 0, 1, 2, 9};
   float t[16][4];
@@ -491,7 +546,10 @@ void balanced_indices(Bits& b, std::mt19937& rng) {
   int idx[16];
   for (int i = 0; i < 16; ++i) idx[i] = i % 4;
   std::shuffle(idx, idx + 16, rng);
-  for (int k = 0; k < 16; ++k) b.put(k + 16, 1, idx[k] >> 1), b.put(k, 1, idx[k] & 1);
+  for (int k = 0; k < 16; ++k) {
+    b.put(k + 16, 1, idx[k] >> 1);
+    b.put(k, 1, idx[k] & 1);
+  }
 }
 
 int pick(std::mt19937& rng, int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); }
@@ -503,7 +561,9 @@ Image random_smooth_or_noise() {
   for (int y = 0; y < 37; ++y)
     for (int x = 0; x < 30; ++x) {
       std::uint8_t* p = img.row<std::uint8_t>(y) + x * 4;
-      p[0] = std::uint8_t(x * 8), p[1] = std::uint8_t(y * 6), p[2] = std::uint8_t(128 + (x - y)),
+      p[0] = std::uint8_t(x * 8);
+      p[1] = std::uint8_t(y * 6);
+      p[2] = std::uint8_t(128 + (x - y));
       p[3] = std::uint8_t(x * 8);
     }
   return img;
@@ -518,30 +578,49 @@ TEST(EtcEncode, EachModeRoundTripsExactly) {
   for (int n = 0; n < 40; ++n) {
     // Individual: 4-bit colours 4..11, tables 0..3.
     Bits ind;
-    for (int c = 0; c < 3; ++c) ind.put(63 - 8 * c, 4, pick(rng, 4, 11)), ind.put(59 - 8 * c, 4, pick(rng, 4, 11));
-    ind.put(39, 3, pick(rng, 0, 3)), ind.put(36, 3, pick(rng, 0, 3)), ind.put(33, 1, 0),
-        ind.put(32, 1, pick(rng, 0, 1));
+    for (int c = 0; c < 3; ++c) {
+      ind.put(63 - 8 * c, 4, pick(rng, 4, 11));
+      ind.put(59 - 8 * c, 4, pick(rng, 4, 11));
+    }
+    ind.put(39, 3, pick(rng, 0, 3));
+    ind.put(36, 3, pick(rng, 0, 3));
+    ind.put(33, 1, 0);
+    ind.put(32, 1, pick(rng, 0, 1));
     balanced_indices(ind, rng);
     expect_exact_round_trip(TexelFormat::etc1_rgb, ind.bytes(), "individual", n);
     // Differential: 5-bit bases 8..23, deltas -2..2.
     Bits dif;
-    for (int c = 0; c < 3; ++c) dif.put(63 - 8 * c, 5, pick(rng, 8, 23)), dif.put(58 - 8 * c, 3, pick(rng, -2, 2) & 7);
-    dif.put(39, 3, pick(rng, 0, 3)), dif.put(36, 3, pick(rng, 0, 3)), dif.put(33, 1, 1),
-        dif.put(32, 1, pick(rng, 0, 1));
+    for (int c = 0; c < 3; ++c) {
+      dif.put(63 - 8 * c, 5, pick(rng, 8, 23));
+      dif.put(58 - 8 * c, 3, pick(rng, -2, 2) & 7);
+    }
+    dif.put(39, 3, pick(rng, 0, 3));
+    dif.put(36, 3, pick(rng, 0, 3));
+    dif.put(33, 1, 1);
+    dif.put(32, 1, pick(rng, 0, 1));
     balanced_indices(dif, rng);
     expect_exact_round_trip(TexelFormat::etc1_rgb, dif.bytes(), "differential", n);
     expect_exact_round_trip(TexelFormat::etc2_rgb_unorm, dif.bytes(), "differential (ETC2)", n);
     // T: C1 dark, C2 bright, distances 3..11.
     Bits t;
     const int r1 = pick(rng, 2, 4);
-    t.put(60, 2, r1 >> 2), t.put(57, 2, r1 & 3), t.put(55, 4, pick(rng, 2, 4)), t.put(51, 4, pick(rng, 2, 4));
-    t.put(47, 4, pick(rng, 11, 12)), t.put(43, 4, pick(rng, 11, 12)), t.put(39, 4, pick(rng, 11, 12));
+    t.put(60, 2, r1 >> 2);
+    t.put(57, 2, r1 & 3);
+    t.put(55, 4, pick(rng, 2, 4));
+    t.put(51, 4, pick(rng, 2, 4));
+    t.put(47, 4, pick(rng, 11, 12));
+    t.put(43, 4, pick(rng, 11, 12));
+    t.put(39, 4, pick(rng, 11, 12));
     const int td = pick(rng, 0, 2);
-    t.put(35, 2, td >> 1), t.put(32, 1, td & 1), t.put(33, 1, 1);
+    t.put(35, 2, td >> 1);
+    t.put(32, 1, td & 1);
+    t.put(33, 1, 1);
     if ((r1 >> 2) + (r1 & 3) > 3) {
-      t.put(63, 3, 7), t.put(58, 1, 0);
+      t.put(63, 3, 7);
+      t.put(58, 1, 0);
     } else {
-      t.put(63, 3, 0), t.put(58, 1, 1);
+      t.put(63, 3, 0);
+      t.put(58, 1, 1);
     }
     balanced_indices(t, rng);
     ASSERT_EQ(plain_etc2(t, false)[0].a, 255);
@@ -549,19 +628,30 @@ TEST(EtcEncode, EachModeRoundTripsExactly) {
     // H: two colour pairs C1 +- d and C2 +- d.
     Bits h;
     const int hr1 = pick(rng, 2, 4), hg1 = pick(rng, 2, 4), hb1 = pick(rng, 2, 4);
-    h.put(62, 4, hr1), h.put(58, 3, hg1 >> 1), h.put(52, 1, hg1 & 1), h.put(51, 1, hb1 >> 3),
-        h.put(49, 2, hb1 >> 1 & 3), h.put(47, 1, hb1 & 1);
+    h.put(62, 4, hr1);
+    h.put(58, 3, hg1 >> 1);
+    h.put(52, 1, hg1 & 1);
+    h.put(51, 1, hb1 >> 3);
+    h.put(49, 2, hb1 >> 1 & 3);
+    h.put(47, 1, hb1 & 1);
     const int hg2 = pick(rng, 11, 12);
-    h.put(46, 4, pick(rng, 11, 12)), h.put(42, 3, hg2 >> 1), h.put(39, 1, hg2 & 1), h.put(38, 4, pick(rng, 11, 12));
-    h.put(34, 1, 0), h.put(32, 1, pick(rng, 0, 1)), h.put(33, 1, 1);
+    h.put(46, 4, pick(rng, 11, 12));
+    h.put(42, 3, hg2 >> 1);
+    h.put(39, 1, hg2 & 1);
+    h.put(38, 4, pick(rng, 11, 12));
+    h.put(34, 1, 0);
+    h.put(32, 1, pick(rng, 0, 1));
+    h.put(33, 1, 1);
     {
       const int s = hr1 + sext3(hg1 >> 1);
       h.put(63, 1, s < 0 ? 1 : 0);
       const int g = (hg1 & 1) * 2 + (hb1 >> 3), bb = hb1 >> 1 & 3;
       if (g + bb > 3) {
-        h.put(55, 3, 7), h.put(50, 1, 0);
+        h.put(55, 3, 7);
+        h.put(50, 1, 0);
       } else {
-        h.put(55, 3, 0), h.put(50, 1, 1);
+        h.put(55, 3, 0);
+        h.put(50, 1, 1);
       }
     }
     balanced_indices(h, rng);
@@ -571,14 +661,28 @@ TEST(EtcEncode, EachModeRoundTripsExactly) {
     const int ro = pick(rng, 24, 40), go = pick(rng, 48, 80), bo = pick(rng, 24, 40);
     const int rh = pick(rng, 24, 40), gh = pick(rng, 48, 80), bh = pick(rng, 24, 40);
     const int rv = pick(rng, 24, 40), gv = pick(rng, 48, 80), bv = pick(rng, 24, 40);
-    p.put(62, 6, ro), p.put(56, 1, go >> 6), p.put(54, 6, go & 63);
-    p.put(48, 1, bo >> 5), p.put(44, 2, bo >> 3 & 3), p.put(41, 2, bo >> 1 & 3), p.put(39, 1, bo & 1);
-    p.put(38, 5, rh >> 1), p.put(32, 1, rh & 1), p.put(31, 7, gh), p.put(24, 1, bh >> 5), p.put(23, 5, bh & 31);
-    p.put(18, 6, rv), p.put(12, 7, gv), p.put(5, 6, bv), p.put(33, 1, 1);
+    p.put(62, 6, ro);
+    p.put(56, 1, go >> 6);
+    p.put(54, 6, go & 63);
+    p.put(48, 1, bo >> 5);
+    p.put(44, 2, bo >> 3 & 3);
+    p.put(41, 2, bo >> 1 & 3);
+    p.put(39, 1, bo & 1);
+    p.put(38, 5, rh >> 1);
+    p.put(32, 1, rh & 1);
+    p.put(31, 7, gh);
+    p.put(24, 1, bh >> 5);
+    p.put(23, 5, bh & 31);
+    p.put(18, 6, rv);
+    p.put(12, 7, gv);
+    p.put(5, 6, bv);
+    p.put(33, 1, 1);
     if ((bo >> 3 & 3) + (bo >> 1 & 3) > 3) {
-      p.put(47, 3, 7), p.put(42, 1, 0);
+      p.put(47, 3, 7);
+      p.put(42, 1, 0);
     } else {
-      p.put(47, 3, 0), p.put(42, 1, 1);
+      p.put(47, 3, 0);
+      p.put(42, 1, 1);
     }
     for (int hi : {63, 55}) {
       const int lo3 = hi - 5;
@@ -590,7 +694,9 @@ TEST(EtcEncode, EachModeRoundTripsExactly) {
     expect_exact_round_trip(TexelFormat::etc2_rgb_unorm, p.bytes(), "planar", n);
     // EAC: base mid-range, multiplier 1..4, every index twice.
     Bits e;
-    e.put(63, 8, pick(rng, 60, 190)), e.put(55, 4, pick(rng, 1, 4)), e.put(51, 4, pick(rng, 0, 15));
+    e.put(63, 8, pick(rng, 60, 190));
+    e.put(55, 4, pick(rng, 1, 4));
+    e.put(51, 4, pick(rng, 0, 15));
     int ix[16];
     for (int i = 0; i < 16; ++i) ix[i] = i % 8;
     std::shuffle(ix, ix + 16, rng);
@@ -623,7 +729,9 @@ TEST(EtcEncode, PunchThroughKeepsTheCutout) {
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x) {
       std::uint8_t* p = img.row<std::uint8_t>(y) + x * 4;
-      p[0] = std::uint8_t(x * 16), p[1] = std::uint8_t(y * 16), p[2] = 128;
+      p[0] = std::uint8_t(x * 16);
+      p[1] = std::uint8_t(y * 16);
+      p[2] = 128;
       p[3] = (x + y) % 3 == 0 ? 0 : (x * y) % 5 == 0 ? 100 : 255;
     }
   const Image d = round_trip(img, TexelFormat::etc2_rgba1_unorm, Quality::normal, PixelType::u8);
@@ -647,7 +755,9 @@ TEST(EtcEncode, NarrowAlphaIsLossless) {
       const int a = int(rng() % 256), width = 1 + bx % 6;  // levels a .. a + width - 1 (at most 255)
       for (int i = 0; i < 16; ++i) {
         std::uint8_t* p = img.row<std::uint8_t>(by * 4 + i / 4) + 4 * (bx * 4 + i % 4);
-        p[0] = std::uint8_t(bx * 16), p[1] = 90, p[2] = std::uint8_t(by * 30);
+        p[0] = std::uint8_t(bx * 16);
+        p[1] = 90;
+        p[2] = std::uint8_t(by * 30);
         p[3] = std::uint8_t(std::min(255, a + int(rng() % width)));
       }
     }
@@ -738,7 +848,9 @@ TEST(EtcEncode, PunchThroughOneColourWithHoles) {
     int visible = 0;
     for (int i = 0; i < 16; ++i) {
       std::uint8_t* p = img.row<std::uint8_t>(i / 4) + 4 * (i % 4);
-      p[0] = std::uint8_t(c[0]), p[1] = std::uint8_t(c[1]), p[2] = std::uint8_t(c[2]);
+      p[0] = std::uint8_t(c[0]);
+      p[1] = std::uint8_t(c[1]);
+      p[2] = std::uint8_t(c[2]);
       p[3] = (i * 5 + n) % 4 == 0 ? 0 : 255;
       visible += p[3] == 255;
     }
@@ -886,7 +998,8 @@ TEST(EtcEncode, LineArtFindsClampedModifiers) {
       for (int x = 0; x < 64; ++x) {
         std::uint8_t* p = img.row<std::uint8_t>(y) + 4 * x;
         const int v = kind == 0 && pick(rng, 0, 7) == 0 ? pick(rng, 120, 255) : 0;  // kind 0: sparse bright texels
-        p[0] = p[1] = p[2] = std::uint8_t(v), p[3] = 255;
+        p[0] = p[1] = p[2] = std::uint8_t(v);
+        p[3] = 255;
       }
     for (int b = 0; kind == 1 && b < 256; ++b) {  // kind 1: one bright texel a block
       std::uint8_t* p = img.row<std::uint8_t>(4 * (b / 16) + pick(rng, 0, 3)) + 4 * (4 * (b % 16) + pick(rng, 0, 3));

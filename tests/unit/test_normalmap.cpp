@@ -292,7 +292,11 @@ TEST(NormalMap, CorpusPairAgreesWithShippedNormalMap) {
     for (int y = 0; y < 256; ++y)
       for (int x = 0; x < 256; ++x) {
         const double a = ours.get(x, y, c), b = shipped.get(x, y, c);
-        sa += a, sb += b, sab += a * b, saa += a * a, sbb += b * b;
+        sa += a;
+        sb += b;
+        sab += a * b;
+        saa += a * a;
+        sbb += b * b;
       }
     const double corr = (sab - sa * sb / n) / std::sqrt((saa - sa * sa / n) * (sbb - sb * sb / n));
     EXPECT_GT(corr, 0.8) << "channel " << c;

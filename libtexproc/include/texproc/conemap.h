@@ -106,7 +106,7 @@ std::vector<float> cone_ratios_brute_force(const std::vector<float>& heights, in
 Image cone_map_image(const std::vector<float>& heights, const std::vector<float>& ratios, int width, int height,
                      const ConeMapOptions& o, PixelType type, int channels = 3);
 // Rows [y0, y1) of that image into `dst`, rows `row_stride` bytes apart
-// (for writers that take rows as they go: image_io.h's RowSource).
+// (for writers that take rows as they go: image.h's RowSource).
 void cone_map_rows(const std::vector<float>& heights, const std::vector<float>& ratios, int width, int height,
                    const ConeMapOptions& o, PixelType type, int channels, int y0, int y1, void* dst,
                    std::size_t row_stride);

@@ -6,6 +6,7 @@
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <utility>
 #include <string>
@@ -183,5 +184,10 @@ class Image {
 // many there were (0 for integer images). A filter would otherwise spread
 // one bad texel over its whole footprint at every level.
 std::size_t replace_non_finite(Image& image, float value = 0.0f);
+
+// Rows [y0, y1) of an image, made on demand (decoded, converted) into `dst`,
+// rows `row_stride` bytes apart: called from several threads at once, for
+// any range, and a row may be asked for more than once.
+using RowSource = std::function<void(int y0, int y1, void* dst, std::size_t row_stride)>;
 
 }  // namespace texproc

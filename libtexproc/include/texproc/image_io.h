@@ -96,11 +96,6 @@ struct WriteOptions {
 // Error{unsupported} for an unknown extension, Error{io} on write failure.
 void write_image(const std::string& path, const ConstImageView& image, const WriteOptions& options = {});
 
-// Rows [y0, y1) of an image, made on demand (decoded, converted) into `dst`,
-// rows `row_stride` bytes apart: called from several threads at once, for
-// any range, and a row may be asked for more than once.
-using RowSource = std::function<void(int y0, int y1, void* dst, std::size_t row_stride)>;
-
 // write_image of an image that is not held: `shape` gives its width, height,
 // channels and type (its data is not read) and `source` its rows. PNG asks
 // for them strip by strip, so the image is never whole in memory; other

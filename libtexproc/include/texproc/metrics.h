@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "texproc/image.h"
-#include "texproc/image_io.h"
 
 namespace texproc {
 

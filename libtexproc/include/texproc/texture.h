@@ -103,7 +103,7 @@ enum class TexelFormat {
 };
 
 // Everything the containers need to know about a format, from one table
-// (libtexproc/src/container/formats.cpp).
+// (libtexproc/src/format/formats.cpp).
 // The codec a format's texels go through: compress_image and the decoders
 // pick the encoder and decoder by it. ETC2 with alpha (etc2_rgba8) carries an
 // EAC alpha block; its family is etc2.

@@ -186,12 +186,16 @@ Packed pack(const ConstImageView& img, bool hdr, bool normal_map) {
   // Which source channel feeds each of R, G, B, A (-1: constant 1).
   int src[4];
   if (normal_map && C == 2) {
-    src[0] = src[2] = 0, src[1] = 1, src[3] = -1;
+    src[0] = src[2] = 0;
+    src[1] = 1;
+    src[3] = -1;
   } else if (C <= 2) {
     src[0] = src[1] = src[2] = 0;
     src[3] = C == 2 ? 1 : -1;
   } else {
-    src[0] = 0, src[1] = 1, src[2] = 2;
+    src[0] = 0;
+    src[1] = 1;
+    src[2] = 2;
     src[3] = C == 4 ? 3 : -1;
   }
   for_each_row_block(img.height, 16, [&](int y0, int y1) {

@@ -13,8 +13,16 @@ namespace texproc::bc {
 inline float axis_residual(float c00, float c01, float c02, float c11, float c12, float c22) {
   const float trace = c00 + c11 + c22;
   float v0 = c00, v1 = c01, v2 = c02;  // the column of the largest diagonal
-  if (c11 > c00 && c11 >= c22) v0 = c01, v1 = c11, v2 = c12;
-  if (c22 > c00 && c22 > c11) v0 = c02, v1 = c12, v2 = c22;
+  if (c11 > c00 && c11 >= c22) {
+    v0 = c01;
+    v1 = c11;
+    v2 = c12;
+  }
+  if (c22 > c00 && c22 > c11) {
+    v0 = c02;
+    v1 = c12;
+    v2 = c22;
+  }
   const float u0 = c00 * v0 + c01 * v1 + c02 * v2, u1 = c01 * v0 + c11 * v1 + c12 * v2,
               u2 = c02 * v0 + c12 * v1 + c22 * v2;
   const float w0 = c00 * u0 + c01 * u1 + c02 * u2, w1 = c01 * u0 + c11 * u1 + c12 * u2,

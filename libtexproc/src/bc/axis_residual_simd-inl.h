@@ -23,9 +23,13 @@ HWY_INLINE VF axis_residual(DF df, VF c00, VF c01, VF c02, VF c11, VF c12, VF c2
   const VF trace = hn::Add(hn::Add(c00, c11), c22);
   VF v0 = c00, v1 = c01, v2 = c02;
   const auto col1 = hn::And(hn::Gt(c11, c00), hn::Ge(c11, c22));
-  v0 = hn::IfThenElse(col1, c01, v0), v1 = hn::IfThenElse(col1, c11, v1), v2 = hn::IfThenElse(col1, c12, v2);
+  v0 = hn::IfThenElse(col1, c01, v0);
+  v1 = hn::IfThenElse(col1, c11, v1);
+  v2 = hn::IfThenElse(col1, c12, v2);
   const auto col2 = hn::And(hn::Gt(c22, c00), hn::Gt(c22, c11));
-  v0 = hn::IfThenElse(col2, c02, v0), v1 = hn::IfThenElse(col2, c12, v1), v2 = hn::IfThenElse(col2, c22, v2);
+  v0 = hn::IfThenElse(col2, c02, v0);
+  v1 = hn::IfThenElse(col2, c12, v1);
+  v2 = hn::IfThenElse(col2, c22, v2);
   auto times_c = [&](VF a0, VF a1, VF a2, VF& w0, VF& w1, VF& w2) {
     w0 = hn::Add(hn::Add(hn::Mul(c00, a0), hn::Mul(c01, a1)), hn::Mul(c02, a2));
     w1 = hn::Add(hn::Add(hn::Mul(c01, a0), hn::Mul(c11, a1)), hn::Mul(c12, a2));

@@ -166,10 +166,13 @@ void cluster_fit(const std::uint8_t rgb[16][3], const bool transparent[16], cons
     for (int k = 0; k < clusters; ++k) {
       const int cnt = bounds[k + 1] - bounds[k];
       if (cnt == 0) continue;
-      aa += cnt * w_a[k] * w_a[k], ab += cnt * w_a[k] * w_b[k], bb += cnt * w_b[k] * w_b[k];
+      aa += cnt * w_a[k] * w_a[k];
+      ab += cnt * w_a[k] * w_b[k];
+      bb += cnt * w_b[k] * w_b[k];
       for (int c = 0; c < 3; ++c) {
         const double sum = pre[bounds[k + 1]][c] - pre[bounds[k]][c];
-        xa[c] += w_a[k] * sum, xb[c] += w_b[k] * sum;
+        xa[c] += w_a[k] * sum;
+        xb[c] += w_b[k] * sum;
       }
     }
     const double det = aa * bb - ab * ab;
@@ -179,7 +182,8 @@ void cluster_fit(const std::uint8_t rgb[16][3], const bool transparent[16], cons
     for (int c = 0; c < 3; ++c) {
       const double a = std::clamp((xa[c] * bb - xb[c] * ab) / det, 0.0, 255.0);
       const double b = std::clamp((xb[c] * aa - xa[c] * ab) / det, 0.0, 255.0);
-      sp.a[c] = float(a), sp.b[c] = float(b);
+      sp.a[c] = float(a);
+      sp.b[c] = float(b);
       err += -2 * (a * xa[c] + b * xb[c]) + a * a * aa + 2 * a * b * ab + b * b * bb;
     }
     sp.err = err;
@@ -197,7 +201,10 @@ void cluster_fit(const std::uint8_t rgb[16][3], const bool transparent[16], cons
           if (kept == keep_best && err >= worst_err) continue;
           Split sp;
           sp.err = err;
-          for (int c = 0; c < 3; ++c) sp.a[c] = float(row.a[k - j][c]), sp.b[c] = float(row.b[k - j][c]);
+          for (int c = 0; c < 3; ++c) {
+            sp.a[c] = float(row.a[k - j][c]);
+            sp.b[c] = float(row.b[k - j][c]);
+          }
           insert(sp);
         }
       }
@@ -247,7 +254,10 @@ Result one_colour_block(const RgbBlock& tx, bool three_allowed) {
     for (int k = 0; k < (r.four ? 4 : 3); ++k) {
       const int d = (c[0] - pal[k][0]) * (c[0] - pal[k][0]) + (c[1] - pal[k][1]) * (c[1] - pal[k][1]) +
                     (c[2] - pal[k][2]) * (c[2] - pal[k][2]);
-      if (least < 0 || d < least) least = d, nearest = k;
+      if (least < 0 || d < least) {
+        least = d;
+        nearest = k;
+      }
     }
     std::fill(r.idx, r.idx + 16, std::uint8_t(nearest));
     r.error = 16LL * least;
@@ -269,7 +279,9 @@ Result punch_one_colour_block(const RgbBlock& tx) {
   const SingleColorTables& s = single();
   Endpoints through, ends;
   for (int k = 0; k < 2; ++k) {
-    through.c[k][0] = s.five[1][c[0]][k], through.c[k][1] = s.six[1][c[1]][k], through.c[k][2] = s.five[1][c[2]][k];
+    through.c[k][0] = s.five[1][c[0]][k];
+    through.c[k][1] = s.six[1][c[1]][k];
+    through.c[k][2] = s.five[1][c[2]][k];
     for (int ch = 0; ch < 3; ++ch) {
       const int bits = ch == 1 ? 6 : 5;
       int nearest_q = 0;
@@ -334,7 +346,8 @@ Result search_mode(const RgbBlock& tx, bool four, const float a[3], const float 
     for (int c = 0; c < 3; ++c) {
       const int hi_ch = c == 1 ? expand6(r.e.c[1][c]) : expand5(r.e.c[1][c]);
       const int lo_ch = c == 1 ? expand6(r.e.c[0][c]) : expand5(r.e.c[0][c]);
-      d[c] = hi_ch - lo_ch, len += d[c] * d[c];
+      d[c] = hi_ch - lo_ch;
+      len += d[c] * d[c];
     }
     if (len < 1e-9) break;
     for (int c = 0; c < 3; ++c) fit_axis[c] = d[c] / std::sqrt(len);
@@ -351,7 +364,10 @@ Result search_mode(const RgbBlock& tx, bool four, const float a[3], const float 
           if (e.c[k][ch] < 0 || e.c[k][ch] > (ch == 1 ? 63 : 31)) continue;
           Result n2;
           assign(tx, e, four, false, n2);
-          if (n2.error < r.error) r = n2, improved = true;
+          if (n2.error < r.error) {
+            r = n2;
+            improved = true;
+          }
         }
   }
   return r;
@@ -378,7 +394,9 @@ void keep_lane_block(const RgbBlock& tx, Bc1Mode mode, const Bc1LaneSearch& lane
   Endpoints e;
   for (int k = 0; k < 2; ++k) {
     const int c = k ? c1 : c0;
-    e.c[k][0] = c >> 11, e.c[k][1] = c >> 5 & 63, e.c[k][2] = c & 31;
+    e.c[k][0] = c >> 11;
+    e.c[k][1] = c >> 5 & 63;
+    e.c[k][2] = c & 31;
   }
   Result r;
   assign(tx, e, four, false, r);
@@ -429,7 +447,9 @@ void encode_block_by_block(const RgbBlock& tx, Bc1Mode mode, const Bc1Level& lev
   // The cluster fit works on double colours.
   ClusterInput in;
   for (int i = 0; i < 16; ++i) {
-    in.rgb[i][0] = std::uint8_t(tx.r[i]), in.rgb[i][1] = std::uint8_t(tx.g[i]), in.rgb[i][2] = std::uint8_t(tx.b[i]);
+    in.rgb[i][0] = std::uint8_t(tx.r[i]);
+    in.rgb[i][1] = std::uint8_t(tx.g[i]);
+    in.rgb[i][2] = std::uint8_t(tx.b[i]);
     in.transparent[i] = tx.transparent[i] != 0;
   }
   for (int ch = 0; ch < 3; ++ch) in.axis[ch] = axis[ch];
@@ -466,7 +486,9 @@ void encode_bc1_color(const std::uint8_t rgba[16][4], Bc1Mode mode, Quality q, s
 void encode_bc1_color_block_by_block(const std::uint8_t rgba[16][4], Bc1Mode mode, Quality q, std::uint8_t out[8]) {
   RgbBlock tx;
   for (int i = 0; i < 16; ++i) {
-    tx.r[i] = rgba[i][0], tx.g[i] = rgba[i][1], tx.b[i] = rgba[i][2];
+    tx.r[i] = rgba[i][0];
+    tx.g[i] = rgba[i][1];
+    tx.b[i] = rgba[i][2];
     tx.transparent[i] = mode == Bc1Mode::bc1_punch_through && rgba[i][3] < 128 ? 1 : 0;
   }
   encode_block_by_block(tx, mode, bc1_level(q), out);
@@ -489,7 +511,10 @@ void bc1::write(const Result& r, std::uint8_t out[8]) {
     std::swap(c0, c1);
     for (auto& i : idx) i = std::uint8_t(i == 0 ? 1 : i == 1 ? 0 : i);  // 0<->1; 2 (average) and 3 stay
   }
-  out[0] = std::uint8_t(c0), out[1] = std::uint8_t(c0 >> 8), out[2] = std::uint8_t(c1), out[3] = std::uint8_t(c1 >> 8);
+  out[0] = std::uint8_t(c0);
+  out[1] = std::uint8_t(c0 >> 8);
+  out[2] = std::uint8_t(c1);
+  out[3] = std::uint8_t(c1 >> 8);
   std::uint32_t bits = 0;
   for (int i = 0; i < 16; ++i) bits |= std::uint32_t(idx[i]) << (2 * i);
   for (int b = 0; b < 4; ++b) out[4 + b] = std::uint8_t(bits >> (8 * b));

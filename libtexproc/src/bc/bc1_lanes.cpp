@@ -22,8 +22,10 @@ std::int32_t nearest(const int rgb[16][3], const bool clear[16], const int qa[3]
   for (int ch = 0; ch < 3; ++ch) {
     const int ea = ch == 1 ? (qa[ch] << 2 | qa[ch] >> 4) : (qa[ch] << 3 | qa[ch] >> 2);
     const int eb = ch == 1 ? (qb[ch] << 2 | qb[ch] >> 4) : (qb[ch] << 3 | qb[ch] >> 2);
-    pal[0][ch] = ea, pal[1][ch] = eb;
-    pal[2][ch] = four ? (2 * ea + eb + 1) / 3 : (ea + eb + 1) / 2, pal[3][ch] = (ea + 2 * eb + 1) / 3;
+    pal[0][ch] = ea;
+    pal[1][ch] = eb;
+    pal[2][ch] = four ? (2 * ea + eb + 1) / 3 : (ea + eb + 1) / 2;
+    pal[3][ch] = (ea + 2 * eb + 1) / 3;
   }
   std::int32_t total = 0;
   for (int i = 0; i < 16; ++i) {
@@ -35,7 +37,10 @@ std::int32_t nearest(const int rgb[16][3], const bool clear[16], const int qa[3]
     for (int k = 0; k < (four ? 4 : 3); ++k) {
       const std::int32_t dr = rgb[i][0] - pal[k][0], dg = rgb[i][1] - pal[k][1], db = rgb[i][2] - pal[k][2];
       const std::int32_t e = dr * dr + dg * dg + db * db;
-      if (k == 0 || e < be) be = e, codes[i] = k;
+      if (k == 0 || e < be) {
+        be = e;
+        codes[i] = k;
+      }
     }
     total += be;
   }
@@ -45,7 +50,8 @@ std::int32_t nearest(const int rgb[16][3], const bool clear[16], const int qa[3]
 void endpoints(const float a[3], const float b[3], int qa[3], int qb[3]) {
   for (int ch = 0; ch < 3; ++ch) {
     const int max = ch == 1 ? 63 : 31;
-    qa[ch] = quantize(a[ch], max), qb[ch] = quantize(b[ch], max);
+    qa[ch] = quantize(a[ch], max);
+    qb[ch] = quantize(b[ch], max);
   }
 }
 
@@ -63,8 +69,13 @@ void refit(const int rgb[16][3], const bool clear[16], bool four, State& s) {
   for (int i = 0; i < 16; ++i) {
     if (clear[i] || (!four && s.codes[i] == 3)) continue;
     const int c = s.codes[i], w = c == 1 ? den : c == 0 ? 0 : c - 1, u = den - w;
-    aa += u * u, ab += u * w, bb += w * w;
-    for (int ch = 0; ch < 3; ++ch) at[ch] += u * rgb[i][ch], bt[ch] += w * rgb[i][ch];
+    aa += u * u;
+    ab += u * w;
+    bb += w * w;
+    for (int ch = 0; ch < 3; ++ch) {
+      at[ch] += u * rgb[i][ch];
+      bt[ch] += w * rgb[i][ch];
+    }
   }
   const std::int32_t det = aa * bb - ab * ab;
   if (det == 0) return;
@@ -89,8 +100,13 @@ bool fit_positions(const int rgb[16][3], const bool clear[16], const int w[16], 
   for (int i = 0; i < 16; ++i) {
     if (clear[i]) continue;
     const int u = 3 - w[i];
-    aa += u * u, ab += u * w[i], bb += w[i] * w[i];
-    for (int ch = 0; ch < 3; ++ch) at[ch] += u * rgb[i][ch], bt[ch] += w[i] * rgb[i][ch];
+    aa += u * u;
+    ab += u * w[i];
+    bb += w[i] * w[i];
+    for (int ch = 0; ch < 3; ++ch) {
+      at[ch] += u * rgb[i][ch];
+      bt[ch] += w[i] * rgb[i][ch];
+    }
   }
   const std::int32_t det = aa * bb - ab * ab;
   if (det == 0) return false;
@@ -120,7 +136,10 @@ void nudge(const int rgb[16][3], const bool clear[16], bool four, State& s) {
       v += m % 2 ? 1 : -1;
       if (v < 0 || v > (m % 6 / 2 == 1 ? 63 : 31)) continue;
       n.error = nearest(rgb, clear, n.qa, n.qb, four, n.codes);
-      if (n.error < s.error) s = n, improved = true;
+      if (n.error < s.error) {
+        s = n;
+        improved = true;
+      }
     }
     if (!improved) break;
   }
@@ -140,8 +159,13 @@ void three_colour_search(const int rgb[16][3], const bool clear[16], float hi, f
       for (int i = 0; i < 16; ++i) {
         if (clear[i]) continue;
         const int w = std::clamp(int(std::floor((hi - proj[i]) * scale + shift)), 0, 2), u = 2 - w;
-        aa += u * u, ab += u * w, bb += w * w;
-        for (int ch = 0; ch < 3; ++ch) at[ch] += u * rgb[i][ch], bt[ch] += w * rgb[i][ch];
+        aa += u * u;
+        ab += u * w;
+        bb += w * w;
+        for (int ch = 0; ch < 3; ++ch) {
+          at[ch] += u * rgb[i][ch];
+          bt[ch] += w * rgb[i][ch];
+        }
       }
       const std::int32_t det = aa * bb - ab * ab;
       if (det == 0) continue;
@@ -182,9 +206,18 @@ bool load(const std::uint32_t texel[16][kBc1Batch], int k, bool punch, Block& bl
     const bool clear = blk.clear[i];
     const int r = clear ? 0 : int(t & 255), g = clear ? 0 : int(t >> 8 & 255), b = clear ? 0 : int(t >> 16 & 255);
     n_opaque += clear ? 0 : 1;
-    blk.rgb[i][0] = r, blk.rgb[i][1] = g, blk.rgb[i][2] = b;
-    s[0] += r, s[1] += g, s[2] += b;
-    q[0] += r * r, q[1] += r * g, q[2] += r * b, q[3] += g * g, q[4] += g * b, q[5] += b * b;
+    blk.rgb[i][0] = r;
+    blk.rgb[i][1] = g;
+    blk.rgb[i][2] = b;
+    s[0] += r;
+    s[1] += g;
+    s[2] += b;
+    q[0] += r * r;
+    q[1] += r * g;
+    q[2] += r * b;
+    q[3] += g * g;
+    q[4] += g * b;
+    q[5] += b * b;
   }
   // Covariance of the opaque texels times n^2 (exact).
   const int no = n_opaque;
@@ -200,10 +233,14 @@ bool load(const std::uint32_t texel[16][kBc1Batch], int k, bool punch, Block& bl
   float lo = 1e30f, hi = -1e30f;
   for (int i = 0; i < 16; ++i) {
     const float p = float(blk.rgb[i][0]) * axis[0] + float(blk.rgb[i][1]) * axis[1] + float(blk.rgb[i][2]) * axis[2];
-    if (!blk.clear[i]) lo = std::min(lo, p), hi = std::max(hi, p);
+    if (!blk.clear[i]) {
+      lo = std::min(lo, p);
+      hi = std::max(hi, p);
+    }
     blk.proj[i] = p;
   }
-  blk.lo = lo, blk.hi = hi;
+  blk.lo = lo;
+  blk.hi = hi;
   const float mean[3] = {float(s[0]) / float(no), float(s[1]) / float(no), float(s[2]) / float(no)};
   const float mean_p = mean[0] * axis[0] + mean[1] * axis[1] + mean[2] * axis[2];
   for (int ch = 0; ch < 3; ++ch) {
@@ -223,8 +260,13 @@ void thirds_fit(const Block& blk, State& st) {
   for (int i = 0; i < 16; ++i) {
     if (blk.clear[i]) continue;
     const int w = std::min(int((hi - blk.proj[i]) * scale + 0.5f), 3), u = 3 - w;
-    aa += u * u, ab += u * w, bb += w * w;
-    for (int ch = 0; ch < 3; ++ch) at[ch] += u * blk.rgb[i][ch], bt[ch] += w * blk.rgb[i][ch];
+    aa += u * u;
+    ab += u * w;
+    bb += w * w;
+    for (int ch = 0; ch < 3; ++ch) {
+      at[ch] += u * blk.rgb[i][ch];
+      bt[ch] += w * blk.rgb[i][ch];
+    }
   }
   const std::int32_t det = aa * bb - ab * ab;
   if (det != 0) {
@@ -266,17 +308,25 @@ void variants(const Block& blk, const Bc1LaneSearch& level, State& st) {
       }
       const float e = -red;  // less is better: the sum of squares is the same for every variant
       if (have == 0 || e < e1) {
-        if (have > 0) e2 = e1, std::copy(&q1[0][0], &q1[0][0] + 6, &q2[0][0]);
-        e1 = e, std::copy(n.qa, n.qa + 3, q1[0]), std::copy(n.qb, n.qb + 3, q1[1]);
+        if (have > 0) {
+          e2 = e1;
+          std::copy(&q1[0][0], &q1[0][0] + 6, &q2[0][0]);
+        }
+        e1 = e;
+        std::copy(n.qa, n.qa + 3, q1[0]);
+        std::copy(n.qb, n.qb + 3, q1[1]);
         have = std::min(have + 1, 2);
       } else if (have == 1 || e < e2) {
-        e2 = e, std::copy(n.qa, n.qa + 3, q2[0]), std::copy(n.qb, n.qb + 3, q2[1]);
+        e2 = e;
+        std::copy(n.qa, n.qa + 3, q2[0]);
+        std::copy(n.qb, n.qb + 3, q2[1]);
         have = 2;
       }
     }
   for (int m = 0; m < have; ++m) {
     State n;
-    std::copy((m ? q2 : q1)[0], (m ? q2 : q1)[0] + 3, n.qa), std::copy((m ? q2 : q1)[1], (m ? q2 : q1)[1] + 3, n.qb);
+    std::copy((m ? q2 : q1)[0], (m ? q2 : q1)[0] + 3, n.qa);
+    std::copy((m ? q2 : q1)[1], (m ? q2 : q1)[1] + 3, n.qb);
     n.error = nearest(blk.rgb, blk.clear, n.qa, n.qb, true, n.codes);
     if (n.error < st.error) st = n;
   }
@@ -320,7 +370,8 @@ void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, const
         State t = start;
         t.error = nearest(blk.rgb, blk.clear, t.qa, t.qb, false, t.codes);
         refit(blk.rgb, blk.clear, false, t);
-        st = t, four = false;
+        st = t;
+        four = false;
       }
     } else {
       st.error = nearest(blk.rgb, blk.clear, st.qa, st.qb, true, st.codes);
@@ -335,7 +386,10 @@ void bc1_encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, const
         if (blk.transparent) refit(blk.rgb, blk.clear, false, t);  // the block's only mode: refitted twice
         if (blk.transparent && level.punch_variants)
           three_colour_search(blk.rgb, blk.clear, blk.hi, blk.lo, blk.proj, t);
-        if (blk.transparent || t.error < st.error) st = t, four = false;
+        if (blk.transparent || t.error < st.error) {
+          st = t;
+          four = false;
+        }
       }
     }
     pack(st, four, out[k]);

@@ -74,8 +74,10 @@ struct Bc1Batch {
     return hn::Min(hn::Max(qv, hn::Zero(d)), hn::Set(d, max));
   }
   HWY_INLINE void select(M take, const State& n, State& st) const {
-    for (int ch = 0; ch < 3; ++ch)
-      st.qa[ch] = hn::IfThenElse(take, n.qa[ch], st.qa[ch]), st.qb[ch] = hn::IfThenElse(take, n.qb[ch], st.qb[ch]);
+    for (int ch = 0; ch < 3; ++ch) {
+      st.qa[ch] = hn::IfThenElse(take, n.qa[ch], st.qa[ch]);
+      st.qb[ch] = hn::IfThenElse(take, n.qb[ch], st.qb[ch]);
+    }
     for (int i = 0; i < 16; ++i) st.codes[i] = hn::IfThenElse(take, n.codes[i], st.codes[i]);
     st.error = hn::IfThenElse(take, n.error, st.error);
   }
@@ -92,17 +94,23 @@ struct Bc1Batch {
       const V t = hn::BitCast(d, tu);
       clear[i] = kPunch ? hn::RebindMask(d, hn::Lt(hn::ShiftRight<24>(tu), hn::Set(du, 128u))) : hn::Lt(mask8, mask8);
       // Transparent texels count as black in the sums (that is, not at all).
-      r[i] = hn::And(t, mask8), g[i] = hn::And(hn::ShiftRight<8>(t), mask8),
+      r[i] = hn::And(t, mask8);
+      g[i] = hn::And(hn::ShiftRight<8>(t), mask8);
       b[i] = hn::And(hn::ShiftRight<16>(t), mask8);
       if constexpr (kPunch) {
-        r[i] = hn::IfThenZeroElse(clear[i], r[i]), g[i] = hn::IfThenZeroElse(clear[i], g[i]),
+        r[i] = hn::IfThenZeroElse(clear[i], r[i]);
+        g[i] = hn::IfThenZeroElse(clear[i], g[i]);
         b[i] = hn::IfThenZeroElse(clear[i], b[i]);
       }
       n_opaque = hn::Add(n_opaque, hn::IfThenZeroElse(clear[i], hn::Set(d, 1)));
-      s0 = hn::Add(s0, r[i]), s1 = hn::Add(s1, g[i]), s2 = hn::Add(s2, b[i]);
-      q0 = hn::Add(q0, hn::Mul(r[i], r[i])), q1 = hn::Add(q1, hn::Mul(r[i], g[i])),
+      s0 = hn::Add(s0, r[i]);
+      s1 = hn::Add(s1, g[i]);
+      s2 = hn::Add(s2, b[i]);
+      q0 = hn::Add(q0, hn::Mul(r[i], r[i]));
+      q1 = hn::Add(q1, hn::Mul(r[i], g[i]));
       q2 = hn::Add(q2, hn::Mul(r[i], b[i]));
-      q3 = hn::Add(q3, hn::Mul(g[i], g[i])), q4 = hn::Add(q4, hn::Mul(g[i], b[i])),
+      q3 = hn::Add(q3, hn::Mul(g[i], g[i]));
+      q4 = hn::Add(q4, hn::Mul(g[i], b[i]));
       q5 = hn::Add(q5, hn::Mul(b[i], b[i]));
     }
     transparent = hn::Lt(n_opaque, hn::Set(d, 16));
@@ -131,21 +139,27 @@ struct Bc1Batch {
     const VF len =
         hn::IfThenElse(flat_f, one, hn::Sqrt(hn::Add(hn::Add(hn::Mul(v0, v0), hn::Mul(v1, v1)), hn::Mul(v2, v2))));
     const VF inv_len = hn::Div(one, len);
-    ax = hn::Mul(v0, inv_len), ay = hn::Mul(v1, inv_len), az = hn::Mul(v2, inv_len);
-    lo = hn::Set(df, 1e30f), hi = hn::Set(df, -1e30f);
+    ax = hn::Mul(v0, inv_len);
+    ay = hn::Mul(v1, inv_len);
+    az = hn::Mul(v2, inv_len);
+    lo = hn::Set(df, 1e30f);
+    hi = hn::Set(df, -1e30f);
     for (int i = 0; i < 16; ++i) {
       const VF p = hn::Add(hn::Add(hn::Mul(hn::ConvertTo(df, r[i]), ax), hn::Mul(hn::ConvertTo(df, g[i]), ay)),
                            hn::Mul(hn::ConvertTo(df, b[i]), az));
       if constexpr (kPunch) {
         const auto opaque = hn::RebindMask(df, hn::Not(clear[i]));
-        lo = hn::IfThenElse(opaque, hn::Min(lo, p), lo), hi = hn::IfThenElse(opaque, hn::Max(hi, p), hi);
+        lo = hn::IfThenElse(opaque, hn::Min(lo, p), lo);
+        hi = hn::IfThenElse(opaque, hn::Max(hi, p), hi);
       } else {
-        lo = hn::Min(lo, p), hi = hn::Max(hi, p);
+        lo = hn::Min(lo, p);
+        hi = hn::Max(hi, p);
       }
       proj[i] = p;
     }
     const VF fn = hn::ConvertTo(df, hn::Max(n_opaque, hn::Set(d, 1)));  // no opaque texel: a flat lane, skipped
-    m0 = hn::Div(hn::ConvertTo(df, s0), fn), m1 = hn::Div(hn::ConvertTo(df, s1), fn),
+    m0 = hn::Div(hn::ConvertTo(df, s0), fn);
+    m1 = hn::Div(hn::ConvertTo(df, s1), fn);
     m2 = hn::Div(hn::ConvertTo(df, s2), fn);
     mean_p = hn::Add(hn::Add(hn::Mul(m0, ax), hn::Mul(m1, ay)), hn::Mul(m2, az));
   }
@@ -174,7 +188,8 @@ struct Bc1Batch {
       const V eb = ch == 1 ? hn::Or(hn::ShiftLeft<2>(qb), hn::ShiftRight<4>(qb))
                            : hn::Or(hn::ShiftLeft<3>(qb), hn::ShiftRight<2>(qb));
       const V third = hn::Set(d, 43691), one_i = hn::Set(d, 1);
-      pal[0][ch] = ea, pal[1][ch] = eb;
+      pal[0][ch] = ea;
+      pal[1][ch] = eb;
       pal[2][ch] = four ? hn::ShiftRight<17>(hn::Mul(hn::Add(hn::Add(hn::Add(ea, ea), eb), one_i), third))
                         : hn::ShiftRight<1>(hn::Add(hn::Add(ea, eb), one_i));
       pal[3][ch] = hn::ShiftRight<17>(hn::Mul(hn::Add(hn::Add(hn::Add(eb, eb), ea), one_i), third));
@@ -205,11 +220,14 @@ struct Bc1Batch {
     const V den = hn::Set(d, den_s);
     V aa = hn::Zero(d), ab = aa, bb = aa, at[3] = {aa, aa, aa}, bt[3] = {aa, aa, aa};
     for (int i = 0; i < 16; ++i) {
-      aa = hn::Add(aa, hn::Mul(u[i], u[i])), ab = hn::Add(ab, hn::Mul(u[i], w[i])),
+      aa = hn::Add(aa, hn::Mul(u[i], u[i]));
+      ab = hn::Add(ab, hn::Mul(u[i], w[i]));
       bb = hn::Add(bb, hn::Mul(w[i], w[i]));
-      at[0] = hn::Add(at[0], hn::Mul(u[i], r[i])), at[1] = hn::Add(at[1], hn::Mul(u[i], g[i])),
+      at[0] = hn::Add(at[0], hn::Mul(u[i], r[i]));
+      at[1] = hn::Add(at[1], hn::Mul(u[i], g[i]));
       at[2] = hn::Add(at[2], hn::Mul(u[i], b[i]));
-      bt[0] = hn::Add(bt[0], hn::Mul(w[i], r[i])), bt[1] = hn::Add(bt[1], hn::Mul(w[i], g[i])),
+      bt[0] = hn::Add(bt[0], hn::Mul(w[i], r[i]));
+      bt[1] = hn::Add(bt[1], hn::Mul(w[i], g[i]));
       bt[2] = hn::Add(bt[2], hn::Mul(w[i], b[i]));
     }
     const V det = hn::Sub(hn::Mul(aa, bb), hn::Mul(ab, ab));
@@ -247,9 +265,11 @@ struct Bc1Batch {
       u[i] = hn::Sub(den, w[i]);
       if (kPunch && !four) {  // transparent texels (code 3) are out of the fit
         const M out_of_fit = hn::Eq(c, hn::Set(d, 3));
-        w[i] = hn::IfThenZeroElse(out_of_fit, w[i]), u[i] = hn::IfThenZeroElse(out_of_fit, u[i]);
+        w[i] = hn::IfThenZeroElse(out_of_fit, w[i]);
+        u[i] = hn::IfThenZeroElse(out_of_fit, u[i]);
       } else if (kPunch) {
-        w[i] = opaque_only(i, w[i]), u[i] = opaque_only(i, u[i]);
+        w[i] = opaque_only(i, w[i]);
+        u[i] = opaque_only(i, u[i]);
       }
     }
     State n;
@@ -267,7 +287,8 @@ struct Bc1Batch {
     for (int i = 0; i < 16; ++i) {
       const V p = hn::Min(
           hn::Max(hn::ConvertTo(d, hn::Floor(hn::Add(hn::Mul(hn::Sub(hi, proj[i]), scale), shift))), hn::Zero(d)), den);
-      w[i] = opaque_only(i, p), u[i] = opaque_only(i, hn::Sub(den, p));
+      w[i] = opaque_only(i, p);
+      u[i] = opaque_only(i, hn::Sub(den, p));
     }
     solve(w, u, den_s, qa, qb, solvable, red);
   }
@@ -313,9 +334,10 @@ struct Bc1Batch {
     State n;
     M solvable;
     solve(w, u, 3, n.qa, n.qb, solvable, nullptr);
-    for (int ch = 0; ch < 3; ++ch)
-      st.qa[ch] = hn::IfThenElse(solvable, n.qa[ch], st.qa[ch]),
+    for (int ch = 0; ch < 3; ++ch) {
+      st.qa[ch] = hn::IfThenElse(solvable, n.qa[ch], st.qa[ch]);
       st.qb[ch] = hn::IfThenElse(solvable, n.qb[ch], st.qb[ch]);
+    }
     nearest(true, st);
   }
 
@@ -363,7 +385,10 @@ struct Bc1Batch {
       const M valid = hn::Gt(have, hn::Set(d, m));
       if (hn::AllFalse(d, valid)) continue;
       State n;
-      for (int ch = 0; ch < 3; ++ch) n.qa[ch] = (m ? kept2 : kept1)[0][ch], n.qb[ch] = (m ? kept2 : kept1)[1][ch];
+      for (int ch = 0; ch < 3; ++ch) {
+        n.qa[ch] = (m ? kept2 : kept1)[0][ch];
+        n.qb[ch] = (m ? kept2 : kept1)[1][ch];
+      }
       nearest(true, n);
       select(hn::And(valid, hn::Lt(n.error, st.error)), n, st);
     }

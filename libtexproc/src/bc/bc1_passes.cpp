@@ -24,7 +24,9 @@ long long block_errors(const std::uint8_t block[8], const std::uint8_t rgba[16][
   Endpoints e;
   for (int k = 0; k < 2; ++k) {
     const int c = k ? c1 : c0;
-    e.c[k][0] = c >> 11, e.c[k][1] = c >> 5 & 63, e.c[k][2] = c & 31;
+    e.c[k][0] = c >> 11;
+    e.c[k][1] = c >> 5 & 63;
+    e.c[k][2] = c & 31;
   }
   int pal[4][3];
   palette(e, c0 > c1, pal);
@@ -53,7 +55,10 @@ void bc1_try_two_colours(const std::uint8_t rgba[16][4], Bc1Mode mode, std::uint
   const int b[3] = {int(second & 255), int(second >> 8 & 255), int(second >> 16 & 255)};
   bool is_b[16] = {};
   int nb = 0;
-  for (int i = 0; i < 16; ++i) is_b[i] = (texel[i][0] & 0xFFFFFF) == second, nb += is_b[i] ? 1 : 0;
+  for (int i = 0; i < 16; ++i) {
+    is_b[i] = (texel[i][0] & 0xFFFFFF) == second;
+    nb += is_b[i] ? 1 : 0;
+  }
   const int na = 16 - nb;
   Result best;
   best.error = -1;
@@ -90,7 +95,11 @@ void bc1_try_two_colours(const std::uint8_t rgba[16][4], Bc1Mode mode, std::uint
               if (v0 < 0 || v0 > top || v1 < 0 || v1 > top) continue;
               const long da = a[c] - value(v0, v1, ta), db = b[c] - value(v0, v1, tb);
               const long e = na * da * da + nb * db * db;
-              if (channel < 0 || e < channel) channel = e, r.e.c[0][c] = v0, r.e.c[1][c] = v1;
+              if (channel < 0 || e < channel) {
+                channel = e;
+                r.e.c[0][c] = v0;
+                r.e.c[1][c] = v1;
+              }
             }
           r.error += channel;
         }

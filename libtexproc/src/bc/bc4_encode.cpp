@@ -91,8 +91,10 @@ void encode_bc4_block(const float v[16], bool snorm, Quality q, std::uint8_t out
   double least = bc4_block_error(start, v, snorm);
   least += least * 1e-9 + 1e-9;
   double t[16], mean = 0.0;
-  for (int i = 0; i < 16; ++i)
-    t[i] = std::min(std::max(double(v[i]), double(lo_code)), double(hi_code)), mean += t[i] / 16.0;
+  for (int i = 0; i < 16; ++i) {
+    t[i] = std::min(std::max(double(v[i]), double(lo_code)), double(hi_code));
+    mean += t[i] / 16.0;
+  }
   int order[16];
   for (int i = 0; i < 16; ++i) order[i] = i;
   std::stable_sort(order, order + 16, [&](int x, int y) { return std::abs(t[x] - mean) > std::abs(t[y] - mean); });
@@ -105,12 +107,14 @@ void encode_bc4_block(const float v[16], bool snorm, Quality q, std::uint8_t out
   for (int a = lo_code; a <= hi_code && least > 0.0; ++a)
     for (int b = lo_code; b <= hi_code && least > 0.0; ++b) {  // after an exact pair nothing is less
       double quick[8];
-      quick[0] = a, quick[1] = b;
+      quick[0] = a;
+      quick[1] = b;
       if (a > b) {
         for (int k = 1; k <= 6; ++k) quick[k + 1] = double(a * (7 - k) + b * k) * (1.0 / 7.0);
       } else {
         for (int k = 1; k <= 4; ++k) quick[k + 1] = double(a * (5 - k) + b * k) * (1.0 / 5.0);
-        quick[6] = lo_code, quick[7] = hi_code;
+        quick[6] = lo_code;
+        quick[7] = hi_code;
       }
       const double cut = least * (1.0 + 1e-9);
       double partial = 0.0;
@@ -120,7 +124,11 @@ void encode_bc4_block(const float v[16], bool snorm, Quality q, std::uint8_t out
       double pal[8], err = 0.0;
       palette(a, b, snorm, pal);
       for (int j = 0; j < 16; ++j) err += nearest(t[j], pal);
-      if (err < least) least = err, best_a = a, best_b = b;
+      if (err < least) {
+        least = err;
+        best_a = a;
+        best_b = b;
+      }
     }
   Candidate best;
   evaluate(v, best_a, best_b, snorm, best);

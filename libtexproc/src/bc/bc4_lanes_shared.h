@@ -67,7 +67,8 @@ inline bool ls_endpoints(int aa, int ab, int bb, float at, float bt, int steps, 
   if (det == 0) return false;
   const float fa = float(steps) * (at * float(bb) - bt * float(ab)) / float(det);
   const float fb = float(steps) * (bt * float(aa) - at * float(ab)) / float(det);
-  ia = std::clamp(int(std::floor(fa + 0.5f)), lo, hi), ib = std::clamp(int(std::floor(fb + 0.5f)), lo, hi);
+  ia = std::clamp(int(std::floor(fa + 0.5f)), lo, hi);
+  ib = std::clamp(int(std::floor(fb + 0.5f)), lo, hi);
   if (mode == 1 && ia > ib) std::swap(ia, ib);
   return mode == 1 || ia > ib;
 }

@@ -57,15 +57,21 @@ struct Bc4Batch {
         hi_i(hn::Set(d, snorm ? 127 : 255)) {}
 
   HWY_INLINE void load(const float v[16][kBc4Batch], int k0) {
-    mn = hi_code, mx = lo_code, mn6 = hi_code, mx6 = lo_code;
+    mn = hi_code;
+    mx = lo_code;
+    mn6 = hi_code;
+    mx6 = lo_code;
     for (int i = 0; i < 16; ++i) {
       t[i] = hn::Min(hn::Max(hn::LoadU(df, v[i] + k0), lo_code), hi_code);
-      t7[i] = hn::Mul(seven, t[i]), t5[i] = hn::Mul(five, t[i]);
+      t7[i] = hn::Mul(seven, t[i]);
+      t5[i] = hn::Mul(five, t[i]);
       const VF dl = hn::Sub(t5[i], hn::Set(df, 5.0f * lo_c)), dh = hn::Sub(t5[i], hn::Set(df, 5.0f * hi_c));
       ends5[i] = hn::Min(hn::Mul(dl, dl), hn::Mul(dh, dh));
-      mn = hn::Min(mn, t[i]), mx = hn::Max(mx, t[i]);
+      mn = hn::Min(mn, t[i]);
+      mx = hn::Max(mx, t[i]);
       const auto in = hn::And(hn::Gt(t[i], inner_lo), hn::Lt(t[i], inner_hi));
-      mn6 = hn::IfThenElse(in, hn::Min(mn6, t[i]), mn6), mx6 = hn::IfThenElse(in, hn::Max(mx6, t[i]), mx6);
+      mn6 = hn::IfThenElse(in, hn::Min(mn6, t[i]), mn6);
+      mx6 = hn::IfThenElse(in, hn::Max(mx6, t[i]), mx6);
     }
   }
 
@@ -102,7 +108,8 @@ struct Bc4Batch {
     return mode == 0 ? error8(a, b, valid, pos) : error6(a, b, pos);
   }
   HWY_INLINE void take_where(M m, V a, V b, VF e) {
-    r0 = hn::IfThenElse(m, a, r0), r1 = hn::IfThenElse(m, b, r1);
+    r0 = hn::IfThenElse(m, a, r0);
+    r1 = hn::IfThenElse(m, b, r1);
     error = hn::IfThenElse(hn::RebindMask(df, m), e, error);
   }
 
@@ -110,9 +117,11 @@ struct Bc4Batch {
   // palette of whole code steps over a narrow range; the six-value mode over
   // the inner values.
   HWY_INLINE void start() {
-    lo = hn::ConvertTo(d, hn::Floor(mn)), hi = hn::ConvertTo(d, hn::Ceil(mx));
+    lo = hn::ConvertTo(d, hn::Floor(mn));
+    hi = hn::ConvertTo(d, hn::Ceil(mx));
     spread = hn::Gt(hi, lo);
-    r0 = hn::IfThenElse(spread, hi, lo), r1 = lo;
+    r0 = hn::IfThenElse(spread, hi, lo);
+    r1 = lo;
     error = hn::IfThenElseZero(hn::RebindMask(df, spread), error8(r0, r1, spread, nullptr));
     const V seven_i = hn::Set(d, 7);
     const M narrow = hn::And(spread, hn::Lt(hn::Sub(hi, lo), seven_i));
@@ -122,7 +131,7 @@ struct Bc4Batch {
       take_where(hn::And(narrow, hn::RebindMask(d, hn::Lt(e7, error))), a, b, e7);
     }
     const M inner = hn::RebindMask(d, hn::Le(mn6, mx6));
-    lo6 = hn::IfThenElse(inner, hn::ConvertTo(d, hn::Floor(mn6)), lo),
+    lo6 = hn::IfThenElse(inner, hn::ConvertTo(d, hn::Floor(mn6)), lo);
     hi6 = hn::IfThenElse(inner, hn::ConvertTo(d, hn::Ceil(mx6)), hi);
     const M try6 = hn::And(inner, hn::Or(hn::Ne(lo6, lo), hn::Ne(hi6, hi)));
     if (!hn::AllFalse(d, try6)) {
@@ -147,7 +156,8 @@ struct Bc4Batch {
       valid = hn::And(valid, hn::Gt(ia, ib));
     } else {
       const V lo_end = hn::Min(ia, ib), hi_end = hn::Max(ia, ib);
-      ia = lo_end, ib = hi_end;
+      ia = lo_end;
+      ib = hi_end;
     }
   }
 
@@ -160,7 +170,8 @@ struct Bc4Batch {
     const V steps = hn::Set(d, steps_i);
     const VF fsteps = hn::Set(df, float(steps_i));
     V pos[16];
-    m0 = mode == 0 ? hi : lo6, m1 = mode == 0 ? lo : hn::Max(lo6, hi6);
+    m0 = mode == 0 ? hi : lo6;
+    m1 = mode == 0 ? lo : hn::Max(lo6, hi6);
     VF me = error_of(mode, m0, m1, mode_ok, pos);
     M active = mode_ok;
     for (int iter = 0; iter < 2; ++iter) {
@@ -169,7 +180,9 @@ struct Bc4Batch {
       for (int i = 0; i < 16; ++i) {
         const M in = hn::Not(hn::Lt(pos[i], hn::Zero(d)));
         const V u = hn::IfThenElseZero(in, hn::Sub(steps, pos[i])), w = hn::IfThenElseZero(in, pos[i]);
-        aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w)), bb = hn::Add(bb, hn::Mul(w, w));
+        aa = hn::Add(aa, hn::Mul(u, u));
+        ab = hn::Add(ab, hn::Mul(u, w));
+        bb = hn::Add(bb, hn::Mul(w, w));
         at = hn::Add(at, hn::IfThenElseZero(hn::RebindMask(df, in), hn::Mul(hn::ConvertTo(df, u), t[i])));
         bt = hn::Add(bt, hn::IfThenElseZero(hn::RebindMask(df, in), hn::Mul(hn::ConvertTo(df, w), t[i])));
       }
@@ -178,7 +191,8 @@ struct Bc4Batch {
       if (hn::AllFalse(d, active)) break;
       const VF ce = error_of(mode, ia, ib, active, cp);
       active = hn::And(active, hn::RebindMask(d, hn::Lt(ce, me)));
-      m0 = hn::IfThenElse(active, ia, m0), m1 = hn::IfThenElse(active, ib, m1);
+      m0 = hn::IfThenElse(active, ia, m0);
+      m1 = hn::IfThenElse(active, ib, m1);
       me = hn::IfThenElse(hn::RebindMask(df, active), ce, me);
       for (int i = 0; i < 16; ++i) pos[i] = hn::IfThenElse(active, cp[i], pos[i]);
     }
@@ -229,7 +243,9 @@ struct Bc4Batch {
         for (int i = 0; i < 16; ++i) {
           const VF p = hn::IfThenElseZero(
               in[i], hn::Min(hn::Max(hn::Floor(hn::Add(hn::Mul(base[i], stretch), shift)), hn::Zero(df)), top));
-          sp = hn::Add(sp, p), spp = hn::Add(spp, hn::Mul(p, p)), spt = hn::Add(spt, hn::Mul(p, t[i]));
+          sp = hn::Add(sp, p);
+          spp = hn::Add(spp, hn::Mul(p, p));
+          spt = hn::Add(spt, hn::Mul(p, t[i]));
         }
         const V isp = hn::ConvertTo(d, sp), ispp = hn::ConvertTo(d, spp);
         const V aa =
@@ -259,7 +275,8 @@ struct Bc4Batch {
           hn::IfThenElse(hn::RebindMask(d, hn::Lt(hn::Mul(dh, dh), hn::Mul(dl, dl))), hn::Set(d, 7), hn::Set(d, 6));
       code[i] = hn::IfThenElse(hn::Lt(p, hn::Zero(d)), end, c);
     }
-    bits_lo = hn::Zero(d), bits_hi = hn::Zero(d);
+    bits_lo = hn::Zero(d);
+    bits_hi = hn::Zero(d);
     for (int i = 0; i < 8; ++i) {
       bits_lo = hn::Or(bits_lo, hn::ShiftLeftSame(code[i], 3 * i));
       bits_hi = hn::Or(bits_hi, hn::ShiftLeftSame(code[i + 8], 3 * i));
@@ -289,12 +306,20 @@ void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, const B
     V bits_lo, bits_hi;
     batch.codes(bits_lo, bits_hi);
     HWY_ALIGN std::int32_t e0[kBc4Batch], e1[kBc4Batch], blo[kBc4Batch], bhi[kBc4Batch];
-    hn::Store(batch.r0, d, e0), hn::Store(batch.r1, d, e1), hn::Store(bits_lo, d, blo), hn::Store(bits_hi, d, bhi);
+    hn::Store(batch.r0, d, e0);
+    hn::Store(batch.r1, d, e1);
+    hn::Store(bits_lo, d, blo);
+    hn::Store(bits_hi, d, bhi);
     for (int k = 0; k < lanes && k0 + k < count; ++k) {
       std::uint8_t* o = out[k0 + k];
-      o[0] = std::uint8_t(e0[k] & 255), o[1] = std::uint8_t(e1[k] & 255);
-      o[2] = std::uint8_t(blo[k]), o[3] = std::uint8_t(blo[k] >> 8), o[4] = std::uint8_t(blo[k] >> 16);
-      o[5] = std::uint8_t(bhi[k]), o[6] = std::uint8_t(bhi[k] >> 8), o[7] = std::uint8_t(bhi[k] >> 16);
+      o[0] = std::uint8_t(e0[k] & 255);
+      o[1] = std::uint8_t(e1[k] & 255);
+      o[2] = std::uint8_t(blo[k]);
+      o[3] = std::uint8_t(blo[k] >> 8);
+      o[4] = std::uint8_t(blo[k] >> 16);
+      o[5] = std::uint8_t(bhi[k]);
+      o[6] = std::uint8_t(bhi[k] >> 8);
+      o[7] = std::uint8_t(bhi[k] >> 16);
     }
   }
 }

@@ -45,7 +45,12 @@ void region_scatter(const Block& b, unsigned members, float mean[3], float C[6])
   for (int i = 0; i < 16; ++i) {
     if (!(members >> i & 1)) continue;
     const float d0 = b.y[i][0] - mean[0], d1 = b.y[i][1] - mean[1], d2 = b.y[i][2] - mean[2];
-    C[0] += d0 * d0, C[1] += d0 * d1, C[2] += d0 * d2, C[3] += d1 * d1, C[4] += d1 * d2, C[5] += d2 * d2;
+    C[0] += d0 * d0;
+    C[1] += d0 * d1;
+    C[2] += d0 * d2;
+    C[3] += d1 * d1;
+    C[4] += d1 * d2;
+    C[5] += d2 * d2;
   }
 }
 
@@ -78,13 +83,17 @@ void line_ends(const Block& b, unsigned members, int anchor, float e[2][3]) {
   for (int i = 0; i < 16; ++i) {
     if (!(members >> i & 1)) continue;
     const float t = v[0] * (b.y[i][0] - mean[0]) + v[1] * (b.y[i][1] - mean[1]) + v[2] * (b.y[i][2] - mean[2]);
-    tmin = std::min(tmin, t), tmax = std::max(tmax, t);
+    tmin = std::min(tmin, t);
+    tmax = std::max(tmax, t);
     if (i == anchor) ta = t;
   }
   const float vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
   float s0 = tmin / vv, s1 = tmax / vv;
   if (ta + ta > tmin + tmax) std::swap(s0, s1);
-  for (int c = 0; c < 3; ++c) e[0][c] = mean[c] + s0 * v[c], e[1][c] = mean[c] + s1 * v[c];
+  for (int c = 0; c < 3; ++c) {
+    e[0][c] = mean[c] + s0 * v[c];
+    e[1][c] = mean[c] + s1 * v[c];
+  }
 }
 
 // Least-squares ends for a region's indices (weights out of 64); false
@@ -95,8 +104,13 @@ bool lsq_ends(const Block& b, unsigned members, const std::uint8_t index[16], in
   for (int i = 0; i < 16; ++i) {
     if (!(members >> i & 1)) continue;
     const int wb = bptc::weights(bits)[index[i]], wa = 64 - wb;
-    AA += wa * wa, AB += wa * wb, BB += wb * wb;
-    for (int c = 0; c < 3; ++c) RA[c] += float(wa) * b.y[i][c], RB[c] += float(wb) * b.y[i][c];
+    AA += wa * wa;
+    AB += wa * wb;
+    BB += wb * wb;
+    for (int c = 0; c < 3; ++c) {
+      RA[c] += float(wa) * b.y[i][c];
+      RB[c] += float(wb) * b.y[i][c];
+    }
   }
   const float det = float(AA) * float(BB) - float(AB) * float(AB);
   if (!(det > 0.0f)) return false;
@@ -151,7 +165,10 @@ int assign(const Block& b, int k, int partition, const int code[4][3], std::uint
     int best = 0, be = texel_error(pal[s][0], b.x[i]);
     for (int j = 1; j <= top; ++j) {
       const int e = texel_error(pal[s][j], b.x[i]);
-      if (e < be) be = e, best = j;
+      if (e < be) {
+        be = e;
+        best = j;
+      }
     }
     index[i] = std::uint8_t(best);
     error += be;
@@ -169,7 +186,8 @@ void try_mode(const Block& b, int k, int partition, const unsigned members[2], c
               const Bc6hLevel& level, Best& best) {
   const int ns = bc6h::regions(k), bits = bc6h::index_bits(k);
   Choice c;
-  c.mode = k, c.partition = ns == 2 ? partition : 0;
+  c.mode = k;
+  c.partition = ns == 2 ? partition : 0;
   quantize_ends(k, ends, b.is_signed, c.code);
   int error = assign(b, k, partition, c.code, c.index);
   float cur[4][3];
@@ -184,10 +202,14 @@ void try_mode(const Block& b, int k, int partition, const unsigned members[2], c
     quantize_ends(k, next, b.is_signed, n.code);
     const int e = assign(b, k, partition, n.code, n.index);
     if (e >= error) break;
-    c = n, error = e;
+    c = n;
+    error = e;
     std::copy(&next[0][0], &next[0][0] + 12, &cur[0][0]);
   }
-  if (error < best.error) best.choice = c, best.error = error;
+  if (error < best.error) {
+    best.choice = c;
+    best.error = error;
+  }
 }
 
 // The partition estimate of one region: the squared residual of its
@@ -220,7 +242,10 @@ Choice encode_block(const Block& b, const Bc6hLevel& level) {
     float est[32];
     int ranked[32];
     const int keep = std::min(level.partitions, 32);
-    for (int j = 0; j < keep; ++j) est[j] = INFINITY, ranked[j] = 0;
+    for (int j = 0; j < keep; ++j) {
+      est[j] = INFINITY;
+      ranked[j] = 0;
+    }
     for (int p = 0; p < 32; ++p) {
       float e = region_residual(b, region_members(p, 0)) + region_residual(b, region_members(p, 1));
       int q = p;

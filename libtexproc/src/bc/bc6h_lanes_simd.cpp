@@ -69,7 +69,8 @@ struct Bc6hBatch {
         y[i][c] = fit_value(x[i][c]);
         solid = hn::And(solid, hn::Eq(x[i][c], x[0][c]));
       }
-    best_error = hn::Set(d, INT_MAX), best_mode = hn::Set(d, bc6h::kOneRegion);
+    best_error = hn::Set(d, INT_MAX);
+    best_mode = hn::Set(d, bc6h::kOneRegion);
     best.partition = hn::Zero(d);
     for (auto& e : best.code)
       for (auto& v : e) v = hn::Zero(d);
@@ -120,7 +121,8 @@ struct Bc6hBatch {
       const VF t = hn::Add(hn::Add(hn::Mul(v[0], hn::Sub(y[i][0], mean[0])), hn::Mul(v[1], hn::Sub(y[i][1], mean[1]))),
                            hn::Mul(v[2], hn::Sub(y[i][2], mean[2])));
       const MF m = fm(member[i]);
-      tmin = hn::IfThenElse(m, hn::Min(tmin, t), tmin), tmax = hn::IfThenElse(m, hn::Max(tmax, t), tmax);
+      tmin = hn::IfThenElse(m, hn::Min(tmin, t), tmin);
+      tmax = hn::IfThenElse(m, hn::Max(tmax, t), tmax);
       ta = hn::IfThenElse(fm(hn::Eq(anchor, hn::Set(d, i))), t, ta);
     }
     const VF vv = hn::Add(hn::Add(hn::Mul(v[0], v[0]), hn::Mul(v[1], v[1])), hn::Mul(v[2], v[2]));
@@ -128,7 +130,8 @@ struct Bc6hBatch {
     VF s0 = hn::Div(tmin, safe_vv), s1 = hn::Div(tmax, safe_vv);
     const MF swap = hn::Gt(hn::Add(ta, ta), hn::Add(tmin, tmax));
     const VF t0 = hn::IfThenElse(swap, s1, s0);
-    s1 = hn::IfThenElse(swap, s0, s1), s0 = t0;
+    s1 = hn::IfThenElse(swap, s0, s1);
+    s0 = t0;
     for (int c = 0; c < 3; ++c) {
       e[0][c] = hn::IfThenElse(flat, mean[c], hn::Add(mean[c], hn::Mul(s0, v[c])));
       e[1][c] = hn::IfThenElse(flat, mean[c], hn::Add(mean[c], hn::Mul(s1, v[c])));
@@ -149,7 +152,9 @@ struct Bc6hBatch {
       for (int j = 1; j <= L; ++j) wb = hn::IfThenElse(hn::Eq(index[i], hn::Set(d, j)), hn::Set(d, w[j]), wb);
       wb = hn::IfThenElseZero(member[i], wb);
       const V wa = hn::IfThenElseZero(member[i], hn::Sub(hn::Set(d, 64), wb));
-      AA = hn::Add(AA, hn::Mul(wa, wa)), AB = hn::Add(AB, hn::Mul(wa, wb)), BB = hn::Add(BB, hn::Mul(wb, wb));
+      AA = hn::Add(AA, hn::Mul(wa, wa));
+      AB = hn::Add(AB, hn::Mul(wa, wb));
+      BB = hn::Add(BB, hn::Mul(wb, wb));
       const VF fa = f(wa), fb = f(wb);
       const MF m = fm(member[i]);
       for (int c = 0; c < 3; ++c) {
@@ -206,7 +211,8 @@ struct Bc6hBatch {
     const V lo = hn::Sub(q, hn::Set(d, 1)), hi = hn::Add(q, hn::Set(d, 1));
     const VF dlo = dist(hn::Max(lo, hn::Zero(d)));
     const MF take_lo = hn::And(fm(hn::Gt(q, hn::Zero(d))), hn::Lt(dlo, bd));
-    pick = hn::IfThenElse(hn::RebindMask(d, take_lo), lo, pick), bd = hn::IfThenElse(take_lo, dlo, bd);
+    pick = hn::IfThenElse(hn::RebindMask(d, take_lo), lo, pick);
+    bd = hn::IfThenElse(take_lo, dlo, bd);
     const VF dhi = dist(hn::Min(hi, hn::Set(d, top)));
     const MF take_hi = hn::And(fm(hn::Lt(q, hn::Set(d, top))), hn::Lt(dhi, bd));
     pick = hn::IfThenElse(hn::RebindMask(d, take_hi), hi, pick);
@@ -271,7 +277,8 @@ struct Bc6hBatch {
           continue;
         }
         const M take = hn::AndNot(hn::Gt(hn::Set(d, j), top), hn::Lt(e, be));
-        be = hn::IfThenElse(take, e, be), pick = hn::IfThenElse(take, hn::Set(d, j), pick);
+        be = hn::IfThenElse(take, e, be);
+        pick = hn::IfThenElse(take, hn::Set(d, j), pick);
       }
       index[i] = pick;
       error = hn::Add(error, be);
@@ -341,8 +348,12 @@ struct Bc6hBatch {
     for (int i = 0; i < 16; ++i) {
       if (!(members >> i & 1)) continue;
       const VF d0 = hn::Sub(y[i][0], mean[0]), d1 = hn::Sub(y[i][1], mean[1]), d2 = hn::Sub(y[i][2], mean[2]);
-      c00 = hn::Add(c00, hn::Mul(d0, d0)), c01 = hn::Add(c01, hn::Mul(d0, d1)), c02 = hn::Add(c02, hn::Mul(d0, d2));
-      c11 = hn::Add(c11, hn::Mul(d1, d1)), c12 = hn::Add(c12, hn::Mul(d1, d2)), c22 = hn::Add(c22, hn::Mul(d2, d2));
+      c00 = hn::Add(c00, hn::Mul(d0, d0));
+      c01 = hn::Add(c01, hn::Mul(d0, d1));
+      c02 = hn::Add(c02, hn::Mul(d0, d2));
+      c11 = hn::Add(c11, hn::Mul(d1, d1));
+      c12 = hn::Add(c12, hn::Mul(d1, d2));
+      c22 = hn::Add(c22, hn::Mul(d2, d2));
     }
     return axis_residual(df, c00, c01, c02, c11, c12, c22);
   }
@@ -358,7 +369,10 @@ struct Bc6hBatch {
     const M all = hn::FirstN(d, kBc6hBatch), none = hn::FirstN(d, 0);
     const M varied = hn::Not(solid);
     M no_regions[16], every[16];
-    for (int i = 0; i < 16; ++i) no_regions[i] = none, every[i] = all;
+    for (int i = 0; i < 16; ++i) {
+      no_regions[i] = none;
+      every[i] = all;
+    }
     // The one-region modes: those of the level for varied lanes, and mode
     // 13 for lanes of one colour.
     M allowed[14];
@@ -379,17 +393,22 @@ struct Bc6hBatch {
     const int keep = std::min(level.partitions, 32);
     VF est[32];
     V ranked[32];
-    for (int j = 0; j < keep; ++j) est[j] = hn::Set(df, HUGE_VALF), ranked[j] = hn::Zero(d);
+    for (int j = 0; j < keep; ++j) {
+      est[j] = hn::Set(df, HUGE_VALF);
+      ranked[j] = hn::Zero(d);
+    }
     for (int p = 0; p < 32; ++p) {
       VF e = hn::Add(region_residual(region_members(p, 0)), region_residual(region_members(p, 1)));
       V q = hn::Set(d, p);
       for (int j = 0; j < keep; ++j) {
         const MF lt = hn::Lt(e, est[j]);
         const VF ne = hn::IfThenElse(lt, est[j], e);
-        est[j] = hn::IfThenElse(lt, e, est[j]), e = ne;
+        est[j] = hn::IfThenElse(lt, e, est[j]);
+        e = ne;
         const M lti = hn::RebindMask(d, lt);
         const V nq = hn::IfThenElse(lti, ranked[j], q);
-        ranked[j] = hn::IfThenElse(lti, q, ranked[j]), q = nq;
+        ranked[j] = hn::IfThenElse(lti, q, ranked[j]);
+        q = nq;
       }
     }
     const std::int32_t* parts = reinterpret_cast<const std::int32_t*>(bptc::kPartitions2);
@@ -418,14 +437,16 @@ struct Bc6hBatch {
     struct Fields {
       std::int32_t mode[N], partition[N], code[4][3][N], index[16][N];
     } t;
-    hn::StoreU(best_mode, d, t.mode), hn::StoreU(best.partition, d, t.partition);
+    hn::StoreU(best_mode, d, t.mode);
+    hn::StoreU(best.partition, d, t.partition);
     for (int j = 0; j < 4; ++j)
       for (int c = 0; c < 3; ++c) hn::StoreU(best.code[j][c], d, t.code[j][c]);
     for (int i = 0; i < 16; ++i) hn::StoreU(best.index[i], d, t.index[i]);
     const int lanes = std::min(int(hn::Lanes(d)), count - k0);
     for (int k = 0; k < lanes; ++k) {
       bc6h::Choice c;
-      c.mode = t.mode[k], c.partition = t.partition[k];
+      c.mode = t.mode[k];
+      c.partition = t.partition[k];
       for (int j = 0; j < 4; ++j)
         for (int ch = 0; ch < 3; ++ch) c.code[j][ch] = t.code[j][ch][k];
       for (int i = 0; i < 16; ++i) c.index[i] = std::uint8_t(t.index[i][k]);

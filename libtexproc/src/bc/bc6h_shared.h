@@ -31,7 +31,8 @@ inline Layout parse_layout(const char* s) {
   while (*s) {
     Field f{};
     if (*s == 'm') {
-      f.var = 0, ++s;
+      f.var = 0;
+      ++s;
     } else {
       const int ch = *s == 'r' ? 0 : *s == 'g' ? 1 : 2;
       f.var = 1 + 4 * ch + (s[1] - '0');
@@ -156,7 +157,10 @@ inline int quantize(float u, int bits, bool is_signed) {
   };
   int best = q;
   float bd = dist(q);
-  if (q > 0 && dist(q - 1) < bd) best = q - 1, bd = dist(q - 1);
+  if (q > 0 && dist(q - 1) < bd) {
+    best = q - 1;
+    bd = dist(q - 1);
+  }
   if (q < top && dist(q + 1) < bd) best = q + 1;
   return is_signed && u < 0.0f ? -best : best;
 }

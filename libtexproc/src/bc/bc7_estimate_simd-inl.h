@@ -92,16 +92,21 @@ HWY_INLINE void init(RankedV& r, int keep) {
   const DI d;
   const DF df;
   r.k = keep;
-  for (int j = 0; j < keep; ++j) r.est[j] = hn::Set(df, HUGE_VALF), r.partition[j] = hn::Zero(d);
+  for (int j = 0; j < keep; ++j) {
+    r.est[j] = hn::Set(df, HUGE_VALF);
+    r.partition[j] = hn::Zero(d);
+  }
 }
 HWY_INLINE void insert(RankedV& r, VF e, V p) {
   for (int j = 0; j < r.k; ++j) {
     const auto lt = hn::Lt(e, r.est[j]);
     const VF ne = hn::IfThenElse(lt, r.est[j], e);
-    r.est[j] = hn::IfThenElse(lt, e, r.est[j]), e = ne;
+    r.est[j] = hn::IfThenElse(lt, e, r.est[j]);
+    e = ne;
     const auto lti = hn::RebindMask(DI(), lt);
     const V np = hn::IfThenElse(lti, r.partition[j], p);
-    r.partition[j] = hn::IfThenElse(lti, p, r.partition[j]), p = np;
+    r.partition[j] = hn::IfThenElse(lti, p, r.partition[j]);
+    p = np;
   }
 }
 
@@ -122,8 +127,12 @@ HWY_INLINE void rank_partitions(const V (&x)[16][4], int subsets, int scanned, R
   for (int i = 0; i < 16; ++i) {
     VF* xi = xf[i];
     for (int c = 0; c < 3; ++c) xi[c] = hn::ConvertTo(df, x[i][c]);
-    prod[i][0] = hn::Mul(xi[0], xi[0]), prod[i][1] = hn::Mul(xi[0], xi[1]), prod[i][2] = hn::Mul(xi[0], xi[2]);
-    prod[i][3] = hn::Mul(xi[1], xi[1]), prod[i][4] = hn::Mul(xi[1], xi[2]), prod[i][5] = hn::Mul(xi[2], xi[2]);
+    prod[i][0] = hn::Mul(xi[0], xi[0]);
+    prod[i][1] = hn::Mul(xi[0], xi[1]);
+    prod[i][2] = hn::Mul(xi[0], xi[2]);
+    prod[i][3] = hn::Mul(xi[1], xi[1]);
+    prod[i][4] = hn::Mul(xi[1], xi[2]);
+    prod[i][5] = hn::Mul(xi[2], xi[2]);
     for (int c = 0; c < 3; ++c) tS[c] = hn::Add(tS[c], xi[c]);
     for (int q = 0; q < 6; ++q) tQ[q] = hn::Add(tQ[q], prod[i][q]);
   }

@@ -55,7 +55,9 @@ HWY_INLINE V pair16(V lo, V hi) {
 // channels uses the first two, of 4 the first and the third.
 using PairsV = V[3];
 HWY_INLINE void make_pairs(const V x[4], PairsV& xp) {
-  xp[0] = pair16(x[0], x[1]), xp[1] = x[2], xp[2] = pair16(x[2], x[3]);
+  xp[0] = pair16(x[0], x[1]);
+  xp[1] = x[2];
+  xp[2] = pair16(x[2], x[3]);
 }
 
 // As the reference's Set: the texels (possibly rotated), the members (a
@@ -101,7 +103,9 @@ struct Bc7FitLanes {
   HWY_NOINLINE void line_ends_n(const SetV& s, VF e[2][4]) const {
     V cnt = hn::Zero(d), S[4], Q[4][4], mn[4], mx[4];
     for (int a = 0; a < N; ++a) {
-      S[a] = hn::Zero(d), mn[a] = hn::Set(d, 255), mx[a] = hn::Zero(d);
+      S[a] = hn::Zero(d);
+      mn[a] = hn::Set(d, 255);
+      mx[a] = hn::Zero(d);
       for (int b = a; b < N; ++b) Q[a][b] = hn::Zero(d);
     }
     for (int i = 0; i < 16; ++i) {
@@ -110,14 +114,16 @@ struct Bc7FitLanes {
       for (int a = 0; a < N; ++a) {
         const V xa = s.x[i][s.c0 + a];
         S[a] = hn::Add(S[a], hn::IfThenElseZero(m, xa));
-        mn[a] = hn::IfThenElse(m, hn::Min(mn[a], xa), mn[a]), mx[a] = hn::IfThenElse(m, hn::Max(mx[a], xa), mx[a]);
+        mn[a] = hn::IfThenElse(m, hn::Min(mn[a], xa), mn[a]);
+        mx[a] = hn::IfThenElse(m, hn::Max(mx[a], xa), mx[a]);
         for (int b = a; b < N; ++b) Q[a][b] = hn::Add(Q[a][b], hn::IfThenElseZero(m, mul16(xa, s.x[i][s.c0 + b])));
       }
     }
     VF mean[4];
     for (int a = 0; a < N; ++a) mean[a] = hn::Div(f(S[a]), f(cnt));
     if (N == 1) {
-      e[0][s.c0] = f(mn[0]), e[1][s.c0] = f(mx[0]);
+      e[0][s.c0] = f(mn[0]);
+      e[1][s.c0] = f(mx[0]);
       return;
     }
     VF C[4][4];
@@ -147,9 +153,13 @@ struct Bc7FitLanes {
       VF t = hn::Zero(df);
       for (int a = 0; a < N; ++a) t = hn::Add(t, hn::Mul(v[a], f(s.x[i][s.c0 + a])));
       const auto m = hn::RebindMask(df, s.member[i]);
-      tmin = hn::IfThenElse(m, hn::Min(tmin, t), tmin), tmax = hn::IfThenElse(m, hn::Max(tmax, t), tmax);
+      tmin = hn::IfThenElse(m, hn::Min(tmin, t), tmin);
+      tmax = hn::IfThenElse(m, hn::Max(tmax, t), tmax);
     }
-    for (int a = 0; a < N; ++a) tmean = hn::Add(tmean, hn::Mul(v[a], mean[a])), vv = hn::Add(vv, hn::Mul(v[a], v[a]));
+    for (int a = 0; a < N; ++a) {
+      tmean = hn::Add(tmean, hn::Mul(v[a], mean[a]));
+      vv = hn::Add(vv, hn::Mul(v[a], v[a]));
+    }
     const VF safe_vv = hn::IfThenElse(flat, hn::Set(df, 1.0f), vv);
     const VF s0 = hn::Div(hn::Sub(tmin, tmean), safe_vv), s1 = hn::Div(hn::Sub(tmax, tmean), safe_vv);
     for (int a = 0; a < N; ++a) {
@@ -171,15 +181,16 @@ struct Bc7FitLanes {
       for (int a = 0; a < s.n; ++a) {
         v[k][a] = round_clamped(e[k][s.c0 + a], 255.0f);
         const V pair = hn::GatherIndex(d, table, v[k][a]);
-        q0[k][a] = hn::And(pair, hn::Set(d, 0xFFFF)),
+        q0[k][a] = hn::And(pair, hn::Set(d, 0xFFFF));
         q1[k][a] = hn::And(hn::ShiftRight<16>(pair), hn::Set(d, 0xFFFF));  // the shift is arithmetic
         const V d0 = hn::Sub(hn::ShiftRight<8>(q0[k][a]), v[k][a]), d1 = hn::Sub(hn::ShiftRight<8>(q1[k][a]), v[k][a]);
-        err0[k] = hn::Add(err0[k], hn::Mul(d0, d0)), err1[k] = hn::Add(err1[k], hn::Mul(d1, d1));
+        err0[k] = hn::Add(err0[k], hn::Mul(d0, d0));
+        err1[k] = hn::Add(err1[k], hn::Mul(d1, d1));
       }
     M p1[2] = {hn::FirstN(d, 0), hn::FirstN(d, 0)};
     if (fmt.pbit != Pbit::none && combo >= 0) {
       const int second = fmt.pbit == Pbit::unique ? combo >> 1 & 1 : combo & 1;
-      p1[0] = hn::Or(force_p1, hn::FirstN(d, (combo & 1) ? kBc7Batch : 0)),
+      p1[0] = hn::Or(force_p1, hn::FirstN(d, (combo & 1) ? kBc7Batch : 0));
       p1[1] = hn::Or(force_p1, hn::FirstN(d, second ? kBc7Batch : 0));
     } else if (fmt.pbit == Pbit::unique) {
       for (int k = 0; k < 2; ++k) p1[k] = hn::Or(force_p1, hn::Lt(err1[k], err0[k]));
@@ -213,7 +224,7 @@ struct Bc7FitLanes {
     for (int combo = 0; combo < combos; ++combo) {
       M p1[2];
       const bool second = fmt.pbit == Pbit::unique ? (combo >> 1 & 1) : (combo & 1);
-      p1[0] = hn::Or(force_p1, hn::FirstN(d, (combo & 1) ? kBc7Batch : 0)),
+      p1[0] = hn::Or(force_p1, hn::FirstN(d, (combo & 1) ? kBc7Batch : 0));
       p1[1] = hn::Or(force_p1, hn::FirstN(d, second ? kBc7Batch : 0));
       if (fmt.pbit == Pbit::none) p1[0] = p1[1] = hn::FirstN(d, 0);
       V pbit[2], code[2][4], value[2][4];
@@ -225,7 +236,8 @@ struct Bc7FitLanes {
           const V pr = pair[k][a];
           const V q = hn::IfThenElse(p1[k], hn::And(hn::ShiftRight<16>(pr), hn::Set(d, 0xFFFF)),
                                      hn::And(pr, hn::Set(d, 0xFFFF)));
-          cand[k][0] = hn::And(q, hn::Set(d, 255)), val[k][0] = hn::ShiftRight<8>(q);
+          cand[k][0] = hn::And(q, hn::Set(d, 255));
+          val[k][0] = hn::ShiftRight<8>(q);
           const V step = hn::IfThenElse(hn::Lt(val[k][0], v[k][a]), hn::Set(d, 1), hn::Set(d, -1));
           cand[k][1] = hn::Min(hn::Max(hn::Add(cand[k][0], step), hn::Zero(d)), hn::Set(d, top));
           val[k][1] = expand(cand[k][1], pbit[k], fmt);
@@ -329,7 +341,8 @@ struct Bc7FitLanes {
     const int L = (1 << bits) - 1;
     V dv[4], dd = hn::Zero(d), origin = hn::Zero(d);
     for (int a = 0; a < N; ++a) {
-      dv[a] = hn::Sub(fit.value[1][s.c0 + a], fit.value[0][s.c0 + a]), dd = hn::Add(dd, hn::Mul(dv[a], dv[a]));
+      dv[a] = hn::Sub(fit.value[1][s.c0 + a], fit.value[0][s.c0 + a]);
+      dd = hn::Add(dd, hn::Mul(dv[a], dv[a]));
       origin = hn::Add(origin, mul16(fit.value[0][s.c0 + a], dv[a]));
     }
     const auto spread = hn::RebindMask(df, hn::Gt(dd, hn::Zero(d)));
@@ -341,7 +354,8 @@ struct Bc7FitLanes {
     V dvp[2], v0p[2];
     if (paired) {
       const V* v0 = fit.value[0];
-      dvp[0] = pair16(dv[0], dv[1]), v0p[0] = pair16(v0[0], v0[1]);
+      dvp[0] = pair16(dv[0], dv[1]);
+      v0p[0] = pair16(v0[0], v0[1]);
       dvp[1] = N == 4 ? pair16(dv[2], dv[3]) : hn::And(dv[2], hn::Set(d, 0xFFFF));
       v0p[1] = N == 4 ? pair16(v0[2], v0[3]) : v0[2];
     }
@@ -365,10 +379,12 @@ struct Bc7FitLanes {
         const V j0 = j, lo = hn::Sub(j0, hn::Set(d, 1)), hi = hn::Add(j0, hn::Set(d, 1));
         const V elo = error_at(i, hn::Max(lo, hn::Zero(d)));
         const M take_lo = hn::And(hn::Gt(j0, hn::Zero(d)), hn::Lt(elo, e));
-        e = hn::IfThenElse(take_lo, elo, e), j = hn::IfThenElse(take_lo, lo, j);
+        e = hn::IfThenElse(take_lo, elo, e);
+        j = hn::IfThenElse(take_lo, lo, j);
         const V ehi = error_at(i, hn::Min(hi, hn::Set(d, L)));
         const M take_hi = hn::And(hn::Lt(j0, hn::Set(d, L)), hn::Lt(ehi, e));
-        e = hn::IfThenElse(take_hi, ehi, e), j = hn::IfThenElse(take_hi, hi, j);
+        e = hn::IfThenElse(take_hi, ehi, e);
+        j = hn::IfThenElse(take_hi, hi, j);
       }
       fit.index[i] = hn::IfThenElse(s.member[i], j, fit.index[i]);
       fit.error = hn::Add(fit.error, hn::IfThenElseZero(s.member[i], e));
@@ -392,17 +408,21 @@ struct Bc7FitLanes {
       const M m = s.member[i];
       const V b = hn::IfThenElseZero(m, weight(fit.index[i], L));
       n = hn::Sub(n, hn::VecFromMask(d, m));  // the mask's lanes are -1
-      Sb = hn::Add(Sb, b), BB = hn::Add(BB, mul16(b, b));
+      Sb = hn::Add(Sb, b);
+      BB = hn::Add(BB, mul16(b, b));
       for (int c = 0; c < N; ++c) {
         const V x = s.x[i][s.c0 + c];
-        Sx[c] = hn::IfThenElse(m, hn::Add(Sx[c], x), Sx[c]), RB[c] = hn::Add(RB[c], mul16(b, x));
+        Sx[c] = hn::IfThenElse(m, hn::Add(Sx[c], x), Sx[c]);
+        RB[c] = hn::Add(RB[c], mul16(b, x));
       }
     }
     const V AA = hn::Add(hn::Sub(hn::ShiftLeft<12>(n), hn::ShiftLeft<7>(Sb)), BB),
             AB = hn::Sub(hn::ShiftLeft<6>(Sb), BB);
     for (int c = 0; c < N; ++c) RA[c] = hn::Sub(hn::ShiftLeft<6>(Sx[c]), RB[c]);
     const VF fAA = f(AA), fAB = f(AB), fBB = f(BB);
-    H[0] = fAA, H[1] = hn::Mul(hn::Set(df, 2.0f), fAB), H[2] = fBB;
+    H[0] = fAA;
+    H[1] = hn::Mul(hn::Set(df, 2.0f), fAB);
+    H[2] = fBB;
     const VF det = hn::Sub(hn::Mul(fAA, fBB), hn::Mul(fAB, fAB));
     const auto ok = hn::Gt(det, hn::Zero(df));
     const VF inv = hn::Div(hn::Set(df, 64.0f), hn::IfThenElse(ok, det, hn::Set(df, 1.0f)));
@@ -419,9 +439,10 @@ struct Bc7FitLanes {
   HWY_INLINE void select_fit(M m, const SetFitV& from, SetFitV& to, const SetV& s) const {
     for (int k = 0; k < 2; ++k) {
       to.pbit[k] = hn::IfThenElse(m, from.pbit[k], to.pbit[k]);
-      for (int a = s.c0; a < s.c0 + s.n; ++a)
-        to.code[k][a] = hn::IfThenElse(m, from.code[k][a], to.code[k][a]),
+      for (int a = s.c0; a < s.c0 + s.n; ++a) {
+        to.code[k][a] = hn::IfThenElse(m, from.code[k][a], to.code[k][a]);
         to.value[k][a] = hn::IfThenElse(m, from.value[k][a], to.value[k][a]);
+      }
     }
     for (int i = 0; i < 16; ++i) to.index[i] = hn::IfThenElse(m, from.index[i], to.index[i]);
     to.error = hn::IfThenElse(m, from.error, to.error);

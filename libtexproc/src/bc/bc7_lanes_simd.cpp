@@ -44,7 +44,8 @@ struct Bc7Batch : Bc7FitLanes {
   }
 
   HWY_INLINE void load(const std::uint32_t texel[16][kBc7Batch], int k0) {
-    opaque = hn::FirstN(d, kBc7Batch), solid = opaque;
+    opaque = hn::FirstN(d, kBc7Batch);
+    solid = opaque;
     alpha_error = hn::Zero(d);
     const V first = hn::LoadU(d, reinterpret_cast<const std::int32_t*>(texel[0]) + k0);
     for (int i = 0; i < 16; ++i) {
@@ -239,7 +240,8 @@ struct Bc7Batch : Bc7FitLanes {
     }
     if (level.partitions3 > 0) {
       RankedV three, three16;
-      init(three, std::min(level.partitions3, 64)), init(three16, std::min(level.partitions3, 16));
+      init(three, std::min(level.partitions3, 64));
+      init(three16, std::min(level.partitions3, 16));
       rank_partitions(x, 3, 64, three, &three16, residuals2, scanned2);
       for (int r = 0; r < three16.k; ++r) try_partitioned(0, three16.partition[r], all);
       for (int r = 0; r < three.k; ++r) try_partitioned(2, three.partition[r], all);
@@ -259,27 +261,34 @@ struct Bc7Batch : Bc7FitLanes {
   HWY_INLINE void store(bc7::LaneChoices& t, int k0) const {
     hn::StoreU(hn::VecFromMask(d, solid), d, t.solid + k0);
     for (int c = 0; c < 4; ++c) hn::StoreU(x[0][c], d, t.x0[c] + k0);
-    hn::StoreU(best.mode, d, t.mode + k0), hn::StoreU(best.partition, d, t.partition + k0);
-    hn::StoreU(best.rotation, d, t.rotation + k0), hn::StoreU(best.isel, d, t.isel + k0);
+    hn::StoreU(best.mode, d, t.mode + k0);
+    hn::StoreU(best.partition, d, t.partition + k0);
+    hn::StoreU(best.rotation, d, t.rotation + k0);
+    hn::StoreU(best.isel, d, t.isel + k0);
     for (int s = 0; s < 3; ++s)
       for (int e = 0; e < 2; ++e) {
         hn::StoreU(best.pbit[s][e], d, t.pbit[s][e] + k0);
         for (int ch = 0; ch < 4; ++ch) hn::StoreU(best.code[s][e][ch], d, t.code[s][e][ch] + k0);
       }
-    for (int i = 0; i < 16; ++i)
-      hn::StoreU(best.color_index[i], d, t.color_index[i] + k0),
-          hn::StoreU(best.alpha_index[i], d, t.alpha_index[i] + k0);
+    for (int i = 0; i < 16; ++i) {
+      hn::StoreU(best.color_index[i], d, t.color_index[i] + k0);
+      hn::StoreU(best.alpha_index[i], d, t.alpha_index[i] + k0);
+    }
   }
   HWY_INLINE void load_choices(const bc7::LaneChoices& t) {
-    best.mode = hn::LoadU(d, t.mode), best.partition = hn::LoadU(d, t.partition);
-    best.rotation = hn::LoadU(d, t.rotation), best.isel = hn::LoadU(d, t.isel);
+    best.mode = hn::LoadU(d, t.mode);
+    best.partition = hn::LoadU(d, t.partition);
+    best.rotation = hn::LoadU(d, t.rotation);
+    best.isel = hn::LoadU(d, t.isel);
     for (int s = 0; s < 3; ++s)
       for (int e = 0; e < 2; ++e) {
         best.pbit[s][e] = hn::LoadU(d, t.pbit[s][e]);
         for (int ch = 0; ch < 4; ++ch) best.code[s][e][ch] = hn::LoadU(d, t.code[s][e][ch]);
       }
-    for (int i = 0; i < 16; ++i)
-      best.color_index[i] = hn::LoadU(d, t.color_index[i]), best.alpha_index[i] = hn::LoadU(d, t.alpha_index[i]);
+    for (int i = 0; i < 16; ++i) {
+      best.color_index[i] = hn::LoadU(d, t.color_index[i]);
+      best.alpha_index[i] = hn::LoadU(d, t.alpha_index[i]);
+    }
   }
 };
 

@@ -80,10 +80,14 @@ Choice solid_choice(const int rgba[4]) {
   c.mode = 5;
   for (int a = 0; a < 3; ++a) {
     const SolidPair& p = solid5(rgba[a]);
-    c.code[0][0][a] = p.e0, c.code[0][1][a] = p.e1;
+    c.code[0][0][a] = p.e0;
+    c.code[0][1][a] = p.e1;
   }
   c.code[0][0][3] = c.code[0][1][3] = rgba[3];
-  for (int i = 0; i < 16; ++i) c.color_index[i] = 1, c.alpha_index[i] = 0;
+  for (int i = 0; i < 16; ++i) {
+    c.color_index[i] = 1;
+    c.alpha_index[i] = 0;
+  }
   return c;
 }
 
@@ -189,14 +193,19 @@ void pack_lanes(const LaneChoices& t, int count, std::uint8_t out[][16]) {
       continue;
     }
     Choice c;
-    c.mode = t.mode[k], c.partition = t.partition[k], c.rotation = t.rotation[k], c.index_selection = t.isel[k];
+    c.mode = t.mode[k];
+    c.partition = t.partition[k];
+    c.rotation = t.rotation[k];
+    c.index_selection = t.isel[k];
     for (int s = 0; s < 3; ++s)
       for (int e = 0; e < 2; ++e) {
         c.pbit[s][e] = t.pbit[s][e][k];
         for (int ch = 0; ch < 4; ++ch) c.code[s][e][ch] = t.code[s][e][ch][k];
       }
-    for (int i = 0; i < 16; ++i)
-      c.color_index[i] = std::uint8_t(t.color_index[i][k]), c.alpha_index[i] = std::uint8_t(t.alpha_index[i][k]);
+    for (int i = 0; i < 16; ++i) {
+      c.color_index[i] = std::uint8_t(t.color_index[i][k]);
+      c.alpha_index[i] = std::uint8_t(t.alpha_index[i][k]);
+    }
     pack_block(c, out[k]);
   }
 }

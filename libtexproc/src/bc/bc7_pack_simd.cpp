@@ -28,8 +28,11 @@ struct AnchorTables {
 };
 constexpr AnchorTables make_anchor_tables() {
   AnchorTables a{};
-  for (int p = 0; p < 64; ++p)
-    a.t[0][p] = bptc::kAnchor2[p], a.t[1][p] = bptc::kAnchor3a[p], a.t[2][p] = bptc::kAnchor3b[p];
+  for (int p = 0; p < 64; ++p) {
+    a.t[0][p] = bptc::kAnchor2[p];
+    a.t[1][p] = bptc::kAnchor3a[p];
+    a.t[2][p] = bptc::kAnchor3b[p];
+  }
   return a;
 }
 inline constexpr AnchorTables kAnchorTables = make_anchor_tables();
@@ -84,7 +87,8 @@ HWY_INLINE void put64(Words& b, U lo, U hi, int pos) {
 // texel 1 on) of a 64-bit word (lo, hi), a lane's positions its own.
 HWY_INLINE void stream(const DI d, const V* index, int bits, const V anchor[3], int ns, U& lo, U& hi) {
   const DU du;
-  lo = hn::Zero(du), hi = hn::Zero(du);
+  lo = hn::Zero(du);
+  hi = hn::Zero(du);
   for (int i = 0; i < 16; ++i) {
     V pos = hn::Set(d, i * bits - (i > 0 ? 1 : 0));
     for (int s = 1; s < ns; ++s)
@@ -132,11 +136,12 @@ HWY_INLINE Words pack_mode(const DI d, Fields c) {
     flip[s] = hn::Gt(at, half);
     for (int ch = 0; ch < color_channels; ++ch) {
       const V e0 = c.code[s][0][ch];
-      c.code[s][0][ch] = hn::IfThenElse(flip[s], c.code[s][1][ch], e0),
+      c.code[s][0][ch] = hn::IfThenElse(flip[s], c.code[s][1][ch], e0);
       c.code[s][1][ch] = hn::IfThenElse(flip[s], e0, c.code[s][1][ch]);
     }
     const V p0 = c.pbit[s][0];
-    c.pbit[s][0] = hn::IfThenElse(flip[s], c.pbit[s][1], p0), c.pbit[s][1] = hn::IfThenElse(flip[s], p0, c.pbit[s][1]);
+    c.pbit[s][0] = hn::IfThenElse(flip[s], c.pbit[s][1], p0);
+    c.pbit[s][1] = hn::IfThenElse(flip[s], p0, c.pbit[s][1]);
   }
   for (int i = 0; i < 16; ++i) {
     M m = flip[0];
@@ -152,7 +157,8 @@ HWY_INLINE Words pack_mode(const DI d, Fields c) {
         hn::IfThenElse(swap_streams, hn::Set(d, (1 << Md.index_bits) - 1), hn::Set(d, (1 << Md.index2_bits) - 1));
     const M f = hn::Gt(c.alpha[0], hn::ShiftRight<1>(alpha_L));
     const V a0 = c.code[0][0][3];
-    c.code[0][0][3] = hn::IfThenElse(f, c.code[0][1][3], a0), c.code[0][1][3] = hn::IfThenElse(f, a0, c.code[0][1][3]);
+    c.code[0][0][3] = hn::IfThenElse(f, c.code[0][1][3], a0);
+    c.code[0][1][3] = hn::IfThenElse(f, a0, c.code[0][1][3]);
     for (int i = 0; i < 16; ++i) c.alpha[i] = hn::IfThenElse(f, hn::Sub(alpha_L, c.alpha[i]), c.alpha[i]);
   }
   Words b;
@@ -178,9 +184,10 @@ HWY_INLINE Words pack_mode(const DI d, Fields c) {
   if (Md.shared_pbits)
     for (int s = 0; s < ns; ++s) field(c.pbit[s][0], 1);
   V primary[16], secondary[16];
-  for (int i = 0; i < 16; ++i)
-    primary[i] = hn::IfThenElse(swap_streams, c.alpha[i], c.color[i]),
+  for (int i = 0; i < 16; ++i) {
+    primary[i] = hn::IfThenElse(swap_streams, c.alpha[i], c.color[i]);
     secondary[i] = hn::IfThenElse(swap_streams, c.color[i], c.alpha[i]);
+  }
   U lo, hi;
   stream(d, primary, Md.index_bits, anchor, ns, lo, hi);
   put64(b, lo, hi, pos);
@@ -207,15 +214,19 @@ void Bc7PackLanes(const bc7::LaneChoices& t, int count, std::uint8_t out[][16]) 
   const std::int32_t* solid = bc7::solid5_packed();
   for (int k0 = 0; k0 < count; k0 += N) {
     Fields c;
-    c.mode = hn::LoadU(d, t.mode + k0), c.partition = hn::And(hn::LoadU(d, t.partition + k0), hn::Set(d, 63));
-    c.rotation = hn::LoadU(d, t.rotation + k0), c.isel = hn::LoadU(d, t.isel + k0);
+    c.mode = hn::LoadU(d, t.mode + k0);
+    c.partition = hn::And(hn::LoadU(d, t.partition + k0), hn::Set(d, 63));
+    c.rotation = hn::LoadU(d, t.rotation + k0);
+    c.isel = hn::LoadU(d, t.isel + k0);
     for (int s = 0; s < 3; ++s)
       for (int k = 0; k < 2; ++k) {
         c.pbit[s][k] = hn::LoadU(d, t.pbit[s][k] + k0);
         for (int ch = 0; ch < 4; ++ch) c.code[s][k][ch] = hn::LoadU(d, t.code[s][k][ch] + k0);
       }
-    for (int i = 0; i < 16; ++i)
-      c.color[i] = hn::LoadU(d, t.color_index[i] + k0), c.alpha[i] = hn::LoadU(d, t.alpha_index[i] + k0);
+    for (int i = 0; i < 16; ++i) {
+      c.color[i] = hn::LoadU(d, t.color_index[i] + k0);
+      c.alpha[i] = hn::LoadU(d, t.alpha_index[i] + k0);
+    }
     // One colour: bc7::solid_choice's mode 5 block.
     const M one = hn::Ne(hn::LoadU(d, t.solid + k0), hn::Zero(d));
     if (!hn::AllFalse(d, one)) {
@@ -227,9 +238,10 @@ void Bc7PackLanes(const bc7::LaneChoices& t, int count, std::uint8_t out[][16]) 
         c.code[0][0][ch] = hn::IfThenElse(one, hn::And(pair, hn::Set(d, 255)), c.code[0][0][ch]);
         c.code[0][1][ch] = hn::IfThenElse(one, hn::ShiftRight<8>(pair), c.code[0][1][ch]);
       }
-      for (int i = 0; i < 16; ++i)
-        c.color[i] = hn::IfThenElse(one, hn::Set(d, 1), c.color[i]),
+      for (int i = 0; i < 16; ++i) {
+        c.color[i] = hn::IfThenElse(one, hn::Set(d, 1), c.color[i]);
         c.alpha[i] = hn::IfThenElseZero(hn::Not(one), c.alpha[i]);
+      }
     }
     Words b;
     for (auto& w : b.w) w = hn::Zero(du);

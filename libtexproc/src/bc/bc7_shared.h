@@ -36,16 +36,21 @@ struct LaneChoices {
 };
 // Lane j of `to` made lane k of `from`, every field.
 inline void copy_lane(const LaneChoices& from, int k, LaneChoices& to, int j) {
-  to.solid[j] = from.solid[k], to.mode[j] = from.mode[k], to.partition[j] = from.partition[k];
-  to.rotation[j] = from.rotation[k], to.isel[j] = from.isel[k];
+  to.solid[j] = from.solid[k];
+  to.mode[j] = from.mode[k];
+  to.partition[j] = from.partition[k];
+  to.rotation[j] = from.rotation[k];
+  to.isel[j] = from.isel[k];
   for (int c = 0; c < 4; ++c) to.x0[c][j] = from.x0[c][k];
   for (int s = 0; s < 3; ++s)
     for (int e = 0; e < 2; ++e) {
       to.pbit[s][e][j] = from.pbit[s][e][k];
       for (int c = 0; c < 4; ++c) to.code[s][e][c][j] = from.code[s][e][c][k];
     }
-  for (int i = 0; i < 16; ++i)
-    to.color_index[i][j] = from.color_index[i][k], to.alpha_index[i][j] = from.alpha_index[i][k];
+  for (int i = 0; i < 16; ++i) {
+    to.color_index[i][j] = from.color_index[i][k];
+    to.alpha_index[i][j] = from.alpha_index[i][k];
+  }
 }
 // Lanes 0 to count - 1 packed, lane k into out[k]: block by block
 // (pack_lanes, the reference), or a SIMD lane a block (pack_lanes_simd,
@@ -81,7 +86,10 @@ constexpr QuantTable make_quant_table(int bits, int p) {
     int best = 0, best_d = 1 << 20;
     for (int c = 0; c < (1 << bits); ++c) {
       const int d = expand(c, bits, p) - v;
-      if (d * d < best_d) best_d = d * d, best = c;
+      if (d * d < best_d) {
+        best_d = d * d;
+        best = c;
+      }
     }
     t.q[v] = {std::uint8_t(best), std::uint8_t(expand(best, bits, p))};
   }

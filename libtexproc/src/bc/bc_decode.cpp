@@ -102,22 +102,26 @@ void rgtc_palette_u8(const std::uint8_t* b, bool snorm, std::uint8_t u[8]) {
   const Rgtc8Tables& T = rgtc8();
   if (!snorm) {
     const int r0 = b[0], r1 = b[1];
-    u[0] = T.end_u[r0], u[1] = T.end_u[r1];
+    u[0] = T.end_u[r0];
+    u[1] = T.end_u[r1];
     if (r0 > r1) {
       for (int k = 1; k <= 6; ++k) u[k + 1] = T.u7[r0 * (7 - k) + r1 * k];
     } else {
       for (int k = 1; k <= 4; ++k) u[k + 1] = T.u5[r0 * (5 - k) + r1 * k];
-      u[6] = 0, u[7] = 255;
+      u[6] = 0;
+      u[7] = 255;
     }
     return;
   }
   const int r0 = std::max(-127, int(std::int8_t(b[0]))), r1 = std::max(-127, int(std::int8_t(b[1])));
-  u[0] = T.end_s[b[0] ^ 0x80], u[1] = T.end_s[b[1] ^ 0x80];
+  u[0] = T.end_s[b[0] ^ 0x80];
+  u[1] = T.end_s[b[1] ^ 0x80];
   if (r0 > r1) {
     for (int k = 1; k <= 6; ++k) u[k + 1] = T.s7[r0 * (7 - k) + r1 * k + 889];
   } else {
     for (int k = 1; k <= 4; ++k) u[k + 1] = T.s5[r0 * (5 - k) + r1 * k + 635];
-    u[6] = 0, u[7] = 255;  // -1 and 1, biased
+    u[6] = 0;
+    u[7] = 255;  // -1 and 1, biased
   }
 }
 
@@ -214,7 +218,8 @@ inline __attribute__((always_inline)) void bc3_rows(const std::uint8_t* b, std::
     for (int k = 1; k <= 6; ++k) alpha[k + 1] = std::uint32_t(T.u7[r0 * (7 - k) + r1 * k]) << 24;
   } else {
     for (int k = 1; k <= 4; ++k) alpha[k + 1] = std::uint32_t(T.u5[r0 * (5 - k) + r1 * k]) << 24;
-    alpha[6] = 0, alpha[7] = 0xFF000000u;
+    alpha[6] = 0;
+    alpha[7] = 0xFF000000u;
   }
   std::uint64_t abits;
   std::memcpy(&abits, b, 8);  // the indices: bytes 2..7 (little-endian hosts, as the rest of texproc)

@@ -61,7 +61,8 @@ void read_indices(BitReader& r, int bits, const int anchor[3], int subsets, int 
   for (int i = 0; i < 16; ++i) {
     const int n = bits - int(anchors >> i & 1);
     out[i] = int(v & ((std::uint64_t(1) << n) - 1));
-    v >>= n, used += n;
+    v >>= n;
+    used += n;
   }
   r.skip(used);
 }

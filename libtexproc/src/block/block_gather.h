@@ -8,7 +8,6 @@
 #include <cstdint>
 #include <cstring>
 
-#include "texproc/block_encode.h"
 #include "texproc/image.h"
 
 namespace texproc {
@@ -63,7 +62,10 @@ inline void gather_rgba8(const ConstImageView& img, int bx, int by, std::uint8_t
       const std::uint8_t* src = img.row<const std::uint8_t>(y0 + y) + 3 * x0;
       for (int x = 0; x < 4; ++x) {
         std::uint8_t* dst = rgba[4 * y + x];
-        dst[0] = src[3 * x], dst[1] = src[3 * x + 1], dst[2] = src[3 * x + 2], dst[3] = 255;
+        dst[0] = src[3 * x];
+        dst[1] = src[3 * x + 1];
+        dst[2] = src[3 * x + 2];
+        dst[3] = 255;
       }
     }
     return;

@@ -24,21 +24,31 @@ template <AxisScaling kScaling>
 inline void principal_axis(const float cov[6], float axis[3]) {
   float v[3];
   if (cov[0] >= cov[3] && cov[0] >= cov[5]) {
-    v[0] = cov[0], v[1] = cov[1], v[2] = cov[2];
+    v[0] = cov[0];
+    v[1] = cov[1];
+    v[2] = cov[2];
   } else if (cov[3] >= cov[5]) {
-    v[0] = cov[1], v[1] = cov[3], v[2] = cov[4];
+    v[0] = cov[1];
+    v[1] = cov[3];
+    v[2] = cov[4];
   } else {
-    v[0] = cov[2], v[1] = cov[4], v[2] = cov[5];
+    v[0] = cov[2];
+    v[1] = cov[4];
+    v[2] = cov[5];
   }
   for (int it = 0; it < 4; ++it) {
     const float big = std::max(std::abs(v[0]), std::max(std::abs(v[1]), std::abs(v[2])));
     float x, y, z;
     if constexpr (kScaling == AxisScaling::divide) {
       if (big == 0.0f) break;
-      x = v[0] / big, y = v[1] / big, z = v[2] / big;
+      x = v[0] / big;
+      y = v[1] / big;
+      z = v[2] / big;
     } else {
       const float inv = 1.0f / big;
-      x = v[0] * inv, y = v[1] * inv, z = v[2] * inv;
+      x = v[0] * inv;
+      y = v[1] * inv;
+      z = v[2] * inv;
     }
     v[0] = cov[0] * x + cov[1] * y + cov[2] * z;
     v[1] = cov[1] * x + cov[3] * y + cov[4] * z;

@@ -31,14 +31,26 @@ void Bc1Moments_(const RgbBlock& tx, RgbMoments& m) {
             g = hn::IfThenElseZero(opaque, hn::LoadU(d, tx.g + i)),
             b = hn::IfThenElseZero(opaque, hn::LoadU(d, tx.b + i));
     n = hn::Add(n, hn::IfThenElseZero(opaque, hn::Set(d, 1)));
-    sr = hn::Add(sr, r), sg = hn::Add(sg, g), sb = hn::Add(sb, b);
-    rr = hn::Add(rr, hn::Mul(r, r)), rg = hn::Add(rg, hn::Mul(r, g)), rb = hn::Add(rb, hn::Mul(r, b));
-    gg = hn::Add(gg, hn::Mul(g, g)), gb = hn::Add(gb, hn::Mul(g, b)), bb = hn::Add(bb, hn::Mul(b, b));
+    sr = hn::Add(sr, r);
+    sg = hn::Add(sg, g);
+    sb = hn::Add(sb, b);
+    rr = hn::Add(rr, hn::Mul(r, r));
+    rg = hn::Add(rg, hn::Mul(r, g));
+    rb = hn::Add(rb, hn::Mul(r, b));
+    gg = hn::Add(gg, hn::Mul(g, g));
+    gb = hn::Add(gb, hn::Mul(g, b));
+    bb = hn::Add(bb, hn::Mul(b, b));
   }
   m.n = Total(d, n);
-  m.sum[0] = Total(d, sr), m.sum[1] = Total(d, sg), m.sum[2] = Total(d, sb);
-  m.sq[0] = Total(d, rr), m.sq[1] = Total(d, rg), m.sq[2] = Total(d, rb);
-  m.sq[3] = Total(d, gg), m.sq[4] = Total(d, gb), m.sq[5] = Total(d, bb);
+  m.sum[0] = Total(d, sr);
+  m.sum[1] = Total(d, sg);
+  m.sum[2] = Total(d, sb);
+  m.sq[0] = Total(d, rr);
+  m.sq[1] = Total(d, rg);
+  m.sq[2] = Total(d, rb);
+  m.sq[3] = Total(d, gg);
+  m.sq[4] = Total(d, gb);
+  m.sq[5] = Total(d, bb);
 }
 
 void Bc1ProjectRange(const RgbBlock& tx, const float axis[3], float& lo, float& hi) {
@@ -104,13 +116,25 @@ void Bc1LsSums_(const RgbBlock& tx, const std::uint8_t codes[16], const int weig
     w = hn::IfThenElseZero(in, w);
     const V u = hn::IfThenElseZero(in, hn::Sub(vden, w));
     const V r = hn::LoadU(d, tx.r + i), g = hn::LoadU(d, tx.g + i), b = hn::LoadU(d, tx.b + i);
-    aa = hn::Add(aa, hn::Mul(u, u)), ab = hn::Add(ab, hn::Mul(u, w)), bb = hn::Add(bb, hn::Mul(w, w));
-    ar = hn::Add(ar, hn::Mul(u, r)), ag = hn::Add(ag, hn::Mul(u, g)), ab_ = hn::Add(ab_, hn::Mul(u, b));
-    br = hn::Add(br, hn::Mul(w, r)), bg = hn::Add(bg, hn::Mul(w, g)), bbl = hn::Add(bbl, hn::Mul(w, b));
+    aa = hn::Add(aa, hn::Mul(u, u));
+    ab = hn::Add(ab, hn::Mul(u, w));
+    bb = hn::Add(bb, hn::Mul(w, w));
+    ar = hn::Add(ar, hn::Mul(u, r));
+    ag = hn::Add(ag, hn::Mul(u, g));
+    ab_ = hn::Add(ab_, hn::Mul(u, b));
+    br = hn::Add(br, hn::Mul(w, r));
+    bg = hn::Add(bg, hn::Mul(w, g));
+    bbl = hn::Add(bbl, hn::Mul(w, b));
   }
-  s.aa = Total(d, aa), s.ab = Total(d, ab), s.bb = Total(d, bb);
-  s.at[0] = Total(d, ar), s.at[1] = Total(d, ag), s.at[2] = Total(d, ab_);
-  s.bt[0] = Total(d, br), s.bt[1] = Total(d, bg), s.bt[2] = Total(d, bbl);
+  s.aa = Total(d, aa);
+  s.ab = Total(d, ab);
+  s.bb = Total(d, bb);
+  s.at[0] = Total(d, ar);
+  s.at[1] = Total(d, ag);
+  s.at[2] = Total(d, ab_);
+  s.bt[0] = Total(d, br);
+  s.bt[1] = Total(d, bg);
+  s.bt[2] = Total(d, bbl);
 }
 
 }  // namespace HWY_NAMESPACE

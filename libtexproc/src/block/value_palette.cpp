@@ -9,7 +9,10 @@ void value_palette_nearest(const double t[16], const double pal[8], std::uint8_t
     double be = (t[i] - pal[0]) * (t[i] - pal[0]);
     for (int k = 1; k < 8; ++k) {
       const double e = (t[i] - pal[k]) * (t[i] - pal[k]);
-      if (e < be) be = e, best = k;
+      if (e < be) {
+        be = e;
+        best = k;
+      }
     }
     codes[i] = std::uint8_t(best);
     errors[i] = be;

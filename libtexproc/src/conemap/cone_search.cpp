@@ -79,9 +79,15 @@ inline int range_gap(int a0, int a1, int b0, int b1, int n, bool repeat, int* si
   if (repeat && g > 0) {
     int s2 = 0;
     int g2 = gap(-n, s2);
-    if (g2 < g) g = g2, sd = s2;
+    if (g2 < g) {
+      g = g2;
+      sd = s2;
+    }
     g2 = gap(n, s2);
-    if (g2 < g) g = g2, sd = s2;
+    if (g2 < g) {
+      g = g2;
+      sd = s2;
+    }
   }
   if (side) *side = sd;
   return g;
@@ -230,8 +236,10 @@ struct CellSearch {
   void begin(int cx, int cy) {
     c.x0 = cx * kCell;
     c.y0 = cy * kCell;
-    w = std::min(kCell, x.W - c.x0), h = std::min(kCell, x.H - c.y0);
-    x1 = c.x0 + w - 1, y1 = c.y0 + h - 1;
+    w = std::min(kCell, x.W - c.x0);
+    h = std::min(kCell, x.H - c.y0);
+    x1 = c.x0 + w - 1;
+    y1 = c.y0 + h - 1;
     cell_min = std::numeric_limits<float>::infinity();
     cell_max = 0;
     for (int r = 0; r < kCell; ++r) {

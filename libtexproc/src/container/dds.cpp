@@ -7,7 +7,7 @@
 #include <algorithm>
 
 #include "container/bytes.h"
-#include "container/format_names.h"
+#include "format/format_names.h"
 #include "container/streams.h"
 #include "texproc/container.h"
 
@@ -221,10 +221,16 @@ Texture decode_dds(const std::uint8_t* data, std::size_t size, const std::string
     found = true;
   } else if (pf_flags & kFourCC) {
     for (const auto& l : kLegacy) {
-      if ((l.flags & kFourCC) && l.fourcc == pf_fourcc) t.format = l.format, found = true;
+      if ((l.flags & kFourCC) && l.fourcc == pf_fourcc) {
+        t.format = l.format;
+        found = true;
+      }
     }
     for (const auto& e : kExtraFourCC) {
-      if (e.code == pf_fourcc) t.format = e.format, found = true;
+      if (e.code == pf_fourcc) {
+        t.format = e.format;
+        found = true;
+      }
     }
     if (!found) {
       char cc[5] = {char(pf_fourcc), char(pf_fourcc >> 8), char(pf_fourcc >> 16), char(pf_fourcc >> 24), 0};

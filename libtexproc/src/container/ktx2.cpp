@@ -12,7 +12,7 @@
 #include <numeric>
 
 #include "container/bytes.h"
-#include "container/format_names.h"
+#include "format/format_names.h"
 #include "container/streams.h"
 #include "texproc/container.h"
 #include "texproc/version.h"
@@ -151,13 +151,21 @@ Header read_header(const ByteReader& r, std::size_t size) {
   if (size < 12 || std::memcmp(r.at(0, 12, "identifier"), kIdentifier, 12) != 0)
     r.fail("not a KTX2 file (bad identifier)");
   Header h;
-  h.vk = r.u32(12, "vkFormat"), h.type_size = r.u32(16, "typeSize");
-  h.width = r.u32(20, "pixelWidth"), h.height = r.u32(24, "pixelHeight"), h.depth = r.u32(28, "pixelDepth");
-  h.layer_count = r.u32(32, "layerCount"), h.faces = r.u32(36, "faceCount"), h.level_count = r.u32(40, "levelCount");
+  h.vk = r.u32(12, "vkFormat");
+  h.type_size = r.u32(16, "typeSize");
+  h.width = r.u32(20, "pixelWidth");
+  h.height = r.u32(24, "pixelHeight");
+  h.depth = r.u32(28, "pixelDepth");
+  h.layer_count = r.u32(32, "layerCount");
+  h.faces = r.u32(36, "faceCount");
+  h.level_count = r.u32(40, "levelCount");
   h.scheme = r.u32(44, "supercompressionScheme");
-  h.dfd_offset = r.u32(48, "dfdByteOffset"), h.dfd_length = r.u32(52, "dfdByteLength");
-  h.kvd_offset = r.u32(56, "kvdByteOffset"), h.kvd_length = r.u32(60, "kvdByteLength");
-  h.sgd_offset = r.u64(64, "sgdByteOffset"), h.sgd_length = r.u64(72, "sgdByteLength");
+  h.dfd_offset = r.u32(48, "dfdByteOffset");
+  h.dfd_length = r.u32(52, "dfdByteLength");
+  h.kvd_offset = r.u32(56, "kvdByteOffset");
+  h.kvd_length = r.u32(60, "kvdByteLength");
+  h.sgd_offset = r.u64(64, "sgdByteOffset");
+  h.sgd_length = r.u64(72, "sgdByteLength");
   return h;
 }
 

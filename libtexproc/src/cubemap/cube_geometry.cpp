@@ -403,8 +403,14 @@ SeamStats measure_seams(const CubeLevel& level) {
     auto at = [&](int i, int j) { return face.row<float>(j) + 4 * i; };
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        if (i + 1 < n) inner += step(at(i, j), at(i + 1, j)), ++inners;
-        if (j + 1 < n) inner += step(at(i, j), at(i, j + 1)), ++inners;
+        if (i + 1 < n) {
+          inner += step(at(i, j), at(i + 1, j));
+          ++inners;
+        }
+        if (j + 1 < n) {
+          inner += step(at(i, j), at(i, j + 1));
+          ++inners;
+        }
       }
     // Along each edge: the texel across it (one texel outward on the
     // extended plane) and the texel inward of the edge texel.
@@ -412,7 +418,10 @@ SeamStats measure_seams(const CubeLevel& level) {
       const int pos[4][6] = {
           {0, k, -1, k, 1, k}, {n - 1, k, n, k, n - 2, k}, {k, 0, k, -1, k, 1}, {k, n - 1, k, n, k, n - 2}};
       for (const auto& p : pos) {
-        if (n >= 2) near += step(at(p[0], p[1]), at(p[4], p[5])), ++nears;
+        if (n >= 2) {
+          near += step(at(p[0], p[1]), at(p[4], p[5]));
+          ++nears;
+        }
         double d[3];
         cube_direction(f, 2.0 * (p[2] + 0.5) / n - 1.0, 2.0 * (p[3] + 0.5) / n - 1.0, d);
         int of, oi, oj;

@@ -162,11 +162,15 @@ struct PanoPyramid {
     int y0, y1;
     float ty;
     if (fy <= 0) {
-      y0 = y1 = 0, ty = 0;
+      y0 = y1 = 0;
+      ty = 0;
     } else if (fy >= l.h - 1) {
-      y0 = y1 = l.h - 1, ty = 0;
+      y0 = y1 = l.h - 1;
+      ty = 0;
     } else {
-      y0 = int(fy), y1 = y0 + 1, ty = float(fy - y0);
+      y0 = int(fy);
+      y1 = y0 + 1;
+      ty = float(fy - y0);
     }
     const float* r0 = l.data + y0 * l.stride;
     const float* r1 = l.data + y1 * l.stride;
@@ -184,7 +188,10 @@ void face_axes(int face, double eu[3], double ev[3]) {
   cube_direction(face, 0, 0, o);
   cube_direction(face, 1, 0, a);
   cube_direction(face, 0, 1, b);
-  for (int k = 0; k < 3; ++k) eu[k] = a[k] - o[k], ev[k] = b[k] - o[k];
+  for (int k = 0; k < 3; ++k) {
+    eu[k] = a[k] - o[k];
+    ev[k] = b[k] - o[k];
+  }
 }
 
 void apply_flip(CubeFlip flip, double d[3]) {
@@ -314,7 +321,9 @@ TapRange tap_range(int n, int m) {
 
 void normalize3(double v[3]) {
   const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  v[0] /= l, v[1] /= l, v[2] /= l;
+  v[0] /= l;
+  v[1] /= l;
+  v[2] /= l;
 }
 
 // The weights of every destination texel's taps, normalized: a separable
@@ -416,7 +425,10 @@ namespace cube {
 namespace {
 int mip_count(int n) {
   int levels = 1;
-  while (n > 1) n = std::max(1, n / 2), ++levels;
+  while (n > 1) {
+    n = std::max(1, n / 2);
+    ++levels;
+  }
   return levels;
 }
 }  // namespace

@@ -112,7 +112,10 @@ void decode_block(TexelFormat f, const std::uint8_t* b, float out[16][4]) {
     case F::eac_rg11_snorm: {
       const bool snorm = f == F::eac_r11_snorm || f == F::eac_rg11_snorm;
       const int channels = f == F::eac_rg11_unorm || f == F::eac_rg11_snorm ? 2 : 1;
-      for (int i = 0; i < 16; ++i) out[i][0] = out[i][1] = out[i][2] = 0.0f, out[i][3] = 1.0f;
+      for (int i = 0; i < 16; ++i) {
+        out[i][0] = out[i][1] = out[i][2] = 0.0f;
+        out[i][3] = 1.0f;
+      }
       for (int c = 0; c < channels; ++c) {
         int v[16];
         etc::decode_eac11(b + 8 * c, snorm, v);

@@ -43,7 +43,9 @@ void eac_try(const double t[16], EacKind kind, int base, int mult, int table, Ea
   for (int i = 0; i < 16; ++i) err += errors[i];
   if (err >= best.err) return;
   best.err = err;
-  best.base = base, best.mult = mult, best.table = table;
+  best.base = base;
+  best.mult = mult;
+  best.table = table;
   std::memcpy(best.idx, idx, 16);
 }
 

@@ -18,7 +18,8 @@ void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, con
     float t[16], lo = K.hi_end, hi = K.lo_end;
     for (int i = 0; i < 16; ++i) {
       t[i] = std::min(std::max(v[i][k], K.lo_end), K.hi_end);
-      lo = std::min(lo, t[i]), hi = std::max(hi, t[i]);
+      lo = std::min(lo, t[i]);
+      hi = std::max(hi, t[i]);
     }
     const float centre = (lo + hi) * 0.5f;
     float best = -1.0f;
@@ -34,14 +35,24 @@ void eac_encode_lanes(const float v[16][kEacBatch], int count, EacKind kind, con
         for (int base = b0 - window.base_radius; base <= b0 + window.base_radius; ++base) {
           if (base < K.base_lo || base > K.base_hi) continue;
           const float err = eac::candidate_error(K, t, base, mult, table);
-          if (best < 0.0f || err < best) best = err, best_base = base, best_mult = mult, best_table = table;
+          if (best < 0.0f || err < best) {
+            best = err;
+            best_base = base;
+            best_mult = mult;
+            best_table = table;
+          }
         }
       }
     }
     if (kind == EacKind::alpha8 && hi > lo && hi - lo <= 5.0f) {
       const int base = eac::narrow_base(lo);
       const float err = eac::candidate_error(K, t, base, 1, eac::kNarrowTable);
-      if (err < best) best = err, best_base = base, best_mult = 1, best_table = eac::kNarrowTable;
+      if (err < best) {
+        best = err;
+        best_base = base;
+        best_mult = 1;
+        best_table = eac::kNarrowTable;
+      }
     }
     int codes[16];
     eac::codes_of(K, t, best_base, best_mult, best_table, codes);

@@ -33,7 +33,8 @@ void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, const
     VF t[16], lo = hi_end, hi = lo_end;
     for (int i = 0; i < 16; ++i) {
       t[i] = hn::Min(hn::Max(hn::LoadU(df, v[i] + k0), lo_end), hi_end);
-      lo = hn::Min(lo, t[i]), hi = hn::Max(hi, t[i]);
+      lo = hn::Min(lo, t[i]);
+      hi = hn::Max(hi, t[i]);
     }
     const VF centre = hn::Mul(hn::Add(lo, hi), half);
     VF best = hn::Set(df, -1.0f);
@@ -105,7 +106,9 @@ void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, const
     }
     HWY_ALIGN std::int32_t base_o[kEacBatch], mult_o[kEacBatch], table_o[kEacBatch];
     HWY_ALIGN float err_o[kEacBatch], t_o[16][kEacBatch];
-    hn::Store(best_base, d, base_o), hn::Store(best_mult, d, mult_o), hn::Store(best_table, d, table_o);
+    hn::Store(best_base, d, base_o);
+    hn::Store(best_mult, d, mult_o);
+    hn::Store(best_table, d, table_o);
     hn::Store(best, df, err_o);
     for (int i = 0; i < 16; ++i) hn::Store(t[i], df, t_o[i]);
     for (int k = 0; k < lanes && k0 + k < count; ++k) {

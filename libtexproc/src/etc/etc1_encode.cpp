@@ -24,7 +24,11 @@ const std::array<HalfLayout, 4>& halves() {
       for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 4; ++x) {
           const bool in = k == 0 ? x < 2 : k == 1 ? x >= 2 : k == 2 ? y < 2 : y >= 2;
-          if (in) r[k].x[n] = x, r[k].y[n] = y, ++n;
+          if (in) {
+            r[k].x[n] = x;
+            r[k].y[n] = y;
+            ++n;
+          }
         }
     }
     return r;

@@ -22,7 +22,11 @@ void search_planar(const Texels& tx, const Etc2Modes& modes, Candidate& best) {
     // The plane through the texels' mean with slopes a (x) and b (y):
     // sums of integers, exact (sx, sy: twice the x and y moments about 1.5).
     int sum = 0, sx = 0, sy = 0;
-    for (int i = 0; i < 16; ++i) sum += px[i], sx += (2 * (i & 3) - 3) * px[i], sy += (2 * (i >> 2) - 3) * px[i];
+    for (int i = 0; i < 16; ++i) {
+      sum += px[i];
+      sx += (2 * (i & 3) - 3) * px[i];
+      sy += (2 * (i >> 2) - 3) * px[i];
+    }
     const double a = sx / 40.0, b = sy / 40.0, O = sum / 16.0 - 1.5 * a - 1.5 * b;
     const int top = (1 << bits) - 1;
     auto qz = [&](double v) { return std::clamp(int(std::lround(v * top / 255.0)), 0, top); };
@@ -42,9 +46,16 @@ void search_planar(const Texels& tx, const Etc2Modes& modes, Candidate& best) {
             const int d = clamp255(((i & 3) * (eh - eo) + (i >> 2) * (ev - eo) + 4 * eo + 2) >> 2) - px[i];
             e += d * d;
           }
-          if (e < be) be = e, bo = vo, bh = vh, bv = vv;
+          if (e < be) {
+            be = e;
+            bo = vo;
+            bh = vh;
+            bv = vv;
+          }
         }
-    o[c] = bo, hq[c] = bh, vq[c] = bv;
+    o[c] = bo;
+    hq[c] = bh;
+    vq[c] = bv;
     total += be;
     if (total >= best.err) return;  // errors only add up: planar cannot win
   }
@@ -55,11 +66,20 @@ void search_planar(const Texels& tx, const Etc2Modes& modes, Candidate& best) {
 std::uint64_t pack_planar(const int o[3], const int hq[3], const int vq[3]) {
   std::uint64_t v = 0;
   put(v, 62, 6, o[0]);
-  put(v, 56, 1, o[1] >> 6), put(v, 54, 6, o[1] & 63);
-  put(v, 48, 1, o[2] >> 5), put(v, 44, 2, o[2] >> 3 & 3), put(v, 41, 2, o[2] >> 1 & 3), put(v, 39, 1, o[2] & 1);
-  put(v, 38, 5, hq[0] >> 1), put(v, 32, 1, hq[0] & 1), put(v, 31, 7, hq[1]);
-  put(v, 24, 1, hq[2] >> 5), put(v, 23, 5, hq[2] & 31);
-  put(v, 18, 6, vq[0]), put(v, 12, 7, vq[1]), put(v, 5, 6, vq[2]);
+  put(v, 56, 1, o[1] >> 6);
+  put(v, 54, 6, o[1] & 63);
+  put(v, 48, 1, o[2] >> 5);
+  put(v, 44, 2, o[2] >> 3 & 3);
+  put(v, 41, 2, o[2] >> 1 & 3);
+  put(v, 39, 1, o[2] & 1);
+  put(v, 38, 5, hq[0] >> 1);
+  put(v, 32, 1, hq[0] & 1);
+  put(v, 31, 7, hq[1]);
+  put(v, 24, 1, hq[2] >> 5);
+  put(v, 23, 5, hq[2] & 31);
+  put(v, 18, 6, vq[0]);
+  put(v, 12, 7, vq[1]);
+  put(v, 5, 6, vq[2]);
   put(v, 33, 1, 1);
   // The mode is read from overflows: red and green must stay in range, blue
   // must leave it. Each has a free bit (63, 55; 47-45 and 42) that decides.
@@ -71,9 +91,11 @@ std::uint64_t pack_planar(const int o[3], const int hq[3], const int vq[3]) {
   if (!in_range(63, 58)) put(v, 63, 1, 1);
   if (!in_range(55, 50)) put(v, 55, 1, 1);
   if ((o[2] >> 3 & 3) + (o[2] >> 1 & 3) > 3) {
-    put(v, 47, 3, 7), put(v, 42, 1, 0);
+    put(v, 47, 3, 7);
+    put(v, 42, 1, 0);
   } else {
-    put(v, 47, 3, 0), put(v, 42, 1, 1);
+    put(v, 47, 3, 0);
+    put(v, 42, 1, 1);
   }
   return v;
 }
@@ -174,7 +196,10 @@ struct THSearch {
           const long d = clamp255(paint[k][c]) - tx.rgb[i][c];
           e += d * d;
         }
-        if (e < be) be = e, bk = k;
+        if (e < be) {
+          be = e;
+          bk = k;
+        }
       }
       idx[i] = std::uint8_t(bk);
       err += be;
@@ -204,13 +229,22 @@ struct THSearch {
         th_min = std::min(th_min, e);
         if (e >= best.err) continue;
         std::uint64_t v = 0;
-        put(v, 60, 2, c1[0] >> 2), put(v, 57, 2, c1[0] & 3), put(v, 55, 4, c1[1]), put(v, 51, 4, c1[2]);
-        put(v, 47, 4, c2[0]), put(v, 43, 4, c2[1]), put(v, 39, 4, c2[2]);
-        put(v, 35, 2, di >> 1), put(v, 32, 1, di & 1), put(v, 33, 1, opaque_bit());
+        put(v, 60, 2, c1[0] >> 2);
+        put(v, 57, 2, c1[0] & 3);
+        put(v, 55, 4, c1[1]);
+        put(v, 51, 4, c1[2]);
+        put(v, 47, 4, c2[0]);
+        put(v, 43, 4, c2[1]);
+        put(v, 39, 4, c2[2]);
+        put(v, 35, 2, di >> 1);
+        put(v, 32, 1, di & 1);
+        put(v, 33, 1, opaque_bit());
         if ((c1[0] >> 2) + (c1[0] & 3) > 3) {
-          put(v, 63, 3, 7), put(v, 58, 1, 0);
+          put(v, 63, 3, 7);
+          put(v, 58, 1, 0);
         } else {
-          put(v, 63, 3, 0), put(v, 58, 1, 1);
+          put(v, 63, 3, 0);
+          put(v, 58, 1, 1);
         }
         put_indices(v, idx);
         keep(best, e, v);
@@ -241,10 +275,19 @@ struct THSearch {
       th_min = std::min(th_min, e);
       if (e >= best.err) continue;
       std::uint64_t v = 0;
-      put(v, 62, 4, c1[0]), put(v, 58, 3, c1[1] >> 1), put(v, 52, 1, c1[1] & 1);
-      put(v, 51, 1, c1[2] >> 3), put(v, 49, 2, c1[2] >> 1 & 3), put(v, 47, 1, c1[2] & 1);
-      put(v, 46, 4, c2[0]), put(v, 42, 3, c2[1] >> 1), put(v, 39, 1, c2[1] & 1), put(v, 38, 4, c2[2]);
-      put(v, 34, 1, di >> 2), put(v, 32, 1, di >> 1 & 1), put(v, 33, 1, opaque_bit());
+      put(v, 62, 4, c1[0]);
+      put(v, 58, 3, c1[1] >> 1);
+      put(v, 52, 1, c1[1] & 1);
+      put(v, 51, 1, c1[2] >> 3);
+      put(v, 49, 2, c1[2] >> 1 & 3);
+      put(v, 47, 1, c1[2] & 1);
+      put(v, 46, 4, c2[0]);
+      put(v, 42, 3, c2[1] >> 1);
+      put(v, 39, 1, c2[1] & 1);
+      put(v, 38, 4, c2[2]);
+      put(v, 34, 1, di >> 2);
+      put(v, 32, 1, di >> 1 & 1);
+      put(v, 33, 1, opaque_bit());
       // Red in range (bit 63), green out of range (bits 55-53 and 50).
       {
         const int s = c1[0] + ((c1[1] >> 1) >= 4 ? (c1[1] >> 1) - 8 : (c1[1] >> 1));
@@ -252,9 +295,11 @@ struct THSearch {
       }
       const int g = (c1[1] & 1) * 2 + (c1[2] >> 3), bb = c1[2] >> 1 & 3;
       if (g + bb > 3) {
-        put(v, 55, 3, 7), put(v, 50, 1, 0);
+        put(v, 55, 3, 7);
+        put(v, 50, 1, 0);
       } else {
-        put(v, 55, 3, 0), put(v, 50, 1, 1);
+        put(v, 55, 3, 0);
+        put(v, 50, 1, 1);
       }
       put_indices(v, idx);
       keep(best, e, v);
@@ -293,7 +338,8 @@ void search_t_h(const Texels& tx, bool non_opaque, const Etc2Modes& modes, Candi
     int nearest = 0;
     for (int di = 1; di < 8; ++di)
       if (std::fabs(kDistances[di] - spread) < std::fabs(kDistances[nearest] - spread)) nearest = di;
-    d_lo = std::max(0, nearest - 1), d_hi = std::min(7, nearest + 1);
+    d_lo = std::max(0, nearest - 1);
+    d_hi = std::min(7, nearest + 1);
   }
 
   THSearch search{tx, non_opaque, d_lo, d_hi, best};

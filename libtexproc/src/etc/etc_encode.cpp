@@ -33,14 +33,18 @@ Texels make_texels(const std::uint8_t rgba[16][4], EtcMode mode) {
     for (int c = 0; c < 3; ++c) tx.rgb[i][c] = rgba[i][c];
     tx.transparent[i] = mode == EtcMode::etc2_punch && rgba[i][3] < 128;
     tx.any_transparent |= tx.transparent[i];
-    tx.planes.r[i] = rgba[i][0], tx.planes.g[i] = rgba[i][1], tx.planes.b[i] = rgba[i][2];
+    tx.planes.r[i] = rgba[i][0];
+    tx.planes.g[i] = rgba[i][1];
+    tx.planes.b[i] = rgba[i][2];
     tx.planes.transparent[i] = 0;
   }
   for (int h = 0; h < 4; ++h) {
     const HalfLayout& L = halves()[std::size_t(h)];
     for (int i = 0; i < 8; ++i) {
       const int p = L.y[i] * 4 + L.x[i];
-      tx.half[h].r[i] = tx.rgb[p][0], tx.half[h].g[i] = tx.rgb[p][1], tx.half[h].b[i] = tx.rgb[p][2];
+      tx.half[h].r[i] = tx.rgb[p][0];
+      tx.half[h].g[i] = tx.rgb[p][1];
+      tx.half[h].b[i] = tx.rgb[p][2];
       tx.half[h].sum[i] = tx.rgb[p][0] + tx.rgb[p][1] + tx.rgb[p][2];
       tx.half[h].transparent[i] = tx.transparent[p] ? 1 : 0;
     }
@@ -95,9 +99,11 @@ Texels lane_texels(const std::uint32_t texel[16][kEtcBatch], int k) {
   Texels tx;
   for (int i = 0; i < 16; ++i) {
     const std::uint32_t t = texel[i][k];
-    tx.rgb[i][0] = tx.planes.r[i] = int(t & 255), tx.rgb[i][1] = tx.planes.g[i] = int(t >> 8 & 255);
+    tx.rgb[i][0] = tx.planes.r[i] = int(t & 255);
+    tx.rgb[i][1] = tx.planes.g[i] = int(t >> 8 & 255);
     tx.rgb[i][2] = tx.planes.b[i] = int(t >> 16 & 255);
-    tx.transparent[i] = false, tx.planes.transparent[i] = 0;
+    tx.transparent[i] = false;
+    tx.planes.transparent[i] = 0;
   }
   return tx;
 }
@@ -136,9 +142,13 @@ const FlatTables& flat_tables() {
           int best = std::numeric_limits<int>::max(), base = 0;
           for (int q = 0; q < (b ? 32 : 16); ++q) {
             const int d = v - clamp255(expand(q, b ? 5 : 4) + kModifiers[m / 4][m % 4]);
-            if (d * d < best) best = d * d, base = q;
+            if (d * d < best) {
+              best = d * d;
+              base = q;
+            }
           }
-          f->err[b][m][v] = best, f->base[b][m][v] = base;
+          f->err[b][m][v] = best;
+          f->base[b][m][v] = base;
         }
     for (int b = 0; b < 2; ++b)
       for (int v = 0; v < 256; ++v) {
@@ -157,8 +167,12 @@ const FlatTables& flat_tables() {
                     clamp255(((i & 3) * (ex(h) - ex(o)) + (i >> 2) * (ex(w) - ex(o)) + 4 * ex(o) + 2) >> 2) - v;
                 e += d * d;
               }
-              if (e < best)
-                best = e, f->planar_ohv[b][v][0] = o, f->planar_ohv[b][v][1] = h, f->planar_ohv[b][v][2] = w;
+              if (e < best) {
+                best = e;
+                f->planar_ohv[b][v][0] = o;
+                f->planar_ohv[b][v][1] = h;
+                f->planar_ohv[b][v][2] = w;
+              }
             }
         f->planar_err[b][v] = best;
       }
@@ -193,7 +207,10 @@ void best_flat_block(const int rgb[3], EtcMode mode, std::uint8_t block[8]) {
     for (int c = 0; c < 3; ++c) {
       const int b = c == 1 ? 1 : 0;
       const int* ohv = f.planar_ohv[b][rgb[c]];
-      o[c] = ohv[0], h[c] = ohv[1], w[c] = ohv[2], err += f.planar_err[b][rgb[c]];
+      o[c] = ohv[0];
+      h[c] = ohv[1];
+      w[c] = ohv[2];
+      err += f.planar_err[b][rgb[c]];
     }
     keep(best, err, pack_planar(o, h, w));
   }
@@ -224,11 +241,15 @@ long best_flat_holes_block(const std::uint8_t rgba[16][4], const int rgb[3], std
         int e = std::numeric_limits<int>::max();
         for (int v = 0; v < 32; ++v) {
           const int d = rgb[c] - extend5(v);
-          if (d * d < e) e = d * d, q[c] = v;
+          if (d * d < e) {
+            e = d * d;
+            q[c] = v;
+          }
         }
         per_texel += e;
       } else {
-        q[c] = f.base[1][t * 4 + idx][rgb[c]], per_texel += f.err[1][t * 4 + idx][rgb[c]];
+        q[c] = f.base[1][t * 4 + idx][rgb[c]];
+        per_texel += f.err[1][t * 4 + idx][rgb[c]];
       }
     }
     const long err = per_texel * visible;
@@ -277,7 +298,9 @@ void two_colour_t_h(const std::uint32_t texel[16][kEtcBatch], int k, EtcMode mod
 bool flat_colour(const std::uint32_t texel[16][kEtcBatch], int k, EtcMode mode, int rgb[3]) {
   std::uint32_t c = 0;
   if (!one_colour(texel, k, mode == EtcMode::etc2_punch, &c)) return false;  // block_gather.h
-  rgb[0] = int(c & 255), rgb[1] = int(c >> 8 & 255), rgb[2] = int(c >> 16 & 255);
+  rgb[0] = int(c & 255);
+  rgb[1] = int(c >> 8 & 255);
+  rgb[2] = int(c >> 16 & 255);
   return true;
 }
 

@@ -38,7 +38,10 @@ long eval_half(const HalfTexels& tx, const int col[3], int t, bool non_opaque, s
         if (non_opaque && k == 2) continue;
         const long dr = pal[k][0] - px[0], dg = pal[k][1] - px[1], db = pal[k][2] - px[2];
         const long e = dr * dr + dg * dg + db * db;
-        if (best < 0 || e < best) best = e, bk = k;
+        if (best < 0 || e < best) {
+          best = e;
+          bk = k;
+        }
       }
     }
     idx[i] = std::uint8_t(bk);

@@ -55,7 +55,8 @@ HalfFit fit(const int rgb[16][3], int h, int bits, int t0, const int* fixed_q = 
       err += d2[i] + m * (3 * m - 2 * dl[i]);
     }
     if (best.err < 0 || err < best.err) {
-      best.err = err, best.table = t;
+      best.err = err;
+      best.table = t;
       std::copy(idx, idx + 8, best.idx);
     }
   }
@@ -79,7 +80,10 @@ HalfFit eval_exact(const int rgb[16][3], int h, const int q[3], int bits, int t)
     for (int k = 0; k < 4; ++k) {
       const int dr = px[0] - pal[k][0], dg = px[1] - pal[k][1], db = px[2] - pal[k][2];
       const int e = dr * dr + dg * dg + db * db;
-      if (k == 0 || e < be) be = e, f.idx[i] = k;
+      if (k == 0 || e < be) {
+        be = e;
+        f.idx[i] = k;
+      }
     }
     f.err += be;
   }
@@ -94,7 +98,9 @@ void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool d
     int rgb[16][3];
     for (int i = 0; i < 16; ++i) {
       const std::uint32_t t = texel[i][k];
-      rgb[i][0] = int(t & 255), rgb[i][1] = int(t >> 8 & 255), rgb[i][2] = int(t >> 16 & 255);
+      rgb[i][0] = int(t & 255);
+      rgb[i][1] = int(t >> 8 & 255);
+      rgb[i][2] = int(t >> 16 & 255);
     }
     int t0[4];
     for (int h = 0; h < 4; ++h) {
@@ -125,19 +131,23 @@ void etc1_fast_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool d
           qa[c] = std::clamp(f5[a].q[c], f5[b].q[c] - 3, f5[b].q[c] + 4);
           qb[c] = std::clamp(f5[b].q[c], f5[a].q[c] - 4, f5[a].q[c] + 3);
         }
-        pulled_a = fit(rgb, a, 5, t0[a], qa), pulled_b = fit(rgb, b, 5, t0[b], qb);
+        pulled_a = fit(rgb, a, 5, t0[a], qa);
+        pulled_b = fit(rgb, b, 5, t0[b], qb);
         if (pulled_a.err + f5[b].err < f5[a].err + pulled_b.err)
           pa = &pulled_a;
         else
           pb = &pulled_b;
       } else if (!fits) {
-        f4[a] = fit(rgb, a, 4, t0[a]), f4[b] = fit(rgb, b, 4, t0[b]);
-        pa = &f4[a], pb = &f4[b];
+        f4[a] = fit(rgb, a, 4, t0[a]);
+        f4[b] = fit(rgb, b, 4, t0[b]);
+        pa = &f4[a];
+        pb = &f4[b];
       }
       const int err = pa->err + pb->err;
       if (best_err >= 0 && err >= best_err) continue;
       best_err = err;
-      best.flip = flip, best.differential = fits || differential_only ? 1 : 0;
+      best.flip = flip;
+      best.differential = fits || differential_only ? 1 : 0;
       for (int s = 0; s < 2; ++s) {
         const HalfFit& f = s ? *pb : *pa;
         std::copy(f.q, f.q + 3, best.q[s]);
@@ -188,15 +198,22 @@ HalfFit fit_normal(const int rgb[16][3], int h, int bits, bool high, HalfFit* pe
     t1 = t2 = 0;
     for (int t = 0; t < 8; ++t) {
       if (e1 < 0 || err[t] < e1) {
-        e2 = e1, t2 = t1, e1 = err[t], t1 = t;
+        e2 = e1;
+        t2 = t1;
+        e1 = err[t];
+        t1 = t;
       } else if (e2 < 0 || err[t] < e2) {
-        e2 = err[t], t2 = t;
+        e2 = err[t];
+        t2 = t;
       }
     }
   };
   HalfFit at_mean[8];
   int err[8];
-  for (int t = 0; t < 8; ++t) at_mean[t] = eval_exact(rgb, h, q0, bits, t), err[t] = at_mean[t].err;
+  for (int t = 0; t < 8; ++t) {
+    at_mean[t] = eval_exact(rgb, h, q0, bits, t);
+    err[t] = at_mean[t].err;
+  }
   // Seeds: the brightest and darkest texels (by R + G + B, the first of
   // equals) minus their likely modifiers; in an exact fit they carry the
   // extreme ones.
@@ -240,7 +257,8 @@ HalfFit fit_normal(const int rgb[16][3], int h, int bits, bool high, HalfFit* pe
     const int seeds[4][2] = {
         {bright, kModifiers[t][1]}, {dark, -kModifiers[t][1]}, {bright, kModifiers[t][0]}, {dark, -kModifiers[t][0]}};
     for (const auto& sd : seeds) seed(start, sd[0], sd[1], t);
-    refined[t] = recentre(start, 3), err[t] = refined[t].err;
+    refined[t] = recentre(start, 3);
+    err[t] = refined[t].err;
     if (best.err < 0 || refined[t].err < best.err) best = refined[t];
   }
   if (per_table) std::copy(refined, refined + 8, per_table);
@@ -269,7 +287,8 @@ HalfFit fit_fixed(const int rgb[16][3], int h, const int q[3]) {
 }
 
 void take(fast::Params& p, int flip, bool differential, const HalfFit& a, const HalfFit& b) {
-  p.flip = flip, p.differential = differential ? 1 : 0;
+  p.flip = flip;
+  p.differential = differential ? 1 : 0;
   for (int s = 0; s < 2; ++s) {
     const HalfFit& f = s ? b : a;
     std::copy(f.q, f.q + 3, p.q[s]);
@@ -286,10 +305,15 @@ void etc1_search_lanes(const std::uint32_t texel[16][kEtcBatch], int count, bool
     int rgb[16][3];
     for (int i = 0; i < 16; ++i) {
       const std::uint32_t t = texel[i][k];
-      rgb[i][0] = int(t & 255), rgb[i][1] = int(t >> 8 & 255), rgb[i][2] = int(t >> 16 & 255);
+      rgb[i][0] = int(t & 255);
+      rgb[i][1] = int(t >> 8 & 255);
+      rgb[i][2] = int(t >> 16 & 255);
     }
     HalfFit f5[4], tables[4][9];
-    for (int h = 0; h < 4; ++h) f5[h] = fit_normal(rgb, h, 5, high, tables[h]), tables[h][8] = f5[h];
+    for (int h = 0; h < 4; ++h) {
+      f5[h] = fit_normal(rgb, h, 5, high, tables[h]);
+      tables[h][8] = f5[h];
+    }
     fast::Params best{};
     int best_err = -1;
     auto consider = [&](int flip, bool differential, const HalfFit& a, const HalfFit& b) {

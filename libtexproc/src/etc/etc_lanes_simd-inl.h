@@ -39,7 +39,9 @@ HWY_INLINE void LoadTexels(const std::uint32_t texel[16][kEtcBatch], int k0, V r
   const V mask8 = hn::Set(d, 255);
   for (int i = 0; i < 16; ++i) {
     const V t = hn::BitCast(d, hn::LoadU(du, texel[i] + k0));
-    r[i] = hn::And(t, mask8), g[i] = hn::And(hn::ShiftRight<8>(t), mask8), b[i] = hn::And(hn::ShiftRight<16>(t), mask8);
+    r[i] = hn::And(t, mask8);
+    g[i] = hn::And(hn::ShiftRight<8>(t), mask8);
+    b[i] = hn::And(hn::ShiftRight<16>(t), mask8);
   }
 }
 

@@ -57,7 +57,9 @@ struct Etc1FastBatch {
     V sum[3] = {hn::Zero(d), hn::Zero(d), hn::Zero(d)};
     for (int i = 0; i < 8; ++i) {
       const int p = fast::kHalf[h][i];
-      sum[0] = hn::Add(sum[0], r[p]), sum[1] = hn::Add(sum[1], g[p]), sum[2] = hn::Add(sum[2], b[p]);
+      sum[0] = hn::Add(sum[0], r[p]);
+      sum[1] = hn::Add(sum[1], g[p]);
+      sum[2] = hn::Add(sum[2], b[p]);
     }
     V base[3];
     for (int c = 0; c < 3; ++c) {
@@ -99,7 +101,8 @@ struct Etc1FastBatch {
         err = hn::Add(err, hn::Add(d2[i], hn::Mul(m, hn::Sub(hn::Mul(hn::Set(d, 3), m), twice))));
       }
       if (dt == -1) {
-        best.err = err, best.table = t;
+        best.err = err;
+        best.table = t;
         for (int i = 0; i < 8; ++i) best.idx[i] = idx[i];
         continue;
       }
@@ -158,7 +161,8 @@ struct Etc1FastBatch {
     flip = hn::Lt(err[1], err[0]);
     differential = differential_only ? hn::Eq(hn::Zero(d), hn::Zero(d))
                                      : hn::Or(hn::And(flip, fits[1]), hn::AndNot(flip, fits[0]));
-    pa = chosen[0][0], pb = chosen[0][1];
+    pa = chosen[0][0];
+    pb = chosen[0][1];
     SelectFit(flip, chosen[1][0], pa);
     SelectFit(flip, chosen[1][1], pb);
   }

@@ -69,7 +69,10 @@ struct Candidate {
 };
 
 inline void keep(Candidate& best, long err, std::uint64_t bits) {
-  if (err < best.err) best.err = err, best.bits = bits;
+  if (err < best.err) {
+    best.err = err;
+    best.bits = bits;
+  }
 }
 
 // The differential mode's 3-bit delta reaches from a to b.

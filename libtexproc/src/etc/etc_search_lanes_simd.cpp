@@ -86,7 +86,8 @@ struct Etc1SearchBatch {
   // The two tables with the least error (first of equals).
   HWY_INLINE void best_two(const V err[8], V& t1, V& t2) const {
     V e1 = err[0], e2 = hn::Set(d, -1);
-    t1 = zero, t2 = zero;
+    t1 = zero;
+    t2 = zero;
     for (int t = 1; t < 8; ++t) {
       const V tv = hn::Set(d, t);
       const M first = hn::Lt(err[t], e1);
@@ -105,16 +106,21 @@ struct Etc1SearchBatch {
   // Half h's brightest and darkest texels (by R + G + B, first of equals).
   HWY_INLINE void extremes(int h, V bright[3], V dark[3]) const {
     const int p0 = fast::kHalf[h][0];
-    bright[0] = dark[0] = r[p0], bright[1] = dark[1] = g[p0], bright[2] = dark[2] = b[p0];
+    bright[0] = dark[0] = r[p0];
+    bright[1] = dark[1] = g[p0];
+    bright[2] = dark[2] = b[p0];
     V bright_sum = hn::Add(hn::Add(r[p0], g[p0]), b[p0]), dark_sum = bright_sum;
     for (int i = 1; i < 8; ++i) {
       const int p = fast::kHalf[h][i];
       const V sp = hn::Add(hn::Add(r[p], g[p]), b[p]);
       const M up = hn::Gt(sp, bright_sum), down = hn::Lt(sp, dark_sum);
-      bright_sum = hn::IfThenElse(up, sp, bright_sum), dark_sum = hn::IfThenElse(down, sp, dark_sum);
+      bright_sum = hn::IfThenElse(up, sp, bright_sum);
+      dark_sum = hn::IfThenElse(down, sp, dark_sum);
       const V px[3] = {r[p], g[p], b[p]};
-      for (int c = 0; c < 3; ++c)
-        bright[c] = hn::IfThenElse(up, px[c], bright[c]), dark[c] = hn::IfThenElse(down, px[c], dark[c]);
+      for (int c = 0; c < 3; ++c) {
+        bright[c] = hn::IfThenElse(up, px[c], bright[c]);
+        dark[c] = hn::IfThenElse(down, px[c], dark[c]);
+      }
     }
   }
   // start replaced by the fit at base = px - m (quantized) where better.
@@ -142,7 +148,8 @@ struct Etc1SearchBatch {
       const V tv = hn::Set(d, t);
       const int seeds[4] = {kModifiers[t][1], -kModifiers[t][1], kModifiers[t][0], -kModifiers[t][0]};
       for (int sd = 0; sd < 4; ++sd) seed(h, bits, start, sd % 2 ? dark : bright, hn::Set(d, seeds[sd]), tv);
-      refined[t] = recentre(h, bits, start, 3), err[t] = refined[t].err;
+      refined[t] = recentre(h, bits, start, 3);
+      err[t] = refined[t].err;
       if (t == 0) {
         best = refined[0];
       } else {
@@ -179,12 +186,17 @@ struct Etc1SearchBatch {
     V sum[3] = {zero, zero, zero};
     for (int i = 0; i < 8; ++i) {
       const int p = fast::kHalf[h][i];
-      sum[0] = hn::Add(sum[0], r[p]), sum[1] = hn::Add(sum[1], g[p]), sum[2] = hn::Add(sum[2], b[p]);
+      sum[0] = hn::Add(sum[0], r[p]);
+      sum[1] = hn::Add(sum[1], g[p]);
+      sum[2] = hn::Add(sum[2], b[p]);
     }
     const V q0[3] = {quantize(sum[0], bits), quantize(sum[1], bits), quantize(sum[2], bits)};
     Fit at_mean[8];
     V err[8];
-    for (int t = 0; t < 8; ++t) at_mean[t] = eval(h, q0, bits, hn::Set(d, t)), err[t] = at_mean[t].err;
+    for (int t = 0; t < 8; ++t) {
+      at_mean[t] = eval(h, q0, bits, hn::Set(d, t));
+      err[t] = at_mean[t].err;
+    }
     V bright[3], dark[3];
     extremes(h, bright, dark);
     if (high) return fit_high(h, bits, at_mean, bright, dark, per_table);
@@ -272,8 +284,11 @@ void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool h
     Fit f5[4], tables[4][9];
     for (int h = 0; h < 4; ++h) f5[h] = batch.fit_normal(h, 5, high, high ? tables[h] : nullptr);
     Choice best;
-    best.err = hn::Set(d, 0x7fffffff), best.flip = hn::Zero(d), best.diff = hn::Zero(d);
-    best.a = f5[0], best.b = f5[1];
+    best.err = hn::Set(d, 0x7fffffff);
+    best.flip = hn::Zero(d);
+    best.diff = hn::Zero(d);
+    best.a = f5[0];
+    best.b = f5[1];
     for (int flip = 0; flip < 2; ++flip) batch.search_flip(flip, high, differential_only, f5, tables, best);
     HWY_ALIGN std::int32_t err_o[kEtcBatch];
     hn::Store(best.err, d, err_o);

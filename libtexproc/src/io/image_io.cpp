@@ -10,9 +10,9 @@
 #include <cstring>
 #include <filesystem>
 
-#include "image/codecs/codecs.h"
-#include "image/modules/image_modules.h"
-#include "image/tiff_mip_writer.h"
+#include "io/codecs/codecs.h"
+#include "io/modules/image_modules.h"
+#include "io/tiff_mip_writer.h"
 #include "texproc/error.h"
 #include "texproc/tools.h"
 

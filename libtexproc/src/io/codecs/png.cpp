@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "core/fd_writer.h"
-#include "image/codecs/codecs.h"
+#include "io/codecs/codecs.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
 #include "texproc/tools.h"
@@ -161,10 +161,17 @@ inline unsigned magnitude(int filtered) {  // the byte read as signed, libpng's 
 void score_filters(const std::uint8_t* x, const std::uint8_t* b, std::size_t n, std::size_t B, std::uint64_t s[5]) {
   unsigned none = 0, sub = 0, up = 0, avg = 0, pae = 0;
   for (std::size_t i = 0; i < std::min(B, n); ++i) {  // no left neighbour
-    none += magnitude(x[i]), sub += magnitude(x[i]), up += magnitude(x[i] - b[i]);
-    avg += magnitude(x[i] - (b[i] >> 1)), pae += magnitude(x[i] - b[i]);
+    none += magnitude(x[i]);
+    sub += magnitude(x[i]);
+    up += magnitude(x[i] - b[i]);
+    avg += magnitude(x[i] - (b[i] >> 1));
+    pae += magnitude(x[i] - b[i]);
   }
-  s[0] = none, s[1] = sub, s[2] = up, s[3] = avg, s[4] = pae;
+  s[0] = none;
+  s[1] = sub;
+  s[2] = up;
+  s[3] = avg;
+  s[4] = pae;
   // Chunks keep the unsigned sums from overflowing.
   for (std::size_t i0 = B; i0 < n; i0 += 1 << 16) {
     const std::size_t i1 = std::min(n, i0 + (std::size_t(1) << 16));
@@ -174,7 +181,11 @@ void score_filters(const std::uint8_t* x, const std::uint8_t* b, std::size_t n, 
     for (std::size_t i = i0; i < i1; ++i) up += magnitude(x[i] - b[i]);
     for (std::size_t i = i0; i < i1; ++i) avg += magnitude(x[i] - ((x[i - B] + b[i]) >> 1));
     for (std::size_t i = i0; i < i1; ++i) pae += magnitude(x[i] - paeth(x[i - B], b[i], b[i - B]));
-    s[0] += none, s[1] += sub, s[2] += up, s[3] += avg, s[4] += pae;
+    s[0] += none;
+    s[1] += sub;
+    s[2] += up;
+    s[3] += avg;
+    s[4] += pae;
   }
 }
 

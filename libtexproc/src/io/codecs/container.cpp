@@ -3,7 +3,7 @@
 // are decoded. (read_texture keeps every level, face and layer.)
 #include <cstring>
 
-#include "image/codecs/codecs.h"
+#include "io/codecs/codecs.h"
 #include "texproc/block_decode.h"
 #include "texproc/container.h"
 #include "texproc/error.h"

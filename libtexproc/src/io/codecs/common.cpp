@@ -14,7 +14,7 @@
 #include <cstring>
 #include <mutex>
 
-#include "image/codecs/codecs.h"
+#include "io/codecs/codecs.h"
 #include "texproc/error.h"
 
 namespace texproc::codecs {

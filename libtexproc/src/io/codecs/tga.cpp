@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/fd_writer.h"
-#include "image/codecs/codecs.h"
+#include "io/codecs/codecs.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
 
@@ -202,8 +202,10 @@ void tga_write(const std::string& file, const std::string& path, const ConstImag
   const int type = C <= 2 ? 3 : 2;
   std::uint8_t hdr[18] = {};
   hdr[2] = std::uint8_t(type);
-  hdr[12] = std::uint8_t(v.width), hdr[13] = std::uint8_t(v.width >> 8);
-  hdr[14] = std::uint8_t(v.height), hdr[15] = std::uint8_t(v.height >> 8);
+  hdr[12] = std::uint8_t(v.width);
+  hdr[13] = std::uint8_t(v.width >> 8);
+  hdr[14] = std::uint8_t(v.height);
+  hdr[15] = std::uint8_t(v.height >> 8);
   hdr[16] = std::uint8_t(8 * C);
   hdr[17] = std::uint8_t(0x20 | (C == 2 || C == 4 ? 8 : 0));
   std::vector<std::uint8_t> body(std::size_t(v.width) * v.height * C);

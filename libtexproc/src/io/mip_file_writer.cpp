@@ -5,8 +5,8 @@
 #include <atomic>
 #include <mutex>
 
-#include "image/modules/image_module.h"
-#include "image/modules/image_modules.h"
+#include "io/modules/image_module.h"
+#include "io/modules/image_modules.h"
 #include "texproc/error.h"
 #include "texproc/tools.h"
 #include "texproc/image_io.h"

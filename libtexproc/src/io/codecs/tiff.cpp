@@ -16,7 +16,7 @@
 #include <mutex>
 #include <vector>
 
-#include "image/codecs/codecs.h"
+#include "io/codecs/codecs.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
 

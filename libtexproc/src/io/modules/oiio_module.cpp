@@ -2,7 +2,7 @@
 // direct reader for (PSD, BMP, Radiance HDR, WebP, JPEG 2000, ...), behind
 // the C boundary of oiio_module.h. Built as a separate shared object and
 // loaded on first use; nothing in libtexproc links OpenImageIO.
-#include "image/modules/image_module.h"
+#include "io/modules/image_module.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>

@@ -89,7 +89,7 @@ ImageFileInfo tga_probe(const std::string& path, const FileBytes& f, const ReadL
 Image tga_read(const std::string& path, const FileBytes& f, ImageFileInfo& info, const ReadLimits& limits);
 void tga_write(const std::string& file, const std::string& path, const ConstImageView& v, const WriteOptions& o);
 
-// OpenEXR: the texproc_exr module (image/modules/), loaded on first use.
+// OpenEXR: the texproc_exr module (io/modules/), loaded on first use.
 
 // TIFF (libtiff; deflate strips and tiles inflated in parallel).
 ImageFileInfo tiff_probe(const std::string& path, const ReadLimits& limits);

@@ -1,4 +1,4 @@
-#include "container/format_names.h"
+#include "format/format_names.h"
 
 namespace texproc {
 

@@ -8,7 +8,7 @@
 #include <cctype>
 #include <cstring>
 
-#include "container/format_names.h"
+#include "format/format_names.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
 #include "texproc/texture.h"

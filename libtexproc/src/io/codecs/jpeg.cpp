@@ -11,7 +11,7 @@
 #include <jerror.h>
 
 #include "core/fd_writer.h"
-#include "image/codecs/codecs.h"
+#include "io/codecs/codecs.h"
 #include "texproc/error.h"
 
 namespace texproc::codecs {

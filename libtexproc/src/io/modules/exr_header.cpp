@@ -1,4 +1,4 @@
-#include "image/modules/exr_header.h"
+#include "io/modules/exr_header.h"
 
 #include <algorithm>
 #include <cstdint>

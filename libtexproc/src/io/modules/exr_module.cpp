@@ -28,8 +28,8 @@
 #include <string>
 #include <thread>
 
-#include "image/modules/exr_header.h"
-#include "image/modules/image_module.h"
+#include "io/modules/exr_header.h"
+#include "io/modules/image_module.h"
 #include "texproc/error.h"
 #include "texproc/image.h"
 #include "texproc/image_io.h"
@@ -81,7 +81,10 @@ std::vector<Channel> ordered_channels(const Imf::Header& h) {
 
 std::string file_type_of(const std::vector<Channel>& ch) {
   bool fl = false, ui = false;
-  for (const Channel& c : ch) fl |= c.type == Imf::FLOAT, ui |= c.type == Imf::UINT;
+  for (const Channel& c : ch) {
+    fl |= c.type == Imf::FLOAT;
+    ui |= c.type == Imf::UINT;
+  }
   return fl ? "float" : ui ? "uint" : "half";
 }
 

@@ -2,7 +2,7 @@
 // 4096x4096 RGBA8 chain takes seconds to deflate that way. Here libtiff lays
 // out the file and libdeflate compresses the tiles of each level in parallel;
 // tiles are written in order, so the bytes do not depend on the thread count.
-#include "image/tiff_mip_writer.h"
+#include "io/tiff_mip_writer.h"
 
 #include <libdeflate.h>
 #include <tiffio.h>
@@ -12,7 +12,7 @@
 #include <cstring>
 #include <memory>
 
-#include "image/codecs/codecs.h"
+#include "io/codecs/codecs.h"
 #include "texproc/error.h"
 #include "texproc/runtime.h"
 #include "texproc/tools.h"

@@ -1,12 +1,12 @@
-#include "image/modules/image_modules.h"
+#include "io/modules/image_modules.h"
 
 #include <algorithm>
 #include <atomic>
 #include <mutex>
 
 #include "core/module.h"
-#include "image/codecs/codecs.h"
-#include "image/modules/image_module.h"
+#include "io/codecs/codecs.h"
+#include "io/modules/image_module.h"
 #include "texproc/error.h"
 
 namespace texproc::modules {
