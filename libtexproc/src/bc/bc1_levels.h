@@ -1,6 +1,6 @@
 // BC1's quality levels (also the colour half of BC2 and BC3): one row per
 // level, every knob a level sets. Changing a level is one edit here. What
-// each knob buys, measured on the corpus: docs/compression.md, "BC1 encoder"
+// each knob buys, measured on the corpus: docs/design/encoders.md, "BC1 encoder"
 // and "Measured (BC1)".
 #pragma once
 

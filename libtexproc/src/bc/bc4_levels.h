@@ -1,6 +1,6 @@
 // BC4's quality levels (also BC5's two channels and BC3's alpha): one row
 // per level, every knob a level sets. Changing a level is one edit here.
-// What each knob buys, measured on the corpus: docs/compression.md, "BC4/BC5
+// What each knob buys, measured on the corpus: docs/design/encoders.md, "BC4/BC5
 // encoder" and "Measured (BC4, BC5)".
 #pragma once
 

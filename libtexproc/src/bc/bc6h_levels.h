@@ -1,6 +1,6 @@
 // BC6H's quality levels: one row per level, every knob a level sets.
 // Changing a level is one edit here. What each knob buys, measured on the
-// corpus's HDR images: docs/compression.md, "BC6H encoder".
+// corpus's HDR images: docs/design/encoders.md, "BC6H encoder".
 #pragma once
 
 #include "texproc/block_encode.h"

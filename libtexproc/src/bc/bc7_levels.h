@@ -1,6 +1,6 @@
 // BC7's quality levels: one row per level, every knob a level sets.
 // Changing a level is one edit here. What each knob buys, measured on the
-// corpus: docs/compression.md, "BC7 encoder".
+// corpus: docs/design/encoders.md, "BC7 encoder".
 #pragma once
 
 #include "texproc/block_encode.h"

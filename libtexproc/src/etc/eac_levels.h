@@ -1,6 +1,6 @@
 // EAC's quality levels (R11, RG11, signed, and ETC2 RGBA's 8-bit alpha):
 // one row per level, every knob a level sets. Changing a level is one edit
-// here. What each knob buys, measured on the corpus: docs/compression.md,
+// here. What each knob buys, measured on the corpus: docs/design/encoders.md,
 // "ETC1, ETC2 and EAC" (the EAC item) and "What the formats allow".
 #pragma once
 

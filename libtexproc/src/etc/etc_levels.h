@@ -1,7 +1,7 @@
 // ETC1's and ETC2's quality levels (ETC1 RGB, ETC2 RGB, ETC2 RGBA's colour,
 // ETC2 punch-through): one row per level, every knob a level sets. Changing
 // a level is one edit here. What each knob buys, measured on the corpus:
-// docs/compression.md, "ETC1, ETC2 and EAC" and "Measured (ETC)".
+// docs/design/encoders.md, "ETC1, ETC2 and EAC" and "Measured (ETC)".
 #pragma once
 
 #include "texproc/block_encode.h"
