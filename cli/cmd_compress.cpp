@@ -47,83 +47,6 @@ struct CompressArgs {
   MipOptions mip;  // with --mips; the colour space is set per file
 };
 
-// --format and the colour space: BC1-BC3 take the sRGB variant for colour
-// (the default for 8/16-bit input) and UNORM with --linear; BC4/BC5 hold data.
-// A full format name (as `info` prints it, or DXGI's or Vulkan's): the
-// block format it names exactly, sRGB or not whatever the input is.
-std::optional<TexelFormat> explicit_format(const std::string& f) {
-  try {
-    const TexelFormat t = parse_texel_format(f);
-    if (format_info(t).compressed) return t;
-  } catch (const Error&) {
-  }
-  return std::nullopt;
-}
-
-TexelFormat format_for(const std::string& f, bool srgb) {
-  if (const auto t = explicit_format(f)) return *t;
-  using F = TexelFormat;
-  static const std::map<std::string, std::pair<F, F>> k = {{"bc1", {F::bc1_rgb_unorm, F::bc1_rgb_srgb}},
-                                                           {"bc1a", {F::bc1_rgba_unorm, F::bc1_rgba_srgb}},
-                                                           {"bc2", {F::bc2_unorm, F::bc2_srgb}},
-                                                           {"bc3", {F::bc3_unorm, F::bc3_srgb}},
-                                                           {"bc4", {F::bc4_unorm, F::bc4_unorm}},
-                                                           {"bc4s", {F::bc4_snorm, F::bc4_snorm}},
-                                                           {"bc5", {F::bc5_unorm, F::bc5_unorm}},
-                                                           {"bc5s", {F::bc5_snorm, F::bc5_snorm}},
-                                                           {"bc7", {F::bc7_unorm, F::bc7_srgb}},
-                                                           {"bc6h", {F::bc6h_ufloat, F::bc6h_ufloat}},
-                                                           {"bc6hs", {F::bc6h_sfloat, F::bc6h_sfloat}},
-                                                           {"etc1", {F::etc1_rgb, F::etc1_rgb}},
-                                                           {"etc2", {F::etc2_rgb_unorm, F::etc2_rgb_srgb}},
-                                                           {"etc2a1", {F::etc2_rgba1_unorm, F::etc2_rgba1_srgb}},
-                                                           {"etc2a", {F::etc2_rgba8_unorm, F::etc2_rgba8_srgb}},
-                                                           {"eac-r11", {F::eac_r11_unorm, F::eac_r11_unorm}},
-                                                           {"eac-r11s", {F::eac_r11_snorm, F::eac_r11_snorm}},
-                                                           {"eac-rg11", {F::eac_rg11_unorm, F::eac_rg11_unorm}},
-                                                           {"eac-rg11s", {F::eac_rg11_snorm, F::eac_rg11_snorm}}};
-  // The names other tools use (texconv, nvcompress, Compressonator), in any case.
-  static const std::map<std::string, std::string> aliases = {
-      {"dxt1", "bc1"},       {"dxt1a", "bc1a"},      {"dxt3", "bc2"},        {"dxt5", "bc3"},
-      {"ati1", "bc4"},       {"bc4u", "bc4"},        {"ati2", "bc5"},        {"bc5u", "bc5"},
-      {"3dc", "bc5"},        {"bc7u", "bc7"},        {"bc6hu", "bc6h"},      {"bc6h_uf16", "bc6h"},
-      {"bc6h-uf16", "bc6h"}, {"bc6h_sf16", "bc6hs"}, {"bc6h-sf16", "bc6hs"}, {"bc6h_sf", "bc6hs"},
-      {"etc2a8", "etc2a"},   {"etc2-rgba", "etc2a"}, {"r11", "eac-r11"},     {"rg11", "eac-rg11"}};
-  std::string name = f;
-  for (auto& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (auto al = aliases.find(name); al != aliases.end()) name = al->second;
-  auto it = k.find(name);
-  if (it != k.end()) return srgb ? it->second.second : it->second.first;
-  // ASTC: astc-WxH (LDR: sRGB for colour, UNORM with --linear) and
-  // astc-WxH-hdr (SFLOAT); astc_6x6 and astc6x6 are read the same.
-  if (name.rfind("astc", 0) == 0) {
-    std::string rest = name.substr(4);
-    if (!rest.empty() && (rest[0] == '-' || rest[0] == '_')) rest.erase(0, 1);
-    bool hdr = false;
-    for (const char* suffix : {"-hdr", "_hdr"}) {
-      if (rest.size() > 4 && rest.compare(rest.size() - 4, 4, suffix) == 0) {
-        hdr = true;
-        rest.resize(rest.size() - 4);
-      }
-    }
-    int w = 0, h = 0;
-    char tail = 0;
-    if (std::sscanf(rest.c_str(), "%dx%d%c", &w, &h, &tail) == 2) {
-      try {
-        return astc_format(w, h, srgb && !hdr, hdr);
-      } catch (const Error&) {  // the message below lists the footprints
-      }
-    }
-  }
-  throw Error(ErrorCode::bad_arguments,
-              "unknown --format '" + f +
-                  "' (valid: bc1, bc1a, bc2, bc3, bc4, bc4s, bc5, bc5s, bc7, bc6h, bc6hs, etc1, etc2, etc2a1, "
-                  "etc2a, eac-r11, eac-r11s, eac-rg11, eac-rg11s, astc-WxH and astc-WxH-hdr "
-                  "for the footprints 4x4, 5x4, 5x5, 6x5, 6x6, 8x5, 8x6, 8x8, 10x5, 10x6, "
-                  "10x8, 10x10, 12x10, 12x12; or a full name as info prints it, DXGI's or "
-                  "Vulkan's: bc7_srgb, BC7_UNORM_SRGB, VK_FORMAT_BC7_SRGB_BLOCK)");
-}
-
 // A DXT name asks for what DX9-era tools read; sRGB colour in DDS needs the
 // DX10 header, which some of them (NVTT 2's nvdecompress) cannot read.
 void warn_if_dx10_for_dxt(const CompressArgs& a, TexelFormat format, const std::string& output,
@@ -144,16 +67,16 @@ void validate(CompressArgs& a) {
   a.q = parse_quality(a.quality);
   a.header = parse_dds_header(a.dds_header);
   a.transparent = parse_transparent_color(a.transparent_color);
-  format_for(a.format, false);  // a known format, or an error now
-  if (const auto t = explicit_format(a.format); t && !format_info(*t).is_float) {
+  block_format_for(a.format, false);  // a known format, or an error now
+  if (const auto t = exact_block_format(a.format); t && !format_info(*t).is_float) {
     const bool named_srgb = format_info(*t).srgb;
     if (a.srgb && !named_srgb) throw Error(ErrorCode::bad_arguments, "--srgb contradicts --format " + a.format);
     if (a.linear && named_srgb) throw Error(ErrorCode::bad_arguments, "--linear contradicts --format " + a.format);
   }
-  if (a.srgb && format_info(format_for(a.format, false)).is_float) {
+  if (a.srgb && format_info(block_format_for(a.format, false)).is_float) {
     throw Error(ErrorCode::bad_arguments, "--srgb: --format " + a.format + " is HDR (linear floats); drop --srgb");
   }
-  if (a.srgb && !format_info(format_for(a.format, true)).srgb) {
+  if (a.srgb && !format_info(block_format_for(a.format, true)).srgb) {
     throw Error(ErrorCode::bad_arguments,
                 "--srgb: --format " + a.format + " has no sRGB variant (it holds data); drop --srgb");
   }
@@ -167,7 +90,7 @@ void validate(CompressArgs& a) {
                                                                 : nullptr;
     if (given) throw Error(ErrorCode::bad_arguments, std::string(given) + " shapes the mip chain: add --mips");
   }
-  const TexelFormat linear_format = format_for(a.format, false);
+  const TexelFormat linear_format = block_format_for(a.format, false);
   if (a.astc_effort >= 0.0f && !is_astc(linear_format))
     throw Error(ErrorCode::bad_arguments, "--astc-effort applies to the ASTC formats, not '" + a.format + "'");
   if (a.astc_effort >= 0.0f && a.astc_effort > 100.0f)
@@ -272,8 +195,8 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   bool srgb = a.srgb || (!a.linear && !a.normal_map && input_type != PixelType::f32);
   // A full LDR format name says it: an sRGB format's input is sRGB colour,
   // a UNORM format's is data (as --linear).
-  if (const auto t = explicit_format(a.format); t && !format_info(*t).is_float) srgb = format_info(*t).srgb;
-  const TexelFormat format = format_for(a.format, srgb);
+  if (const auto t = exact_block_format(a.format); t && !format_info(*t).is_float) srgb = format_info(*t).srgb;
+  const TexelFormat format = block_format_for(a.format, srgb);
   if (!a.clip) warn_if_clipped(input, in, format, r.warnings);
   warn_if_dx10_for_dxt(a, format, output, r.warnings);
   // HDR formats hold linear values: 8/16-bit colour is decoded from sRGB
@@ -416,7 +339,7 @@ void add_compress_command(CLI::App& app) {
     for (auto& ch : f) ch = char(std::tolower(static_cast<unsigned char>(ch)));
     bool no_dds = false;  // DDS has no ETC or ASTC formats (an unknown name fails in validate)
     try {
-      no_dds = format_info(format_for(f, false)).dxgi_format == 0;
+      no_dds = format_info(block_format_for(f, false)).dxgi_format == 0;
     } catch (const Error&) {
     }
     c.default_extension = no_dds ? ".ktx2" : ".dds";  // DDS has no ETC or ASTC formats

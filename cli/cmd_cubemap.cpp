@@ -1,6 +1,8 @@
 // texproc cubemap: environment maps from panoramas, faces, crosses and
 // strips; seamless mips; GGX specular and diffuse irradiance for
 // image-based lighting; spherical harmonics; a preview.
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -195,89 +197,36 @@ struct Source {
   ColorSpace space = ColorSpace::srgb();
 };
 
-ColorSpace source_space(const CubemapArgs& a, PixelType type) {
-  if (a.linear) return ColorSpace::linear();
-  if (!a.color_space.empty()) return ColorSpace::from_name(a.color_space);
-  return type == PixelType::f32 ? ColorSpace::linear() : ColorSpace::srgb();
-}
-
 Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r, PhaseTimer& phases) {
+  CubemapReadOptions o;
+  if (a.layout != "auto") o.layout = parse_cube_layout(a.layout);
+  o.size = a.size;
+  o.flip = a.flip_axis;
+  if (a.linear) {
+    o.color_space = ColorSpace::linear();
+  } else if (!a.color_space.empty()) {
+    o.color_space = ColorSpace::from_name(a.color_space);
+  }
+  o.read = cli_read_options();
+  CubemapSource c;
+  if (a.faces.empty()) {
+    c = read_cubemap(input, o);
+  } else {
+    std::array<std::string, 6> faces;
+    std::copy(a.faces.begin(), a.faces.begin() + 6, faces.begin());
+    c = read_cubemap_faces(faces, o);
+  }
+  phases.read_done();
   Source s;
   s.input = a.faces.empty() ? input : a.faces[0];
-  if (!a.faces.empty()) {
-    std::array<Image, 6> faces;
-    for (int f = 0; f < 6; ++f) {
-      Image img = read_image(a.faces[f], nullptr, cli_read_options());
-      read_as_finite(a.faces[f], img, r.warnings);
-      if (img.width() != img.height()) {
-        throw Error(ErrorCode::bad_arguments, a.faces[f] + ": a face is square; this one is " +
-                                                  std::to_string(img.width()) + "x" + std::to_string(img.height()));
-      }
-      if (f > 0 && img.width() != faces[0].width()) {
-        throw Error(ErrorCode::bad_arguments,
-                    a.faces[f] + ": " + std::to_string(img.width()) + "x" + std::to_string(img.height()) + ", but " +
-                        a.faces[0] + " (+X) is " + std::to_string(faces[0].width()) + "x" +
-                        std::to_string(faces[0].height()) + ": the six faces must be one size");
-      }
-      if (f == 0) {
-        s.hdr = img.type() == PixelType::f32;
-        s.space = source_space(a, img.type());
-      }
-      s.alpha = s.alpha || img.channels() == 2 || img.channels() == 4;
-      faces[f] = to_linear_rgba(img.view(), s.space);
-      r.inputs.push_back(a.faces[f]);
-    }
-    phases.read_done();
-    std::array<ConstImageView, 6> views;
-    for (int f = 0; f < 6; ++f) views[f] = faces[f].view();
-    s.cube = cubemap_from_faces(views);
-    s.layout = "faces";
-  } else {
-    ImageFileInfo info;
-    ImageArray in = read_image_array(input, &info, cli_read_options());
-    for (Image& im : in.images) read_as_finite(input, im, r.warnings);
-    phases.read_done();
-    s.hdr = in.images[0].type() == PixelType::f32;
-    s.space = source_space(a, in.images[0].type());
-    s.alpha = in.images[0].channels() == 2 || in.images[0].channels() == 4;
-    if (in.faces == 6 && in.images.size() == 6) {
-      std::vector<Image> faces;
-      for (Image& im : in.images) {
-        faces.push_back(to_linear_rgba(im.view(), s.space));
-        im = Image();  // each face read is dropped once it is in floats
-      }
-      s.cube = cubemap_from_images(faces);
-      s.layout = "cube " + std::to_string(s.cube.size());
-    } else {
-      if (in.images.size() != 1) {
-        throw Error(ErrorCode::unsupported, input + ": an array texture is not a cube map (6 faces, one layer)");
-      }
-      const int width = in.images[0].width(), height = in.images[0].height();
-      const CubeLayout layout = a.layout == "auto" ? detect_cube_layout(width, height) : parse_cube_layout(a.layout);
-      if (layout == CubeLayout::equirect && width != 2 * height) {
-        throw Error(ErrorCode::bad_arguments,
-                    std::to_string(width) + "x" + std::to_string(height) + " is not a 2:1 panorama");
-      }
-      Image rgba = to_linear_rgba(in.images[0].view(), s.space);
-      in.images.clear();  // the floats are all that is read from here on
-      release_cached_pixel_memory();
-      if (layout == CubeLayout::equirect) {
-        const int size = a.size > 0 ? a.size : default_cube_size(width);
-        s.cube = cubemap_from_equirect(rgba.view(), size, a.flip_axis);
-      } else {
-        s.cube = cubemap_from_layout(rgba.view(), layout);
-      }
-      rgba = Image();
-      release_cached_pixel_memory();
-      s.layout = std::string(to_string(layout)) + " " + std::to_string(width) + "x" + std::to_string(height);
-    }
-  }
+  s.cube = std::move(c.cube);
+  s.layout = c.layout;
+  s.hdr = c.hdr;
+  s.alpha = c.alpha;
+  s.space = c.color_space;
   s.srgb = s.space.is_srgb();
-  // Faces, crosses and cubes take --flip and --size here (a panorama took them while sampling).
-  if (s.layout.rfind("equirect", 0) != 0) {
-    if (a.flip_axis != CubeFlip::none) s.cube = flip_cubemap(s.cube, a.flip_axis);
-    if (a.size > 0 && a.size != s.cube.size()) s.cube = resize_cubemap(s.cube, a.size);
-  }
+  if (!a.faces.empty()) r.inputs.insert(r.inputs.end(), c.files.begin(), c.files.end());
+  r.warnings.insert(r.warnings.end(), c.warnings.begin(), c.warnings.end());
   return s;
 }
 

@@ -1,14 +1,19 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer harnesses (tests/fuzz) with clang, ASan and UBSan into
-# build-fuzz/ and runs each for SECONDS (default 60), seeded from samples/
-# and files texproc writes. Usage: scripts/fuzz.sh [SECONDS]
+# build-fuzz/, runs the unit tests labelled `sanitized` (the block decoders,
+# BPTC, the resampler's SIMD twins) under the same sanitizers, then runs each
+# harness for SECONDS (default 60), seeded from samples/ and files texproc
+# writes. Usage: scripts/fuzz.sh [SECONDS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 SECONDS_EACH=${1:-60}
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTEXPROC_FUZZ=ON \
   -DTEXPROC_BUILD_TESTS=OFF -DTEXPROC_BUILD_BENCH=OFF -DTEXPROC_STATIC_CODECS=OFF >/dev/null
 # texproc_exr: the OpenEXR module, built with the same sanitizers; fuzz_images loads it for EXR input.
-cmake --build build-fuzz -j "$(nproc)" --target fuzz_containers fuzz_block_decoders fuzz_images fuzz_textures texproc_exr
+cmake --build build-fuzz -j "$(nproc)" --target fuzz_containers fuzz_block_decoders fuzz_images fuzz_textures texproc_exr \
+  texproc_sanitized_tests
+# A subset of the unit tests under ASan and UBSan (the whole suite: scripts/asan.sh).
+ASAN_OPTIONS=detect_leaks=0 ctest --test-dir build-fuzz/tests/fuzz -L sanitized --output-on-failure -j "$(nproc)"
 # Seeds come from the Release build's texproc (scripts/build.sh).
 T=${TEXPROC:-build/cli/texproc}
 [ -x "$T" ] || bash scripts/build.sh

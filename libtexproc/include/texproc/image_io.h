@@ -8,12 +8,16 @@
 // OpenImageIO. See docs/formats.md.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "texproc/color.h"
+#include "texproc/cubemap.h"
 #include "texproc/image.h"
 #include "texproc/read_limits.h"
 #include "texproc/texture.h"
@@ -143,5 +147,44 @@ class MipFileWriter {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// ---- Cube maps from files ----------------------------------------------------
+
+// How read_cubemap takes its source.
+struct CubemapReadOptions {
+  // The source's layout; std::nullopt: from its shape (detect_cube_layout).
+  std::optional<CubeLayout> layout;
+  // The face size; 0: the source's (a panorama's: default_cube_size).
+  int size = 0;
+  CubeFlip flip = CubeFlip::none;
+  // The source's colour space; std::nullopt: linear for float files, sRGB
+  // for 8- and 16-bit ones.
+  std::optional<ColorSpace> color_space;
+  ReadOptions read;
+};
+
+// A cube map read from files, as linear RGBA floats, and what it was read from.
+struct CubemapSource {
+  Cubemap cube;
+  // The source: "equirect 4096x2048", "hcross 1024x768" (a layout
+  // and the image's size), "cube 512" (a cube texture), "faces".
+  std::string layout;
+  bool hdr = false;    // float input (kept as it is, no clipping)
+  bool alpha = false;  // the input had an alpha channel
+  ColorSpace color_space = ColorSpace::srgb();
+  std::vector<std::string> files;     // every file read
+  std::vector<std::string> warnings;  // "FILE: N non-finite value(s) (NaN or infinity) read as 0"
+};
+
+// One file: a 2:1 panorama, a cross or a strip of faces, or a cube texture
+// (DDS, KTX2, KTX1 with six faces). NaN and infinity read as 0 (a warning).
+// Throws Error{bad_arguments} for a shape that is no layout (or a panorama
+// that is not 2:1), Error{unsupported} for an array texture, and what
+// read_image_array throws.
+CubemapSource read_cubemap(const std::string& path, const CubemapReadOptions& options = {});
+// Six square images of one size, +X, -X, +Y, -Y, +Z, -Z. Throws
+// Error{bad_arguments} naming the face that is not square or not the size of
+// the first.
+CubemapSource read_cubemap_faces(const std::array<std::string, 6>& faces, const CubemapReadOptions& options = {});
 
 }  // namespace texproc

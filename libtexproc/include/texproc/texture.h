@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -134,6 +135,21 @@ const FormatInfo* find_format_by_dxgi(std::uint32_t dxgi_format);
 const FormatInfo* find_format_by_gl(std::uint32_t gl_internal_format);
 TexelFormat parse_texel_format(std::string_view name);  // throws Error{bad_arguments}
 std::vector<std::string> texel_format_names();
+
+// The block format a name asks for, as `texproc compress --format` reads
+// it, in any case: a family ("bc1", "bc1a", "bc2", "bc3", "bc4", "bc4s",
+// "bc5", "bc5s", "bc7", "bc6h", "bc6hs", "etc1", "etc2", "etc2a1", "etc2a",
+// "eac-r11", "eac-r11s", "eac-rg11", "eac-rg11s", "astc-6x6",
+// "astc-6x6-hdr"...), another tool's name for one ("dxt5", "ati2", "3dc",
+// ...), or a full name parse_texel_format reads ("bc7_srgb",
+// "BC7_UNORM_SRGB", "VK_FORMAT_BC7_SRGB_BLOCK"). A family gives its sRGB
+// format where `srgb` and it has one, else its UNORM (SNORM, float) one; a
+// full name gives that format whatever `srgb`. Throws Error{bad_arguments}
+// listing the names.
+TexelFormat block_format_for(std::string_view name, bool srgb);
+// The block format a full name names exactly (parse_texel_format of a
+// compressed format); std::nullopt for a family name or no format.
+std::optional<TexelFormat> exact_block_format(std::string_view name);
 
 // Bytes of one width x height image in format f (whole blocks: sizes that are
 // not multiples of the block are rounded up). Returns 0 on overflow past 2^62.

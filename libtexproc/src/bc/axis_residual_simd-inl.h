@@ -14,6 +14,7 @@
 HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
+namespace {
 
 // The scatter matrix's trace less its largest eigenvalue (one power step
 // from the largest diagonal's column, then the Rayleigh quotient).
@@ -43,7 +44,9 @@ HWY_INLINE VF axis_residual(DF df, VF c00, VF c01, VF c02, VF c11, VF c12, VF c2
   const auto pos = hn::Gt(uu, hn::Zero(df));
   const VF lambda = hn::IfThenElseZero(pos, hn::Div(ucu, hn::IfThenElse(pos, uu, hn::Set(df, 1.0f))));
   return hn::Sub(trace, lambda);
-}
+}  // namespace
+
+}  // namespace
 
 }  // namespace HWY_NAMESPACE
 }  // namespace texproc

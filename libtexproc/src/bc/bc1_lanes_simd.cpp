@@ -11,19 +11,14 @@
 #include <cstring>
 
 #include "bc/bc1_lanes.h"
+#include "block/block_lanes_simd-inl.h"
 #include "texproc/runtime.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
-
-using D = hn::CappedTag<std::int32_t, kBc1Batch>;
-using DF = hn::Rebind<float, D>;
-using DU = hn::Rebind<std::uint32_t, D>;
-using V = hn::Vec<D>;
-using VF = hn::Vec<DF>;
-using M = hn::Mask<D>;
+namespace {
 
 // The endpoints, codes and error of a candidate in every lane.
 struct State {
@@ -37,7 +32,7 @@ struct State {
 // so opaque BC1 pays nothing for the transparent texels' masks).
 template <bool kPunch>
 struct Bc1Batch {
-  const D d;
+  const DI d;
   const DF df;
   const DU du;
   V r[16], g[16], b[16];
@@ -457,9 +452,9 @@ struct Bc1Batch {
 };
 
 template <bool kPunch>
-HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three,
-                         std::uint8_t out[][8], bool handled[]) {
-  const int lanes = int(hn::Lanes(D()));
+HWY_INLINE void encode_lanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level,
+                             bool three, std::uint8_t out[][8], bool handled[]) {
+  const int lanes = int(hn::Lanes(DI()));
   for (int k0 = 0; k0 < count; k0 += lanes) {
     Bc1Batch<kPunch> batch;
     HWY_ALIGN std::int32_t flat_out[kBc1Batch];
@@ -499,12 +494,14 @@ HWY_INLINE void Bc1Lanes(const std::uint32_t texel[16][kBc1Batch], int count, co
   }
 }
 
+}  // namespace
+
 void Bc1EncodeLanes(const std::uint32_t texel[16][kBc1Batch], int count, const Bc1LaneSearch& level, bool three,
                     bool punch, std::uint8_t out[][8], bool handled[]) {
   if (punch) {
-    Bc1Lanes<true>(texel, count, level, three, out, handled);
+    encode_lanes<true>(texel, count, level, three, out, handled);
   } else {
-    Bc1Lanes<false>(texel, count, level, three, out, handled);
+    encode_lanes<false>(texel, count, level, three, out, handled);
   }
 }
 

@@ -11,18 +11,14 @@
 
 #include "bc/bc4_lanes.h"
 #include "bc/bc4_lanes_shared.h"
+#include "block/block_lanes_simd-inl.h"
 #include "texproc/runtime.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
-
-using D = hn::CappedTag<float, kBc4Batch>;
-using DI = hn::RebindToSigned<D>;
-using VF = hn::Vec<D>;
-using V = hn::Vec<DI>;
-using M = hn::Mask<DI>;
+namespace {
 
 // The lanes' blocks through the search, stage by stage (the scalar
 // reference in bc4_lanes.cpp does the same per block): load, start (the
@@ -30,7 +26,7 @@ using M = hn::Mask<DI>;
 // least-squares iterations), window_at and variants; codes. The best pair so
 // far is (r0, r1) with its `error`.
 struct Bc4Batch {
-  const D df;
+  const DF df;
   const DI d;
   const float lo_c, hi_c;
   const VF lo_code, hi_code, half, one, seven, five, inner_lo, inner_hi;
@@ -226,7 +222,7 @@ struct Bc4Batch {
     if (hn::AllFalse(d, lane_ok)) return;
     const VF span = hn::IfThenElse(distinct, hn::Sub(a0, a1), one);
     VF base[16], sum_t = hn::Zero(df);
-    hn::Mask<D> in[16];
+    hn::Mask<DF> in[16];
     V n_in = hn::Zero(d);
     for (int i = 0; i < 16; ++i) {
       base[i] = hn::Mul(hn::Div(hn::Sub(a0, t[i]), span), fsteps);
@@ -284,9 +280,11 @@ struct Bc4Batch {
   }
 };
 
+}  // namespace
+
 void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level,
                     std::uint8_t out[][8]) {
-  const int lanes = int(hn::Lanes(D()));
+  const int lanes = int(hn::Lanes(DF()));
   Bc4Batch batch(snorm);
   for (int k0 = 0; k0 < count; k0 += lanes) {
     batch.load(v, k0);

@@ -15,19 +15,14 @@
 #include "bc/axis_residual_simd-inl.h"
 #include "bc/bc6h_lanes.h"
 #include "bc/bc6h_shared.h"
+#include "block/block_lanes_simd-inl.h"
 #include "texproc/runtime.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
-
-using DI = hn::CappedTag<std::int32_t, kBc6hBatch>;
-using DF = hn::Rebind<float, DI>;
-using V = hn::Vec<DI>;
-using VF = hn::Vec<DF>;
-using M = hn::Mask<DI>;
-using MF = hn::Mask<DF>;
+namespace {
 
 // A candidate: mode, partition, codes and indices per lane (the reference's Choice).
 struct CandidateV {
@@ -454,6 +449,8 @@ struct Bc6hBatch {
     }
   }
 };
+
+}  // namespace
 
 void Bc6hEncodeLanes(const std::int32_t texel[16][3][kBc6hBatch], int count, bool is_signed, const Bc6hLevel& level,
                      std::uint8_t out[][16]) {

@@ -15,6 +15,7 @@
 #include <cmath>
 
 #include "bc/axis_residual_simd-inl.h"
+#include "block/block_lanes_simd-inl.h"
 #include "bc/bc7_lanes.h"
 #include "bc/bc7_sum_plan.h"
 
@@ -22,50 +23,7 @@ HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
-
-// The BC7 lanes' vectors: a block a lane.
-using DI = hn::CappedTag<std::int32_t, kBc7Batch>;
-using DF = hn::Rebind<float, DI>;
-using V = hn::Vec<DI>;
-using VF = hn::Vec<DF>;
-using M = hn::Mask<DI>;
-
-HWY_INLINE VF as_float(V v) { return hn::ConvertTo(DF(), v); }
-
-#if HWY_TARGET != HWY_SCALAR
-// Each lane's two 16-bit halves as signed integers, a_lo b_lo + a_hi b_hi:
-// one 16-bit multiply-add a lane (vpmaddwd on x86).
-HWY_INLINE V dot16(V a, V b) {
-  const DI d;
-  const hn::Repartition<std::int16_t, DI> d16;
-  V odd = hn::Zero(d);
-  const V even = hn::ReorderWidenMulAccumulate(d, hn::BitCast(d16, a), hn::BitCast(d16, b), hn::Zero(d), odd);
-  return hn::RearrangeToOddPlusEven(even, odd);
-}
-#endif
-
-// a b for a in [0, 32767] and b in [-32768, 32767]: dot16 (half the cost
-// of a 32-bit product), a's upper half zero so the upper halves add
-// nothing; the same integer as hn::Mul.
-// (HWY_SCALAR's one lane has no 16-bit halves: the 32-bit product.)
-HWY_INLINE V mul16(V a, V b) {
-#if HWY_TARGET == HWY_SCALAR
-  return hn::Mul(a, b);
-#else
-  return dot16(a, b);
-#endif
-}
-
-// round(v) to the nearest integer, ties to even, for v in [0, hi] with hi
-// below 2^22, as hn::ConvertTo(hn::Round(...)) gives: the sum with 1.5 2^23
-// rounds (as every float sum, to nearest even) to a whole number, whose
-// low mantissa bits are the integer.
-HWY_INLINE V round_clamped(VF v, float hi) {
-  const DI d;
-  const DF df;
-  const VF c = hn::Min(hn::Max(v, hn::Zero(df)), hn::Set(df, hi));
-  return hn::Sub(hn::BitCast(d, hn::Add(c, hn::Set(df, 12582912.0f))), hn::Set(d, 0x4B400000));
-}
+namespace {
 
 // As ref::subset_residual, from the sums as floats: every sum, product
 // and difference is an integer below 2^24 (16 255^2 16 < 2^24), so exact
@@ -193,6 +151,8 @@ HWY_INLINE void rank_partitions(const V (&x)[16][4], int subsets, int scanned, R
     if (first16 && part < 16) insert(*first16, est, hn::Set(d, part));
   }
 }
+
+}  // namespace
 
 }  // namespace HWY_NAMESPACE
 }  // namespace texproc

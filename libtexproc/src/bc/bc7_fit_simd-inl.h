@@ -29,6 +29,7 @@ HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+namespace {
 
 using bc7::EndpointFormat;
 using bc7::Pbit;
@@ -43,13 +44,6 @@ struct SetFitV {
 // Whether a lane's two 16-bit halves can hold two channels (every target
 // but HWY_SCALAR, whose one lane has no halves).
 #define TEXPROC_BC7_PAIRS (HWY_TARGET != HWY_SCALAR)
-
-// Two channels a lane, lo in the low 16 bits and hi in the high (each in
-// [-32768, 32767]): for dot16 and 16-bit lane arithmetic.
-HWY_INLINE V pair16(V lo, V hi) {
-  const DI d;
-  return hn::Or(hn::And(lo, hn::Set(d, 0xFFFF)), hn::ShiftLeft<16>(hi));
-}
 
 // The texels' channels in pairs (pair16): R G, B alone, B A; a set of 3
 // channels uses the first two, of 4 the first and the third.
@@ -570,6 +564,8 @@ struct Bc7FitLanes {
     }
   }
 };
+
+}  // namespace
 
 }  // namespace HWY_NAMESPACE
 }  // namespace texproc

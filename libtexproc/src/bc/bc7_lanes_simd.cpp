@@ -23,6 +23,7 @@ HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+namespace {
 
 // The lanes' best candidate so far (the reference's Best and Choice).
 struct BestV {
@@ -291,6 +292,8 @@ struct Bc7Batch : Bc7FitLanes {
     }
   }
 };
+
+}  // namespace
 
 void Bc7EncodeLanes(const Bc7Texels* texel, int count, const Bc7Level& level, std::uint8_t out[][16]) {
   Bc7Batch batch(level);

@@ -16,6 +16,7 @@
 #include <cstring>
 
 #include "bc/bc7_shared.h"
+#include "block/block_lanes_simd-inl.h"
 #include "texproc/runtime.h"
 
 #ifndef TEXPROC_BC7_PACK_TABLES_ONCE
@@ -43,12 +44,7 @@ HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
-
-using DI = hn::CappedTag<std::int32_t, kBlockBatch>;
-using DU = hn::Rebind<std::uint32_t, DI>;
-using V = hn::Vec<DI>;
-using U = hn::Vec<DU>;
-using M = hn::Mask<DI>;
+namespace {
 
 // One lane's choice fields, loaded.
 struct Fields {
@@ -59,18 +55,18 @@ struct Fields {
 
 // The block's four words, a lane each, written from the lowest bit up.
 struct Words {
-  U w[4];
+  VU w[4];
 };
 
 // `v` (< 2^n) at bit `pos` of every lane's block.
-HWY_INLINE void put(Words& b, U v, int pos, int n) {
+HWY_INLINE void put(Words& b, VU v, int pos, int n) {
   const int q = pos / 32, r = pos % 32;
   b.w[q] = hn::Or(b.w[q], hn::ShiftLeftSame(v, r));
   if (r + n > 32) b.w[q + 1] = hn::Or(b.w[q + 1], hn::ShiftRightSame(v, 32 - r));
 }
 
 // A 64-bit stream (lo, hi) at bit `pos`.
-HWY_INLINE void put64(Words& b, U lo, U hi, int pos) {
+HWY_INLINE void put64(Words& b, VU lo, VU hi, int pos) {
   const int q = pos / 32, r = pos % 32;
   if (r == 0) {
     b.w[q] = hn::Or(b.w[q], lo);
@@ -85,7 +81,7 @@ HWY_INLINE void put64(Words& b, U lo, U hi, int pos) {
 // An index stream of `bits` an index, the anchors' top bits left out:
 // texel i at bit i bits - (anchors before or at i, texel 0 counted from
 // texel 1 on) of a 64-bit word (lo, hi), a lane's positions its own.
-HWY_INLINE void stream(const DI d, const V* index, int bits, const V anchor[3], int ns, U& lo, U& hi) {
+HWY_INLINE void stream(const DI d, const V* index, int bits, const V anchor[3], int ns, VU& lo, VU& hi) {
   const DU du;
   lo = hn::Zero(du);
   hi = hn::Zero(du);
@@ -93,15 +89,15 @@ HWY_INLINE void stream(const DI d, const V* index, int bits, const V anchor[3], 
     V pos = hn::Set(d, i * bits - (i > 0 ? 1 : 0));
     for (int s = 1; s < ns; ++s)
       pos = hn::Add(pos, hn::VecFromMask(d, hn::Lt(anchor[s], hn::Set(d, i))));  // -1 past each anchor
-    const U v = hn::BitCast(du, index[i]);
+    const VU v = hn::BitCast(du, index[i]);
     const M low = hn::Lt(pos, hn::Set(d, 32));
-    const U p = hn::BitCast(du, hn::And(pos, hn::Set(d, 31)));
-    const U shifted = hn::Shl(v, p);
+    const VU p = hn::BitCast(du, hn::And(pos, hn::Set(d, 31)));
+    const VU shifted = hn::Shl(v, p);
     lo = hn::Or(lo, hn::IfThenElseZero(hn::RebindMask(du, low), shifted));
     hi = hn::Or(hi, hn::IfThenElseZero(hn::RebindMask(du, hn::Not(low)), shifted));
     // The part of an index that crosses bit 32.
     const M cross = hn::And(low, hn::Gt(hn::Add(pos, hn::Set(d, bits)), hn::Set(d, 32)));
-    const U back = hn::BitCast(du, hn::And(hn::Sub(hn::Set(d, 32), pos), hn::Set(d, 31)));
+    const VU back = hn::BitCast(du, hn::And(hn::Sub(hn::Set(d, 32), pos), hn::Set(d, 31)));
     hi = hn::Or(hi, hn::IfThenElseZero(hn::RebindMask(du, cross), hn::Shr(v, back)));
   }
 }
@@ -188,7 +184,7 @@ HWY_INLINE Words pack_mode(const DI d, Fields c) {
     primary[i] = hn::IfThenElse(swap_streams, c.alpha[i], c.color[i]);
     secondary[i] = hn::IfThenElse(swap_streams, c.color[i], c.alpha[i]);
   }
-  U lo, hi;
+  VU lo, hi;
   stream(d, primary, Md.index_bits, anchor, ns, lo, hi);
   put64(b, lo, hi, pos);
   pos += 16 * Md.index_bits - ns;
@@ -206,6 +202,8 @@ HWY_INLINE void pack_if_present(const DI d, const Fields& c, Words& out) {
   const Words b = pack_mode<Mode>(d, c);
   for (int q = 0; q < 4; ++q) out.w[q] = hn::IfThenElse(hn::RebindMask(DU(), here), b.w[q], out.w[q]);
 }
+
+}  // namespace
 
 void Bc7PackLanes(const bc7::LaneChoices& t, int count, std::uint8_t out[][16]) {
   const DI d;

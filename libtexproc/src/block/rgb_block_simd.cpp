@@ -15,11 +15,14 @@ HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+namespace {
 
 using D = hn::CappedTag<std::int32_t, 16>;
 using V = hn::Vec<D>;
 
-HWY_INLINE std::int32_t Total(D d, V v) { return hn::GetLane(hn::SumOfLanes(d, v)); }
+HWY_INLINE std::int32_t lane_total(D d, V v) { return hn::GetLane(hn::SumOfLanes(d, v)); }
+
+}  // namespace
 
 void Bc1Moments_(const RgbBlock& tx, RgbMoments& m) {
   const D d;
@@ -41,16 +44,16 @@ void Bc1Moments_(const RgbBlock& tx, RgbMoments& m) {
     gb = hn::Add(gb, hn::Mul(g, b));
     bb = hn::Add(bb, hn::Mul(b, b));
   }
-  m.n = Total(d, n);
-  m.sum[0] = Total(d, sr);
-  m.sum[1] = Total(d, sg);
-  m.sum[2] = Total(d, sb);
-  m.sq[0] = Total(d, rr);
-  m.sq[1] = Total(d, rg);
-  m.sq[2] = Total(d, rb);
-  m.sq[3] = Total(d, gg);
-  m.sq[4] = Total(d, gb);
-  m.sq[5] = Total(d, bb);
+  m.n = lane_total(d, n);
+  m.sum[0] = lane_total(d, sr);
+  m.sum[1] = lane_total(d, sg);
+  m.sum[2] = lane_total(d, sb);
+  m.sq[0] = lane_total(d, rr);
+  m.sq[1] = lane_total(d, rg);
+  m.sq[2] = lane_total(d, rb);
+  m.sq[3] = lane_total(d, gg);
+  m.sq[4] = lane_total(d, gb);
+  m.sq[5] = lane_total(d, bb);
 }
 
 void Bc1ProjectRange(const RgbBlock& tx, const float axis[3], float& lo, float& hi) {
@@ -96,7 +99,7 @@ std::int32_t Bc1Nearest(const RgbBlock& tx, const int pal[4][3], int candidates,
     hn::StoreU(hn::IfThenElse(transparent, hn::Set(d, 3), best), d, code_out + i);
   }
   for (int i = 0; i < 16; ++i) codes[i] = std::uint8_t(code_out[i]);
-  return Total(d, total);
+  return lane_total(d, total);
 }
 
 void Bc1LsSums_(const RgbBlock& tx, const std::uint8_t codes[16], const int weight[4], int den, RgbLsSums& s) {
@@ -126,15 +129,15 @@ void Bc1LsSums_(const RgbBlock& tx, const std::uint8_t codes[16], const int weig
     bg = hn::Add(bg, hn::Mul(w, g));
     bbl = hn::Add(bbl, hn::Mul(w, b));
   }
-  s.aa = Total(d, aa);
-  s.ab = Total(d, ab);
-  s.bb = Total(d, bb);
-  s.at[0] = Total(d, ar);
-  s.at[1] = Total(d, ag);
-  s.at[2] = Total(d, ab_);
-  s.bt[0] = Total(d, br);
-  s.bt[1] = Total(d, bg);
-  s.bt[2] = Total(d, bbl);
+  s.aa = lane_total(d, aa);
+  s.ab = lane_total(d, ab);
+  s.bb = lane_total(d, bb);
+  s.at[0] = lane_total(d, ar);
+  s.at[1] = lane_total(d, ag);
+  s.at[2] = lane_total(d, ab_);
+  s.bt[0] = lane_total(d, br);
+  s.bt[1] = lane_total(d, bg);
+  s.bt[2] = lane_total(d, bbl);
 }
 
 }  // namespace HWY_NAMESPACE

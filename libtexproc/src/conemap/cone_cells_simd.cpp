@@ -19,6 +19,7 @@ HWY_BEFORE_NAMESPACE();
 namespace texproc::detail {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+namespace {
 
 // Lanes run over the cell's texels in row order: a vector holds part of a
 // row (4 lanes), a row (8) or two rows (16).
@@ -28,7 +29,7 @@ using VF = hn::Vec<DF>;
 using VI = hn::Vec<DI>;
 
 // Axis distance term d * d * s per lane, after shrinking.
-HWY_INLINE VF AxisTerm(const ConeGeometry& g, VI dist, float s) {
+HWY_INLINE VF axis_term(const ConeGeometry& g, VI dist, float s) {
   const DF d;
   const DI di;
   dist = hn::Max(hn::Sub(dist, hn::Set(di, g.shrink)), hn::Zero(di));
@@ -36,7 +37,7 @@ HWY_INLINE VF AxisTerm(const ConeGeometry& g, VI dist, float s) {
 }
 
 // Distance from each lane's p to q along an axis of n texels.
-HWY_INLINE VI TexelDistance(VI p, int q, int n, bool repeat) {
+HWY_INLINE VI texel_distance(VI p, int q, int n, bool repeat) {
   const DI di;
   VI dist = hn::Abs(hn::Sub(p, hn::Set(di, q)));
   if (repeat) dist = hn::Min(dist, hn::Sub(hn::Set(di, n), dist));
@@ -44,7 +45,7 @@ HWY_INLINE VI TexelDistance(VI p, int q, int n, bool repeat) {
 }
 
 // Distance from each lane's p to the nearest texel of [lo, hi].
-HWY_INLINE VI RangeDistance(VI p, int lo, int hi, int n, bool repeat) {
+HWY_INLINE VI range_distance(VI p, int lo, int hi, int n, bool repeat) {
   const DI di;
   VI dist = hn::Max(hn::Max(hn::Sub(hn::Set(di, lo), p), hn::Sub(p, hn::Set(di, hi))), hn::Zero(di));
   if (repeat) dist = hn::Min(dist, hn::Min(hn::Sub(hn::Set(di, lo + n), p), hn::Add(p, hn::Set(di, n - hi))));
@@ -55,7 +56,7 @@ HWY_INLINE VI RangeDistance(VI p, int lo, int hi, int n, bool repeat) {
 struct LanePos {
   VI px, py;
 };
-HWY_INLINE LanePos Positions(const ConeCell& c, int v) {
+HWY_INLINE LanePos positions(const ConeCell& c, int v) {
   const DF d;
   const DI di;
   const VI flat = hn::Add(hn::Iota(di, 0), hn::Set(di, v * int(hn::Lanes(d))));
@@ -64,7 +65,7 @@ HWY_INLINE LanePos Positions(const ConeCell& c, int v) {
 }
 
 // Whether vector v covers a row marked in rows.
-HWY_INLINE bool AnyRow(const bool* rows, int v, int lanes) {
+HWY_INLINE bool any_row(const bool* rows, int v, int lanes) {
   const int r0 = v * lanes / kConeCell, r1 = ((v + 1) * lanes - 1) / kConeCell;
   for (int r = r0; r <= r1; ++r)
     if (rows[r]) return true;
@@ -82,7 +83,7 @@ struct Exits {
 };
 
 template <bool kCheckZero>
-HWY_INLINE bool Update(VF& best, VF& bdd, VF hp, VF d2, VF hq, VF dd, VF slack, const Exits& ex = {}) {
+HWY_INLINE bool update(VF& best, VF& bdd, VF hp, VF d2, VF hq, VF dd, VF slack, const Exits& ex = {}) {
   const DF d;
   const VF dh = hn::Sub(hq, hp);
   // dh * |dh|: dh^2 where the obstacle is higher, <= 0 where it is not (so
@@ -119,10 +120,10 @@ bool Texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, i
   float* best_all = &c.best[0][0];
   bool improved = false;
   for (int v = 0; v < kConeCell * kConeCell / N; ++v) {
-    if (!AnyRow(rows, v, N)) continue;
-    const LanePos pos = Positions(c, v);
+    if (!any_row(rows, v, N)) continue;
+    const LanePos pos = positions(c, v);
     VF dxt[kConeCell];
-    for (int j = 0; j < nq; ++j) dxt[j] = AxisTerm(g, TexelDistance(pos.px, bx0 + j, g.W, g.repeat), g.sx);
+    for (int j = 0; j < nq; ++j) dxt[j] = axis_term(g, texel_distance(pos.px, bx0 + j, g.W, g.repeat), g.sx);
     const VF hp = hn::Load(d, apex + v * N);
     VF best = hn::Load(d, best_all + v * N);
     VF bdd = hn::Mul(hn::Mul(best, dd), slack);
@@ -133,7 +134,7 @@ bool Texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, i
     for (int j = 0; j < nq; ++j) dx_min = hn::Min(dx_min, dxt[j]);
     const std::size_t run_stride = std::size_t(g.W + 7) / 8;
     for (int qy = by0; qy <= by1; ++qy) {
-      const VF dyt = AxisTerm(g, TexelDistance(pos.py, qy, g.H, g.repeat), g.sy);
+      const VF dyt = axis_term(g, texel_distance(pos.py, qy, g.H, g.repeat), g.sy);
       if (g.row_max8) {
         const float dh = g.row_max8[std::size_t(qy) * run_stride + std::size_t(bx0 / 8)] - lowest;
         if (!(dh > 0.0f)) continue;
@@ -145,13 +146,15 @@ bool Texels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, i
       for (int j = 0; j < nq; ++j) {
         Exits ex;
         if (g.exit_bits) ex = {&g, &c, v, bx0 + j, qy};
-        improved |= Update<kCheckZero>(best, bdd, hp, hn::Add(dxt[j], dyt), hn::Set(d, hrow[j]), dd, slack, ex);
+        improved |= update<kCheckZero>(best, bdd, hp, hn::Add(dxt[j], dyt), hn::Set(d, hrow[j]), dd, slack, ex);
       }
     }
     hn::Store(best, d, best_all + v * N);
   }
   return improved;
 }
+
+}  // namespace
 
 bool ConeCellTexels(const ConeGeometry& g, const float* heights, ConeCell& c, int bx0, int bx1, int by0, int by1,
                     const bool* rows) {
@@ -165,13 +168,13 @@ bool ConeCellBlock(const ConeGeometry& g, ConeCell& c, int bx0, int bx1, int by0
   const int N = int(hn::Lanes(d));
   const VF dd = hn::Set(d, g.dd), slack = hn::Set(d, 1.0f + 1.0f / 65536), hq = hn::Set(d, M);
   for (int v = 0; v < kConeCell * kConeCell / N; ++v) {
-    if (!AnyRow(rows, v, N)) continue;
-    const LanePos pos = Positions(c, v);
-    const VF d2 = hn::Add(AxisTerm(g, RangeDistance(pos.px, bx0, bx1, g.W, g.repeat), g.sx),
-                          AxisTerm(g, RangeDistance(pos.py, by0, by1, g.H, g.repeat), g.sy));
+    if (!any_row(rows, v, N)) continue;
+    const LanePos pos = positions(c, v);
+    const VF d2 = hn::Add(axis_term(g, range_distance(pos.px, bx0, bx1, g.W, g.repeat), g.sx),
+                          axis_term(g, range_distance(pos.py, by0, by1, g.H, g.repeat), g.sy));
     VF best = hn::Load(d, &c.best[0][0] + v * N);
     VF bdd = hn::Mul(hn::Mul(best, dd), slack);
-    improved |= Update<true>(best, bdd, hn::Load(d, &c.apex[0][0] + v * N), d2, hq, dd, slack);
+    improved |= update<true>(best, bdd, hn::Load(d, &c.apex[0][0] + v * N), d2, hq, dd, slack);
     hn::Store(best, d, &c.best[0][0] + v * N);
   }
   return improved;
@@ -188,11 +191,11 @@ bool ConeCellClear(const ConeGeometry& g, const ConeCell& c, int bx0, int bx1, i
   const VF deep = hn::Set(d, float(extent) / float(axis == 0 ? g.W : g.H));
   const DI di;
   for (int v = 0; v < kConeCell * kConeCell / N; ++v) {
-    const LanePos pos = Positions(c, v);
+    const LanePos pos = positions(c, v);
     const VF hp = hn::Load(d, &c.apex[0][0] + v * N);
     const VF lim = hn::Mul(hn::Load(d, &c.best[0][0] + v * N), ddslack);
-    VI dxi = hn::Max(hn::Sub(RangeDistance(pos.px, bx0, bx1, g.W, g.repeat), hn::Set(di, g.shrink)), hn::Zero(di));
-    VI dyi = hn::Max(hn::Sub(RangeDistance(pos.py, by0, by1, g.H, g.repeat), hn::Set(di, g.shrink)), hn::Zero(di));
+    VI dxi = hn::Max(hn::Sub(range_distance(pos.px, bx0, bx1, g.W, g.repeat), hn::Set(di, g.shrink)), hn::Zero(di));
+    VI dyi = hn::Max(hn::Sub(range_distance(pos.py, by0, by1, g.H, g.repeat), hn::Set(di, g.shrink)), hn::Zero(di));
     const VF vx = hn::Mul(hn::ConvertTo(d, dxi), inv_w), vy = hn::Mul(hn::ConvertTo(d, dyi), inv_h);
     const VF len2 = hn::Add(hn::Mul(vx, vx), hn::Mul(vy, vy));
     const VF dh0 = hn::Sub(m0, hp);

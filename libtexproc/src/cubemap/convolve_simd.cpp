@@ -19,9 +19,10 @@ void Convolve(const ConvolveSource& src, const float* nx, const float* ny, const
   ref::convolve_lobe(src, nx, ny, nz, count, ggx_alpha, out);
 }
 #else
+namespace {
 template <bool kGgx>
-void ConvolveT(const ConvolveSource& src, const float* nx, const float* ny, const float* nz, std::size_t count,
-               float ggx_alpha, float* out) {
+void convolve_lanes(const ConvolveSource& src, const float* nx, const float* ny, const float* nz, std::size_t count,
+                    float ggx_alpha, float* out) {
   const hn::CappedTag<float, 16> d;
   constexpr std::size_t kMaxVecs = 16;
   const std::size_t N = hn::Lanes(d), vecs = 16 / N;
@@ -57,10 +58,12 @@ void ConvolveT(const ConvolveSource& src, const float* nx, const float* ny, cons
     finish_convolution(acc, out + 3 * o);
   }
 }
+}  // namespace
+
 void Convolve(const ConvolveSource& src, const float* nx, const float* ny, const float* nz, std::size_t count,
               float ggx_alpha, float* out) {
-  if (ggx_alpha >= 0.0f) return ConvolveT<true>(src, nx, ny, nz, count, ggx_alpha, out);
-  ConvolveT<false>(src, nx, ny, nz, count, ggx_alpha, out);
+  if (ggx_alpha >= 0.0f) return convolve_lanes<true>(src, nx, ny, nz, count, ggx_alpha, out);
+  convolve_lanes<false>(src, nx, ny, nz, count, ggx_alpha, out);
 }
 #endif
 

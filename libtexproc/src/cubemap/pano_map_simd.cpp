@@ -17,8 +17,9 @@ void MapRow(const float axes[9], int n, int j, int width, int height, const Face
   ref::map_face_row(axes, n, j, width, height, out);
 }
 #else
+namespace {
 template <class D, class V = hn::Vec<D> >
-HWY_INLINE V Atan2(D d, V y, V x) {
+HWY_INLINE V atan2_lanes(D d, V y, V x) {
   const V ax = hn::Abs(x), ay = hn::Abs(y), zero = hn::Zero(d);
   const V mx = hn::Max(hn::Max(ax, ay), hn::Set(d, 1e-30f)), mn = hn::Min(ax, ay);
   V t = hn::Div(mn, mx);
@@ -36,6 +37,8 @@ HWY_INLINE V Atan2(D d, V y, V x) {
   a = hn::IfThenElse(hn::Lt(x, zero), hn::Sub(hn::Set(d, 3.14159265358979f), a), a);
   return hn::IfThenElse(hn::Lt(y, zero), hn::Neg(a), a);
 }
+
+}  // namespace
 
 void MapRow(const float axes[9], int n, int j, int width, int height, const FaceRowMap& out) {
   const hn::ScalableTag<float> d;
@@ -58,7 +61,7 @@ void MapRow(const float axes[9], int n, int j, int width, int height, const Face
     }
     const auto rho2 = hn::Max(hn::Add(hn::Mul(dv[0], dv[0]), hn::Mul(dv[2], dv[2])), tiny);
     const auto rho = hn::Sqrt(rho2), r2 = hn::Add(rho2, hn::Mul(dv[1], dv[1]));
-    const auto phi = Atan2(d, dv[0], hn::Neg(dv[2])), lambda = Atan2(d, dv[1], rho);
+    const auto phi = atan2_lanes(d, dv[0], hn::Neg(dv[2])), lambda = atan2_lanes(d, dv[1], rho);
     hn::Store(hn::Mul(hn::Add(phi, vpi), vsx), d, tmp[0]);
     hn::Store(hn::Mul(hn::Sub(vhalf, lambda), vsy), d, tmp[1]);
     hn::Store(hn::Div(rho, hn::Sqrt(r2)), d, tmp[6]);

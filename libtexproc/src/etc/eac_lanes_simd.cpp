@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "block/block_lanes_simd-inl.h"
 #include "etc/eac_lanes.h"
 #include "etc/eac_lanes_shared.h"
 #include "etc/etc_tables.h"
@@ -18,14 +19,16 @@ HWY_BEFORE_NAMESPACE();
 namespace texproc::etc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+namespace {
+// The batch's types (block/block_lanes_simd-inl.h).
+using namespace texproc::HWY_NAMESPACE;
+
+}  // namespace
 
 void EacEncodeLanes(const float v[16][kEacBatch], int count, EacKind kind, const EacWindow& window,
                     std::uint8_t out[][8], float error[]) {
-  using DF = hn::CappedTag<float, kEacBatch>;
   const DF df;
-  const hn::RebindToSigned<DF> d;
-  using VF = hn::Vec<DF>;
-  using V = hn::Vec<decltype(d)>;
+  const DI d;
   const int lanes = int(hn::Lanes(df));
   const eac::Kind K = eac::kind_of(kind);
   const VF lo_end = hn::Set(df, K.lo_end), hi_end = hn::Set(df, K.hi_end), half = hn::Set(df, 0.5f);

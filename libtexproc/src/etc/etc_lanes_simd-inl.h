@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "block/block_lanes_simd-inl.h"
 #include "etc/etc_lanes.h"
 #include "etc/etc_lanes_shared.h"
 #include "etc/etc_tables.h"
@@ -22,10 +23,10 @@ HWY_BEFORE_NAMESPACE();
 namespace texproc::etc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+namespace {
 
-using D = hn::CappedTag<std::int32_t, kEtcBatch>;
-using V = hn::Vec<D>;
-using M = hn::Mask<D>;
+// The batch's types and lane arithmetic (block/block_lanes_simd-inl.h).
+using namespace texproc::HWY_NAMESPACE;
 
 // A half block's fit, per lane: its error, base, table and modifier indices.
 struct Fit {
@@ -33,9 +34,9 @@ struct Fit {
 };
 
 // The texels of blocks k0, k0 + 1, ... as channel planes.
-HWY_INLINE void LoadTexels(const std::uint32_t texel[16][kEtcBatch], int k0, V r[16], V g[16], V b[16]) {
-  const D d;
-  const hn::Rebind<std::uint32_t, D> du;
+HWY_INLINE void load_texels(const std::uint32_t texel[16][kEtcBatch], int k0, V r[16], V g[16], V b[16]) {
+  const DI d;
+  const hn::Rebind<std::uint32_t, DI> du;
   const V mask8 = hn::Set(d, 255);
   for (int i = 0; i < 16; ++i) {
     const V t = hn::BitCast(d, hn::LoadU(du, texel[i] + k0));
@@ -46,26 +47,26 @@ HWY_INLINE void LoadTexels(const std::uint32_t texel[16][kEtcBatch], int k0, V r
 }
 
 // The table's modifier a (column 0) or b (column 1) for each lane's table t.
-HWY_INLINE V Modifier(V t, int column) {
-  const D d;
+HWY_INLINE V modifier_of(V t, int column) {
+  const DI d;
   V v = hn::Set(d, kModifiers[0][column]);
   for (int j = 1; j < 8; ++j) v = hn::IfThenElse(hn::Eq(t, hn::Set(d, j)), hn::Set(d, kModifiers[j][column]), v);
   return v;
 }
 
 // A 5- or 4-bit base channel extended to 8 bits.
-HWY_INLINE V Extend(V q, int bits) {
+HWY_INLINE V extend(V q, int bits) {
   return bits == 5 ? hn::Or(hn::ShiftLeft<3>(q), hn::ShiftRight<2>(q)) : hn::Or(hn::ShiftLeft<4>(q), q);
 }
 
 // As ref::eval_exact, but for bases given extended to 8 bits (q is left
 // to the caller): tables t for the half whose texels are r, g, b[half[0..7]].
-HWY_INLINE Fit EvalExact(const V r[16], const V g[16], const V b[16], const int half[8], const V base[3], V t) {
-  const D d;
+HWY_INLINE Fit eval_exact_lanes(const V r[16], const V g[16], const V b[16], const int half[8], const V base[3], V t) {
+  const DI d;
   const V zero = hn::Zero(d), top8 = hn::Set(d, 255);
   Fit f;
   f.table = t;
-  const V ma = Modifier(t, 0), mb = Modifier(t, 1);
+  const V ma = modifier_of(t, 0), mb = modifier_of(t, 1);
   const V mods[4] = {ma, mb, hn::Neg(ma), hn::Neg(mb)};
   V pal[4][3];
   for (int c = 0; c < 3; ++c)
@@ -93,10 +94,10 @@ HWY_INLINE Fit EvalExact(const V r[16], const V g[16], const V b[16], const int 
 
 // Writes the blocks of lanes k0.. (as fast::pack does, in lanes): flip and
 // differential (0/1 per lane), the halves' fits a (first) and b.
-HWY_INLINE void PackBlocks(V flip, V differential, const Fit& a, const Fit& b, int k0, int count,
-                           std::uint8_t out[][8]) {
-  const D d;
-  const hn::Rebind<std::uint32_t, D> du;
+HWY_INLINE void pack_blocks(V flip, V differential, const Fit& a, const Fit& b, int k0, int count,
+                            std::uint8_t out[][8]) {
+  const DI d;
+  const hn::Rebind<std::uint32_t, DI> du;
   const V seven = hn::Set(d, 7);
   const auto is_diff = hn::Ne(differential, hn::Zero(d));
   V high = hn::Zero(d);
@@ -126,7 +127,7 @@ HWY_INLINE void PackBlocks(V flip, V differential, const Fit& a, const Fit& b, i
     store_be64(std::uint64_t(hi_o[k]) << 32 | lo_o[k], out[k0 + k]);
 }
 
-HWY_INLINE void SelectFit(M m, const Fit& from, Fit& to) {
+HWY_INLINE void select_fit(M m, const Fit& from, Fit& to) {
   to.err = hn::IfThenElse(m, from.err, to.err);
   to.table = hn::IfThenElse(m, from.table, to.table);
   for (int c = 0; c < 3; ++c) to.q[c] = hn::IfThenElse(m, from.q[c], to.q[c]);
@@ -135,8 +136,8 @@ HWY_INLINE void SelectFit(M m, const Fit& from, Fit& to) {
 
 // Lanes where bases `to` are within the differential delta's reach of
 // `from` (to - from in [-4, 3] in every channel).
-HWY_INLINE M Reach(const V from[3], const V to[3]) {
-  const D d;
+HWY_INLINE M reach_of(const V from[3], const V to[3]) {
+  const DI d;
   M ok = hn::Eq(hn::Zero(d), hn::Zero(d));
   for (int c = 0; c < 3; ++c) {
     const V delta = hn::Sub(to[c], from[c]);
@@ -144,6 +145,8 @@ HWY_INLINE M Reach(const V from[3], const V to[3]) {
   }
   return ok;
 }
+
+}  // namespace
 
 }  // namespace HWY_NAMESPACE
 }  // namespace texproc::etc

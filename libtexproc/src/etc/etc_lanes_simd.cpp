@@ -19,12 +19,13 @@ HWY_BEFORE_NAMESPACE();
 namespace texproc::etc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+namespace {
 
 // `fast`, stage by stage (the reference's fast:: functions in etc_lanes.cpp):
 // spread_tables, fit, choose (the flip and mode per lane), reclamp.
 struct Etc1FastBatch {
-  const D d{};
-  const hn::Rebind<float, D> df{};
+  const DI d{};
+  const DF df{};
   V r[16], g[16], b[16];
   V t0[4];  // per half: the table whose modifiers are nearest the half's spread
 
@@ -65,7 +66,7 @@ struct Etc1FastBatch {
     for (int c = 0; c < 3; ++c) {
       const V num = hn::Add(hn::Mul(hn::Set(d, bits == 5 ? 62 : 30), sum[c]), hn::Set(d, 2040));
       best.q[c] = fixed_q ? fixed_q[c] : hn::ConvertTo(d, hn::Div(hn::ConvertTo(df, num), hn::Set(df, 4080.0f)));
-      base[c] = Extend(best.q[c], bits);
+      base[c] = extend(best.q[c], bits);
     }
     const V zero = hn::Zero(d);
     V d2[8], dl[8];
@@ -88,7 +89,7 @@ struct Etc1FastBatch {
       const V t = dt == -1 ? hn::IfThenElse(hn::Gt(t_far, hn::Add(t0[h], hn::Set(d, 1))), t_far,
                                             hn::Max(hn::Sub(t0[h], hn::Set(d, 1)), zero))
                            : hn::Min(hn::Add(t0[h], hn::Set(d, dt)), hn::Set(d, 7));
-      const V ma = Modifier(t, 0), mb = Modifier(t, 1);
+      const V ma = modifier_of(t, 0), mb = modifier_of(t, 1);
       const V edge = hn::Mul(hn::Set(d, 3), hn::Add(ma, mb));
       V err = zero, idx[8];
       for (int i = 0; i < 8; ++i) {
@@ -121,7 +122,7 @@ struct Etc1FastBatch {
     Fit f5[4], f4[4];
     for (int h = 0; h < 4; ++h) fit(h, 5, f5[h], nullptr);
     M fits[2];
-    for (int fl = 0; fl < 2; ++fl) fits[fl] = Reach(f5[2 * fl].q, f5[2 * fl + 1].q);
+    for (int fl = 0; fl < 2; ++fl) fits[fl] = reach_of(f5[2 * fl].q, f5[2 * fl + 1].q);
     // Individual mode only where a flip's delta does not fit (lanes that do
     // not need it ignore it).
     V err[2];
@@ -148,13 +149,13 @@ struct Etc1FastBatch {
           const M far = hn::Not(fits[fl]);
           const M move_a = hn::And(far, hn::Lt(hn::Add(pulled_a.err, f5[h].err), hn::Add(f5[ha].err, pulled_b.err)));
           const M move_b = hn::AndNot(move_a, far);
-          SelectFit(move_a, pulled_a, chosen[fl][0]);
-          SelectFit(move_b, pulled_b, chosen[fl][1]);
+          select_fit(move_a, pulled_a, chosen[fl][0]);
+          select_fit(move_b, pulled_b, chosen[fl][1]);
           continue;
         }
         fit(h, 4, f4[h], nullptr);
         chosen[fl][s] = f4[h];
-        SelectFit(fits[fl], f5[h], chosen[fl][s]);
+        select_fit(fits[fl], f5[h], chosen[fl][s]);
       }
       err[fl] = hn::Add(chosen[fl][0].err, chosen[fl][1].err);
     }
@@ -163,8 +164,8 @@ struct Etc1FastBatch {
                                      : hn::Or(hn::And(flip, fits[1]), hn::AndNot(flip, fits[0]));
     pa = chosen[0][0];
     pb = chosen[0][1];
-    SelectFit(flip, chosen[1][0], pa);
-    SelectFit(flip, chosen[1][1], pb);
+    select_fit(flip, chosen[1][0], pa);
+    select_fit(flip, chosen[1][1], pb);
   }
 
   // The modifiers again under the decoder's clamping (as the reference):
@@ -182,26 +183,28 @@ struct Etc1FastBatch {
     for (int s = 0; s < 2; ++s) {
       Fit& f = s ? pb : pa;
       V base[3];
-      for (int c = 0; c < 3; ++c) base[c] = hn::IfThenElse(differential, Extend(f.q[c], 5), Extend(f.q[c], 4));
-      const Fit e = EvalExact(hr, hg, hb, s ? kSecond : kFirst, base, f.table);
+      for (int c = 0; c < 3; ++c) base[c] = hn::IfThenElse(differential, extend(f.q[c], 5), extend(f.q[c], 4));
+      const Fit e = eval_exact_lanes(hr, hg, hb, s ? kSecond : kFirst, base, f.table);
       for (int i = 0; i < 8; ++i) f.idx[i] = e.idx[i];
     }
   }
 };
 
+}  // namespace
+
 void Etc1FastLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool differential_only, std::uint8_t out[][8]) {
-  const D d;
+  const DI d;
   const int lanes = int(hn::Lanes(d));
   for (int k0 = 0; k0 < count; k0 += lanes) {
     Etc1FastBatch batch;
-    LoadTexels(texel, k0, batch.r, batch.g, batch.b);
+    load_texels(texel, k0, batch.r, batch.g, batch.b);
     batch.spread_tables();
     M flip, differential;
     Fit pa, pb;
     batch.choose(differential_only, flip, differential, pa, pb);
     batch.reclamp(flip, differential, pa, pb);
-    PackBlocks(hn::IfThenElseZero(flip, hn::Set(d, 1)), hn::IfThenElseZero(differential, hn::Set(d, 1)), pa, pb, k0,
-               count, out);
+    pack_blocks(hn::IfThenElseZero(flip, hn::Set(d, 1)), hn::IfThenElseZero(differential, hn::Set(d, 1)), pa, pb, k0,
+                count, out);
   }
 }
 

@@ -18,20 +18,21 @@ HWY_BEFORE_NAMESPACE();
 namespace texproc::etc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+namespace {
 
 // The best block so far per lane: its error, flip, mode and halves.
 struct Choice {
   V err, flip, diff;
   Fit a, b;
   HWY_INLINE void consider(M m, int fl, bool differential, const Fit& fa, const Fit& fb) {
-    const D d;
+    const DI d;
     const V e = hn::Add(fa.err, fb.err);
     const M take = hn::And(m, hn::Lt(e, err));
     err = hn::IfThenElse(take, e, err);
     flip = hn::IfThenElse(take, hn::Set(d, fl), flip);
     diff = hn::IfThenElse(take, hn::Set(d, differential ? 1 : 0), diff);
-    SelectFit(take, fa, a);
-    SelectFit(take, fb, b);
+    select_fit(take, fa, a);
+    select_fit(take, fb, b);
   }
 };
 
@@ -40,8 +41,8 @@ struct Choice {
 // per-table refinement and neighbourhood in fit_high), fit_fixed, and per
 // flip search_flip.
 struct Etc1SearchBatch {
-  const D d{};
-  const hn::Rebind<float, D> df{};
+  const DI d{};
+  const DF df{};
   const V zero;
   V r[16], g[16], b[16];
 
@@ -53,14 +54,14 @@ struct Etc1SearchBatch {
     return hn::Min(hn::Max(q, zero), hn::Set(d, bits == 5 ? 31 : 15));
   }
   HWY_INLINE Fit eval(int h, const V q[3], int bits, V t) const {
-    const V base[3] = {Extend(q[0], bits), Extend(q[1], bits), Extend(q[2], bits)};
-    Fit f = EvalExact(r, g, b, fast::kHalf[h], base, t);
+    const V base[3] = {extend(q[0], bits), extend(q[1], bits), extend(q[2], bits)};
+    Fit f = eval_exact_lanes(r, g, b, fast::kHalf[h], base, t);
     for (int c = 0; c < 3; ++c) f.q[c] = q[c];
     return f;
   }
   // Re-centres `cur` (its table per lane) up to `passes` times while that helps.
   HWY_INLINE Fit recentre(int h, int bits, Fit cur, int passes) const {
-    const V ma = Modifier(cur.table, 0), mb = Modifier(cur.table, 1);
+    const V ma = modifier_of(cur.table, 0), mb = modifier_of(cur.table, 1);
     M active = hn::Eq(zero, zero);
     for (int pass = 0; pass < passes; ++pass) {
       V centre[3] = {zero, zero, zero};
@@ -79,7 +80,7 @@ struct Etc1SearchBatch {
       if (hn::AllFalse(d, active)) break;
       const Fit next = eval(h, q1, bits, cur.table);
       active = hn::And(active, hn::Lt(next.err, cur.err));
-      SelectFit(active, next, cur);
+      select_fit(active, next, cur);
     }
     return cur;
   }
@@ -100,7 +101,7 @@ struct Etc1SearchBatch {
   }
   HWY_INLINE Fit pick(const Fit* fits, V t) const {  // fits[t] per lane
     Fit f = fits[0];
-    for (int j = 1; j < 8; ++j) SelectFit(hn::Eq(t, hn::Set(d, j)), fits[j], f);
+    for (int j = 1; j < 8; ++j) select_fit(hn::Eq(t, hn::Set(d, j)), fits[j], f);
     return f;
   }
   // Half h's brightest and darkest texels (by R + G + B, first of equals).
@@ -133,7 +134,7 @@ struct Etc1SearchBatch {
     };
     const V q[3] = {quantize8(hn::Sub(px[0], m)), quantize8(hn::Sub(px[1], m)), quantize8(hn::Sub(px[2], m))};
     const Fit f = eval(h, q, bits, t);
-    SelectFit(hn::Lt(f.err, start.err), f, start);
+    select_fit(hn::Lt(f.err, start.err), f, start);
   }
   // `high`: every table seeded from the extremes minus its extreme
   // modifiers and re-centred three times, then the +-1 neighbourhood of the
@@ -153,7 +154,7 @@ struct Etc1SearchBatch {
       if (t == 0) {
         best = refined[0];
       } else {
-        SelectFit(hn::Lt(refined[t].err, best.err), refined[t], best);
+        select_fit(hn::Lt(refined[t].err, best.err), refined[t], best);
       }
     }
     V t1, t2;
@@ -170,7 +171,7 @@ struct Etc1SearchBatch {
               valid = hn::And(valid, hn::And(hn::Not(hn::Lt(q[c], zero)), hn::Not(hn::Gt(q[c], hn::Set(d, top)))));
             if (hn::AllFalse(d, valid)) continue;
             const Fit f = eval(h, q, bits, base.table);
-            SelectFit(hn::And(valid, hn::Lt(f.err, best.err)), f, best);
+            select_fit(hn::And(valid, hn::Lt(f.err, best.err)), f, best);
           }
     }
     if (per_table) {
@@ -203,23 +204,23 @@ struct Etc1SearchBatch {
     V t1, t2;
     best_two(err, t1, t2);
     Fit start = pick(at_mean, t1);
-    const V far = Modifier(t1, 1);
+    const V far = modifier_of(t1, 1);
     seed(h, bits, start, bright, far, t1);
     seed(h, bits, start, dark, hn::Neg(far), t1);
     Fit best = recentre(h, bits, start, 2);
     Fit start2 = pick(at_mean, t2);
-    const V far2 = Modifier(t2, 1);
+    const V far2 = modifier_of(t2, 1);
     seed(h, bits, start2, bright, far2, t2);
     seed(h, bits, start2, dark, hn::Neg(far2), t2);
     const Fit second = recentre(h, bits, start2, 2);
-    SelectFit(hn::Lt(second.err, best.err), second, best);
+    select_fit(hn::Lt(second.err, best.err), second, best);
     return best;
   }
   HWY_INLINE Fit fit_fixed(int h, const V q[3]) const {
     Fit best = eval(h, q, 5, zero);
     for (int t = 1; t < 8; ++t) {
       const Fit f = eval(h, q, 5, hn::Set(d, t));
-      SelectFit(hn::Lt(f.err, best.err), f, best);
+      select_fit(hn::Lt(f.err, best.err), f, best);
     }
     return best;
   }
@@ -230,12 +231,12 @@ struct Etc1SearchBatch {
   HWY_INLINE void search_flip(int flip, bool high, bool differential_only, const Fit f5[4], const Fit tables[4][9],
                               Choice& best) const {
     const int a = 2 * flip, bh = a + 1;
-    const M fits = Reach(f5[a].q, f5[bh].q);
+    const M fits = reach_of(f5[a].q, f5[bh].q);
     best.consider(fits, flip, true, f5[a], f5[bh]);
     if (high)
       for (int ta = 0; ta < 9; ++ta)
         for (int tb = 0; tb < 9; ++tb) {
-          const M ok = Reach(tables[a][ta].q, tables[bh][tb].q);
+          const M ok = reach_of(tables[a][ta].q, tables[bh][tb].q);
           if (!hn::AllFalse(d, ok)) best.consider(ok, flip, true, tables[a][ta], tables[bh][tb]);
         }
     if (hn::AllTrue(d, fits) && !high) return;
@@ -265,22 +266,24 @@ struct Etc1SearchBatch {
       const int dd[3] = {n / 9 - 1, n / 3 % 3 - 1, n % 3 - 1};
       V q[3];
       for (int c = 0; c < 3; ++c) q[c] = hn::Add(qa[c], hn::Set(d, dd[c]));
-      M ok = hn::And(far, hn::And(in_range(q), Reach(q, f5[bh].q)));
+      M ok = hn::And(far, hn::And(in_range(q), reach_of(q, f5[bh].q)));
       if (!hn::AllFalse(d, ok)) best.consider(ok, flip, true, eval(a, q, 5, pa.table), f5[bh]);
       for (int c = 0; c < 3; ++c) q[c] = hn::Add(qb[c], hn::Set(d, dd[c]));
-      ok = hn::And(far, hn::And(in_range(q), Reach(f5[a].q, q)));
+      ok = hn::And(far, hn::And(in_range(q), reach_of(f5[a].q, q)));
       if (!hn::AllFalse(d, ok)) best.consider(ok, flip, true, f5[a], eval(bh, q, 5, pb.table));
     }
   }
 };
 
+}  // namespace
+
 void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool high, bool differential_only,
                      std::uint8_t out[][8], std::int32_t error[]) {
-  const D d;
+  const DI d;
   const int lanes = int(hn::Lanes(d));
   for (int k0 = 0; k0 < count; k0 += lanes) {
     Etc1SearchBatch batch;
-    LoadTexels(texel, k0, batch.r, batch.g, batch.b);
+    load_texels(texel, k0, batch.r, batch.g, batch.b);
     Fit f5[4], tables[4][9];
     for (int h = 0; h < 4; ++h) f5[h] = batch.fit_normal(h, 5, high, high ? tables[h] : nullptr);
     Choice best;
@@ -293,7 +296,7 @@ void Etc1SearchLanes(const std::uint32_t texel[16][kEtcBatch], int count, bool h
     HWY_ALIGN std::int32_t err_o[kEtcBatch];
     hn::Store(best.err, d, err_o);
     for (int k = 0; k < lanes && k0 + k < count; ++k) error[k0 + k] = err_o[k];
-    PackBlocks(best.flip, best.diff, best.a, best.b, k0, count, out);
+    pack_blocks(best.flip, best.diff, best.a, best.b, k0, count, out);
   }
 }
 

@@ -68,8 +68,10 @@ void NormalsFromGradients(const float* gx, const float* gy, int n, float sx, flo
   if (x < n) ref::normals_from_gradients(gx + x, gy + x, n - x, sx, sy, nx + x, ny + x, nz + x);
 }
 
+namespace {
+
 template <class D, class V>
-HWY_INLINE auto QuantizeU8(D d, V v, V scale_half) {
+HWY_INLINE auto quantize_u8(D d, V v, V scale_half) {
   // (v * 0.5 + 0.5) * 255 + 0.5, clamped, truncated: as the reference.
   const auto half = hn::Set(d, 0.5f);
   auto e = hn::Add(hn::Mul(hn::Add(hn::Mul(v, half), half), scale_half), half);
@@ -80,13 +82,15 @@ HWY_INLINE auto QuantizeU8(D d, V v, V scale_half) {
 }
 
 template <class D, class V>
-HWY_INLINE auto QuantizeHeightU8(D d, V h) {
+HWY_INLINE auto quantize_height_u8(D d, V h) {
   auto e = hn::Add(hn::Mul(h, hn::Set(d, 255.0f)), hn::Set(d, 0.5f));
   e = hn::Min(hn::Max(e, hn::Zero(d)), hn::Set(d, 255.0f));
   const hn::RebindToSigned<D> di;
   const hn::Rebind<uint8_t, D> du8;
   return hn::DemoteTo(du8, hn::ConvertTo(di, e));
 }
+
+}  // namespace
 
 void GradientsToU8(const float* gx, const float* gy, const float* h, int n, float sx, float sy, int channels,
                    std::uint8_t* out) {
@@ -99,17 +103,17 @@ void GradientsToU8(const float* gx, const float* gy, const float* h, int n, floa
     const auto a = hn::Mul(vsx, hn::LoadU(d, gx + x));
     const auto b = hn::Mul(vsy, hn::LoadU(d, gy + x));
     const auto inv = hn::Div(one, hn::Sqrt(hn::Add(hn::Add(hn::Mul(a, a), hn::Mul(b, b)), one)));
-    const auto r = QuantizeU8(d, hn::Mul(a, inv), k255);
-    const auto g = QuantizeU8(d, hn::Mul(b, inv), k255);
+    const auto r = quantize_u8(d, hn::Mul(a, inv), k255);
+    const auto g = quantize_u8(d, hn::Mul(b, inv), k255);
     if (channels == 2) {
       hn::StoreInterleaved2(r, g, du8, out + 2 * x);
       continue;
     }
-    const auto bl = QuantizeU8(d, inv, k255);
+    const auto bl = quantize_u8(d, inv, k255);
     if (channels == 3) {
       hn::StoreInterleaved3(r, g, bl, du8, out + 3 * x);
     } else {
-      hn::StoreInterleaved4(r, g, bl, QuantizeHeightU8(d, hn::LoadU(d, h + x)), du8, out + 4 * x);
+      hn::StoreInterleaved4(r, g, bl, quantize_height_u8(d, hn::LoadU(d, h + x)), du8, out + 4 * x);
     }
   }
   if (x < n) ref::gradients_to_u8(gx + x, gy + x, h + x, n - x, sx, sy, channels, out + channels * x);

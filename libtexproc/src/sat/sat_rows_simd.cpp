@@ -21,8 +21,9 @@ void Row16(const std::uint16_t* in, int width, const std::uint32_t* prev, std::u
   ref::sat_row_rgba16_u32(in, width, prev, cur);
 }
 #else
+namespace {
 template <typename In>
-HWY_INLINE void Row(const In* in, int width, const std::uint32_t* prev, std::uint32_t* cur) {
+HWY_INLINE void sat_row(const In* in, int width, const std::uint32_t* prev, std::uint32_t* cur) {
   const hn::FixedTag<std::uint32_t, 4> d;
   const hn::Rebind<In, decltype(d)> din;
   auto run = hn::Zero(d);
@@ -31,11 +32,13 @@ HWY_INLINE void Row(const In* in, int width, const std::uint32_t* prev, std::uin
     hn::StoreU(hn::Add(hn::LoadU(d, prev + 4 * x), run), d, cur + 4 * x);
   }
 }
+}  // namespace
+
 void Row8(const std::uint8_t* in, int width, const std::uint32_t* prev, std::uint32_t* cur) {
-  Row(in, width, prev, cur);
+  sat_row(in, width, prev, cur);
 }
 void Row16(const std::uint16_t* in, int width, const std::uint32_t* prev, std::uint32_t* cur) {
-  Row(in, width, prev, cur);
+  sat_row(in, width, prev, cur);
 }
 #endif
 
