@@ -44,7 +44,7 @@ HWY_INLINE VF axis_residual(DF df, VF c00, VF c01, VF c02, VF c11, VF c12, VF c2
   const auto pos = hn::Gt(uu, hn::Zero(df));
   const VF lambda = hn::IfThenElseZero(pos, hn::Div(ucu, hn::IfThenElse(pos, uu, hn::Set(df, 1.0f))));
   return hn::Sub(trace, lambda);
-}  // namespace
+}
 
 }  // namespace
 

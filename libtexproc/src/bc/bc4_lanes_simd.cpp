@@ -18,7 +18,10 @@ HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
-namespace {
+// Not in an anonymous namespace, as the other kernels' helpers are: with
+// internal linkage GCC 12 inlines the batch's stages differently and BC4
+// `high` ran 14% slower (BC1's lanes: 20-26%; bench/compare_builds.py, 7
+// rounds interleaved). The one name here, Bc4Batch, is no other file's.
 
 // The lanes' blocks through the search, stage by stage (the scalar
 // reference in bc4_lanes.cpp does the same per block): load, start (the
@@ -279,8 +282,6 @@ struct Bc4Batch {
     }
   }
 };
-
-}  // namespace
 
 void Bc4EncodeLanes(const float v[16][kBc4Batch], int count, bool snorm, const Bc4LaneSearch& level,
                     std::uint8_t out[][8]) {

@@ -22,7 +22,10 @@ HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
-namespace {
+// Not in an anonymous namespace, as the large lane kernels are not (BC1,
+// BC4, BC7: internal linkage changes how GCC 12 inlines their stages, and
+// made them 10-26% slower; bench/compare_builds.py). Bc6hBatch is no
+// other file's name.
 
 // A candidate: mode, partition, codes and indices per lane (the reference's Choice).
 struct CandidateV {
@@ -449,8 +452,6 @@ struct Bc6hBatch {
     }
   }
 };
-
-}  // namespace
 
 void Bc6hEncodeLanes(const std::int32_t texel[16][3][kBc6hBatch], int count, bool is_signed, const Bc6hLevel& level,
                      std::uint8_t out[][16]) {

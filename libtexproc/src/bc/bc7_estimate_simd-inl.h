@@ -23,7 +23,6 @@ HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
-namespace {
 
 // As ref::subset_residual, from the sums as floats: every sum, product
 // and difference is an integer below 2^24 (16 255^2 16 < 2^24), so exact
@@ -151,8 +150,6 @@ HWY_INLINE void rank_partitions(const V (&x)[16][4], int subsets, int scanned, R
     if (first16 && part < 16) insert(*first16, est, hn::Set(d, part));
   }
 }
-
-}  // namespace
 
 }  // namespace HWY_NAMESPACE
 }  // namespace texproc

@@ -29,7 +29,6 @@ HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
-namespace {
 
 using bc7::EndpointFormat;
 using bc7::Pbit;
@@ -564,8 +563,6 @@ struct Bc7FitLanes {
     }
   }
 };
-
-}  // namespace
 
 }  // namespace HWY_NAMESPACE
 }  // namespace texproc

@@ -23,7 +23,9 @@ HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
-namespace {
+// Not in an anonymous namespace (nor are bc7_*_simd-inl.h): with internal
+// linkage GCC 12 inlines the search differently and BC7 `normal` ran 10-20%
+// slower (bench/compare_builds.py, 5 rounds interleaved, twice).
 
 // The lanes' best candidate so far (the reference's Best and Choice).
 struct BestV {
@@ -292,8 +294,6 @@ struct Bc7Batch : Bc7FitLanes {
     }
   }
 };
-
-}  // namespace
 
 void Bc7EncodeLanes(const Bc7Texels* texel, int count, const Bc7Level& level, std::uint8_t out[][16]) {
   Bc7Batch batch(level);

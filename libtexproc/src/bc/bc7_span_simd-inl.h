@@ -21,7 +21,6 @@ HWY_BEFORE_NAMESPACE();
 namespace texproc {
 namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
-namespace {
 
 // The winners' endpoint steps (as ref::step_winner), mode by mode over the
 // span's blocks: each mode's winners gathered into full vectors, so that a
@@ -51,8 +50,6 @@ HWY_INLINE void step_winners(Batch& batch, const Bc7Texels* texel, bc7::LaneChoi
     }
   }
 }
-
-}  // namespace
 
 }  // namespace HWY_NAMESPACE
 }  // namespace texproc
