@@ -7,7 +7,6 @@
 #include <sstream>
 #include <iostream>
 #include <filesystem>
-#include <map>
 #include <optional>
 
 #include "commands.h"

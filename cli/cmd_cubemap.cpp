@@ -187,14 +187,10 @@ Plan make_plan(const CubemapArgs& a, const std::string& input, const std::string
 
 // ---- Reading ------------------------------------------------------------------
 
-struct Source {
-  std::string input;  // the file (the +X face for --faces), for messages
-  Cubemap cube;
-  std::string layout;  // what the input was: "equirect 4096x2048", "hcross", "cube", "faces"
-  bool hdr = false;    // float input (kept linear, no clipping)
-  bool srgb = true;    // the colour space is sRGB (rgba8 outputs say so)
-  bool alpha = false;  // the input had an alpha channel
-  ColorSpace space = ColorSpace::srgb();
+// The cube as read, and the file messages name (the +X face for --faces).
+struct Source : CubemapSource {
+  std::string input;
+  bool srgb() const { return color_space.is_srgb(); }  // rgba8 outputs say so
 };
 
 Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r, PhaseTimer& phases) {
@@ -217,17 +213,9 @@ Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r
     c = read_cubemap_faces(faces, o);
   }
   phases.read_done();
-  Source s;
-  s.input = a.faces.empty() ? input : a.faces[0];
-  s.cube = std::move(c.cube);
-  s.layout = c.layout;
-  s.hdr = c.hdr;
-  s.alpha = c.alpha;
-  s.space = c.color_space;
-  s.srgb = s.space.is_srgb();
   if (!a.faces.empty()) r.inputs.insert(r.inputs.end(), c.files.begin(), c.files.end());
   r.warnings.insert(r.warnings.end(), c.warnings.begin(), c.warnings.end());
-  return s;
+  return Source{std::move(c), a.faces.empty() ? input : a.faces[0]};
 }
 
 // ---- Writing ------------------------------------------------------------------
@@ -237,7 +225,7 @@ Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r
 TexelFormat cube_format(const CubemapArgs& a, const Source& s, bool lighting) {
   if (a.format == "rgba32f") return TexelFormat::rgba32_float;
   if (a.format == "rgba16f" || (a.format.empty() && (s.hdr || lighting))) return TexelFormat::rgba16_float;
-  return s.srgb ? TexelFormat::rgba8_srgb : TexelFormat::rgba8_unorm;
+  return s.srgb() ? TexelFormat::rgba8_srgb : TexelFormat::rgba8_unorm;
 }
 
 // The largest colour value, for the clipping warning.
@@ -268,7 +256,7 @@ void write_cube(const CubemapArgs& a, const Source& s, const Cubemap& c, const s
   const TexelFormat format = cube_format(a, s, lighting);
   const bool eight_bit = format == TexelFormat::rgba8_srgb || format == TexelFormat::rgba8_unorm;
   if (eight_bit) warn_if_clipped(s.input, output, c, warnings);
-  const ColorSpace out_space = eight_bit && s.srgb ? ColorSpace::srgb() : ColorSpace::linear();
+  const ColorSpace out_space = eight_bit && s.srgb() ? ColorSpace::srgb() : ColorSpace::linear();
   std::vector<std::vector<Image>> chains(6);
   for (const CubeLevel& l : c.levels)
     for (int f = 0; f < 6; ++f) {
@@ -310,9 +298,9 @@ void write_images(const Source& s, const std::vector<Image>& levels, const std::
     if (any_above_one(levels)) {
       warnings.push_back(s.input + ": values above 1 are clipped in " + output + " (8-bit); write .exr to keep them");
     }
-    const ColorSpace space = s.srgb ? ColorSpace::srgb() : ColorSpace::linear();
+    const ColorSpace space = s.srgb() ? ColorSpace::srgb() : ColorSpace::linear();
     for (const Image& l : levels) out.push_back(from_linear_rgba(l.view(), space, channels, PixelType::u8));
-    w.color_space = s.srgb ? "srgb" : "linear";
+    w.color_space = s.srgb() ? "srgb" : "linear";
   }
   if (out.size() == 1) {
     write_image(output, out[0].view(), w);

@@ -92,7 +92,7 @@ CubemapSource read_cubemap(const std::string& path, const CubemapReadOptions& o)
   const CubeLayout layout = o.layout ? *o.layout : detect_cube_layout(width, height);
   if (layout == CubeLayout::equirect && width != 2 * height) {
     throw Error(ErrorCode::bad_arguments,
-                std::to_string(width) + "x" + std::to_string(height) + " is not a 2:1 panorama");
+                path + ": " + std::to_string(width) + "x" + std::to_string(height) + " is not a 2:1 panorama");
   }
   Image rgba = to_linear_rgba(in.images[0].view(), s.color_space);
   in.images.clear();  // the floats are all that is read from here on
