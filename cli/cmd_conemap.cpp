@@ -81,11 +81,11 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
   Image img = read_image(input, &info, cli_read_options());
   read_as_finite(input, img, r.warnings);
   phases.read_done();
-  const std::vector<float> h = extract_height(img.view(), a.channel, a.invert);
   const int width = img.width(), height = img.height();
   const PixelType out_type =
       a.type_choice ? *a.type_choice : (img.type() == PixelType::u8 ? PixelType::u8 : PixelType::u16);
-  img = Image();  // the heights are all that is read from here on
+  // The heights are all that is read from here on: the image leaves memory as they are made.
+  const std::vector<float> h = extract_height(std::move(img), a.channel, a.invert);
   release_cached_pixel_memory();
   const std::string preview = r.outputs.size() > 1 ? r.outputs[1] : "";
   // The map's rows made as the writer takes them: never the whole image.

@@ -220,6 +220,28 @@ TEST(NormalMap, TwoChannelAndHeightOutputs) {
     }
 }
 
+// The consuming form gives the heights of the copying form, whatever the
+// bands and pages: rows are read before their memory is given back.
+TEST(NormalMap, ExtractHeightConsumingMatchesCopy) {
+  for (const auto& [channels, type] : {std::pair{4, PixelType::u8}, std::pair{1, PixelType::u16},
+                                       std::pair{3, PixelType::f32}, std::pair{2, PixelType::u8}}) {
+    Image img = Image::uninitialized(1013, 347, channels, type);
+    std::uint32_t state = 12345;
+    for (std::size_t i = 0; i < img.byte_size(); ++i) {
+      state = state * 1664525u + 1013904223u;
+      img.data()[i] = std::uint8_t(state >> 24);
+    }
+    if (type == PixelType::f32)
+      for (int y = 0; y < img.height(); ++y)
+        for (int x = 0; x < img.width() * channels; ++x) img.row<float>(y)[x] = float((x * 7 + y * 13) % 101) / 100;
+    const std::vector<float> copied = extract_height(img.view(), HeightChannel::automatic, true);
+    const std::vector<float> consumed = extract_height(std::move(img), HeightChannel::automatic, true);
+    EXPECT_TRUE(img.empty());
+    ASSERT_EQ(copied.size(), consumed.size());
+    EXPECT_EQ(0, std::memcmp(copied.data(), consumed.data(), copied.size() * sizeof(float))) << channels;
+  }
+}
+
 TEST(NormalMap, HeightChannelsAndErrors) {
   Image rgba(4, 4, 4, PixelType::u8);
   for (int y = 0; y < 4; ++y)

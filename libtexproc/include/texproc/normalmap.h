@@ -65,6 +65,11 @@ Image normal_map(const ConstImageView& heights, const NormalMapOptions& options,
 // The height as the kernels see it (after channel selection and --invert),
 // one float per texel, row after row.
 std::vector<float> extract_height(const ConstImageView& image, HeightChannel channel, bool invert);
+// The same, consuming `image`: its memory goes back to the system a band of
+// rows at a time as the heights are made, so that the two are never held
+// whole together (an 8-bit RGBA image and its heights are the same size).
+// `image` is empty afterwards.
+std::vector<float> extract_height(Image&& image, HeightChannel channel, bool invert);
 
 GradientKernel parse_gradient_kernel(std::string_view name);
 HeightChannel parse_height_channel(std::string_view name);

@@ -13,6 +13,12 @@ namespace texproc::detail {
 void* allocate_pixels(std::size_t bytes);
 void free_pixels(void* p, std::size_t bytes) noexcept;
 
+// The whole pages inside [begin, begin + bytes) leave the process's resident
+// memory: for a buffer whose bytes will not be read again, so that one
+// being turned into another is not held twice. They read as zeros (private
+// memory) or as the file again (a private file mapping) afterwards.
+void discard_pages(const void* begin, std::size_t bytes) noexcept;
+
 // An allocator over pixel memory whose resize() leaves new elements
 // uninitialized: buffers that are about to be overwritten are not
 // zero-filled first (at 4096x4096 the memset alone costs milliseconds).

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <cstdlib>
 #include <mutex>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include <sys/mman.h>
+#include <unistd.h>
 
 namespace texproc {
 
@@ -81,6 +83,14 @@ void free_pixels(void* p, std::size_t bytes) noexcept {
     }
   }
   std::free(p);
+}
+
+void discard_pages(const void* begin, std::size_t bytes) noexcept {
+  static const auto page = std::uintptr_t(::sysconf(_SC_PAGESIZE));
+  const auto at = reinterpret_cast<std::uintptr_t>(begin);
+  const std::uintptr_t first = (at + page - 1) & ~(page - 1);
+  const std::uintptr_t last = (at + bytes) & ~(page - 1);
+  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_DONTNEED);
 }
 
 }  // namespace detail

@@ -214,6 +214,23 @@ std::vector<float> extract_height(const ConstImageView& image, HeightChannel cha
   return out;
 }
 
+std::vector<float> extract_height(Image&& image, HeightChannel channel, bool invert) {
+  Image consumed = std::move(image);
+  const ConstImageView view = consumed.view();
+  const int source = height_source_channel(view, channel);
+  const std::size_t width = std::size_t(view.width);
+  std::vector<float> out;
+  out.reserve(width * view.height);  // pages are touched as the bands fill them
+  constexpr int kBand = 64;
+  for (int y0 = 0; y0 < view.height; y0 += kBand) {
+    const int y1 = std::min(view.height, y0 + kBand);
+    out.resize(width * y1);
+    for (int y = y0; y < y1; ++y) extract_row(view, y, source, invert, out.data() + width * y);
+    detail::discard_pages(consumed.data(), view.row_stride * y1);
+  }
+  return out;
+}
+
 void compute_normal_map(const ConstImageView& in, const ImageView& out, const NormalMapOptions& o) {
   assert(in.data && out.data && in.width == out.width && in.height == out.height);
   assert(out.channels == channel_count(o.channels));

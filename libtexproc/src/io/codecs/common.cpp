@@ -14,6 +14,7 @@
 #include <cstring>
 #include <mutex>
 
+#include "core/pixel_memory.h"
 #include "io/codecs/codecs.h"
 #include "texproc/error.h"
 
@@ -159,10 +160,7 @@ FileBytes::~FileBytes() {
 
 void FileBytes::release(const std::uint8_t* begin, std::size_t n) const {
   if (!mapped_ || begin < data_ || begin + n > data_ + size_) return;
-  const auto page = std::uintptr_t(::sysconf(_SC_PAGESIZE));
-  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(begin) + page - 1) & ~(page - 1);
-  const std::uintptr_t last = (reinterpret_cast<std::uintptr_t>(begin) + n) & ~(page - 1);
-  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_DONTNEED);
+  detail::discard_pages(begin, n);
 }
 
 bool FileBytes::truncated() const { return mapped_ && g_maps[slot_].truncated.load(std::memory_order_acquire); }
