@@ -42,126 +42,7 @@ void add_batch_inputs(CLI::App& cmd, BatchInputs& b, const char* what, const cha
       ->group("Batch");
 }
 
-bool is_template(const std::string& output) { return output.find('{') != std::string::npos; }
-
-std::string expand_template(const std::string& pattern, const InputFile& in) {
-  const fs::path p(in.path);
-  std::string ext = p.extension().string();
-  if (!ext.empty()) ext.erase(0, 1);
-  std::string dir = p.parent_path().string();
-  if (dir.empty()) dir = ".";
-  const std::string reldir = in.reldir.empty() ? "." : in.reldir;
-  std::string out;
-  for (std::size_t i = 0; i < pattern.size(); ++i) {
-    const char c = pattern[i];
-    if ((c == '{' || c == '}') && i + 1 < pattern.size() && pattern[i + 1] == c) {
-      out += c;
-      ++i;
-      continue;
-    }
-    if (c != '{') {
-      out += c;
-      continue;
-    }
-    const std::size_t close = pattern.find('}', i);
-    if (close == std::string::npos) {
-      throw Error(ErrorCode::bad_arguments, "-o '" + pattern + "': '{' without '}' (write {{ for a literal brace)");
-    }
-    const std::string key = pattern.substr(i + 1, close - i - 1);
-    if (key == "stem")
-      out += p.stem().string();
-    else if (key == "name")
-      out += p.filename().string();
-    else if (key == "ext")
-      out += ext;
-    else if (key == "dir")
-      out += dir;
-    else if (key == "reldir")
-      out += reldir;
-    else {
-      throw Error(ErrorCode::bad_arguments, "-o '" + pattern + "': unknown placeholder {" + key +
-                                                "} (valid: {stem}, {name}, {ext}, {dir}, {reldir})");
-    }
-    i = close;
-  }
-  return fs::path(out).lexically_normal().string();
-}
-
 namespace {
-
-std::string lower(std::string s) {
-  for (auto& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
-bool wanted(const fs::path& p, const std::vector<std::string>& extensions) {
-  const std::string name = p.filename().string();
-  if (name.empty() || name[0] == '.') return false;  // hidden files and our own temporaries
-  const std::string e = lower(p.extension().string());
-  return std::find(extensions.begin(), extensions.end(), e) != extensions.end();
-}
-
-// The files a folder argument stands for, sorted by path (the same order on
-// every machine).
-void add_folder(const std::string& folder, bool recursive, const std::vector<std::string>& extensions,
-                std::vector<InputFile>& out) {
-  std::vector<InputFile> found;
-  std::error_code ec;
-  auto take = [&](const fs::directory_entry& e) {
-    if (!e.is_regular_file(ec) || !wanted(e.path(), extensions)) return;
-    const fs::path rel = e.path().lexically_relative(folder).parent_path();
-    found.push_back({e.path().lexically_normal().string(), rel.empty() ? "" : rel.string()});
-  };
-  if (recursive) {
-    for (fs::recursive_directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
-      const std::string n = it->path().filename().string();
-      if (!n.empty() && n[0] == '.' && it->is_directory(ec)) {
-        it.disable_recursion_pending();  // .git and friends
-        continue;
-      }
-      take(*it);
-    }
-  } else {
-    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) take(*it);
-  }
-  if (ec) throw Error(ErrorCode::io, folder + ": cannot list folder: " + ec.message());
-  std::sort(found.begin(), found.end(), [](const InputFile& a, const InputFile& b) { return a.path < b.path; });
-  if (found.empty()) {
-    throw Error(ErrorCode::bad_arguments, folder + ": folder holds no input files (" + join(extensions, " ") + ")" +
-                                              (recursive ? "" : "; -r searches its subfolders"));
-  }
-  out.insert(out.end(), found.begin(), found.end());
-}
-
-// The output for each input: -o names one file (one input only), a folder
-// (-o DIR/, an existing folder, or several inputs and no extension), or a
-// template.
-std::vector<std::string> name_outputs(const BatchCommand& c, const BatchInputs& b,
-                                      const std::vector<InputFile>& files) {
-  std::vector<std::string> outs;
-  std::error_code ec;
-  const std::string& o = b.output;
-  const bool folder = !is_template(o) && (o.back() == '/' || fs::is_directory(o, ec) ||
-                                          (files.size() > 1 && fs::path(o).extension().empty()));
-  if (!is_template(o) && !folder && files.size() > 1) {
-    throw Error(ErrorCode::bad_arguments, "-o " + o + " names one file, but there are " + std::to_string(files.size()) +
-                                              " inputs; use -o DIR/ or a template "
-                                              "such as -o 'out/{stem}" +
-                                              c.default_extension + "'");
-  }
-  for (const auto& f : files) {
-    if (is_template(o)) {
-      outs.push_back(expand_template(o, f));
-    } else if (folder) {
-      // The folder mirrors the inputs' subfolders under a folder argument.
-      const std::string ext = c.default_extension.empty() ? fs::path(f.path).extension().string() : c.default_extension;
-      outs.push_back((fs::path(o) / f.reldir / (fs::path(f.path).stem().string() + ext)).lexically_normal().string());
-    } else {
-      outs.push_back(o);
-    }
-  }
-  return outs;
-}
 
 // Every failure of a file: in the command line's terms, the file in front.
 void fail(FileReport& r, ErrorCode code, const std::string& message) {
@@ -169,37 +50,6 @@ void fail(FileReport& r, ErrorCode code, const std::string& message) {
   r.code = code;
   r.error = about(r.input, in_cli_terms(message));
 }
-
-}  // namespace
-
-std::vector<InputFile> expand_inputs(const BatchInputs& b, const std::vector<std::string>& extensions) {
-  std::vector<std::string> args = b.inputs;
-  if (!b.file_list.empty()) {
-    std::ifstream list(b.file_list);
-    if (!list) throw Error(ErrorCode::io, b.file_list + ": cannot open file list");
-    record_input(b.file_list);
-    std::string line;
-    while (std::getline(list, line)) {
-      const auto first = line.find_first_not_of(" \t\r");
-      if (first == std::string::npos || line[first] == '#') continue;
-      const auto last = line.find_last_not_of(" \t\r");
-      args.push_back(line.substr(first, last - first + 1));
-    }
-  }
-  if (args.empty()) throw Error(ErrorCode::bad_arguments, "no inputs: name files or folders, or use --file-list");
-  std::vector<InputFile> files;
-  std::error_code ec;
-  for (const auto& a : args) {
-    if (fs::is_directory(a, ec)) {
-      add_folder(a, b.recursive, extensions, files);
-    } else {
-      files.push_back({a, ""});  // a missing file fails on its own, later
-    }
-  }
-  return files;
-}
-
-namespace {
 
 // Every file planned (names, existence, overwrites) before any work; a
 // file that cannot be planned is failed with its reason.
@@ -445,24 +295,22 @@ void run_file(const BatchCommand& c, FileReport& r, const std::string& output, C
   }
 }
 
-}  // namespace
-
-int run_batch(const BatchCommand& c, const BatchInputs& b) {
-  const RunOptions& o = run_options();
-  BatchSession& s = batch_session();
-  ThreadLimit threads(o.threads);
-  // Files the options name (an OpenColorIO config, a radius map) are inputs
-  // of every output.
+// Files the options name (an OpenColorIO config, a radius map) are inputs
+// of every output: what validate() records, and the config.
+std::vector<std::string> validate_and_collect_shared_inputs(const BatchCommand& c, const RunOptions& o) {
   const std::size_t recorded_before = recorded_inputs().size();
   if (c.validate) c.validate();
   const std::vector<std::string> all_recorded = recorded_inputs();
-  std::vector<std::string> shared_inputs(all_recorded.begin() + std::ptrdiff_t(recorded_before), all_recorded.end());
-  if (!o.ocio_config.empty() &&
-      std::find(shared_inputs.begin(), shared_inputs.end(), o.ocio_config) == shared_inputs.end()) {
-    shared_inputs.push_back(o.ocio_config);
+  std::vector<std::string> shared(all_recorded.begin() + std::ptrdiff_t(recorded_before), all_recorded.end());
+  if (!o.ocio_config.empty() && std::find(shared.begin(), shared.end(), o.ocio_config) == shared.end()) {
+    shared.push_back(o.ocio_config);
     record_input(o.ocio_config);
   }
-  std::vector<InputFile> files = expand_inputs(b, c.input_extensions);
+  return shared;
+}
+
+// The inputs this run works on: those `build` selected, then this shard's share.
+std::vector<InputFile> this_runs_files(std::vector<InputFile> files, BatchSession& s, const RunOptions& o) {
   if (s.select) {
     files.erase(std::remove_if(files.begin(), files.end(), [&](const InputFile& f) { return !s.select(f.path); }),
                 files.end());
@@ -474,69 +322,39 @@ int run_batch(const BatchCommand& c, const BatchInputs& b) {
     }
     files = std::move(mine);
   }
-  if (files.empty() && (s.select || o.shard_count > 0)) return 0;  // none of them is this run's
-  const std::vector<std::string> outputs = name_outputs(c, b, files);
-  if (s.check_only) {
-    if (s.plans) {
-      const std::vector<FileReport> planned = plan_files(c, files, outputs, shared_inputs);
-      for (std::size_t i = 0; i < planned.size(); ++i) {
-        s.plans->push_back({files[i].path, outputs[i], planned[i].inputs, claimed_outputs(planned[i], outputs[i]),
-                            planned[i].status != FileStatus::failed && !planned[i].outputs.empty()});
-      }
+  return files;
+}
+
+// --dry-run: each output that would be written (with change tracking, why).
+void print_dry_run(const BatchCommand& c, const std::vector<FileReport>& reports, const RunOptions& o) {
+  for (const auto& r : reports) {
+    if (r.status == FileStatus::failed) {
+      print_error(c.name, r.error);
+    } else if (r.status != FileStatus::skipped && !o.json) {
+      const std::string why = r.details.isMember("reason") ? " (" + r.details["reason"].asString() + ")" : "";
+      for (const auto& out : r.outputs) std::cout << out << why << "\n";
     }
-    return 0;
   }
+}
 
-  // Without --force (or --write-if-changed), an output that appears between
-  // the check below and the end of the work is not replaced either: the
-  // final rename refuses it atomically (two processes, one output).
-  const CommitPolicy policy = o.write_if_changed         ? CommitPolicy::keep_identical
-                              : o.force || s.incremental ? CommitPolicy::replace
-                                                         : CommitPolicy::no_replace;
-  std::vector<FileReport> reports = plan_files(c, files, outputs, shared_inputs);
-  check_no_input_overwritten(reports, outputs);
-  check_one_writer(reports, outputs);
-  const std::vector<std::size_t> todo = select_work(reports, s, o);
-  auto finish = [&]() {
-    int rc = 0;
-    for (const auto& r : reports) {
-      if (r.status == FileStatus::failed && rc == 0) rc = int(r.code);
-      session_reports().push_back(r);
-    }
-    return rc;
-  };
-
-  if (o.dry_run) {
-    for (const auto& r : reports) {
-      if (r.status == FileStatus::failed) {
-        print_error(c.name, r.error);
-      } else if (r.status == FileStatus::skipped) {
-        continue;  // up to date: --dry-run lists what would be written
-      } else if (!o.json) {
-        // With change tracking (a recipe), why each file would be rebuilt.
-        const std::string why = r.details.isMember("reason") ? " (" + r.details["reason"].asString() + ")" : "";
-        for (const auto& out : r.outputs) std::cout << out << why << "\n";
-      }
-    }
-    return finish();
-  }
-
-  // Plan failures are reported now; the work goes on for the others unless --fail-fast.
+// Prints the files that failed while planned; whether there were any.
+bool print_plan_failures(const BatchCommand& c, const std::vector<FileReport>& reports) {
   bool failed = false;
   for (const auto& r : reports) {
     if (r.status != FileStatus::failed) continue;
     failed = true;
     print_error(c.name, r.error);
   }
-  if (failed && o.fail_fast) {
-    for (std::size_t i : todo) reports[i].status = FileStatus::not_run;
-    return finish();
-  }
+  return failed;
+}
 
+// Runs the files in `todo` in parallel, reporting each in input order as it
+// and those before it finish; files not started (--fail-fast) are not_run.
+void run_files(const BatchCommand& c, std::vector<FileReport>& reports, const std::vector<std::size_t>& todo,
+               const std::vector<std::string>& outputs, CommitPolicy policy, const RunOptions& o) {
   Progress progress(c.name, todo.size(), !o.quiet && (o.progress || ::isatty(2)));
   const int hw = hardware_threads();
   const std::size_t tokens = std::size_t(std::max(1, o.jobs > 0 ? o.jobs : (o.threads > 0 ? o.threads : hw)));
-  // Files in parallel, reported in input order as each and those before it finish.
   const std::size_t started = for_each_in_order(
       todo.size(), tokens,
       [&](std::size_t k) {
@@ -561,7 +379,64 @@ int run_batch(const BatchCommand& c, const BatchInputs& b) {
       });
   progress.close();
   for (std::size_t k = started; k < todo.size(); ++k) reports[todo[k]].status = FileStatus::not_run;
-  return finish();
+}
+
+// The run's exit code (the first failure's), the reports kept for the summary.
+int finish_reports(const std::vector<FileReport>& reports) {
+  int rc = 0;
+  for (const auto& r : reports) {
+    if (r.status == FileStatus::failed && rc == 0) rc = int(r.code);
+    session_reports().push_back(r);
+  }
+  return rc;
+}
+
+}  // namespace
+
+// The steps: validate the options, choose the files, name their outputs,
+// plan every file (inputs, outputs, up to date or not) and check the plan
+// as a whole (no output overwrites an input, one writer per output), then
+// run what is out of date.
+int run_batch(const BatchCommand& c, const BatchInputs& b) {
+  const RunOptions& o = run_options();
+  BatchSession& s = batch_session();
+  ThreadLimit threads(o.threads);
+  const std::vector<std::string> shared_inputs = validate_and_collect_shared_inputs(c, o);
+  const std::vector<InputFile> files = this_runs_files(expand_inputs(b, c.input_extensions), s, o);
+  if (files.empty() && (s.select || o.shard_count > 0)) return 0;  // none of them is this run's
+  const std::vector<std::string> outputs = name_outputs(c, b, files);
+  if (s.check_only) {
+    if (s.plans) {
+      const std::vector<FileReport> planned = plan_files(c, files, outputs, shared_inputs);
+      for (std::size_t i = 0; i < planned.size(); ++i) {
+        s.plans->push_back({files[i].path, outputs[i], planned[i].inputs, claimed_outputs(planned[i], outputs[i]),
+                            planned[i].status != FileStatus::failed && !planned[i].outputs.empty()});
+      }
+    }
+    return 0;
+  }
+
+  // Without --force (or --write-if-changed), an output that appears between
+  // the check below and the end of the work is not replaced either: the
+  // final rename refuses it atomically (two processes, one output).
+  const CommitPolicy policy = o.write_if_changed         ? CommitPolicy::keep_identical
+                              : o.force || s.incremental ? CommitPolicy::replace
+                                                         : CommitPolicy::no_replace;
+  std::vector<FileReport> reports = plan_files(c, files, outputs, shared_inputs);
+  check_no_input_overwritten(reports, outputs);
+  check_one_writer(reports, outputs);
+  const std::vector<std::size_t> todo = select_work(reports, s, o);
+  if (o.dry_run) {
+    print_dry_run(c, reports, o);
+    return finish_reports(reports);
+  }
+  // Plan failures are reported now; the work goes on for the others unless --fail-fast.
+  if (print_plan_failures(c, reports) && o.fail_fast) {
+    for (std::size_t i : todo) reports[i].status = FileStatus::not_run;
+    return finish_reports(reports);
+  }
+  run_files(c, reports, todo, outputs, policy, o);
+  return finish_reports(reports);
 }
 
 std::string absolute_path(const std::string& path) {

@@ -120,6 +120,11 @@ struct BatchCommand {
   std::function<void(const std::string& input, const std::string& output, FileReport& report)> run;
 };
 
+// The output for each input: -o names one file (one input only), a folder
+// (-o DIR/, an existing folder, or several inputs and no extension), or a
+// template.
+std::vector<std::string> name_outputs(const BatchCommand& c, const BatchInputs& b, const std::vector<InputFile>& files);
+
 // Runs `c` over the inputs; returns 0, or the exit code of the first failed
 // file in input order. Throws Error for problems of the whole run (options,
 // an -o that cannot name several files, two inputs naming one output).

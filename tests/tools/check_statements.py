@@ -99,6 +99,8 @@ def chained(statement):
     first = s[:commas[0]]
     if first.count("<") > first.count(">"):  # a template argument list
         return False
+    while re.search(r"\[[^\[\]]+\]", first):  # subscripts, whatever their insides: a[i + 1] as a[]
+        first = re.sub(r"\[[^\[\]]+\]", "[]", first)
     return bool(ASSIGNMENT.match(first) or INCREMENT.match(first) or
                 (CALL.match(first) and not DECLARATION.match(first)))
 
@@ -136,6 +138,7 @@ def self_test():
     chained_lines = [
         "  a = 1, b = 2;",
         "  x[i] += 3, y.z -= 4;",
+        "  fit.code[k][s.c0 + a] = q, fit.value[k][s.c0 + a] = v;",
         "  ++i, ++j;",
         "  if (k) best = k, at = i;",
         "  for (int c = 0; c < 3; ++c) lo[c] = 0, hi[c] = 255;",

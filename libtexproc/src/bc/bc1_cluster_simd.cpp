@@ -51,7 +51,10 @@ void ClusterSplits(const double pre[17][3], double total_sq, int n, int i, int j
       HWY_ALIGN double av[HWY_MAX_BYTES / sizeof(double)], bv[HWY_MAX_BYTES / sizeof(double)];
       hn::Store(a, d, av);
       hn::Store(b, d, bv);
-      for (int l = 0; l < lanes; ++l) out.a[k + l - j][c] = av[l], out.b[k + l - j][c] = bv[l];
+      for (int l = 0; l < lanes; ++l) {
+        out.a[k + l - j][c] = av[l];
+        out.b[k + l - j][c] = bv[l];
+      }
       const auto fit = hn::Mul(hn::Set(d, -2.0), hn::Add(hn::Mul(a, xa), hn::Mul(b, xb)));
       const auto quad =
           hn::Add(hn::Add(hn::Mul(hn::Mul(a, a), aa), hn::Mul(hn::Mul(hn::Mul(hn::Set(d, 2.0), a), b), ab)),

@@ -80,59 +80,70 @@ struct Bc1Batch {
     st.error = hn::IfThenElse(take, n.error, st.error);
   }
 
-  // The texels of blocks k0.., their moments, the principal axis (power
-  // iteration from the covariance's row of greatest variance), each
-  // texel's projection and the opaque texels' extent; `flat_out` gets the
-  // lanes left to the caller.
-  HWY_INLINE void load(const std::uint32_t texel[16][kBc1Batch], int k0, std::int32_t flat_out[]) {
-    V s0 = hn::Zero(d), s1 = s0, s2 = s0, q0 = s0, q1 = s0, q2 = s0, q3 = s0, q4 = s0, q5 = s0;
-    n_opaque = s0;
+  // The opaque texels' colour sums and products, a lane each (transparent
+  // texels count as black, that is, not at all).
+  struct Moments {
+    V sum_r, sum_g, sum_b;
+    V rr, rg, rb, gg, gb, bb;
+  };
+
+  // The texels of blocks k0.. (r, g, b, clear, n_opaque, transparent) and their moments.
+  HWY_INLINE Moments load_texels(const std::uint32_t texel[16][kBc1Batch], int k0) {
+    const V zero_i = hn::Zero(d);
+    Moments m{zero_i, zero_i, zero_i, zero_i, zero_i, zero_i, zero_i, zero_i, zero_i};
+    n_opaque = zero_i;
     for (int i = 0; i < 16; ++i) {
       const auto tu = hn::LoadU(du, texel[i] + k0);
       const V t = hn::BitCast(d, tu);
       clear[i] = kPunch ? hn::RebindMask(d, hn::Lt(hn::ShiftRight<24>(tu), hn::Set(du, 128u))) : hn::Lt(mask8, mask8);
-      // Transparent texels count as black in the sums (that is, not at all).
-      r[i] = hn::And(t, mask8);
-      g[i] = hn::And(hn::ShiftRight<8>(t), mask8);
-      b[i] = hn::And(hn::ShiftRight<16>(t), mask8);
-      if constexpr (kPunch) {
-        r[i] = hn::IfThenZeroElse(clear[i], r[i]);
-        g[i] = hn::IfThenZeroElse(clear[i], g[i]);
-        b[i] = hn::IfThenZeroElse(clear[i], b[i]);
-      }
+      r[i] = opaque_only(i, hn::And(t, mask8));
+      g[i] = opaque_only(i, hn::And(hn::ShiftRight<8>(t), mask8));
+      b[i] = opaque_only(i, hn::And(hn::ShiftRight<16>(t), mask8));
       n_opaque = hn::Add(n_opaque, hn::IfThenZeroElse(clear[i], hn::Set(d, 1)));
-      s0 = hn::Add(s0, r[i]);
-      s1 = hn::Add(s1, g[i]);
-      s2 = hn::Add(s2, b[i]);
-      q0 = hn::Add(q0, hn::Mul(r[i], r[i]));
-      q1 = hn::Add(q1, hn::Mul(r[i], g[i]));
-      q2 = hn::Add(q2, hn::Mul(r[i], b[i]));
-      q3 = hn::Add(q3, hn::Mul(g[i], g[i]));
-      q4 = hn::Add(q4, hn::Mul(g[i], b[i]));
-      q5 = hn::Add(q5, hn::Mul(b[i], b[i]));
+      m.sum_r = hn::Add(m.sum_r, r[i]);
+      m.sum_g = hn::Add(m.sum_g, g[i]);
+      m.sum_b = hn::Add(m.sum_b, b[i]);
+      m.rr = hn::Add(m.rr, hn::Mul(r[i], r[i]));
+      m.rg = hn::Add(m.rg, hn::Mul(r[i], g[i]));
+      m.rb = hn::Add(m.rb, hn::Mul(r[i], b[i]));
+      m.gg = hn::Add(m.gg, hn::Mul(g[i], g[i]));
+      m.gb = hn::Add(m.gb, hn::Mul(g[i], b[i]));
+      m.bb = hn::Add(m.bb, hn::Mul(b[i], b[i]));
     }
     transparent = hn::Lt(n_opaque, hn::Set(d, 16));
-    const V no = n_opaque;
-    const V c0i = hn::Sub(hn::Mul(no, q0), hn::Mul(s0, s0)), c1i = hn::Sub(hn::Mul(no, q1), hn::Mul(s0, s1)),
-            c2i = hn::Sub(hn::Mul(no, q2), hn::Mul(s0, s2)), c3i = hn::Sub(hn::Mul(no, q3), hn::Mul(s1, s1)),
-            c4i = hn::Sub(hn::Mul(no, q4), hn::Mul(s1, s2)), c5i = hn::Sub(hn::Mul(no, q5), hn::Mul(s2, s2));
-    flat = hn::And(hn::And(hn::Eq(c0i, hn::Zero(d)), hn::Eq(c3i, hn::Zero(d))), hn::Eq(c5i, hn::Zero(d)));
+    return m;
+  }
+
+  // The principal axis (ax, ay, az): power iteration on the covariance
+  // (times n_opaque^2, exact integers) from its row of greatest variance.
+  // Lanes whose colours are all one (flat) are marked in `flat` and
+  // `flat_out`, for the caller; their axis is not used.
+  HWY_INLINE void principal_axis(const Moments& m, std::int32_t flat_out[]) {
+    const V n = n_opaque;
+    const V cov_rr_i = hn::Sub(hn::Mul(n, m.rr), hn::Mul(m.sum_r, m.sum_r));
+    const V cov_rg_i = hn::Sub(hn::Mul(n, m.rg), hn::Mul(m.sum_r, m.sum_g));
+    const V cov_rb_i = hn::Sub(hn::Mul(n, m.rb), hn::Mul(m.sum_r, m.sum_b));
+    const V cov_gg_i = hn::Sub(hn::Mul(n, m.gg), hn::Mul(m.sum_g, m.sum_g));
+    const V cov_gb_i = hn::Sub(hn::Mul(n, m.gb), hn::Mul(m.sum_g, m.sum_b));
+    const V cov_bb_i = hn::Sub(hn::Mul(n, m.bb), hn::Mul(m.sum_b, m.sum_b));
+    flat =
+        hn::And(hn::And(hn::Eq(cov_rr_i, hn::Zero(d)), hn::Eq(cov_gg_i, hn::Zero(d))), hn::Eq(cov_bb_i, hn::Zero(d)));
     hn::Store(hn::VecFromMask(d, flat), d, flat_out);
-    const VF c0 = hn::ConvertTo(df, c0i), c1 = hn::ConvertTo(df, c1i), c2 = hn::ConvertTo(df, c2i),
-             c3 = hn::ConvertTo(df, c3i), c4 = hn::ConvertTo(df, c4i), c5 = hn::ConvertTo(df, c5i);
-    const auto row0 = hn::And(hn::Ge(c0, c3), hn::Ge(c0, c5));
-    const auto row1 = hn::Ge(c3, c5);
-    VF v0 = hn::IfThenElse(row0, c0, hn::IfThenElse(row1, c1, c2));
-    VF v1 = hn::IfThenElse(row0, c1, hn::IfThenElse(row1, c3, c4));
-    VF v2 = hn::IfThenElse(row0, c2, hn::IfThenElse(row1, c4, c5));
+    const VF rr = hn::ConvertTo(df, cov_rr_i), rg = hn::ConvertTo(df, cov_rg_i), rb = hn::ConvertTo(df, cov_rb_i);
+    const VF gg = hn::ConvertTo(df, cov_gg_i), gb = hn::ConvertTo(df, cov_gb_i), bb = hn::ConvertTo(df, cov_bb_i);
+    const auto r_widest = hn::And(hn::Ge(rr, gg), hn::Ge(rr, bb));
+    const auto g_widest = hn::Ge(gg, bb);
+    VF v0 = hn::IfThenElse(r_widest, rr, hn::IfThenElse(g_widest, rg, rb));
+    VF v1 = hn::IfThenElse(r_widest, rg, hn::IfThenElse(g_widest, gg, gb));
+    VF v2 = hn::IfThenElse(r_widest, rb, hn::IfThenElse(g_widest, gb, bb));
     // Flat lanes (skipped) divide by 1 instead of 0.
     const auto flat_f = hn::RebindMask(df, flat);
     for (int it = 0; it < 4; ++it) {
       const VF inv = hn::Div(one, hn::IfThenElse(flat_f, one, hn::Max(hn::Abs(v0), hn::Max(hn::Abs(v1), hn::Abs(v2)))));
       const VF x = hn::Mul(v0, inv), y = hn::Mul(v1, inv), z = hn::Mul(v2, inv);
-      v0 = hn::Add(hn::Add(hn::Mul(c0, x), hn::Mul(c1, y)), hn::Mul(c2, z));
-      v1 = hn::Add(hn::Add(hn::Mul(c1, x), hn::Mul(c3, y)), hn::Mul(c4, z));
-      v2 = hn::Add(hn::Add(hn::Mul(c2, x), hn::Mul(c4, y)), hn::Mul(c5, z));
+      v0 = hn::Add(hn::Add(hn::Mul(rr, x), hn::Mul(rg, y)), hn::Mul(rb, z));
+      v1 = hn::Add(hn::Add(hn::Mul(rg, x), hn::Mul(gg, y)), hn::Mul(gb, z));
+      v2 = hn::Add(hn::Add(hn::Mul(rb, x), hn::Mul(gb, y)), hn::Mul(bb, z));
     }
     const VF len =
         hn::IfThenElse(flat_f, one, hn::Sqrt(hn::Add(hn::Add(hn::Mul(v0, v0), hn::Mul(v1, v1)), hn::Mul(v2, v2))));
@@ -140,6 +151,11 @@ struct Bc1Batch {
     ax = hn::Mul(v0, inv_len);
     ay = hn::Mul(v1, inv_len);
     az = hn::Mul(v2, inv_len);
+  }
+
+  // Each texel's projection on the axis (proj), the opaque texels' extent
+  // along it (lo, hi), their mean (m0, m1, m2) and its projection (mean_p).
+  HWY_INLINE void project(const Moments& m) {
     lo = hn::Set(df, 1e30f);
     hi = hn::Set(df, -1e30f);
     for (int i = 0; i < 16; ++i) {
@@ -156,10 +172,18 @@ struct Bc1Batch {
       proj[i] = p;
     }
     const VF fn = hn::ConvertTo(df, hn::Max(n_opaque, hn::Set(d, 1)));  // no opaque texel: a flat lane, skipped
-    m0 = hn::Div(hn::ConvertTo(df, s0), fn);
-    m1 = hn::Div(hn::ConvertTo(df, s1), fn);
-    m2 = hn::Div(hn::ConvertTo(df, s2), fn);
+    m0 = hn::Div(hn::ConvertTo(df, m.sum_r), fn);
+    m1 = hn::Div(hn::ConvertTo(df, m.sum_g), fn);
+    m2 = hn::Div(hn::ConvertTo(df, m.sum_b), fn);
     mean_p = hn::Add(hn::Add(hn::Mul(m0, ax), hn::Mul(m1, ay)), hn::Mul(m2, az));
+  }
+
+  // The texels of blocks k0.., the principal axis and each texel's place
+  // along it; `flat_out` gets the lanes left to the caller.
+  HWY_INLINE void load(const std::uint32_t texel[16][kBc1Batch], int k0, std::int32_t flat_out[]) {
+    const Moments m = load_texels(texel, k0);
+    principal_axis(m, flat_out);
+    project(m);
   }
 
   // The extent's ends as quantized endpoints (codes and error not scored yet: 0).

@@ -71,7 +71,10 @@ void line_ends(const Set& s, float e[2][4]) {
     vv += v[a] * v[a];
   }
   const float s0 = (tmin - tmean) / vv, s1 = (tmax - tmean) / vv;
-  for (int a = 0; a < s.n; ++a) e[0][s.c0 + a] = mean[a] + s0 * v[a], e[1][s.c0 + a] = mean[a] + s1 * v[a];
+  for (int a = 0; a < s.n; ++a) {
+    e[0][s.c0 + a] = mean[a] + s0 * v[a];
+    e[1][s.c0 + a] = mean[a] + s1 * v[a];
+  }
 }
 
 namespace {
@@ -107,7 +110,8 @@ void quantize_ends(const Set& s, const float e[2][4], EndpointFormat f, bool for
     fit.pbit[k] = std::max(p[k], 0);
     for (int a = 0; a < s.n; ++a) {
       const bc7::Quantized q = bc7::quantize(f.bits, p[k], v[k][a]);
-      fit.code[k][s.c0 + a] = q.code, fit.value[k][s.c0 + a] = q.value;
+      fit.code[k][s.c0 + a] = q.code;
+      fit.value[k][s.c0 + a] = q.value;
     }
   }
 }
@@ -242,7 +246,10 @@ void quantize_joint(const Set& s, const float e[2][4], const LsqSums& q, Endpoin
     best = total;
     for (int k = 0; k < 2; ++k) {
       fit.pbit[k] = std::max(p[k], 0);
-      for (int a = 0; a < s.n; ++a) fit.code[k][s.c0 + a] = code[k][a], fit.value[k][s.c0 + a] = value[k][a];
+      for (int a = 0; a < s.n; ++a) {
+        fit.code[k][s.c0 + a] = code[k][a];
+        fit.value[k][s.c0 + a] = value[k][a];
+      }
     }
   }
 }

@@ -41,8 +41,10 @@ struct SetFitV {
 };
 
 // Whether a lane's two 16-bit halves can hold two channels (every target
-// but HWY_SCALAR, whose one lane has no halves).
-#define TEXPROC_BC7_PAIRS (HWY_TARGET != HWY_SCALAR)
+// but HWY_SCALAR, whose one lane has no halves): the texel passes of sets
+// of 3 and 4 channels then work on pairs (under `if constexpr` in the
+// per-channel-count templates, so that HWY_SCALAR never instantiates them).
+constexpr bool kChannelPairs = HWY_TARGET != HWY_SCALAR;
 
 // The texels' channels in pairs (pair16): R G, B alone, B A; a set of 3
 // channels uses the first two, of 4 the first and the third.
@@ -55,7 +57,7 @@ HWY_INLINE void make_pairs(const V x[4], PairsV& xp) {
 
 // As the reference's Set: the texels (possibly rotated), the members (a
 // mask per texel), the channels; the texels in pairs too (for sets of 3
-// and 4 channels from channel 0, where TEXPROC_BC7_PAIRS).
+// and 4 channels from channel 0, where kChannelPairs).
 struct SetV {
   const V (*x)[4];
   const M* member;
@@ -194,7 +196,8 @@ struct Bc7FitLanes {
       fit.pbit[k] = hn::IfThenElseZero(p1[k], hn::Set(d, 1));
       for (int a = 0; a < s.n; ++a) {
         const V q = hn::IfThenElse(p1[k], q1[k][a], q0[k][a]);
-        fit.code[k][s.c0 + a] = hn::And(q, hn::Set(d, 255)), fit.value[k][s.c0 + a] = hn::ShiftRight<8>(q);
+        fit.code[k][s.c0 + a] = hn::And(q, hn::Set(d, 255));
+        fit.value[k][s.c0 + a] = hn::ShiftRight<8>(q);
       }
     }
   }
@@ -256,9 +259,10 @@ struct Bc7FitLanes {
       best_total = hn::IfThenElse(better, total, best_total);
       for (int k = 0; k < 2; ++k) {
         fit.pbit[k] = hn::IfThenElse(take, pbit[k], fit.pbit[k]);
-        for (int a = 0; a < N; ++a)
-          fit.code[k][s.c0 + a] = hn::IfThenElse(take, code[k][a], fit.code[k][s.c0 + a]),
-                             fit.value[k][s.c0 + a] = hn::IfThenElse(take, value[k][a], fit.value[k][s.c0 + a]);
+        for (int a = 0; a < N; ++a) {
+          fit.code[k][s.c0 + a] = hn::IfThenElse(take, code[k][a], fit.code[k][s.c0 + a]);
+          fit.value[k][s.c0 + a] = hn::IfThenElse(take, value[k][a], fit.value[k][s.c0 + a]);
+        }
       }
     }
   }
@@ -299,14 +303,15 @@ struct Bc7FitLanes {
     return t;
   }
 
-#if TEXPROC_BC7_PAIRS
   // texel_error for 3 or 4 channels from channel 0, two channels a lane:
   // the same integers in 16-bit halves (|w (e1 - e0)| <= 64 255, the
   // palette entry and the texel in [0, 255]), the squares' pair sums by
-  // dot16. dvp and v0p: (e1 - e0) and e0 in pairs as s.xp's.
-  template <int N>
+  // dot16. dvp and v0p: (e1 - e0) and e0 in pairs as s.xp's. (D16 is a
+  // parameter so that HWY_SCALAR, which has no 16-bit halves and never
+  // calls this, does not check the body.)
+  template <int N, class D16 = hn::Repartition<std::int16_t, DI>>
   HWY_INLINE V texel_error_pairs(const SetV& s, const V dvp[2], const V v0p[2], int i, V j, int L) const {
-    const hn::Repartition<std::int16_t, DI> d16;
+    const D16 d16;
     const auto w = hn::BitCast(d16, weight_pair(j, L));
     V t = hn::Zero(d);
     for (int k = 0; k < 2; ++k) {
@@ -317,7 +322,6 @@ struct Bc7FitLanes {
     }
     return t;
   }
-#endif
 
   // Texel i's x d.
   template <int N>
@@ -342,10 +346,9 @@ struct Bc7FitLanes {
     const VF scale = hn::IfThenElseZero(spread, hn::Div(hn::Set(df, float(L)), f(hn::Max(dd, hn::Set(d, 1)))));
     // Two channels a lane where the target has halves (the set's channels
     // from 0: sets of 3 and 4 always are).
-#if TEXPROC_BC7_PAIRS
-    constexpr bool paired = N >= 3;
+    constexpr bool paired = kChannelPairs && N >= 3;
     V dvp[2], v0p[2];
-    if (paired) {
+    if constexpr (paired) {
       const V* v0 = fit.value[0];
       dvp[0] = pair16(dv[0], dv[1]);
       v0p[0] = pair16(v0[0], v0[1]);
@@ -353,16 +356,17 @@ struct Bc7FitLanes {
       v0p[1] = N == 4 ? pair16(v0[2], v0[3]) : v0[2];
     }
     auto error_at = [&](int i, V j) {
-      return paired ? texel_error_pairs<N>(s, dvp, v0p, i, j, L) : texel_error<N>(s, fit, dv, i, j, L);
+      if constexpr (paired)
+        return texel_error_pairs<N>(s, dvp, v0p, i, j, L);
+      else
+        return texel_error<N>(s, fit, dv, i, j, L);
     };
     auto project = [&](int i) {
-      if (!paired) return projection<N>(s, dv, i);
-      return hn::Add(dot16(s.xp[i][0], dvp[0]), dot16(s.xp[i][N == 3 ? 1 : 2], dvp[1]));
+      if constexpr (paired)
+        return hn::Add(dot16(s.xp[i][0], dvp[0]), dot16(s.xp[i][N == 3 ? 1 : 2], dvp[1]));
+      else
+        return projection<N>(s, dv, i);
     };
-#else
-    auto error_at = [&](int i, V j) { return texel_error<N>(s, fit, dv, i, j, L); };
-    auto project = [&](int i) { return projection<N>(s, dv, i); };
-#endif
     fit.error = hn::Zero(d);
     for (int i = 0; i < 16; ++i) {
       const V t = hn::Sub(project(i), origin);

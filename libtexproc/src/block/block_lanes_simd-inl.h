@@ -45,6 +45,12 @@ HWY_INLINE V dot16(V a, V b) {
   const V even = hn::ReorderWidenMulAccumulate(d, hn::BitCast(d16, a), hn::BitCast(d16, b), hn::Zero(d), odd);
   return hn::RearrangeToOddPlusEven(even, odd);
 }
+#else
+// HWY_SCALAR: the same sum, the halves sign-extended by shifts.
+HWY_INLINE V dot16(V a, V b) {
+  const V a_lo = hn::ShiftRight<16>(hn::ShiftLeft<16>(a)), b_lo = hn::ShiftRight<16>(hn::ShiftLeft<16>(b));
+  return hn::Add(hn::Mul(a_lo, b_lo), hn::Mul(hn::ShiftRight<16>(a), hn::ShiftRight<16>(b)));
+}
 #endif
 
 // a b for a in [0, 32767] and b in [-32768, 32767]: dot16 (half the cost
