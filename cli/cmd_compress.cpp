@@ -79,14 +79,14 @@ void validate(CompressArgs& a) {
     throw Error(ErrorCode::bad_arguments,
                 "--srgb: --format " + a.format + " has no sRGB variant (it holds data); drop --srgb");
   }
-  // Options of the mip chain mean nothing without one.
+  // Options of the mip chain mean nothing without one (--levels also keeps
+  // an input texture's first levels: checked per file).
   if (!a.mips) {
     const ChainArgs defaults;
-    const char* given = a.chain.levels != defaults.levels       ? "--levels"
-                        : a.chain.min_size != defaults.min_size ? "--min-size"
-                        : a.chain.filter != defaults.filter     ? "--filter"
-                        : a.chain.sigma != defaults.sigma       ? "--sigma"
-                                                                : nullptr;
+    const char* given = a.chain.min_size != defaults.min_size ? "--min-size"
+                        : a.chain.filter != defaults.filter   ? "--filter"
+                        : a.chain.sigma != defaults.sigma     ? "--sigma"
+                                                              : nullptr;
     if (given) throw Error(ErrorCode::bad_arguments, std::string(given) + " shapes the mip chain: add --mips");
   }
   const TexelFormat linear_format = block_format_for(a.format, false);
@@ -118,18 +118,19 @@ void validate(CompressArgs& a) {
 
 // LDR formats hold [0, 1]: float input outside it is clipped, which an HDR
 // source rarely means. One warning per file, with the range and the way out.
-void warn_if_clipped(const std::string& input, const ImageArray& in, TexelFormat format,
+void warn_if_clipped(const std::string& input, const ImageChains& in, TexelFormat format,
                      std::vector<std::string>& warnings) {
-  if (format_info(format).is_float || in.images.empty() || in.images[0].type() != PixelType::f32) return;
+  if (format_info(format).is_float || in.chains[0][0].type() != PixelType::f32) return;
   float lo = 0.0f, hi = 1.0f;
-  for (const Image& img : in.images) {
-    const float* p = reinterpret_cast<const float*>(img.data());
-    const std::size_t n = img.byte_size() / sizeof(float);
-    for (std::size_t i = 0; i < n; ++i) {
-      lo = std::min(lo, p[i]);
-      hi = std::max(hi, p[i]);
+  for (const std::vector<Image>& chain : in.chains)
+    for (const Image& img : chain) {
+      const float* p = reinterpret_cast<const float*>(img.data());
+      const std::size_t n = img.byte_size() / sizeof(float);
+      for (std::size_t i = 0; i < n; ++i) {
+        lo = std::min(lo, p[i]);
+        hi = std::max(hi, p[i]);
+      }
     }
-  }
   if (lo >= 0.0f && hi <= 1.0f) return;
   char range[96];
   std::snprintf(range, sizeof range, "values from %g to %g", double(lo), double(hi));
@@ -186,10 +187,18 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   check_dds_header_fits(a.dds_header, output);
   zstd_level_for(a.zstd, output);  // checked before any work
   PhaseTimer phases(r);
-  ImageArray in = read_image_array(input, nullptr, cli_read_options());
-  for (Image& im : in.images) read_as_finite(input, im, r.warnings);
+  // A texture keeps its chains (the first --levels of them); --mips makes
+  // new ones from level 0.
+  ImageFileInfo info;
+  ImageChains in = read_image_chains(input, &info, cli_read_options(), a.mips ? 1 : std::uint32_t(a.chain.levels));
+  if (!a.mips && a.chain.levels > 0 && info.mip_levels <= 1) {
+    throw Error(ErrorCode::bad_arguments, input + ": --levels keeps the first levels of an input's chain, and " +
+                                              input + " has one level: add --mips to make a chain");
+  }
+  for (std::vector<Image>& chain : in.chains)
+    for (Image& im : chain) read_as_finite(input, im, r.warnings);
   phases.read_done();
-  const PixelType input_type = in.images[0].type();
+  const PixelType input_type = in.chains[0][0].type();
   // Colour is sRGB unless --linear, a normal map, or float input.
   bool srgb = a.srgb || (!a.linear && !a.normal_map && input_type != PixelType::f32);
   // A full LDR format name says it: an sRGB format's input is sRGB colour,
@@ -202,7 +211,8 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   // first (as data with --linear), so the chain and the encoder see light.
   if (format_info(format).is_float && input_type != PixelType::f32) {
     const ColorSpace from = srgb ? ColorSpace::srgb() : ColorSpace::linear();
-    for (Image& img : in.images) img = decode_to_linear(img, from);
+    for (std::vector<Image>& chain : in.chains)
+      for (Image& img : chain) img = decode_to_linear(img, from);
   }
   const auto t0 = std::chrono::steady_clock::now();
   TextureEncodeOptions options;
@@ -212,21 +222,19 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   options.normal_map = a.normal_map;
   options.transparent = a.transparent;
   // One chain per surface: a cubemap's faces and an array's layers (index
-  // layer * faces + face), encoded as the chain is filtered. Afterwards
-  // in.images hold level 0 as it was encoded.
+  // layer * faces + face), each level encoded as it is, or (--mips) encoded
+  // as the new chain is filtered. Afterwards in.chains[0][0] holds level 0
+  // as it was encoded.
   Texture t;
   if (a.mips) {
     MipOptions m = a.mip;
     m.color_space = format_info(format).srgb ? "srgb" : "linear";
-    t = compress_texture_mips(in.images, m, in.layout(), format, a.q, options);
+    std::vector<Image> surfaces;
+    for (std::vector<Image>& chain : in.chains) surfaces.push_back(std::move(chain[0]));
+    t = compress_texture_mips(surfaces, m, in.layout(), format, a.q, options);
+    in.chains[0][0] = std::move(surfaces[0]);
   } else {
-    std::vector<std::vector<Image>> chains;
-    for (Image& img : in.images) {
-      chains.emplace_back();
-      chains.back().push_back(std::move(img));
-    }
-    t = compress_texture(chains, in.layout(), format, a.q, options);
-    for (std::size_t i = 0; i < chains.size(); ++i) in.images[i] = std::move(chains[i][0]);
+    t = compress_texture(in.chains, in.layout(), format, a.q, options);
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   phases.compute_done();
@@ -235,14 +243,18 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   std::ostringstream line;
   line << input << " -> " << output << ": " << format_info(format).name << ", " << t.levels << " level(s), quality "
        << a.quality << ", encoded in " << s << " s";
+  if (a.mips && info.mip_levels > 1) {
+    line << " (the input's " << info.mip_levels << " levels replaced by a chain made from its level 0)";
+  }
   r.details["format"] = format_info(format).name;
   r.details["width"] = t.width;
   r.details["height"] = t.height;
   r.details["levels"] = t.levels;
+  r.details["input_levels"] = info.mip_levels;
   r.details["quality"] = a.quality;
   r.details["encode_seconds"] = s;
   if (a.report) {
-    const ImageDifference d = encoding_error(in.images[0], t, a.normal_map && is_astc(format));
+    const ImageDifference d = encoding_error(in.chains[0][0], t, a.normal_map && is_astc(format));
     Json::Value rep(Json::objectValue);
     rep["psnr"] = number_or_null(d.psnr());
     if (d.channels >= 3) rep["psnr_rgb"] = number_or_null(d.psnr_rgb());
@@ -304,7 +316,9 @@ void add_compress_command(CLI::App& app) {
                   "60 -medium, 98 -thorough, 99 -verythorough, 100 -exhaustive)")
       ->check(in_range(0, 100));
   cmd->add_flag("--mips,!--no-mips", args->mips,
-                "Compress a whole mip chain (mip options below); --no-mips: level 0 only (the default)");
+                "Make and compress a new mip chain from level 0 (mip options below). Without it (--no-mips, the "
+                "default) a texture input keeps every level, face and layer it has, each encoded as it is (--levels N: "
+                "its first N), and an image gives one level");
   cmd->add_flag("--normal-map", args->normal_map,
                 "The input is a normal map: linear, renormalized mips; bc5/eac-rg11 store X and Y, bc3 the DXT5nm "
                 "layout (X in alpha, Y in green, red 1, blue 0), astc astc-encoder's normal mode (X in RGB, Y in "

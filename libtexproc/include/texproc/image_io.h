@@ -78,6 +78,19 @@ struct ImageArray {
 };
 ImageArray read_image_array(const std::string& path, ImageFileInfo* info = nullptr, const ReadOptions& options = {});
 
+// Every level of every surface: a texture container's chains as stored
+// (chains[layer * faces + face][level], decoded as read_image_array
+// decodes level 0), the first `max_levels` of each where that is not 0;
+// any other image file is one chain of one level (its level 0).
+struct ImageChains {
+  std::vector<std::vector<Image>> chains;
+  std::uint32_t faces = 1, layers = 1;
+  bool is_array = false;
+  SurfaceLayout layout() const { return {faces, layers, is_array}; }
+};
+ImageChains read_image_chains(const std::string& path, ImageFileInfo* info = nullptr, const ReadOptions& options = {},
+                              std::uint32_t max_levels = 0);
+
 // Header facts without reading pixels. Throws as read_image.
 ImageFileInfo probe_image(const std::string& path, const ReadOptions& options = {});
 

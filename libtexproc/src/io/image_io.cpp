@@ -200,6 +200,26 @@ ImageArray read_image_array(const std::string& path, ImageFileInfo* info_out, co
   return out;
 }
 
+ImageChains read_image_chains(const std::string& path, ImageFileInfo* info_out, const ReadOptions& options,
+                              std::uint32_t max_levels) {
+  check_exists(path);
+  bool container;
+  {
+    const codecs::FileBytes f(path, /*read_ahead=*/false);
+    container = sniff(path, f, options.io_path) == Kind::container;
+  }
+  ImageFileInfo info;
+  ImageChains out;
+  if (container) {
+    out = codecs::container_read_chains(path, info, options.limits, max_levels);
+  } else {
+    out.chains.emplace_back();
+    out.chains.back().push_back(read_image(path, &info, options));
+  }
+  if (info_out) *info_out = info;
+  return out;
+}
+
 void write_image(const std::string& path, const ConstImageView& given, const WriteOptions& options) {
   check_writable_extension(path);
   const std::string e = lower_ext(path);

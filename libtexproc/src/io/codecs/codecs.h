@@ -103,5 +103,7 @@ std::string libtiff_last_error();
 ImageFileInfo container_probe(const std::string& path, const ReadLimits& limits);
 Image container_read(const std::string& path, ImageFileInfo& info, const ReadLimits& limits);
 ImageArray container_read_all(const std::string& path, ImageFileInfo& info, const ReadLimits& limits);
+ImageChains container_read_chains(const std::string& path, ImageFileInfo& info, const ReadLimits& limits,
+                                  std::uint32_t max_levels);
 
 }  // namespace texproc::codecs

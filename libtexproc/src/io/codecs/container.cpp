@@ -1,6 +1,7 @@
 // GPU containers (DDS, KTX2, KTX1, PKM, .astc) read as images: level 0, layer 0,
-// face 0, through texproc's own container readers; block-compressed formats
+// face 0 (or every level of every surface), through texproc's own container readers; block-compressed formats
 // are decoded. (read_texture keeps every level, face and layer.)
+#include <algorithm>
 #include <cstring>
 
 #include "io/codecs/codecs.h"
@@ -96,6 +97,24 @@ ImageArray container_read_all(const std::string& path, ImageFileInfo& info, cons
     out.is_array = t.is_array || t.layers > 1;
     for (std::uint32_t a = 0; a < t.layers; ++a)
       for (std::uint32_t f = 0; f < t.faces; ++f) out.images.push_back(decode_texture_image(t, 0, a, f, info.type));
+    return out;
+  });
+}
+
+ImageChains container_read_chains(const std::string& path, ImageFileInfo& info, const ReadLimits& limits,
+                                  std::uint32_t max_levels) {
+  return load(path, info, limits, [&](const Texture& t) {
+    ImageChains out;
+    out.faces = t.faces;
+    out.layers = t.layers;
+    out.is_array = t.is_array || t.layers > 1;
+    const std::uint32_t levels = max_levels > 0 ? std::min(max_levels, t.levels) : t.levels;
+    for (std::uint32_t a = 0; a < t.layers; ++a)
+      for (std::uint32_t f = 0; f < t.faces; ++f) {
+        out.chains.emplace_back();
+        for (std::uint32_t l = 0; l < levels; ++l)
+          out.chains.back().push_back(decode_texture_image(t, l, a, f, info.type));
+      }
     return out;
   });
 }
