@@ -2,6 +2,9 @@
 // strips; seamless mips; GGX specular and diffuse irradiance for
 // image-based lighting; spherical harmonics; a preview.
 #include <algorithm>
+#include <cstring>
+#include <cstdio>
+#include <cmath>
 #include <array>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +13,10 @@
 #include "batch.h"
 #include "commands.h"
 #include "common.h"
+#include "texproc/block_decode.h"
+#include "texproc/block_encode.h"
+#include "texproc/metrics.h"
+#include "texproc/texture.h"
 #include "texproc/color.h"
 #include "texproc/container.h"
 #include "texproc/cubemap.h"
@@ -32,7 +39,7 @@ struct CubemapArgs {
   BatchInputs io;
   std::vector<std::string> faces;
   std::string layout = "auto", to = "auto", format, color_space, flip = "none", ibl = "none";
-  std::string irradiance_path, sh_path, preview_path, dds_header = "auto";
+  std::string irradiance_path, sh_path, preview_path, dds_header = "auto", quality = "normal";
   bool linear = false, mips = false, report = false;
   int size = 0, levels = 0, equirect_width = 0, irradiance_size = 32, samples = 512, zstd = 0;
   float exposure = 1.0f;
@@ -42,7 +49,13 @@ struct CubemapArgs {
   CubeFlip flip_axis = CubeFlip::none;
   DdsHeader header = DdsHeader::automatic;
   bool output_is_folder = false;
+  Quality q = Quality::normal;
 };
+
+// A block-compressed --format (bc6h, bc7, astc-6x6-hdr...), not a plain one.
+bool is_block_format(const std::string& format) {
+  return !format.empty() && format != "rgba8" && format != "rgba16f" && format != "rgba32f";
+}
 
 Target parse_target(const std::string& s) {
   static const std::pair<const char*, Target> kNames[] = {
@@ -69,8 +82,21 @@ void validate(CubemapArgs& a) {
   a.flip_axis = parse_cube_flip(a.flip);
   a.header = parse_dds_header(a.dds_header);
   if (a.layout != "auto") parse_cube_layout(a.layout);
-  if (!a.format.empty() && a.format != "rgba8" && a.format != "rgba16f" && a.format != "rgba32f") {
-    throw Error(ErrorCode::bad_arguments, "--format " + a.format + ": valid: rgba8, rgba16f, rgba32f");
+  a.q = parse_quality(a.quality);
+  if (is_block_format(a.format)) {
+    TexelFormat f;
+    try {
+      f = block_format_for(a.format, false);
+    } catch (const Error&) {
+      throw Error(ErrorCode::bad_arguments, "--format " + a.format +
+                                                ": valid: rgba8, rgba16f, rgba32f, or a block format (bc6h, bc6hs, "
+                                                "bc7, bc1, bc3, etc2, etc2a, astc-WxH, astc-WxH-hdr)");
+    }
+    if (format_info(f).channels < 3) {
+      throw Error(ErrorCode::bad_arguments,
+                  "--format " + a.format + " holds " + std::to_string(format_info(f).channels) +
+                      " channel(s); a cube map's colour needs RGB (bc6h or astc-WxH-hdr for HDR, bc7 or astc-WxH)");
+    }
   }
   if (a.size < 0 || a.size > 16384) throw Error(ErrorCode::bad_arguments, "--size: a face of 1 to 16384 texels");
   if (a.irradiance_size < 1 || a.irradiance_size > 1024) {
@@ -223,6 +249,7 @@ Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r
 // The texel format a cube texture gets: --format, else rgba16f for float
 // input and for IBL maps, rgba8 (sRGB when the input was) otherwise.
 TexelFormat cube_format(const CubemapArgs& a, const Source& s, bool lighting) {
+  if (is_block_format(a.format)) return block_format_for(a.format, s.srgb());
   if (a.format == "rgba32f") return TexelFormat::rgba32_float;
   if (a.format == "rgba16f" || (a.format.empty() && (s.hdr || lighting))) return TexelFormat::rgba16_float;
   return s.srgb() ? TexelFormat::rgba8_srgb : TexelFormat::rgba8_unorm;
@@ -240,34 +267,40 @@ float peak_value(const Cubemap& c) {
   return peak;
 }
 
-void warn_if_clipped(const std::string& input, const std::string& output, const Cubemap& c,
+void warn_if_clipped(const std::string& input, const std::string& output, const Cubemap& c, TexelFormat format,
                      std::vector<std::string>& w) {
   const float peak = peak_value(c);
   if (peak > 1.0f) {
     std::ostringstream m;
-    m << input << ": values up to " << peak << " are clipped to 1 in " << output
-      << " (8-bit); --format rgba16f or an .exr output keeps them";
+    m << input << ": values up to " << peak << " are clipped to 1 in " << output << " (" << format_info(format).name
+      << "); --format rgba16f, bc6h or astc-WxH-hdr, or an .exr output keeps them";
     w.push_back(m.str());
   }
 }
 
-void write_cube(const CubemapArgs& a, const Source& s, const Cubemap& c, const std::string& output, bool lighting,
-                std::vector<std::string>& warnings) {
+// Writes the cube texture; for a block format, returns each level's error (level_errors).
+std::vector<double> write_cube(const CubemapArgs& a, const Source& s, const Cubemap& c, const std::string& output,
+                               bool lighting, std::vector<std::string>& warnings) {
   const TexelFormat format = cube_format(a, s, lighting);
-  const bool eight_bit = format == TexelFormat::rgba8_srgb || format == TexelFormat::rgba8_unorm;
-  if (eight_bit) warn_if_clipped(s.input, output, c, warnings);
-  const ColorSpace out_space = eight_bit && s.srgb() ? ColorSpace::srgb() : ColorSpace::linear();
+  const FormatInfo& info = format_info(format);
+  if (!info.is_float) warn_if_clipped(s.input, output, c, format, warnings);
+  const ColorSpace out_space = info.srgb ? ColorSpace::srgb() : ColorSpace::linear();
   std::vector<std::vector<Image>> chains(6);
   for (const CubeLevel& l : c.levels)
     for (int f = 0; f < 6; ++f) {
-      chains[f].push_back(eight_bit ? from_linear_rgba(l.faces[f].view(), out_space, 4, PixelType::u8)
-                                    : from_linear_rgba(l.faces[f].view(), ColorSpace::linear(), 4, PixelType::f32));
+      chains[f].push_back(info.is_float ? from_linear_rgba(l.faces[f].view(), ColorSpace::linear(), 4, PixelType::f32)
+                                        : from_linear_rgba(l.faces[f].view(), out_space, 4, PixelType::u8));
     }
-  write_texture(
-      output,
-      texture_from_surfaces(std::move(chains), {.faces = 6},
-                            {.srgb = format == TexelFormat::rgba8_srgb, .half = format == TexelFormat::rgba16_float}),
-      a.header, zstd_level_for(a.zstd, output));
+  if (!info.compressed) {
+    write_texture(output,
+                  texture_from_surfaces(std::move(chains), {.faces = 6},
+                                        {.srgb = info.srgb, .half = format == TexelFormat::rgba16_float}),
+                  a.header, zstd_level_for(a.zstd, output));
+    return {};
+  }
+  const Texture t = compress_texture(chains, {.faces = 6}, format, a.q);
+  write_texture(output, t, a.header, zstd_level_for(a.zstd, output));
+  return level_errors(chains, t);
 }
 
 bool any_above_one(const std::vector<Image>& levels) {
@@ -309,9 +342,11 @@ void write_images(const Source& s, const std::vector<Image>& levels, const std::
   }
 }
 
-// One cube map (every level it has) to the files files_for named.
-void write_environment(const CubemapArgs& a, const Source& s, const Cubemap& c, const std::vector<std::string>& files,
-                       bool lighting, std::vector<std::string>& warnings) {
+// One cube map (every level it has) to the files files_for named; a
+// block-compressed cube texture's level errors (write_cube).
+std::vector<double> write_environment(const CubemapArgs& a, const Source& s, const Cubemap& c,
+                                      const std::vector<std::string>& files, bool lighting,
+                                      std::vector<std::string>& warnings) {
   const Target t = target_for(a, files[0]);
   if (t == Target::cube) return write_cube(a, s, c, files[0], lighting, warnings);
   if (t == Target::faces) {
@@ -320,7 +355,7 @@ void write_environment(const CubemapArgs& a, const Source& s, const Cubemap& c, 
       for (const CubeLevel& l : c.levels) levels.push_back(l.faces[f]);
       write_images(s, levels, files[f], warnings);
     }
-    return;
+    return {};
   }
   std::vector<Image> images;
   for (int l = 0; l < int(c.levels.size()); ++l) {
@@ -345,6 +380,7 @@ void write_environment(const CubemapArgs& a, const Source& s, const Cubemap& c, 
     }
   }
   write_images(s, images, files[0], warnings);
+  return {};
 }
 
 void write_sh(const std::string& path, const SphericalHarmonics9& sh) {
@@ -379,6 +415,14 @@ void run_cubemap(const CubemapArgs& a, const std::string& input, const std::stri
     } else if (a.zstd != 0 || a.dds_header != "auto") {
       throw Error(ErrorCode::bad_arguments, output + ": --zstd and --dds-header are for cube textures (.ktx2, .dds)");
     }
+    if (is_block_format(a.format)) {
+      for (const std::vector<std::string>* files : {&plan.main, &plan.irradiance}) {
+        if (!files->empty() && target_for(a, (*files)[0]) != Target::cube) {
+          throw Error(ErrorCode::bad_arguments, (*files)[0] + ": --format " + a.format +
+                                                    " is a texture format: write a cube texture (.ktx2, .dds, .ktx)");
+        }
+      }
+    }
     Source s = read_source(a, input, r, phases);
     const int levels = a.levels;
     Cubemap& env = s.cube;  // its level 0 is the source of the lighting below
@@ -396,8 +440,10 @@ void run_cubemap(const CubemapArgs& a, const std::string& input, const std::stri
     const Cubemap& main = a.mode == Ibl::specular || a.mode == Ibl::both ? specular
                           : a.mode == Ibl::irradiance                    ? irradiance
                                                                          : env;
-    write_environment(a, s, main, plan.main, a.mode != Ibl::none, r.warnings);
-    if (!plan.irradiance.empty()) write_environment(a, s, irradiance, plan.irradiance, true, r.warnings);
+    const std::vector<double> errors = write_environment(a, s, main, plan.main, a.mode != Ibl::none, r.warnings);
+    std::vector<double> irradiance_errors;
+    if (!plan.irradiance.empty())
+      irradiance_errors = write_environment(a, s, irradiance, plan.irradiance, true, r.warnings);
     if (!plan.sh.empty()) write_sh(plan.sh, project_sh9(env));
     if (!plan.preview.empty()) {
       const Image p = render_cube_preview(env, specular.levels.empty() ? nullptr : &specular, a.exposure);
@@ -408,6 +454,24 @@ void run_cubemap(const CubemapArgs& a, const std::string& input, const std::stri
     line << input << " -> " << output << ": " << s.layout << " -> cube " << main.size() << ", " << main.levels.size()
          << (main.levels.size() == 1 ? " level" : " levels");
     if (a.mode != Ibl::none) line << ", " << a.ibl << " IBL";
+    if (!errors.empty()) {
+      const bool hdr = format_info(cube_format(a, s, a.mode != Ibl::none)).is_float;
+      line << ", " << a.format << " error per level (" << (hdr ? "log2 RMSE" : "PSNR dB") << "):";
+      Json::Value per(Json::arrayValue);
+      for (double e : errors) {
+        char b[32];
+        std::snprintf(b, sizeof b, hdr ? " %.4f" : " %.2f", e);
+        line << b;
+        per.append(std::isfinite(e) ? Json::Value(e) : Json::Value());
+      }
+      r.details[hdr ? "level_log2_rmse" : "level_psnr"] = per;
+    }
+    if (!irradiance_errors.empty()) {
+      const bool hdr = format_info(cube_format(a, s, true)).is_float;
+      Json::Value per(Json::arrayValue);
+      for (double e : irradiance_errors) per.append(std::isfinite(e) ? Json::Value(e) : Json::Value());
+      r.details[hdr ? "irradiance_log2_rmse" : "irradiance_psnr"] = per;
+    }
     if (!plan.irradiance.empty()) line << ", irradiance " << plan.irradiance[0];
     if (!plan.sh.empty()) line << ", SH " << plan.sh;
     if (!plan.preview.empty()) line << ", preview " << plan.preview;
@@ -473,7 +537,11 @@ void add_cubemap_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--format", args->format,
                   "Cube texture format: rgba8 (sRGB for sRGB input), rgba16f, rgba32f (default: rgba16f for float "
-                  "input and IBL, rgba8 otherwise)");
+                  "input and IBL, rgba8 otherwise), or a block format as compress names them: bc6h, bc6hs, "
+                  "astc-WxH-hdr (HDR), bc7, bc1, bc3, etc2, etc2a, astc-WxH (sRGB for sRGB input); every map written "
+                  "(the cube and its chain, the specular chain, the irradiance map) gets it, and the error of each "
+                  "level is reported");
+  cmd->add_option("--quality", args->quality, "With a block --format: fast, normal, high, max")->capture_default_str();
   cmd->add_option("--colorspace", args->color_space,
                   "Source color space (default: srgb for 8/16-bit, linear for float)");
   cmd->add_flag("--linear", args->linear, "The input is data: no transfer function");

@@ -14,7 +14,9 @@
 #include <unistd.h>
 
 #include "batch.h"
+#include "texproc/block_decode.h"
 #include "texproc/error.h"
+#include "texproc/metrics.h"
 #include "texproc/tools.h"
 
 namespace fs = std::filesystem;
@@ -391,6 +393,37 @@ std::string join(const std::vector<std::string>& items, const char* sep) {
   std::string s;
   for (const auto& i : items) s += (s.empty() ? "" : sep) + i;
   return s;
+}
+
+std::vector<double> level_errors(const std::vector<std::vector<Image>>& encoded, const Texture& t) {
+  std::vector<double> out;
+  const int surfaces = int(encoded.size());
+  for (std::uint32_t l = 0; l < t.levels; ++l) {
+    const int n = encoded[0][l].height();
+    const int width = encoded[0][l].width();
+    const PixelType type = encoded[0][l].type();
+    ImageRows a{{nullptr, width, surfaces * n, encoded[0][l].channels(), type, 0},
+                [&](int y0, int y1, void* dst, std::size_t stride) {
+                  for (int y = y0; y < y1; ++y) {
+                    const Image& surface = encoded[y / n][l];
+                    std::memcpy(static_cast<std::uint8_t*>(dst) + std::size_t(y - y0) * stride,
+                                surface.row<std::uint8_t>(y % n), surface.row_stride());
+                  }
+                }};
+    ImageRows b{{nullptr, width, surfaces * n, format_info(t.format).channels, type, 0},
+                [&](int y0, int y1, void* dst, std::size_t stride) {
+                  for (int y = y0; y < y1;) {
+                    const int s = y / n, end = std::min(y1, (s + 1) * n);
+                    decode_texture_rows(t, l, std::uint32_t(s) / t.faces, std::uint32_t(s) % t.faces, type, y - s * n,
+                                        end - s * n, static_cast<std::uint8_t*>(dst) + std::size_t(y - y0) * stride,
+                                        stride);
+                    y = end;
+                  }
+                }};
+    const ImageDifference d = compare_image_rows(a, b, std::min(3, format_info(t.format).channels));
+    out.push_back(format_info(t.format).is_float ? d.log_rmse_rgb() : d.psnr_rgb());
+  }
+  return out;
 }
 
 }  // namespace texproc::cli

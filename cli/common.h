@@ -122,4 +122,10 @@ CLI::Validator in_range(double lo, double hi, bool lo_open = false);
 // "Strings like a, b, c" for messages.
 std::string join(const std::vector<std::string>& items, const char* sep = ", ");
 
+// The error of each level of a block-compressed texture against the images
+// it encoded (encoded[layer * faces + face][level]), every surface pooled,
+// a block of rows at a time: log2 RMSE over RGB for HDR formats, PSNR over
+// RGB (the channels the format has, up to three) for the others.
+std::vector<double> level_errors(const std::vector<std::vector<Image>>& encoded, const Texture& t);
+
 }  // namespace texproc::cli
