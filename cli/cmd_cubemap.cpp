@@ -8,11 +8,13 @@
 #include <array>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "batch.h"
 #include "commands.h"
 #include "common.h"
+#include "cubemap_cli.h"
 #include "texproc/block_decode.h"
 #include "texproc/block_encode.h"
 #include "texproc/metrics.h"
@@ -28,34 +30,17 @@
 namespace fs = std::filesystem;
 
 namespace texproc::cli {
+
+namespace cube_cli {
+Target target_for(const CubemapArgs& a, const std::string& output) {
+  if (a.target != Target::automatic) return a.target;
+  return is_container_path(output) ? Target::cube : Target::cross;
+}
+}  // namespace cube_cli
+
 namespace {
 
-const char* kFaceNames[6] = {"px", "nx", "py", "ny", "pz", "nz"};
-
-enum class Target { automatic, cube, cross, vcross, strip, vstrip, equirect, faces };
-enum class Ibl { none, specular, irradiance, both };
-
-struct CubemapArgs {
-  BatchInputs io;
-  std::vector<std::string> faces;
-  std::string layout = "auto", to = "auto", format, color_space, flip = "none", ibl = "none";
-  std::string irradiance_path, sh_path, preview_path, dds_header = "auto", quality = "normal";
-  bool linear = false, mips = false, report = false;
-  int size = 0, levels = 0, equirect_width = 0, irradiance_size = 32, samples = 512, zstd = 0;
-  float exposure = 1.0f;
-  // From the options, once (validate):
-  Target target = Target::automatic;
-  Ibl mode = Ibl::none;
-  CubeFlip flip_axis = CubeFlip::none;
-  DdsHeader header = DdsHeader::automatic;
-  bool output_is_folder = false;
-  Quality q = Quality::normal;
-};
-
-// A block-compressed --format (bc6h, bc7, astc-6x6-hdr...), not a plain one.
-bool is_block_format(const std::string& format) {
-  return !format.empty() && format != "rgba8" && format != "rgba16f" && format != "rgba32f";
-}
+using namespace cube_cli;
 
 Target parse_target(const std::string& s) {
   static const std::pair<const char*, Target> kNames[] = {
@@ -136,12 +121,6 @@ void validate(CubemapArgs& a) {
   for (const std::string& f : a.faces) record_input(f);
 }
 
-// What -o holds for this output name.
-Target target_for(const CubemapArgs& a, const std::string& output) {
-  if (a.target != Target::automatic) return a.target;
-  return is_container_path(output) ? Target::cube : Target::cross;
-}
-
 // Where a folder output's images go: the input's extension, or for inputs
 // that are containers or lossy, .exr for float and .png otherwise.
 std::string image_extension_for(const std::string& input, const std::string& output) {
@@ -157,19 +136,6 @@ std::string with_suffix(const std::string& output, const std::string& suffix, co
   const fs::path p(output);
   return (p.parent_path() / (p.stem().string() + suffix + ext)).string();
 }
-
-struct Plan {
-  std::vector<std::string> main;        // the environment (or IBL map) files
-  std::vector<std::string> irradiance;  // --ibl both
-  std::string sh, preview;
-  std::vector<std::string> all() const {
-    std::vector<std::string> v = main;
-    v.insert(v.end(), irradiance.begin(), irradiance.end());
-    for (const std::string* s : {&sh, &preview})
-      if (!s->empty()) v.push_back(*s);
-    return v;
-  }
-};
 
 // OUT gets a chain of levels (else one level).
 bool writes_chain(const CubemapArgs& a) { return a.mips || a.mode == Ibl::specular || a.mode == Ibl::both; }
@@ -199,25 +165,21 @@ std::vector<std::string> files_for(const CubemapArgs& a, const std::string& inpu
   return names;
 }
 
-Plan make_plan(const CubemapArgs& a, const std::string& input, const std::string& output) {
+// --irradiance, --sh and --preview take templates as -o does.
+Plan make_plan(const CubemapArgs& a, const InputFile& in, const std::string& output) {
+  auto named = [&](const std::string& path) { return is_template(path) ? expand_template(path, in) : path; };
   Plan p;
-  p.main = files_for(a, input, output, "", writes_chain(a));
+  p.main = files_for(a, in.path, output, "", writes_chain(a));
   if (a.mode == Ibl::both) {
-    p.irradiance = a.irradiance_path.empty() ? files_for(a, input, output, "_irradiance", false)
-                                             : files_for(a, input, a.irradiance_path, "", false);
+    p.irradiance = a.irradiance_path.empty() ? files_for(a, in.path, output, "_irradiance", false)
+                                             : files_for(a, in.path, named(a.irradiance_path), "", false);
   }
-  p.sh = a.sh_path;
-  p.preview = a.preview_path;
+  p.sh = a.sh_path.empty() ? "" : named(a.sh_path);
+  p.preview = a.preview_path.empty() ? "" : named(a.preview_path);
   return p;
 }
 
 // ---- Reading ------------------------------------------------------------------
-
-// The cube as read, and the file messages name (the +X face for --faces).
-struct Source : CubemapSource {
-  std::string input;
-  bool srgb() const { return color_space.is_srgb(); }  // rgba8 outputs say so
-};
 
 Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r, PhaseTimer& phases) {
   CubemapReadOptions o;
@@ -244,171 +206,10 @@ Source read_source(const CubemapArgs& a, const std::string& input, FileReport& r
   return Source{std::move(c), a.faces.empty() ? input : a.faces[0]};
 }
 
-// ---- Writing ------------------------------------------------------------------
-
-// The texel format a cube texture gets: --format, else rgba16f for float
-// input and for IBL maps, rgba8 (sRGB when the input was) otherwise.
-TexelFormat cube_format(const CubemapArgs& a, const Source& s, bool lighting) {
-  if (is_block_format(a.format)) return block_format_for(a.format, s.srgb());
-  if (a.format == "rgba32f") return TexelFormat::rgba32_float;
-  if (a.format == "rgba16f" || (a.format.empty() && (s.hdr || lighting))) return TexelFormat::rgba16_float;
-  return s.srgb() ? TexelFormat::rgba8_srgb : TexelFormat::rgba8_unorm;
-}
-
-// The largest colour value, for the clipping warning.
-float peak_value(const Cubemap& c) {
-  float peak = 0;
-  for (const CubeLevel& l : c.levels)
-    for (const Image& f : l.faces) {
-      const float* p = f.row<float>(0);
-      for (std::size_t k = 0; k < std::size_t(l.size) * l.size * 4; ++k)
-        if (k % 4 != 3) peak = std::max(peak, p[k]);
-    }
-  return peak;
-}
-
-void warn_if_clipped(const std::string& input, const std::string& output, const Cubemap& c, TexelFormat format,
-                     std::vector<std::string>& w) {
-  const float peak = peak_value(c);
-  if (peak > 1.0f) {
-    std::ostringstream m;
-    m << input << ": values up to " << peak << " are clipped to 1 in " << output << " (" << format_info(format).name
-      << "); --format rgba16f, bc6h or astc-WxH-hdr, or an .exr output keeps them";
-    w.push_back(m.str());
-  }
-}
-
-// Writes the cube texture; for a block format, returns each level's error (level_errors).
-std::vector<double> write_cube(const CubemapArgs& a, const Source& s, const Cubemap& c, const std::string& output,
-                               bool lighting, std::vector<std::string>& warnings) {
-  const TexelFormat format = cube_format(a, s, lighting);
-  const FormatInfo& info = format_info(format);
-  if (!info.is_float) warn_if_clipped(s.input, output, c, format, warnings);
-  const ColorSpace out_space = info.srgb ? ColorSpace::srgb() : ColorSpace::linear();
-  std::vector<std::vector<Image>> chains(6);
-  for (const CubeLevel& l : c.levels)
-    for (int f = 0; f < 6; ++f) {
-      chains[f].push_back(info.is_float ? from_linear_rgba(l.faces[f].view(), ColorSpace::linear(), 4, PixelType::f32)
-                                        : from_linear_rgba(l.faces[f].view(), out_space, 4, PixelType::u8));
-    }
-  if (!info.compressed) {
-    write_texture(output,
-                  texture_from_surfaces(std::move(chains), {.faces = 6},
-                                        {.srgb = info.srgb, .half = format == TexelFormat::rgba16_float}),
-                  a.header, zstd_level_for(a.zstd, output));
-    return {};
-  }
-  const Texture t = compress_texture(chains, {.faces = 6}, format, a.q);
-  write_texture(output, t, a.header, zstd_level_for(a.zstd, output));
-  return level_errors(chains, t);
-}
-
-bool any_above_one(const std::vector<Image>& levels) {
-  for (const Image& l : levels)
-    for (int y = 0; y < l.height(); ++y) {
-      const float* row = l.row<float>(y);
-      for (int x = 0; x < l.width(); ++x)
-        if (row[4 * x] > 1.0f || row[4 * x + 1] > 1.0f || row[4 * x + 2] > 1.0f) return true;
-    }
-  return false;
-}
-
-// Images in a file: float to .exr/.hdr/.tif (half in EXR), bytes elsewhere;
-// several levels go into one MIP-mapped .exr or .tif.
-void write_images(const Source& s, const std::vector<Image>& levels, const std::string& output,
-                  std::vector<std::string>& warnings) {
-  const std::string ext = fs::path(output).extension().string();
-  const bool keeps_float = ext == ".exr" || ext == ".hdr" || ext == ".tif" || ext == ".tiff" || ext == ".pfm";
-  const int channels = s.alpha ? 4 : 3;
-  std::vector<Image> out;
-  WriteOptions w = cli_write_options();
-  if (keeps_float) {
-    for (const Image& l : levels)
-      out.push_back(from_linear_rgba(l.view(), ColorSpace::linear(), channels, PixelType::f32));
-    w.half = ext == ".exr";
-    w.color_space = "linear";
-  } else {
-    if (any_above_one(levels)) {
-      warnings.push_back(s.input + ": values above 1 are clipped in " + output + " (8-bit); write .exr to keep them");
-    }
-    const ColorSpace space = s.srgb() ? ColorSpace::srgb() : ColorSpace::linear();
-    for (const Image& l : levels) out.push_back(from_linear_rgba(l.view(), space, channels, PixelType::u8));
-    w.color_space = s.srgb() ? "srgb" : "linear";
-  }
-  if (out.size() == 1) {
-    write_image(output, out[0].view(), w);
-  } else {
-    write_mip_file(output, out, w);
-  }
-}
-
-// One cube map (every level it has) to the files files_for named; a
-// block-compressed cube texture's level errors (write_cube).
-std::vector<double> write_environment(const CubemapArgs& a, const Source& s, const Cubemap& c,
-                                      const std::vector<std::string>& files, bool lighting,
-                                      std::vector<std::string>& warnings) {
-  const Target t = target_for(a, files[0]);
-  if (t == Target::cube) return write_cube(a, s, c, files[0], lighting, warnings);
-  if (t == Target::faces) {
-    for (int f = 0; f < 6; ++f) {
-      std::vector<Image> levels;
-      for (const CubeLevel& l : c.levels) levels.push_back(l.faces[f]);
-      write_images(s, levels, files[f], warnings);
-    }
-    return {};
-  }
-  std::vector<Image> images;
-  for (int l = 0; l < int(c.levels.size()); ++l) {
-    switch (t) {
-      case Target::equirect: {
-        const int w = a.equirect_width > 0 ? a.equirect_width : 4 * c.levels[0].size;
-        images.push_back(cubemap_to_equirect(c, std::max(2, w >> l), l));
-        break;
-      }
-      case Target::vcross:
-        images.push_back(cubemap_to_layout(c, CubeLayout::cross_vertical, l));
-        break;
-      case Target::strip:
-        images.push_back(cubemap_to_layout(c, CubeLayout::strip_horizontal, l));
-        break;
-      case Target::vstrip:
-        images.push_back(cubemap_to_layout(c, CubeLayout::strip_vertical, l));
-        break;
-      default:
-        images.push_back(cubemap_to_layout(c, CubeLayout::cross_horizontal, l));
-        break;
-    }
-  }
-  write_images(s, images, files[0], warnings);
-  return {};
-}
-
-void write_sh(const std::string& path, const SphericalHarmonics9& sh) {
-  static const char* kNames[9] = {"Y00", "Y1-1", "Y10", "Y11", "Y2-2", "Y2-1", "Y20", "Y21", "Y22"};
-  static constexpr double kBand[9] = {1.0, 2.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0, 0.25, 0.25, 0.25, 0.25, 0.25};
-  Json::Value order(Json::arrayValue), radiance(Json::arrayValue), irradiance(Json::arrayValue);
-  for (int k = 0; k < 9; ++k) {
-    Json::Value r(Json::arrayValue), e(Json::arrayValue);
-    for (int c = 0; c < 3; ++c) {
-      r.append(sh.radiance[k][c]);
-      e.append(kBand[k] * sh.radiance[k][c]);
-    }
-    order.append(kNames[k]);
-    radiance.append(r);
-    irradiance.append(e);
-  }
-  Json::Value j(Json::objectValue);
-  j["basis"] = "real spherical harmonics, Ramamoorthi and Hanrahan 2001, texproc axes (docs/cubemap.md)";
-  j["order"] = order;
-  j["radiance"] = radiance;
-  j["irradiance_over_pi"] = irradiance;
-  write_file_atomic(path, to_json(j, kExactDigits) + "\n");
-}
-
 void run_cubemap(const CubemapArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   try {
     PhaseTimer phases(r);
-    const Plan plan = make_plan(a, input, output);
+    const Plan plan = a.plans.at(input);
     if (target_for(a, output) == Target::cube) {
       zstd_level_for(a.zstd, output);
       check_dds_header_fits(a.dds_header, output);
@@ -552,7 +353,8 @@ void add_cubemap_command(CLI::App& app) {
       ->capture_default_str()
       ->group("Lighting");
   g.add_option("--irradiance", args->irradiance_path,
-               "--ibl both: the irradiance map's file (default {stem}_irradiance{ext})")
+               "--ibl both: the irradiance map's file or template ('ibl/{stem}_diffuse.ktx2'; default "
+               "{stem}_irradiance{ext} beside OUT)")
       ->group("Lighting");
   g.add_option("--irradiance-size", args->irradiance_size, "Irradiance map face size")
       ->check(in_range(1, 4096))
@@ -562,9 +364,14 @@ void add_cubemap_command(CLI::App& app) {
       ->check(in_range(1, 1 << 20))
       ->capture_default_str()
       ->group("Lighting");
-  g.add_option("--sh", args->sh_path, "Write the 9 spherical-harmonic coefficients of the radiance (JSON)")
+  g.add_option("--sh", args->sh_path,
+               "Write the 9 spherical-harmonic coefficients of the radiance (JSON; a template such as "
+               "'ibl/{stem}_sh.json' for several inputs)")
       ->group("Lighting");
-  g.add_option("--preview", args->preview_path, "Write a PNG: every level's cross and lit spheres")->group("Lighting");
+  g.add_option("--preview", args->preview_path,
+               "Write a PNG: every level's cross and lit spheres (a template such as 'previews/{stem}.png' for "
+               "several inputs)")
+      ->group("Lighting");
   g.add_option("--exposure", args->exposure, "Preview exposure (a multiplier)")
       ->check(in_range(0, 1e9, true))
       ->capture_default_str()
@@ -589,7 +396,10 @@ void add_cubemap_command(CLI::App& app) {
         args->io.output = (fs::path(args->io.output) / "{stem}").string();
       }
     };
-    c.plan = [args](const InputFile& in, const std::string& out) { return make_plan(*args, in.path, out).all(); };
+    c.plan = [args](const InputFile& in, const std::string& out) {
+      // Planned once per file before any work; run_cubemap reads it back.
+      return args->plans.insert_or_assign(in.path, make_plan(*args, in, out)).first->second.all();
+    };
     c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_cubemap(*args, in, out, r); };
     return run_batch(c, args->io);
   });

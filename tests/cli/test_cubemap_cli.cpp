@@ -249,4 +249,21 @@ TEST(CubemapCli, CompressedIblEveryMapEveryLevel) {
   fs::remove_all(dir);
 }
 
+// --irradiance, --sh and --preview take templates as -o does: one set of
+// files for each input.
+TEST(CubemapCli, LightingOutputsTakeTemplates) {
+  const std::string dir = temp_dir("cubetemplates");
+  write_image(dir + "/a.exr", direction_panorama(64).view());
+  write_image(dir + "/b.exr", direction_panorama(32).view());
+  const test::RunResult r = run_texproc("cubemap '" + dir + "/a.exr' '" + dir + "/b.exr' -o '" + dir +
+                                        "/out/{stem}.ktx2' --ibl both --size 8 --samples 16 --irradiance '" + dir +
+                                        "/out/{stem}_diffuse.ktx2' --sh '" + dir + "/out/{stem}_sh.json' --preview '" +
+                                        dir + "/out/{stem}_preview.png' -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* stem : {"a", "b"})
+    for (const char* suffix : {".ktx2", "_diffuse.ktx2", "_sh.json", "_preview.png"})
+      EXPECT_TRUE(fs::exists(dir + "/out/" + stem + suffix)) << stem << suffix;
+  fs::remove_all(dir);
+}
+
 }  // namespace texproc
