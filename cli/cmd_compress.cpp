@@ -29,6 +29,7 @@ namespace texproc::cli {
 namespace {
 
 struct CompressArgs {
+  ChannelArgs channels;
   BatchInputs io;
   ChainArgs chain;
   std::string format, quality = "normal", wrap = "clamp", dds_header = "auto";
@@ -62,6 +63,7 @@ void warn_if_dx10_for_dxt(const CompressArgs& a, TexelFormat format, const std::
 }
 
 void validate(CompressArgs& a) {
+  validate_channel_options(a.channels);
   if (a.linear && a.srgb) throw Error(ErrorCode::bad_arguments, "--srgb and --linear contradict each other");
   a.q = parse_quality(a.quality);
   a.header = parse_dds_header(a.dds_header);
@@ -196,7 +198,10 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
                                               input + " has one level: add --mips to make a chain");
   }
   for (std::vector<Image>& chain : in.chains)
-    for (Image& im : chain) read_as_finite(input, im, r.warnings);
+    for (Image& im : chain) {
+      read_as_finite(input, im, r.warnings);
+      apply_channel_options(a.channels, im);
+    }
   phases.read_done();
   const PixelType input_type = in.chains[0][0].type();
   // Colour is sRGB unless --linear, a normal map, or float input.
@@ -331,6 +336,7 @@ void add_compress_command(CLI::App& app) {
   cmd->add_flag("--no-premultiply", args->no_premultiply,
                 "With --mips: filter colour without weighting it by alpha (an alpha channel that holds data)");
   add_chain_options(*cmd, args->chain);
+  add_channel_options(*cmd, args->channels);
   cmd->add_option("--dds-header", args->dds_header, "auto, dx9, dx10")->capture_default_str();
   cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")
       ->check(in_range(1, 22))

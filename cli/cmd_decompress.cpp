@@ -23,6 +23,7 @@ struct DecompressArgs {
   std::string type;
   int level = 0, layer = 0, face = 0;
   bool all_levels = false;
+  ChannelArgs channels;
   // From the options, once (validate):
   std::optional<PixelType> type_choice;
   WriteOptions write = cli_write_options();
@@ -82,6 +83,7 @@ void run_decompress(const DecompressArgs& a, const std::string& input, const std
         std::copy(row.begin(), row.end(), img.row<float>(y));
       }
     }
+    apply_channel_options(a.channels, img);
     return img;
   };
   if (a.all_levels && holds_mip_levels(output) && t.levels > 1) {
@@ -96,17 +98,30 @@ void run_decompress(const DecompressArgs& a, const std::string& input, const std
       ImageView shape;
       shape.width = int(t.level_width(l));
       shape.height = int(t.level_height(l));
-      shape.channels = format_info(t.format).channels;
+      const int decoded_channels = format_info(t.format).channels;
+      shape.channels = mapped_channels(a.channels.map, decoded_channels);
       shape.type = *type;
-      const RowSource rows = [&](int y0, int y1, void* dst, std::size_t stride) {
+      const bool mapped = !a.channels.map.identity();
+      // Rows as decoded; with a channel map, a band decoded apart and then mapped into place.
+      const RowSource decoded = [&](int y0, int y1, void* dst, std::size_t stride) {
         decode_texture_rows(t, l, std::uint32_t(a.layer), std::uint32_t(a.face), *type, y0, y1, dst, stride);
         if (!to_linear) return;
-        std::vector<float> lin(std::size_t(shape.width) * shape.channels);
+        std::vector<float> lin(std::size_t(shape.width) * decoded_channels);
         for (int y = y0; y < y1; ++y) {
           float* row = reinterpret_cast<float*>(static_cast<std::uint8_t*>(dst) + std::size_t(y - y0) * stride);
-          ColorSpace::srgb().decode_row(row, PixelType::f32, shape.channels, shape.width, lin.data());
+          ColorSpace::srgb().decode_row(row, PixelType::f32, decoded_channels, shape.width, lin.data());
           std::copy(lin.begin(), lin.end(), row);
         }
+      };
+      const RowSource rows = [&](int y0, int y1, void* dst, std::size_t stride) {
+        if (!mapped) return decoded(y0, y1, dst, stride);
+        Image band = Image::uninitialized(shape.width, y1 - y0, decoded_channels, *type);
+        decoded(y0, y1, band.data(), band.row_stride());
+        ImageView out = shape;
+        out.data = dst;
+        out.height = y1 - y0;
+        out.row_stride = stride;
+        map_channels(band.view(), out, a.channels.map);
       };
       write_image(a.all_levels && r.outputs.size() > 1 ? r.outputs.at(l) : output, shape, rows, w);
       phases.compute_done();
@@ -137,13 +152,17 @@ void add_decompress_command(CLI::App& app) {
   cmd->add_option("--layer", args->layer, "Array layer (default 0)")->check(in_range(0, 65535));
   cmd->add_option("--face", args->face, "Cubemap face 0-5: +X, -X, +Y, -Y, +Z, -Z (default 0)")->check(in_range(0, 5));
   cmd->add_option("--type", args->type, "Output element type: u8, u16, f16, f32 (default u8; f16 for .exr)");
+  add_channel_options(*cmd, args->channels);
   add_common_options(*cmd);
   set_runner(*cmd, [args] {
     BatchCommand c;
     c.name = "decompress";
     c.default_extension = ".png";
     c.input_extensions = texture_extensions();
-    c.validate = [args] { args->type_choice = parse_output_type(args->type, args->write); };
+    c.validate = [args] {
+      args->type_choice = parse_output_type(args->type, args->write);
+      validate_channel_options(args->channels);
+    };
     c.plan = [args](const InputFile& in, const std::string& out) { return plan(*args, in.path, out); };
     c.run = [args](const std::string& in, const std::string& out, FileReport& r) { run_decompress(*args, in, out, r); };
     return run_batch(c, args->io);

@@ -20,6 +20,7 @@ namespace texproc::cli {
 namespace {
 
 struct MipArgs {
+  ChannelArgs channels;
   BatchInputs io;
   ChainArgs chain;
   std::string wrap = "clamp";
@@ -40,6 +41,7 @@ struct MipArgs {
 };
 
 void validate(MipArgs& a) {
+  validate_channel_options(a.channels);
   MipOptions& o = a.mip;
   o.filter.kind = parse_filter_kind(a.chain.filter);
   o.filter.sigma = a.chain.sigma;
@@ -84,7 +86,10 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
   PhaseTimer phases(r);
   ImageFileInfo info;
   ImageArray in = read_image_array(input, &info, cli_read_options());
-  for (Image& im : in.images) read_as_finite(input, im, r.warnings);
+  for (Image& im : in.images) {
+    read_as_finite(input, im, r.warnings);
+    apply_channel_options(a.channels, im);
+  }
   phases.read_done();
   check_surfaces_fit(input, in, output);
   // A half-float texture stays half float.
@@ -191,6 +196,7 @@ void add_mip_command(CLI::App& app) {
   add_batch_inputs(*cmd, args->io, "Input images (any format OpenImageIO reads)",
                    "Output file, folder (DIR/: {stem}.dds each) or template ('out/{stem}.ktx2'); see below");
   add_chain_options(*cmd, args->chain, "Options");
+  add_channel_options(*cmd, args->channels);
   cmd->add_option("--wrap", args->wrap, "Texels past the edges: clamp, repeat, mirror")->capture_default_str();
   cmd->add_option("--colorspace", args->color_space,
                   "Source color space: srgb, linear, or an OpenColorIO name (default: srgb for 8/16-bit, "

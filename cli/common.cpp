@@ -265,6 +265,28 @@ CLI::Validator in_range(double lo, double hi, bool lo_open) {
       range);
 }
 
+void add_channel_options(CLI::App& cmd, ChannelArgs& a) {
+  cmd.add_option("--swizzle", a.swizzle,
+                 "Rearrange channels as read: one to four of r, g, b, a, 0, 1, one per output channel (bgra, rrr1, "
+                 "gggr; grey reads as l, l, l, 1)")
+      ->group("Channels");
+  cmd.add_flag("--flip-green", a.flip_green,
+               "Invert green (G = max - G): OpenGL <-> DirectX normal maps (after --swizzle)")
+      ->group("Channels");
+  cmd.add_option("--invert", a.invert, "Invert these channels (some of r, g, b, a; after --swizzle)")
+      ->group("Channels");
+}
+
+void validate_channel_options(ChannelArgs& a) {
+  a.map = a.swizzle.empty() ? ChannelMap{} : parse_swizzle(a.swizzle);
+  if (!a.invert.empty()) add_inverted_channels(a.map, a.invert);
+  if (a.flip_green) add_inverted_channels(a.map, "g");
+}
+
+void apply_channel_options(const ChannelArgs& a, Image& image) {
+  if (!a.map.identity()) image = map_channels(image.view(), a.map);
+}
+
 void add_chain_options(CLI::App& cmd, ChainArgs& a, const char* group) {
   cmd.add_option("--filter", a.filter, "Mip filter: gaussian, box, triangle, kaiser, lanczos3, mitchell")
       ->capture_default_str()

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "texproc/channels.h"
 #include "texproc/image.h"
 #include "texproc/container.h"
 #include "texproc/image_io.h"
@@ -81,6 +82,18 @@ struct ChainArgs {
   int min_size = 1;
 };
 void add_chain_options(CLI::App& cmd, ChainArgs& a, const char* group = "Mip chain");
+
+// --swizzle, --flip-green, --invert: the channel map applied to the pixels
+// as read (before any colour conversion or filtering).
+struct ChannelArgs {
+  std::string swizzle, invert;
+  bool flip_green = false;
+  texproc::ChannelMap map;  // validate_channel_options sets it
+};
+void add_channel_options(CLI::App& cmd, ChannelArgs& a);
+void validate_channel_options(ChannelArgs& a);
+// `image` through a.map (nothing when it is the identity).
+void apply_channel_options(const ChannelArgs& a, texproc::Image& image);
 
 // --type u8|u16|f16|f32: the element type, and whether f32 is stored as half.
 // Empty: std::nullopt. Throws Error{bad_arguments}.

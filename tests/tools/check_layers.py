@@ -40,7 +40,7 @@ DECODERS = re.compile(r"^(bc/(bc_decode\.(cpp|h)|bptc_decode\.cpp|bptc_tables\.h
 # Each public header belongs to the layer that implements it.
 PUBLIC = {
     "error.h": "core", "runtime.h": "core", "read_limits.h": "core", "tools.h": "core", "version.h": "core",
-    "image.h": "images", "color.h": "images", "filters.h": "images", "metrics.h": "images",
+    "image.h": "images", "channels.h": "images", "color.h": "images", "filters.h": "images", "metrics.h": "images",
     "transparent_color.h": "images", "mip.h": "images", "normalmap.h": "images", "sat.h": "images",
     "conemap.h": "images", "cubemap.h": "images",
     "texture.h": "formats",
