@@ -29,6 +29,7 @@ namespace texproc::cli {
 namespace {
 
 struct CompressArgs {
+  SizeArgs size;
   ChannelArgs channels;
   BatchInputs io;
   ChainArgs chain;
@@ -63,6 +64,7 @@ void warn_if_dx10_for_dxt(const CompressArgs& a, TexelFormat format, const std::
 }
 
 void validate(CompressArgs& a) {
+  validate_size_options(a.size);
   validate_channel_options(a.channels);
   if (a.linear && a.srgb) throw Error(ErrorCode::bad_arguments, "--srgb and --linear contradict each other");
   a.q = parse_quality(a.quality);
@@ -210,6 +212,15 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   // a UNORM format's is data (as --linear).
   if (const auto t = exact_block_format(a.format); t && !format_info(*t).is_float) srgb = format_info(*t).srgb;
   const TexelFormat format = block_format_for(a.format, srgb);
+  if (!a.size.rule.empty()) {
+    if (in.chains[0].size() > 1) {
+      throw Error(ErrorCode::bad_arguments, input + ": keeps its own " + std::to_string(in.chains[0].size()) +
+                                                " levels, which --resize and the others would not match: add --mips "
+                                                "to make a chain from the resized level 0");
+    }
+    for (std::vector<Image>& chain : in.chains)
+      apply_size_options(a.size, chain[0], srgb ? "srgb" : "linear", a.normal_map);
+  }
   if (!a.clip) warn_if_clipped(input, in, format, r.warnings);
   warn_if_dx10_for_dxt(a, format, output, r.warnings);
   // HDR formats hold linear values: 8/16-bit colour is decoded from sRGB
@@ -337,6 +348,7 @@ void add_compress_command(CLI::App& app) {
                 "With --mips: filter colour without weighting it by alpha (an alpha channel that holds data)");
   add_chain_options(*cmd, args->chain);
   add_channel_options(*cmd, args->channels);
+  add_size_options(*cmd, args->size);
   cmd->add_option("--dds-header", args->dds_header, "auto, dx9, dx10")->capture_default_str();
   cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")
       ->check(in_range(1, 22))

@@ -18,6 +18,7 @@ namespace texproc::cli {
 namespace {
 
 struct ConeArgs {
+  SizeArgs size;
   BatchInputs io;
   std::string preview;
   std::string height_channel = "auto";
@@ -42,6 +43,7 @@ struct ConeArgs {
 };
 
 void validate(ConeArgs& a) {
+  validate_size_options(a.size);
   ConeMapOptions& o = a.options;
   o.depth = a.depth;
   o.max_ratio = a.max_ratio;
@@ -80,6 +82,7 @@ void run_conemap(const ConeArgs& a, const std::string& input, const std::string&
   ImageFileInfo info;
   Image img = read_image(input, &info, cli_read_options());
   read_as_finite(input, img, r.warnings);
+  apply_size_options(a.size, img, "linear");  // heights are data
   phases.read_done();
   const int width = img.width(), height = img.height();
   const PixelType out_type =
@@ -206,6 +209,7 @@ void add_conemap_command(CLI::App& app) {
   cmd->add_option("--view-angle", args->view_angle, "Preview view angle from the normal, degrees")
       ->check(in_range(0, 89))
       ->capture_default_str();
+  add_size_options(*cmd, args->size);
   add_common_options(*cmd);
   set_runner(*cmd, [args] {
     BatchCommand c;

@@ -20,6 +20,7 @@ namespace texproc::cli {
 namespace {
 
 struct MipArgs {
+  SizeArgs size;
   ChannelArgs channels;
   BatchInputs io;
   ChainArgs chain;
@@ -41,6 +42,7 @@ struct MipArgs {
 };
 
 void validate(MipArgs& a) {
+  validate_size_options(a.size);
   validate_channel_options(a.channels);
   MipOptions& o = a.mip;
   o.filter.kind = parse_filter_kind(a.chain.filter);
@@ -67,7 +69,9 @@ void validate(MipArgs& a) {
 std::vector<std::string> plan(const MipArgs& a, const std::string& input, const std::string& output) {
   if (is_container_path(output)) return {output};
   const ImageFileInfo info = probe_image(input, cli_read_options());
-  return level_outputs(output, mip_level_count(info.width, info.height, a.mip.max_levels, a.mip.min_size));
+  int width = info.width, height = info.height;
+  apply_size_rule(a.size.rule, width, height);
+  return level_outputs(output, mip_level_count(width, height, a.mip.max_levels, a.mip.min_size));
 }
 
 void report_mip(const MipArgs& a, const std::string& input, const std::string& output, const ImageFileInfo& info,
@@ -89,6 +93,7 @@ void run_mip(const MipArgs& a, const std::string& input, const std::string& outp
   for (Image& im : in.images) {
     read_as_finite(input, im, r.warnings);
     apply_channel_options(a.channels, im);
+    apply_size_options(a.size, im, o.color_space, o.normal_map);
   }
   phases.read_done();
   check_surfaces_fit(input, in, output);
@@ -197,6 +202,7 @@ void add_mip_command(CLI::App& app) {
                    "Output file, folder (DIR/: {stem}.dds each) or template ('out/{stem}.ktx2'); see below");
   add_chain_options(*cmd, args->chain, "Options");
   add_channel_options(*cmd, args->channels);
+  add_size_options(*cmd, args->size);
   cmd->add_option("--wrap", args->wrap, "Texels past the edges: clamp, repeat, mirror")->capture_default_str();
   cmd->add_option("--colorspace", args->color_space,
                   "Source color space: srgb, linear, or an OpenColorIO name (default: srgb for 8/16-bit, "

@@ -18,6 +18,7 @@ namespace texproc::cli {
 namespace {
 
 struct NormalMapArgs {
+  SizeArgs size;
   BatchInputs io;
   ChainArgs chain;
   std::string kernel = "sobel3";
@@ -43,6 +44,7 @@ struct NormalMapArgs {
 };
 
 void validate(NormalMapArgs& a) {
+  validate_size_options(a.size);
   NormalMapOptions& o = a.options;
   o.kernel = parse_gradient_kernel(a.kernel);
   o.height_channel = parse_height_channel(a.height_channel);
@@ -78,6 +80,7 @@ void run_normalmap(const NormalMapArgs& a, const std::string& input, const std::
   ImageFileInfo info;
   Image heights = read_image(input, &info, cli_read_options());
   read_as_finite(input, heights, r.warnings);
+  apply_size_options(a.size, heights, "linear");  // heights are data
   phases.read_done();
   std::optional<PixelType> type = a.type_choice;
   if (!type) type = info.type == PixelType::u8 ? PixelType::u8 : PixelType::u16;
@@ -185,6 +188,7 @@ void add_normalmap_command(CLI::App& app) {
   cmd->add_option("--zstd", args->zstd, "KTX2 output: Zstandard-supercompress each level at this level (1-22)")
       ->check(in_range(1, 22))
       ->group("Container");
+  add_size_options(*cmd, args->size);
   add_common_options(*cmd);
   set_runner(*cmd, [args] {
     BatchCommand c;

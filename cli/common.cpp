@@ -287,6 +287,55 @@ void apply_channel_options(const ChannelArgs& a, Image& image) {
   if (!a.map.identity()) image = map_channels(image.view(), a.map);
 }
 
+void add_size_options(CLI::App& cmd, SizeArgs& a) {
+  cmd.add_option("--resize", a.resize, "Resize to WxH first (0 for a side keeps the aspect ratio: 1024x0)")
+      ->group("Size");
+  cmd.add_option("--max-size", a.max_size, "At most N texels on the longer side (aspect ratio kept)")
+      ->check(in_range(1, 16384))
+      ->group("Size");
+  cmd.add_option("--pow2", a.pow2, "Each side to a power of two: up, down, nearest")->group("Size");
+  cmd.add_option("--multiple-of", a.multiple_of, "Each side rounded up to a multiple of N (4: whole blocks)")
+      ->check(in_range(1, 4096))
+      ->group("Size");
+  cmd.add_option("--resize-filter", a.filter,
+                 "Filter for --resize and the others: mitchell, lanczos3, gaussian, triangle, box, kaiser")
+      ->capture_default_str()
+      ->group("Size");
+}
+
+void validate_size_options(SizeArgs& a) {
+  a.rule = SizeRule{};
+  if (!a.resize.empty()) {
+    int w = -1, h = -1;
+    char x = 0, extra = 0;
+    if (std::sscanf(a.resize.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 0 ||
+        h < 0 || (w == 0 && h == 0) || w > 16384 || h > 16384) {
+      throw Error(ErrorCode::bad_arguments,
+                  "--resize " + a.resize + ": WxH with sides of 0 to 16384, not both 0 (0 keeps the aspect ratio)");
+    }
+    a.rule.resize_width = w;
+    a.rule.resize_height = h;
+  }
+  if (!a.pow2.empty() && a.pow2 != "up" && a.pow2 != "down" && a.pow2 != "nearest")
+    throw Error(ErrorCode::bad_arguments, "--pow2 " + a.pow2 + ": valid: up, down, nearest");
+  a.rule.max_size = a.max_size;
+  a.rule.pow2 = a.pow2;
+  a.rule.multiple_of = a.multiple_of;
+  a.resize_filter = Filter{parse_filter_kind(a.filter)};
+}
+
+void apply_size_options(const SizeArgs& a, Image& image, const std::string& color_space, bool normal_map) {
+  if (a.rule.empty()) return;
+  int w = image.width(), h = image.height();
+  apply_size_rule(a.rule, w, h);
+  if (w == image.width() && h == image.height()) return;
+  ResizeOptions o;
+  o.filter = a.resize_filter;
+  o.color_space = color_space;
+  o.normal_map = normal_map;
+  image = resize_image(image.view(), w, h, o);
+}
+
 void add_chain_options(CLI::App& cmd, ChainArgs& a, const char* group) {
   cmd.add_option("--filter", a.filter, "Mip filter: gaussian, box, triangle, kaiser, lanczos3, mitchell")
       ->capture_default_str()

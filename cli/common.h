@@ -12,6 +12,7 @@
 #include "texproc/image.h"
 #include "texproc/container.h"
 #include "texproc/image_io.h"
+#include "texproc/mip.h"
 
 namespace texproc::cli {
 
@@ -91,6 +92,22 @@ struct ChannelArgs {
   texproc::ChannelMap map;  // validate_channel_options sets it
 };
 void add_channel_options(CLI::App& cmd, ChannelArgs& a);
+
+// --resize WxH, --max-size N, --pow2 up|down|nearest, --multiple-of N,
+// --resize-filter: level 0's size, resampled (never point-sampled) from
+// the image read.
+struct SizeArgs {
+  std::string resize, pow2, filter = "mitchell";
+  int max_size = 0, multiple_of = 0;
+  texproc::SizeRule rule;  // validate_size_options sets it
+  texproc::Filter resize_filter{texproc::FilterKind::mitchell};
+};
+void add_size_options(CLI::App& cmd, SizeArgs& a);
+void validate_size_options(SizeArgs& a);
+// `image` resized by the rule (nothing when it keeps the size), in
+// `color_space` ("" as ResizeOptions), as a normal map where said.
+void apply_size_options(const SizeArgs& a, texproc::Image& image, const std::string& color_space,
+                        bool normal_map = false);
 void validate_channel_options(ChannelArgs& a);
 // `image` through a.map (nothing when it is the identity).
 void apply_channel_options(const ChannelArgs& a, texproc::Image& image);

@@ -92,6 +92,38 @@ class MipRowSink {
 // The rows' bytes are generate_mips's, for any thread count.
 MipChain generate_mips_rows(const ConstImageView& image, const MipOptions& options, MipRowSink& sink);
 
+// ---- Resizing ----------------------------------------------------------------
+
+struct ResizeOptions {
+  Filter filter{FilterKind::lanczos3};  // widened by the scale when shrinking
+  WrapMode wrap = WrapMode::clamp;      // taps past the edges
+  std::string color_space;              // empty: sRGB for u8/u16, linear for f32
+  bool premultiplied_alpha = true;      // as MipOptions
+  bool normal_map = false;              // filter the vectors, renormalize (alpha as data)
+};
+
+// `image` resized to width x height, filtered as a mip level is (linear,
+// premultiplied float, polyphase weights; the filter is widened by the
+// scale when shrinking and kept at one texel when enlarging), in its type,
+// channels and colour space. Never point sampling. Throws
+// Error{bad_arguments} for sizes below 1 or invalid options.
+Image resize_image(const ConstImageView& image, int width, int height, const ResizeOptions& options = {});
+
+// The size --resize, --max-size, --pow2 and --multiple-of give a width x
+// height image, applied in that order: `resize` W x H (0 for a side keeps
+// the aspect ratio from the other), then at most `max_size` on the longer
+// side (aspect kept, rounded, at least 1), then each side to a power of
+// two (`pow2`: "up", "down", "nearest"; empty: none), then each side to
+// a multiple of `multiple_of` (rounded up; 0 or 1: none).
+struct SizeRule {
+  int resize_width = 0, resize_height = 0;
+  int max_size = 0;
+  std::string pow2;
+  int multiple_of = 0;
+  bool empty() const { return !resize_width && !resize_height && !max_size && pow2.empty() && multiple_of <= 1; }
+};
+void apply_size_rule(const SizeRule& rule, int& width, int& height);
+
 // The fraction of texels whose alpha (last channel) times `scale` is >= ref.
 // Integer alpha is compared as value / max.
 float alpha_coverage(const ConstImageView& image, float ref, float scale = 1.0f);

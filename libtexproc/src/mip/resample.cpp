@@ -22,7 +22,10 @@ AxisWeights compute_axis_weights(int src_size, int dst_size, const Filter& filte
     return aw;
   }
   const double s = double(src_size) / dst_size;
-  const double radius = filter_support(filter) * s;
+  // Shrinking widens the filter by the scale; enlarging keeps it one source
+  // texel wide (a narrower one would fall between the texels).
+  const double scale = std::max(s, 1.0);
+  const double radius = filter_support(filter) * scale;
 
   // Collect each destination texel's weights in double, trimmed of zeros.
   std::vector<std::vector<double>> rows(dst_size);
@@ -34,8 +37,8 @@ AxisWeights compute_axis_weights(int src_size, int dst_size, const Filter& filte
     if (filter.kind == FilterKind::box) {
       // Footprint [c - s/2, c + s/2] in texel-centre coordinates; texel j
       // covers [j - 0.5, j + 0.5].
-      j0 = int(std::floor(c - s / 2 + 0.5));
-      j1 = int(std::ceil(c + s / 2 - 0.5));
+      j0 = int(std::floor(c - scale / 2 + 0.5));
+      j1 = int(std::ceil(c + scale / 2 - 0.5));
     } else {
       j0 = int(std::ceil(c - radius));
       j1 = int(std::floor(c + radius));
@@ -45,10 +48,10 @@ AxisWeights compute_axis_weights(int src_size, int dst_size, const Filter& filte
     for (int j = j0; j <= j1; ++j) {
       double v;
       if (filter.kind == FilterKind::box) {
-        const double lo = std::max(j - 0.5, c - s / 2), hi = std::min(j + 0.5, c + s / 2);
+        const double lo = std::max(j - 0.5, c - scale / 2), hi = std::min(j + 0.5, c + scale / 2);
         v = std::max(0.0, hi - lo);
       } else {
-        v = filter_eval(filter, (j - c) / s);
+        v = filter_eval(filter, (j - c) / scale);
       }
       w.push_back(v);
       sum += v;

@@ -26,7 +26,8 @@ struct AxisWeights {
 // When src_size == dst_size the weights are the identity (one tap of 1).
 // The box filter weighs each source texel by its exact overlap with the
 // destination texel's footprint; other filters are sampled at texel centres,
-// their width scaled by s, and normalized.
+// their width scaled by s, and normalized. Enlarging (s < 1) keeps the
+// filter one source texel wide.
 AxisWeights compute_axis_weights(int src_size, int dst_size, const Filter& filter);
 
 // out[x] = sum_k weights[k] * rows[k][x] for x in [0, n), summed in order of k
