@@ -50,6 +50,7 @@ void add_all_commands(CLI::App& app) {
   add_compress_command(app);
   add_decompress_command(app);
   add_convert_command(app);
+  add_pack_command(app);
   add_info_command(app);
   add_compare_command(app);
   add_build_command(app);

@@ -12,6 +12,7 @@ void add_sat_command(CLI::App& app);
 void add_conemap_command(CLI::App& app);
 void add_decompress_command(CLI::App& app);
 void add_convert_command(CLI::App& app);
+void add_pack_command(CLI::App& app);
 void add_compress_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 void add_build_command(CLI::App& app);
