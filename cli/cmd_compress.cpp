@@ -38,6 +38,9 @@ struct CompressArgs {
   float astc_effort = -1.0f;  // astc-encoder's numeric quality, in place of --quality's preset
   std::string transparent_color = "keep";
   bool mips = false, normal_map = false, linear = false, srgb = false, report = false, bc1_black = false;
+  int mips_flag = 0;             // --mips 1, --no-mips -1, neither 0 (the role's default)
+  std::string role, target;      // --role, --target: defaults for what the options leave out
+  bool web_zstd = false;         // --target web: Zstandard level 19 for KTX2 outputs
   bool clip = false;             // float input outside [0, 1] to an LDR format: meant, no warning
   float alpha_coverage = -1.0f;  // with --mips: the alpha reference whose coverage each level keeps
   bool no_premultiply = false;   // with --mips: alpha is data, not coverage
@@ -47,6 +50,58 @@ struct CompressArgs {
   TransparentColor transparent = TransparentColor::keep;
   MipOptions mip;  // with --mips; the colour space is set per file
 };
+
+// What --role chooses where the options do not: the format for each
+// --target, how the input is read, and the chain.
+struct RolePreset {
+  const char* role;
+  const char* desktop;
+  const char* mobile;
+  const char* web;
+  bool linear, normal_map, mips;
+  float alpha_coverage;  // < 0: none
+};
+constexpr RolePreset kRoles[] = {
+    {"color", "bc7", "astc-6x6", "bc7", false, false, true, -1.0f},
+    {"color-alpha", "bc7", "astc-6x6", "bc7", false, false, true, -1.0f},
+    {"cutout", "bc7", "astc-6x6", "bc7", false, false, true, 0.5f},
+    {"normal", "bc5", "eac-rg11", "bc5", true, true, true, -1.0f},
+    {"mask", "bc7", "astc-6x6", "bc7", true, false, true, -1.0f},
+    {"height", "bc4", "eac-r11", "bc4", true, false, true, -1.0f},
+    {"hdr", "bc6h", "astc-6x6-hdr", "bc6h", false, false, true, -1.0f},
+    {"ui", "bc7", "astc-4x4", "bc7", false, false, false, -1.0f},
+};
+
+// Fills in what --role and --target choose and the options left out; sets
+// a.mips from --mips/--no-mips or the role.
+void apply_role(CompressArgs& a) {
+  const RolePreset* preset = nullptr;
+  if (!a.role.empty()) {
+    std::string names;
+    for (const RolePreset& p : kRoles) {
+      if (a.role == p.role) preset = &p;
+      names += std::string(names.empty() ? "" : ", ") + p.role;
+    }
+    if (!preset) throw Error(ErrorCode::bad_arguments, "--role " + a.role + ": valid: " + names);
+  }
+  const std::string target = a.target.empty() ? "desktop" : a.target;
+  if (target != "desktop" && target != "mobile" && target != "web")
+    throw Error(ErrorCode::bad_arguments, "--target " + a.target + ": valid: desktop, mobile, web");
+  if (!a.target.empty() && !preset)
+    throw Error(ErrorCode::bad_arguments, "--target " + a.target + " picks a format for a --role: add --role");
+  a.mips = a.mips_flag > 0 || (a.mips_flag == 0 && preset && preset->mips);
+  if (!preset) {
+    if (a.format.empty())
+      throw Error(ErrorCode::bad_arguments, "--format is required (or --role ROLE [--target desktop|mobile|web])");
+    return;
+  }
+  if (a.format.empty())
+    a.format = target == "mobile" ? preset->mobile : target == "web" ? preset->web : preset->desktop;
+  if (preset->linear && !a.srgb) a.linear = true;
+  if (preset->normal_map) a.normal_map = true;
+  if (preset->alpha_coverage > 0.0f && a.alpha_coverage < 0.0f && a.mips) a.alpha_coverage = preset->alpha_coverage;
+  a.web_zstd = target == "web" && a.zstd == 0;
+}
 
 // A DXT name asks for what DX9-era tools read; sRGB colour in DDS needs the
 // DX10 header, which some of them (NVTT 2's nvdecompress) cannot read.
@@ -64,6 +119,7 @@ void warn_if_dx10_for_dxt(const CompressArgs& a, TexelFormat format, const std::
 }
 
 void validate(CompressArgs& a) {
+  apply_role(a);
   validate_size_options(a.size);
   validate_channel_options(a.channels);
   if (a.linear && a.srgb) throw Error(ErrorCode::bad_arguments, "--srgb and --linear contradict each other");
@@ -189,7 +245,9 @@ Json::Value number_or_null(double v) { return std::isfinite(v) ? Json::Value(v) 
 
 void run_compress(const CompressArgs& a, const std::string& input, const std::string& output, FileReport& r) {
   check_dds_header_fits(a.dds_header, output);
-  zstd_level_for(a.zstd, output);  // checked before any work
+  // --target web: downloads, so KTX2 outputs are Zstandard-supercompressed unless --zstd says.
+  const int zstd = a.web_zstd && container_for_path(output) == ContainerKind::ktx2 ? 19 : a.zstd;
+  zstd_level_for(zstd, output);  // checked before any work
   PhaseTimer phases(r);
   // A texture keeps its chains (the first --levels of them); --mips makes
   // new ones from level 0.
@@ -254,7 +312,7 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   phases.compute_done();
-  write_texture(output, t, a.header, zstd_level_for(a.zstd, output));
+  write_texture(output, t, a.header, zstd_level_for(zstd, output));
   phases.write_done();
   std::ostringstream line;
   line << input << " -> " << output << ": " << format_info(format).name << ", " << t.levels << " level(s), quality "
@@ -319,8 +377,12 @@ void add_compress_command(CLI::App& app) {
                   "signed: SF16); etc1, etc2, etc2a1 (punch-through alpha), "
                   "etc2a (EAC alpha), eac-r11, eac-r11s, eac-rg11, eac-rg11s; astc-4x4, astc-5x4, astc-5x5, astc-6x5, "
                   "astc-6x6, astc-8x5, astc-8x6, astc-8x8, astc-10x5, astc-10x6, astc-10x8, astc-10x10, astc-12x10, "
-                  "astc-12x12, each also -hdr (astc-6x6-hdr)")
-      ->required();
+                  "astc-12x12, each also -hdr (astc-6x6-hdr); or --role")
+      ->capture_default_str();
+  cmd->add_option("--role", args->role,
+                  "What the texture is, for the defaults the other options leave out: color, color-alpha, cutout, "
+                  "normal, mask, height, hdr, ui (the table in docs/compression.md)");
+  cmd->add_option("--target", args->target, "With --role: desktop (default), mobile, web");
   cmd->add_flag("--srgb", args->srgb, "BC1-BC3, BC7: write the sRGB format (the default for 8/16-bit colour input)");
   cmd->add_flag("--linear", args->linear, "The input is data: UNORM formats, linear mip filtering");
   cmd->add_option("--quality", args->quality, "fast, normal, high, max (widest search; slow)")->capture_default_str();
@@ -331,10 +393,12 @@ void add_compress_command(CLI::App& app) {
                   "ASTC: astc-encoder's numeric quality 0-100 in place of --quality's preset (0 -fastest, 10 -fast, "
                   "60 -medium, 98 -thorough, 99 -verythorough, 100 -exhaustive)")
       ->check(in_range(0, 100));
-  cmd->add_flag("--mips,!--no-mips", args->mips,
+  cmd->add_flag("--mips,!--no-mips", args->mips_flag,
                 "Make and compress a new mip chain from level 0 (mip options below). Without it (--no-mips, the "
-                "default) a texture input keeps every level, face and layer it has, each encoded as it is (--levels N: "
-                "its first N), and an image gives one level");
+                "default without --role) a texture input keeps every level, face and layer it has, each encoded as it "
+                "is (--levels N: "
+                "its first N), and an image gives one level; --role sets it unless given")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   cmd->add_flag("--normal-map", args->normal_map,
                 "The input is a normal map: linear, renormalized mips; bc5/eac-rg11 store X and Y, bc3 the DXT5nm "
                 "layout (X in alpha, Y in green, red 1, blue 0), astc astc-encoder's normal mode (X in RGB, Y in "
@@ -367,13 +431,21 @@ void add_compress_command(CLI::App& app) {
     BatchCommand c;
     c.name = "compress";
     std::string f = args->format;
+    bool web = false;
+    try {  // the format a --role picks (an error is validate's to report)
+      CompressArgs probe = *args;
+      apply_role(probe);
+      f = probe.format;
+      web = probe.web_zstd;
+    } catch (const Error&) {
+    }
     for (auto& ch : f) ch = char(std::tolower(static_cast<unsigned char>(ch)));
     bool no_dds = false;  // DDS has no ETC or ASTC formats (an unknown name fails in validate)
     try {
       no_dds = format_info(block_format_for(f, false)).dxgi_format == 0;
     } catch (const Error&) {
     }
-    c.default_extension = no_dds ? ".ktx2" : ".dds";  // DDS has no ETC or ASTC formats
+    c.default_extension = no_dds || web ? ".ktx2" : ".dds";  // DDS has no ETC or ASTC formats; the web takes KTX2
     c.input_extensions = image_extensions();
     c.validate = [args] { validate(*args); };
     c.plan = [](const InputFile&, const std::string& out) {
