@@ -103,6 +103,42 @@ void apply_role(CompressArgs& a) {
   a.web_zstd = target == "web" && a.zstd == 0;
 }
 
+// An image that looks like a tangent-space normal map (nearly every texel a
+// unit vector pointing out of the surface) about to be stored as sRGB
+// colour: its vectors would be bent by the transfer function.
+void warn_if_normal_map_as_srgb(const std::string& input, const Image& img, bool srgb,
+                                std::vector<std::string>& warnings) {
+  if (!srgb || img.channels() < 3 || img.type() == PixelType::f32) return;
+  const int step = std::max(1, int(std::sqrt(double(img.width()) * img.height() / 4096.0)));
+  std::size_t texels = 0, unit = 0;
+  for (int y = 0; y < img.height(); y += step)
+    for (int x = 0; x < img.width(); x += step) {
+      const double nx = img.get(x, y, 0) * 2 - 1, ny = img.get(x, y, 1) * 2 - 1, nz = img.get(x, y, 2) * 2 - 1;
+      ++texels;
+      if (nz > 0.2 && std::abs(std::sqrt(nx * nx + ny * ny + nz * nz) - 1.0) < 0.15) ++unit;
+    }
+  if (texels >= 16 && unit >= texels * 9 / 10) {
+    warnings.push_back(input +
+                       ": looks like a tangent-space normal map (unit vectors, blue up) but is stored as sRGB colour; "
+                       "--normal-map (or --role normal) stores it as data, --srgb says the colour is meant");
+  }
+}
+
+// Alpha below opaque that a format without alpha (BC1, ETC1, ETC2 RGB, BC6H) drops.
+void warn_if_alpha_dropped(const std::string& input, const Image& img, TexelFormat format,
+                           std::vector<std::string>& warnings) {
+  const int n = img.channels();
+  if (format_info(format).channels != 3 || (n != 2 && n != 4)) return;
+  std::size_t below = 0;
+  for (int y = 0; y < img.height(); ++y)
+    for (int x = 0; x < img.width(); ++x)
+      if (img.get(x, y, n - 1) < 1.0f) ++below;
+  if (below == 0) return;
+  warnings.push_back(input + ": alpha is below 1 in " + std::to_string(below) + " texel(s), and " +
+                     format_info(format).name +
+                     " has no alpha: it is dropped (bc1a, bc7, etc2a, etc2a1 or astc keep it)");
+}
+
 // A DXT name asks for what DX9-era tools read; sRGB colour in DDS needs the
 // DX10 header, which some of them (NVTT 2's nvdecompress) cannot read.
 void warn_if_dx10_for_dxt(const CompressArgs& a, TexelFormat format, const std::string& output,
@@ -281,6 +317,9 @@ void run_compress(const CompressArgs& a, const std::string& input, const std::st
   }
   if (!a.clip) warn_if_clipped(input, in, format, r.warnings);
   warn_if_dx10_for_dxt(a, format, output, r.warnings);
+  if (!a.srgb && !a.normal_map)
+    warn_if_normal_map_as_srgb(input, in.chains[0][0], format_info(format).srgb, r.warnings);
+  warn_if_alpha_dropped(input, in.chains[0][0], format, r.warnings);
   // HDR formats hold linear values: 8/16-bit colour is decoded from sRGB
   // first (as data with --linear), so the chain and the encoder see light.
   if (format_info(format).is_float && input_type != PixelType::f32) {

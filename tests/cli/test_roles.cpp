@@ -2,6 +2,7 @@
 // table in docs/compression.md names, for every role and target.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 #include "support/images.h"
@@ -69,4 +70,35 @@ TEST(Roles, EachRoleIsItsTableRow) {
   r = run_texproc("compress " + q(dir + "/rgba.png") + " -o " + q(dir + "/x.dds") + " --target mobile");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("add --role"), std::string::npos) << r.err;
+}
+
+// A normal map about to be stored as sRGB colour, and alpha a format drops,
+// are warned about, naming the file; not when the options say so.
+TEST(Roles, NormalMapAsColourAndDroppedAlphaAreNamed) {
+  const std::string dir = temp_dir("roles_warnings");
+  Image normals(32, 32, 3, PixelType::u8);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      const double nx = 0.4 * std::sin(x * 0.3), ny = 0.4 * std::cos(y * 0.2);
+      const double nz = std::sqrt(1 - nx * nx - ny * ny);
+      normals.set(x, y, 0, float(nx * 0.5 + 0.5));
+      normals.set(x, y, 1, float(ny * 0.5 + 0.5));
+      normals.set(x, y, 2, float(nz * 0.5 + 0.5));
+    }
+  write_image(dir + "/n.png", normals.view());
+  write_image(dir + "/rgba.png", random_image(16, 16, 4, PixelType::u8, 9).view());
+  write_image(dir + "/rgb.png", random_image(16, 16, 3, PixelType::u8, 9).view());
+  auto warnings = [&](const std::string& args) {
+    const RunResult r = run_texproc("compress " + args + " -f");
+    EXPECT_EQ(r.exit_code, 0) << args << ": " << r.err;
+    return r.err;
+  };
+  const std::string as_colour = warnings(q(dir + "/n.png") + " -o " + q(dir + "/n.dds") + " --format bc7");
+  EXPECT_NE(as_colour.find(dir + "/n.png: looks like a tangent-space normal map"), std::string::npos) << as_colour;
+  EXPECT_EQ(warnings(q(dir + "/n.png") + " -o " + q(dir + "/n.dds") + " --format bc5 --normal-map"), "");
+  EXPECT_EQ(warnings(q(dir + "/rgb.png") + " -o " + q(dir + "/c.dds") + " --format bc7"), "");
+  const std::string dropped = warnings(q(dir + "/rgba.png") + " -o " + q(dir + "/a.dds") + " --format bc1");
+  EXPECT_NE(dropped.find(dir + "/rgba.png: alpha is below 1 in"), std::string::npos) << dropped;
+  EXPECT_NE(dropped.find("bc1_rgb_srgb has no alpha"), std::string::npos) << dropped;
+  EXPECT_EQ(warnings(q(dir + "/rgba.png") + " -o " + q(dir + "/a.ktx2") + " --format etc2a"), "");
 }
