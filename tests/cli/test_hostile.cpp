@@ -372,6 +372,14 @@ TEST(Hostile, DeclaredWorkIsBoundedBeforeAllocation) {
   EXPECT_EQ(m.exit_code, 3) << m.err;
   EXPECT_NE(m.err.find("tile 64x262466 is larger than its 64x64 image needs"), std::string::npos) << m.err;
   EXPECT_LT(m.max_rss_kib, 100 * 1024);
+  // A 26 KB TIFF of 250x250 pixels with 18817 samples each (fuzz_images: over 20 s under ASan,
+  // 158 MB in a release build, before it failed on its third chunk).
+  m = run_measured("mip '" + std::string(TEXPROC_SOURCE_DIR) + "/tests/data/fuzz/tiff_18817_samples.tif' -o '" + dir +
+                   "/samples.png'");
+  EXPECT_EQ(m.exit_code, 3) << m.err;
+  EXPECT_NE(m.err.find("(18817 a pixel) in"), std::string::npos) << m.err;
+  EXPECT_NE(m.err.find("more than any compression it may use can hold"), std::string::npos) << m.err;
+  EXPECT_LT(m.max_rss_kib, 100 * 1024);
 
   // Devices are refused, not read until memory runs out.
   m = run_measured("info /dev/zero");

@@ -171,6 +171,7 @@ void place(const Layout& L, const Chunk& c, const std::uint8_t* data, Image& img
   const std::size_t in_px = std::size_t(spp) * L.bytes();
   const std::uint32_t w = std::min(c.w, L.width - c.x0), h = std::min(c.h, L.height - c.y0);
   const bool same_layout = c.plane < 0 && spp == C && !(L.format == SAMPLEFORMAT_IEEEFP && L.bits == 16);
+  const int used = std::min(spp, C);  // samples past the fourth are not read
   for (std::uint32_t y = 0; y < h; ++y) {
     const std::uint8_t* s = data + std::size_t(y) * c.w * in_px;
     if (same_layout) {  // the usual case: rows copied as they are
@@ -178,7 +179,7 @@ void place(const Layout& L, const Chunk& c, const std::uint8_t* data, Image& img
       continue;
     }
     for (std::uint32_t x = 0; x < w; ++x) {
-      for (int k = 0; k < spp; ++k) {
+      for (int k = 0; k < used; ++k) {
         const int ch = c.plane < 0 ? k : c.plane;
         if (ch >= C) continue;
         const std::uint8_t* p = s + std::size_t(x) * in_px + std::size_t(k) * L.bytes();
@@ -270,6 +271,23 @@ Image tiff_read(const std::string& path, ImageFileInfo& info, const ReadLimits& 
   }
   const std::size_t spp_chunk = planes > 1 ? 1 : L.spp;
   const std::size_t chunk_bytes = std::size_t(cw) * ch * spp_chunk * L.bytes();
+  // The samples declared must fit the chunks' bytes: no TIFF compression
+  // texproc reads turns a byte into more than 4096 (deflate: at most 1032).
+  // A small file declaring thousands of samples per pixel is refused before
+  // its chunks are allocated or decoded.
+  {
+    std::uint64_t* sizes = nullptr;
+    if (TIFFGetField(t, L.tiled ? TIFFTAG_TILEBYTECOUNTS : TIFFTAG_STRIPBYTECOUNTS, &sizes) && sizes) {
+      std::uint64_t stored = 0;
+      for (std::size_t i = 0; i < count; ++i) stored += sizes[i];
+      const double declared = double(L.width) * L.height * double(L.spp) * L.bytes();
+      if (declared > 4096.0 * double(stored) + 65536.0) {
+        invalid(path, "TIFF declares " + std::to_string(std::uint64_t(declared)) + " bytes of samples (" +
+                          std::to_string(L.spp) + " a pixel) in " + std::to_string(stored) +
+                          " bytes of chunks, more than any compression it may use can hold");
+      }
+    }
+  }
 
   const bool parallel =
       (L.compression == COMPRESSION_ADOBE_DEFLATE || L.compression == COMPRESSION_DEFLATE ||
