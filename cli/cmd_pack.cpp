@@ -102,8 +102,7 @@ Loaded load_sources(const PackArgs& a, std::vector<std::string>& warnings) {
   for (int k = 0; k < a.channels; ++k) {
     const Source& s = a.sources[k];
     if (s.file.empty() || std::find(l.files.begin(), l.files.end(), s.file) != l.files.end()) continue;
-    ImageFileInfo info;
-    Image img = read_image(s.file, &info, cli_read_options());
+    Image img = read_image(s.file, nullptr, cli_read_options());
     read_as_finite(s.file, img, warnings);
     apply_size_options(a.size, img, "linear");
     if (!l.images.empty() && (img.width() != l.images[0].width() || img.height() != l.images[0].height())) {
